@@ -1,0 +1,116 @@
+//! `vcnc`, the command line: checks and runs part programs on a virtual
+//! controller. This is the only crate that touches files, the terminal and
+//! the process exit code; everything else is a library.
+//!
+//! Exit codes: 0 clean run, 1 the program raised an alarm, 2 usage error
+//! (bad arguments, unreadable file, invalid machine file).
+
+mod cli;
+mod files;
+mod render;
+
+use clap::Parser;
+use cli::{Cli, Command, Common, Format};
+use std::io::{BufWriter, Write};
+use std::process::ExitCode;
+use vcnc_interp::{Dialect, Interpreter, Machine, Outcome, Sink};
+use vcnc_output::{CsvSink, GcodeSink, JsonlSink, Summary};
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode, String> {
+    match cli.command {
+        Command::Check { common } => check(&common),
+        Command::Run { common, format } => run_events(&common, format),
+    }
+}
+
+/// Everything a run needs, resolved from the common options.
+struct Setup {
+    machine: Machine,
+    dialect: Dialect,
+    options: vcnc_interp::Options,
+}
+
+fn setup(c: &Common) -> Result<Setup, String> {
+    let machine = match &c.machine {
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
+            Machine::from_toml(&text).map_err(|e| format!("machine file {}: {e}", path.display()))?
+        }
+        None => Machine::default_mill(),
+    };
+    let dialect = Dialect::by_name(&c.dialect)
+        .ok_or_else(|| format!("unknown dialect {:?}: use one of {}", c.dialect, Dialect::NAMES.join(", ")))?;
+    let options = vcnc_interp::Options { block_delete: c.block_delete, optional_stop: c.optional_stop };
+    Ok(Setup { machine, dialect, options })
+}
+
+/// Runs the program of `c` into `sink`.
+fn execute<S: Sink>(c: &Common, s: &Setup, sink: &mut S) -> Result<Outcome, String> {
+    let main = files::open_program(&c.file)?;
+    let dir = c.program_dir.clone().unwrap_or_else(|| files::parent_dir(&c.file));
+    let mut store = files::DirStore::new(dir);
+    let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
+    Ok(interp.run(main, &mut store, sink))
+}
+
+fn check(c: &Common) -> Result<ExitCode, String> {
+    let s = setup(c)?;
+    let mut summary = Summary::new(&s.machine);
+    let outcome = execute(c, &s, &mut summary)?;
+    if let Outcome::Alarm(d) = &outcome {
+        eprint!("{}", render::diagnostic(d, &c.file));
+    }
+    let mut out = std::io::stdout().lock();
+    render::summary(&mut out, c, &s.dialect, &s.machine, &summary, &outcome).map_err(|e| e.to_string())?;
+    Ok(exit_code(&outcome))
+}
+
+fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
+    let s = setup(c)?;
+    let out = BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+    let (outcome, written) = match format {
+        Format::Jsonl => {
+            let mut sink = JsonlSink::new(out, &s.machine);
+            let o = execute(c, &s, &mut sink)?;
+            (o, sink.finish().map(|_| ()))
+        }
+        Format::Csv => {
+            let mut sink = CsvSink::new(out, &s.machine);
+            let o = execute(c, &s, &mut sink)?;
+            (o, sink.finish().map(|_| ()))
+        }
+        Format::Gcode => {
+            let mut sink = GcodeSink::new(out, &s.machine);
+            let o = execute(c, &s, &mut sink)?;
+            (o, sink.finish().map(|_| ()))
+        }
+    };
+    match written {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        Err(e) => return Err(format!("writing output: {e}")),
+        Ok(()) => {}
+    }
+    if let Outcome::Alarm(d) = &outcome {
+        eprint!("{}", render::diagnostic(d, &c.file));
+    }
+    let _ = std::io::stderr().flush();
+    Ok(exit_code(&outcome))
+}
+
+fn exit_code(o: &Outcome) -> ExitCode {
+    match o {
+        Outcome::Ended(_) => ExitCode::SUCCESS,
+        Outcome::Alarm(_) => ExitCode::from(1),
+    }
+}

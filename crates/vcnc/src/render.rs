@@ -1,0 +1,110 @@
+//! Rendering for people: alarms like rustc diagnostics (annotate-snippets)
+//! and the `vcnc check` summary.
+
+use crate::cli::Common;
+use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
+use std::io::{self, Read, Seek, SeekFrom, Write};
+use std::path::Path;
+use vcnc_interp::{Dialect, Machine, Outcome};
+use vcnc_output::Summary;
+use vcnc_syntax::Diagnostic;
+
+/// The source line of a diagnostic, read back from its file.
+fn source_line(d: &Diagnostic, main: &Path) -> Option<String> {
+    let path = d.file.as_deref().map_or(main, Path::new);
+    let mut f = std::fs::File::open(path).ok()?;
+    f.seek(SeekFrom::Start(d.line_offset)).ok()?;
+    let mut buf = vec![0; 4096];
+    let n = f.read(&mut buf).ok()?;
+    buf.truncate(n);
+    let end = buf.iter().position(|b| *b == b'\n').unwrap_or(buf.len());
+    let line = String::from_utf8_lossy(&buf[..end]).trim_end_matches('\r').to_string();
+    Some(line)
+}
+
+/// An alarm with its source line and a caret, like rustc.
+pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
+    let file = d.file.clone().unwrap_or_else(|| main.display().to_string());
+    let title = format!("alarm: {}", d.message);
+    let renderer = if std::env::var_os("NO_COLOR").is_none() && io_is_terminal() { Renderer::styled() } else { Renderer::plain() };
+    let text = match source_line(d, main) {
+        Some(line) => {
+            let len = line.len();
+            let start = (d.span.start as usize).min(len);
+            let end = (d.span.end as usize).clamp(start, len);
+            let report = [Level::ERROR.primary_title(title).id(d.code.as_str()).element(
+                Snippet::source(line)
+                    .line_start(usize::try_from(d.line).unwrap_or(usize::MAX))
+                    .path(file.clone())
+                    .annotation(AnnotationKind::Primary.span(start..end.max(start)).label(d.code.as_str())),
+            )
+            .element(Level::HELP.message(d.help.clone()))];
+            renderer.render(&report)
+        }
+        None => format!("error[{}]: {} at {}:{}:{}\n  help: {}", d.code.as_str(), d.message, file, d.line, d.column, d.help),
+    };
+    format!("{text}\n")
+}
+
+fn io_is_terminal() -> bool {
+    use std::io::IsTerminal;
+    io::stderr().is_terminal()
+}
+
+/// `1h 02m 03.4s`-style duration.
+fn duration(s: f64) -> String {
+    let total = s.max(0.0);
+    let h = (total / 3600.0).floor();
+    let m = ((total - h * 3600.0) / 60.0).floor();
+    let sec = total - h * 3600.0 - m * 60.0;
+    if h > 0.0 {
+        format!("{h}h {m:02}m {sec:04.1}s")
+    } else if m > 0.0 {
+        format!("{m}m {sec:04.1}s")
+    } else {
+        format!("{sec:.1}s")
+    }
+}
+
+/// The summary block of `vcnc check`.
+pub fn summary(
+    out: &mut impl Write,
+    c: &Common,
+    dialect: &Dialect,
+    machine: &Machine,
+    s: &Summary,
+    outcome: &Outcome,
+) -> io::Result<()> {
+    writeln!(out, "program    {} ({} dialect, {})", c.file.display(), dialect.name, machine.name)?;
+    match outcome {
+        Outcome::Ended(code) => writeln!(out, "result     ended by {code}")?,
+        Outcome::Alarm(d) => writeln!(out, "result     alarm {} at line {}, column {}", d.code.as_str(), d.line, d.column)?,
+    }
+    let mut time = format!("{} (distance/feed estimate, no acceleration)", duration(s.cycle_time_s));
+    if s.untimed_moves > 0 {
+        time.push_str(&format!("; {} feed-per-rev moves with the spindle stopped not counted", s.untimed_moves));
+    }
+    writeln!(out, "cycle time {time}")?;
+    writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
+    writeln!(out, "cutting    {:.3} mm", s.cut_mm)?;
+    match s.extents {
+        Some((lo, hi)) => {
+            let parts: Vec<String> = s
+                .axis_letters()
+                .iter()
+                .enumerate()
+                .map(|(i, l)| format!("{} {:.3} .. {:.3}", char::from(*l), lo.get(i), hi.get(i)))
+                .collect();
+            writeln!(out, "extents    {} (machine mm)", parts.join("   "))?;
+        }
+        None => writeln!(out, "extents    no motion")?,
+    }
+    let tools: Vec<String> = s.tools.iter().map(|t| format!("T{t}")).collect();
+    writeln!(out, "tools      {}", if tools.is_empty() { "none".to_string() } else { tools.join(" ") })?;
+    match s.spindle_rpm {
+        Some((lo, hi)) if (hi - lo).abs() < 1e-9 => writeln!(out, "spindle    {lo:.0} rpm")?,
+        Some((lo, hi)) => writeln!(out, "spindle    {lo:.0} .. {hi:.0} rpm")?,
+        None => writeln!(out, "spindle    not started")?,
+    }
+    Ok(())
+}

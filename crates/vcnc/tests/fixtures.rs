@@ -1,0 +1,153 @@
+//! Fixture-driven tests: every `*.nc` under `tests/fixtures/{manual,linuxcnc}`
+//! runs through the interpreter and its JSON-lines events are compared with
+//! the `*.expected.jsonl` beside it.
+//!
+//! The expected traces were not produced by vcnc: the manual ones were worked
+//! out by hand from the Syntec 900M manual (see `tests/fixtures/manual/README.md`),
+//! the LinuxCNC ones converted from `rs274` output by
+//! `tools/linuxcnc/make_fixtures.py`. Numbers compare within a tolerance
+//! (rs274 prints 4 decimals); alarm messages are not compared, their code,
+//! line and column are. A first line `(vcnc-args: …)` passes options:
+//! `--dialect D`, `--machine FILE`, `--optional-stop`, `--block-delete`.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use vcnc_interp::{Dialect, Interpreter, Machine, Options, VecSink};
+
+fn fixtures_dir(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures").join(name)
+}
+
+struct Args {
+    dialect: String,
+    machine: Option<PathBuf>,
+    options: Options,
+}
+
+fn args_of(program: &str, dir: &Path, default_dialect: &str) -> Args {
+    let mut a = Args { dialect: default_dialect.into(), machine: None, options: Options::default() };
+    let first = program.lines().next().unwrap_or("");
+    let Some(rest) = first.strip_prefix("(vcnc-args:") else { return a };
+    let mut words = rest.trim_end_matches(')').split_whitespace();
+    while let Some(w) = words.next() {
+        match w {
+            "--dialect" => a.dialect = words.next().expect("dialect name").into(),
+            "--machine" => a.machine = Some(dir.join(words.next().expect("machine path"))),
+            "--optional-stop" => a.options.optional_stop = true,
+            "--block-delete" => a.options.block_delete = true,
+            other => panic!("unknown fixture argument {other}"),
+        }
+    }
+    a
+}
+
+/// Runs one program and returns its events as JSON values.
+fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
+    let program = std::fs::read_to_string(path).expect("fixture readable");
+    let a = args_of(&program, path.parent().expect("dir"), default_dialect);
+    let machine = match &a.machine {
+        Some(m) => Machine::from_toml(&std::fs::read_to_string(m).expect("machine file")).expect("valid machine"),
+        None => Machine::default_mill(),
+    };
+    let dialect = Dialect::by_name(&a.dialect).expect("dialect");
+    let mut sink = VecSink::default();
+    let mut store = DirStore(path.parent().expect("dir").to_path_buf());
+    Interpreter::new(&machine, &dialect, a.options).run(
+        Box::new(vcnc_syntax::MemSource(program.into_bytes())),
+        &mut store,
+        &mut sink,
+    );
+    let axes: Vec<u8> = machine.axes.iter().map(|x| x.letter.to_ascii_lowercase()).collect();
+    sink.0
+        .iter()
+        .map(|e| {
+            let mut buf = Vec::new();
+            vcnc_output::write_event(&mut buf, &axes, e);
+            serde_json::from_slice(&buf).expect("vcnc writes valid JSON")
+        })
+        .collect()
+}
+
+struct DirStore(PathBuf);
+
+impl vcnc_interp::ProgramStore for DirStore {
+    fn open(&mut self, n: u32) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+        let p = self.0.join(format!("O{n:04}.nc"));
+        let text = std::fs::read(&p).ok()?;
+        Some(Ok((Box::new(vcnc_syntax::MemSource(text)), p.display().to_string())))
+    }
+}
+
+fn close(a: &Value, b: &Value, tol: f64, key: &str) -> bool {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
+            let t = if key == "center" { tol.max(2e-3) } else { tol };
+            (x - y).abs() <= t
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            let skip = |k: &String| x.get("type") == Some(&Value::from("alarm")) && (k == "message" || k == "help");
+            let kx: Vec<_> = x.keys().filter(|k| !skip(k)).collect();
+            let ky: Vec<_> = y.keys().filter(|k| !skip(k)).collect();
+            let mut kx_sorted = kx.clone();
+            kx_sorted.sort();
+            let mut ky_sorted = ky.clone();
+            ky_sorted.sort();
+            kx_sorted == ky_sorted && kx.iter().all(|k| close(&x[*k], &y[*k], tol, if key == "center" { key } else { k }))
+        }
+        _ => a == b,
+    }
+}
+
+/// Compares every fixture of a folder; reports all mismatches at once.
+fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
+    let dir = fixtures_dir(name);
+    let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("fixture folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+        .filter(|p| !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('O')))
+        .collect();
+    programs.sort();
+    let mut failures = Vec::new();
+    for p in &programs {
+        let expected_path = p.with_extension("expected.jsonl");
+        let expected: Vec<Value> = std::fs::read_to_string(&expected_path)
+            .unwrap_or_else(|_| panic!("{} has no expected trace", p.display()))
+            .lines()
+            .filter(|l| !l.trim().is_empty())
+            .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{}: {e}", expected_path.display())))
+            .collect();
+        let got = run(p, default_dialect);
+        let first_diff = (0..expected.len().max(got.len()))
+            .find(|&i| match (expected.get(i), got.get(i)) {
+                (Some(a), Some(b)) => !close(a, b, tol, ""),
+                _ => true,
+            });
+        if let Some(i) = first_diff {
+            failures.push(format!(
+                "{}: event {} differs\n  expected: {}\n  got:      {}",
+                p.display(),
+                i + 1,
+                expected.get(i).map_or("(none)".into(), Value::to_string),
+                got.get(i).map_or("(none)".into(), Value::to_string)
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{} of {} fixtures differ:\n{}", failures.len(), programs.len(), failures.join("\n"));
+    programs.len()
+}
+
+#[test]
+fn manual_examples_match_their_hand_worked_traces() {
+    let n = check_folder("manual", "syntec", 1e-6);
+    assert!(n >= 30, "only {n} manual fixtures found");
+}
+
+#[test]
+fn linuxcnc_programs_match_rs274() {
+    let n = check_folder("linuxcnc", "fanuc", 1e-4);
+    assert!(n >= 300, "only {n} LinuxCNC fixtures found");
+}

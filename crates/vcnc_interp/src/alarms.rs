@@ -1,0 +1,282 @@
+//! The interpreter's alarms, one named constructor each (codes in
+//! `docs/alarms.md`). Formatting happens only here and only when an alarm is
+//! raised, never on the per-block hot path.
+
+use vcnc_syntax::{Code, Diagnostic, Span};
+
+fn d(code: Code, span: Span, message: String, help: &str) -> Diagnostic {
+    Diagnostic::new(code, span, message, help)
+}
+
+fn letter(l: u8) -> char {
+    char::from(l)
+}
+
+/// E106: a physical line too long to read.
+pub fn line_too_long() -> Diagnostic {
+    d(Code::E106, Span::new(0, 1), "line is longer than 64 KiB".into(), "split it into several blocks")
+}
+
+/// E108: a decimal point in a word that counts or numbers things.
+pub fn no_decimal_point(span: Span, l: u8, why: &str) -> Diagnostic {
+    d(Code::E108, span, format!("{} does not take a decimal point: {why}", letter(l)), "write a whole number")
+}
+
+/// E109: a value outside what the word allows.
+pub fn value_out_of_range(span: Span, l: u8, value: f64, allowed: &str) -> Diagnostic {
+    d(Code::E109, span, format!("{}{value} is out of range: {allowed}", letter(l)), "use a value in the allowed range")
+}
+
+/// E201: unknown G code.
+pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>) -> Diagnostic {
+    let help = match elsewhere {
+        Some(other) => format!("G{value} exists in the {other} dialect: run with --dialect {other}"),
+        None => "check the code against the controller's G-code list".to_string(),
+    };
+    let mut diag = d(Code::E201, span, format!("G{value} is not a G code of the {dialect} dialect"), "");
+    diag.help = help;
+    diag
+}
+
+/// E202: unknown M code.
+pub fn unknown_m(span: Span, value: f64, dialect: &str) -> Diagnostic {
+    d(
+        Code::E202,
+        span,
+        format!("M{value} is not an M code of the {dialect} dialect"),
+        "check the code against the controller's M-code list",
+    )
+}
+
+/// E203: a word nothing in the block uses.
+pub fn word_not_allowed(span: Span, l: u8) -> Diagnostic {
+    d(
+        Code::E203,
+        span,
+        format!("{} is not used by any command in this block", letter(l)),
+        "remove it, or add the G or M code that uses it",
+    )
+}
+
+/// E203 for a multi-character address the dialect does not have.
+pub fn address_not_in_dialect(span: Span, dialect: &str) -> Diagnostic {
+    d(Code::E203, span, format!("this address does not exist in the {dialect} dialect"), "check --dialect")
+}
+
+/// E204: the same address twice.
+pub fn duplicate_word(span: Span, l: u8) -> Diagnostic {
+    d(Code::E204, span, format!("{} appears twice in this block", letter(l)), "keep one of them")
+}
+
+/// E205: two G codes of one modal group.
+pub fn same_group(span: Span) -> Diagnostic {
+    d(
+        Code::E205,
+        span,
+        "two G codes of the same modal group in one block".into(),
+        "keep one of them (parameter same_group_in_block = \"last_wins\" takes the last, as Fanuc does)",
+    )
+}
+
+/// E206: two M codes of one group.
+pub fn same_m_group(span: Span) -> Diagnostic {
+    d(Code::E206, span, "two M codes of the same group in one block".into(), "put them in separate blocks")
+}
+
+/// E207: two G codes both taking the axis words.
+pub fn axis_conflict(span: Span) -> Diagnostic {
+    d(
+        Code::E207,
+        span,
+        "two G codes in this block both use the axis words".into(),
+        "put each in its own block",
+    )
+}
+
+/// E208: G92 with axes and S.
+pub fn g92_axes_and_s(span: Span) -> Diagnostic {
+    d(
+        Code::E208,
+        span,
+        "G92 with axis words presets coordinates, G92 with S clamps the spindle: not both at once".into(),
+        "write G92 S… and G92 X… in separate blocks",
+    )
+}
+
+/// E301: zero feed on a cutting move.
+pub fn zero_feed(span: Span) -> Diagnostic {
+    d(Code::E301, span, "cutting move with zero feed".into(), "program F before or in this block, e.g. F300")
+}
+
+/// E302: chord longer than the diameter.
+pub fn radius_too_small(span: Span, r: f64, chord: f64) -> Diagnostic {
+    d(
+        Code::E302,
+        span,
+        format!("arc radius {r:.4} mm is too small for the {chord:.4} mm between start and end"),
+        "make R at least half the distance between start and end point",
+    )
+}
+
+/// E303: end point off the circle.
+pub fn end_off_circle(span: Span, r_start: f64, r_end: f64) -> Diagnostic {
+    d(
+        Code::E303,
+        span,
+        format!("arc end point is not on the circle: start radius {r_start:.4} mm, end radius {r_end:.4} mm"),
+        "check the end point and I/J/K (I/J/K are measured from the start point to the centre)",
+    )
+}
+
+/// E304: zero radius.
+pub fn zero_radius(span: Span) -> Diagnostic {
+    d(Code::E304, span, "arc has zero radius".into(), "give the centre offset (I/J/K) or a non-zero R")
+}
+
+/// E305: neither centre nor radius.
+pub fn arc_without_center(span: Span, plane: &str) -> Diagnostic {
+    d(
+        Code::E305,
+        span,
+        format!("arc without centre or radius in the {plane} plane"),
+        "add the centre offsets of the plane (G17: I J, G18: I K, G19: J K) or R",
+    )
+}
+
+/// E306: R arc from a point to itself.
+pub fn r_full_circle(span: Span) -> Diagnostic {
+    d(
+        Code::E306,
+        span,
+        "an R arc needs an end point different from its start".into(),
+        "program a full circle with I/J/K instead of R",
+    )
+}
+
+/// E307: G29 before any G28/G30.
+pub fn g29_without_g28(span: Span, axis: u8) -> Diagnostic {
+    d(
+        Code::E307,
+        span,
+        format!("G29 has no intermediate point for {}: no G28/G30 moved that axis before", letter(axis)),
+        "run G28 or G30 with that axis first",
+    )
+}
+
+/// E308: G53 under G91.
+pub fn g53_incremental(span: Span) -> Diagnostic {
+    d(
+        Code::E308,
+        span,
+        "G53 takes absolute machine coordinates and is not effective in incremental mode (G91)".into(),
+        "write G90 before G53 (manual 1.2.23, note 2)",
+    )
+}
+
+/// E309: M06 without T.
+pub fn m06_without_tool(span: Span) -> Diagnostic {
+    d(Code::E309, span, "M06 with no tool selected".into(), "select the tool with T in this or an earlier block")
+}
+
+/// E310: G96 without a tool diameter.
+pub fn css_without_diameter(span: Span) -> Diagnostic {
+    d(
+        Code::E310,
+        span,
+        "constant surface speed (G96) needs the tool diameter, and the active tool has none".into(),
+        "change to a tool with d_mm in the machine's tool table, or use G97 S… rpm",
+    )
+}
+
+/// E311: G33 without lead.
+pub fn thread_without_lead(span: Span) -> Diagnostic {
+    d(Code::E311, span, "G33 without a thread lead".into(), "give the lead with F, e.g. G33 Z-20. F1.5")
+}
+
+/// E312: a code that needs axis words has none.
+pub fn needs_axes(span: Span, what: &str) -> Diagnostic {
+    d(Code::E312, span, format!("{what} needs axis words"), "name the axes it applies to, e.g. X0 Y0")
+}
+
+/// E401: program not found.
+pub fn program_not_found(span: Span, number: u32) -> Diagnostic {
+    d(
+        Code::E401,
+        span,
+        format!("program O{number:04} not found"),
+        "add it to this file after the main program, or put O{number:04}.nc in the --program-dir",
+    )
+}
+
+/// E402: sequence number not found.
+pub fn sequence_not_found(span: Span, seq: u32) -> Diagnostic {
+    d(Code::E402, span, format!("sequence number N{seq} not found in the program"), "check the N number")
+}
+
+/// E403: nesting too deep.
+pub fn nesting_too_deep(span: Span, max: u32) -> Diagnostic {
+    d(
+        Code::E403,
+        span,
+        format!("subprogram calls nested deeper than {max} levels"),
+        "check for a program that calls itself; the depth is limits.max_call_depth",
+    )
+}
+
+/// E404: too many blocks.
+pub fn block_limit(span: Span, max: u64) -> Diagnostic {
+    d(
+        Code::E404,
+        span,
+        format!("more than {max} blocks executed"),
+        "check for an endless loop, or raise limits.max_executed_blocks in the machine file",
+    )
+}
+
+/// E405: too many jumps.
+pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
+    d(
+        Code::E405,
+        span,
+        format!("more than {max} jumps (subprogram calls, M99 returns and repeats)"),
+        "check for an endless M99 loop, or raise limits.max_jumps in the machine file",
+    )
+}
+
+/// E406: subprogram without M99.
+pub fn sub_without_m99(span: Span) -> Diagnostic {
+    d(Code::E406, span, "subprogram ended without M99".into(), "end every subprogram with M99")
+}
+
+/// E408: called program unreadable.
+pub fn program_unreadable(span: Span, number: u32, err: &std::io::Error) -> Diagnostic {
+    d(Code::E408, span, format!("program O{number:04} could not be read: {err}"), "check the file's permissions")
+}
+
+/// E501: soft over-travel.
+pub fn over_travel(span: Span, axis: u8, value: f64, min: f64, max: f64) -> Diagnostic {
+    d(
+        Code::E501,
+        span,
+        format!(
+            "over-travel: the path takes {} to {value:.4} mm, outside its travel {min} .. {max} mm",
+            letter(axis)
+        ),
+        "check the coordinates and the work offset, or the machine's travel limits",
+    )
+}
+
+/// E502: reference point not defined.
+pub fn no_reference(span: Span, n: usize) -> Diagnostic {
+    d(
+        Code::E502,
+        span,
+        format!("reference point {n} is not defined for this machine"),
+        "define reference.p{n} in the machine file, or use another P",
+    )
+}
+
+/// E503: work offset number out of range.
+pub fn bad_offset_number(span: Span, p: f64) -> Diagnostic {
+    d(Code::E503, span, format!("G10 L2 P{p}: no such work coordinate system"), "use P1 (G54) to P6 (G59)")
+}

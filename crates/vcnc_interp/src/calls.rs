@@ -1,0 +1,96 @@
+//! M98 calls and M99 returns (Syntec manual chapter 2, item 11).
+//!
+//! - `M98 P p`: run program `O p` (same file, or the program store), then
+//!   continue after the M98. `H n` starts at `N n` of that program; with no
+//!   P, `H n` calls `N n` of the current program. `L k` runs it k times.
+//! - `M99`: return after the call (or run the next repetition). In a main
+//!   program it starts the program again.
+//! - `M99 P n`: return to `N n` of the calling program (in a main program:
+//!   jump to its `N n`).
+//!
+//! Every call, repetition and jump counts against `limits.max_jumps`, and
+//! nesting against `limits.max_call_depth`, so a runaway loop alarms.
+
+use crate::alarms;
+use crate::convert::whole;
+use crate::flow::{Frame, ProgramStore};
+use crate::interpreter::{Interpreter, Step};
+use crate::words::Words;
+use vcnc_syntax::{Cursor, Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// M98.
+    pub(crate) fn call(
+        &mut self,
+        w: &Words,
+        m: Span,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let program = w.get(b'P').map(|p| whole(&p, b'P', 0.0, 99_999_999.0, "P is a program number").map(|n| (n, p.span)));
+        let program = program.transpose()?;
+        let seq = w.get(b'H').map(|h| whole(&h, b'H', 0.0, 99_999_999.0, "H is a sequence number").map(|n| (n, h.span)));
+        let seq = seq.transpose()?;
+        let runs = match w.get(b'L') {
+            Some(l) => whole(&l, b'L', 1.0, 99_999_999.0, "L is a repeat count")?,
+            None => 1,
+        };
+        if program.is_none() && seq.is_none() {
+            return Err(alarms::program_not_found(m, 0));
+        }
+        let depth = self.flow().frames.len() as u64;
+        if depth > u64::from(self.machine.limits.max_call_depth) {
+            return Err(alarms::nesting_too_deep(m, self.machine.limits.max_call_depth));
+        }
+        self.count_jump(m)?;
+        let lex = self.dialect.lex;
+        let caller = self.flow().frame();
+        let (source, mut start) = match program {
+            Some((n, span)) => match self.flow().find_program(n, &lex, store) {
+                Ok(Some(found)) => found,
+                Ok(None) => return Err(alarms::program_not_found(span, n)),
+                Err(e) => return Err(alarms::program_unreadable(span, n, &e)),
+            },
+            None => (caller.source, caller.start),
+        };
+        if let Some((n, span)) = seq {
+            start = self.flow().find_sequence(source, start, n, &lex).ok_or_else(|| alarms::sequence_not_found(span, n))?;
+        }
+        let _ = here;
+        let flow = self.flow();
+        flow.frames.push(Frame { source, start, ret: next, runs_left: runs, started: seq.is_some() });
+        Ok(Step::Jump(start))
+    }
+
+    /// M99.
+    pub(crate) fn ret(&mut self, w: &Words, m: Span) -> Result<Step, Diagnostic> {
+        let target = w.get(b'P').map(|p| whole(&p, b'P', 0.0, 99_999_999.0, "M99 P is a sequence number").map(|n| (n, p.span)));
+        let target = target.transpose()?;
+        self.count_jump(m)?;
+        let lex = self.dialect.lex;
+        let flow = self.flow();
+        let frame = flow.frame();
+        if flow.frames.len() == 1 {
+            // A main program: start again, or jump to N n.
+            let to = match target {
+                Some((n, span)) => flow.find_sequence(frame.source, frame.start, n, &lex).ok_or_else(|| alarms::sequence_not_found(span, n))?,
+                None => frame.start,
+            };
+            return Ok(Step::Jump(to));
+        }
+        if frame.runs_left > 1 && target.is_none() {
+            if let Some(f) = flow.frame_mut() {
+                f.runs_left -= 1;
+            }
+            return Ok(Step::Jump(frame.start));
+        }
+        flow.frames.pop();
+        let caller = flow.frame();
+        let to = match target {
+            Some((n, span)) => flow.find_sequence(caller.source, caller.start, n, &lex).ok_or_else(|| alarms::sequence_not_found(span, n))?,
+            None => frame.ret,
+        };
+        Ok(Step::Jump(to))
+    }
+}

@@ -1,0 +1,247 @@
+//! Canonical events: the interpreter's only output, and the public contract
+//! behind `vcnc run --format jsonl` (documented in `docs/events.md`).
+//!
+//! Events carry machine coordinates in mm ([`Pos`], indexed by the machine's
+//! axis order), feeds in mm/min or mm/rev, and the source location of the
+//! block that caused them. Sinks (`vcnc_output`, the planner, the plotter)
+//! consume them by reference through [`crate::Sink`].
+
+use std::sync::Arc;
+use vcnc_syntax::Diagnostic;
+
+/// Most axes a machine may have.
+pub const MAX_AXES: usize = 6;
+
+/// A position or vector in machine coordinates, mm (degrees for rotary
+/// axes), indexed like the machine's `axes`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pos(pub [f64; MAX_AXES]);
+
+impl Pos {
+    /// `self + other`, axis by axis.
+    pub fn plus(self, other: Pos) -> Pos {
+        let mut out = self;
+        for (o, b) in out.0.iter_mut().zip(other.0) {
+            *o += b;
+        }
+        out
+    }
+    /// `self - other`, axis by axis.
+    pub fn minus(self, other: Pos) -> Pos {
+        let mut out = self;
+        for (o, b) in out.0.iter_mut().zip(other.0) {
+            *o -= b;
+        }
+        out
+    }
+    /// The coordinate of axis `i` (0 when out of range).
+    pub fn get(&self, i: usize) -> f64 {
+        self.0.get(i).copied().unwrap_or(0.0)
+    }
+    /// Sets the coordinate of axis `i` (ignored when out of range).
+    pub fn set(&mut self, i: usize, v: f64) {
+        if let Some(slot) = self.0.get_mut(i) {
+            *slot = v;
+        }
+    }
+}
+
+/// Where an event comes from.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Loc {
+    /// 1-based source line.
+    pub line: u64,
+    /// The file, when not the main program.
+    pub file: Option<Arc<str>>,
+}
+
+/// Feed of a cutting move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Feed {
+    /// mm/min (G94).
+    PerMin(f64),
+    /// mm per spindle revolution (G95).
+    PerRev(f64),
+}
+
+/// The plane of an arc, named by its two axes in rotation order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    /// G17.
+    Xy,
+    /// G18.
+    Zx,
+    /// G19.
+    Yz,
+}
+
+impl Plane {
+    /// `"xy"`, `"zx"` or `"yz"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Plane::Xy => "xy",
+            Plane::Zx => "zx",
+            Plane::Yz => "yz",
+        }
+    }
+    /// The first, second and normal axis letters.
+    pub fn letters(self) -> [u8; 3] {
+        match self {
+            Plane::Xy => [b'X', b'Y', b'Z'],
+            Plane::Zx => [b'Z', b'X', b'Y'],
+            Plane::Yz => [b'Y', b'Z', b'X'],
+        }
+    }
+}
+
+/// Rotation sense of an arc, looking from the positive normal axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcDir {
+    /// G02.
+    Cw,
+    /// G03.
+    Ccw,
+}
+
+/// Spindle state in a `spindle` event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpindleDir {
+    /// M03.
+    Cw,
+    /// M04.
+    Ccw,
+    /// M05.
+    Stop,
+    /// M19: stopped at an orientation.
+    Orient,
+}
+
+/// Path control mode (group 15), for the planner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathMode {
+    /// G61.
+    ExactStop,
+    /// G62 (Syntec: curved-surface cutting).
+    Surface,
+    /// G63.
+    Tapping,
+    /// G64, the power-on mode.
+    Cutting,
+}
+
+/// One canonical event.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// Positioning at rapid rate.
+    Rapid {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// G09 in the block.
+        exact_stop: bool,
+    },
+    /// Straight cutting move.
+    Feed {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// Feed.
+        feed: Feed,
+        /// G09 in the block.
+        exact_stop: bool,
+    },
+    /// Circular or helical move.
+    Arc {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// Centre; its normal-axis coordinate is the start's.
+        center: Pos,
+        /// Plane.
+        plane: Plane,
+        /// Direction.
+        dir: ArcDir,
+        /// Feed.
+        feed: Feed,
+        /// G09 in the block.
+        exact_stop: bool,
+    },
+    /// Thread cutting (G33), feed locked to the spindle.
+    Thread {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// Lead, mm per revolution.
+        lead_mm: f64,
+    },
+    /// Skip move (G31).
+    Skip {
+        /// Source.
+        loc: Loc,
+        /// Where the motion ended.
+        to: Pos,
+        /// Feed.
+        feed: Feed,
+        /// Whether the skip signal fired.
+        triggered: bool,
+    },
+    /// Dwell (G04).
+    Dwell {
+        /// Source.
+        loc: Loc,
+        /// Duration.
+        seconds: f64,
+    },
+    /// Tool change (M06).
+    ToolChange {
+        /// Source.
+        loc: Loc,
+        /// New tool.
+        tool: u32,
+    },
+    /// Spindle start, stop or speed change.
+    Spindle {
+        /// Source.
+        loc: Loc,
+        /// Direction.
+        dir: SpindleDir,
+        /// Speed, rev/min (0 when stopped).
+        rpm: f64,
+        /// Surface speed under G96.
+        surface_m_per_min: Option<f64>,
+    },
+    /// Coolant on/off.
+    Coolant {
+        /// Source.
+        loc: Loc,
+        /// On.
+        on: bool,
+    },
+    /// Path control mode change.
+    PathMode {
+        /// Source.
+        loc: Loc,
+        /// New mode.
+        mode: PathMode,
+    },
+    /// Program stop (M00, M01).
+    Stop {
+        /// Source.
+        loc: Loc,
+        /// `"M00"` or `"M01"`.
+        code: &'static str,
+    },
+    /// Program end.
+    End {
+        /// Source.
+        loc: Loc,
+        /// `"M02"`, `"M30"` or `"EOF"`.
+        code: &'static str,
+    },
+    /// An alarm; always the last event.
+    Alarm(Diagnostic),
+}

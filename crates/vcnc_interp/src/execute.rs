@@ -1,0 +1,225 @@
+//! The "execute" phase of one validated block, in a fixed order:
+//!
+//! ```text
+//!  1 modal G codes (units, distance, plane, feed mode, G96/G97, work system, path mode)
+//!  2 F, S, T     3 M06     4 M03/M04/M05/M19     5 M08/M09
+//!  6 G04, G10, G92, G52   7 G28/G29/G30/G53/G31 or the modal motion
+//!  8 M00/M01/M02/M30/M98/M99
+//! ```
+//!
+//! Modal codes come first so that `G96 S130 M03`, `G91 X10` and `G70 F10`
+//! read their words in the mode the same block selects (Fanuc behaviour);
+//! program flow comes last so that a block's motion happens before it ends
+//! or jumps. Every fallible check of a step happens before that step changes
+//! anything.
+
+use crate::alarms;
+use crate::dialect::{GOp, Group, MGroup, MOp, bit};
+use crate::events::{Event, PathMode, Plane, SpindleDir};
+use crate::flow::ProgramStore;
+use crate::interpreter::{Interpreter, Step};
+use crate::sink::Sink;
+use crate::state::Motion;
+use crate::words::{ALWAYS, Words};
+use vcnc_syntax::{Cursor, Diagnostic, Span};
+
+impl Words {
+    /// Whether the block changes offsets (so they are saved for rollback).
+    pub(crate) fn changes_offsets(&self) -> bool {
+        self.axis_user.is_some_and(|a| matches!(a.def.op, GOp::SetData | GOp::PresetOrClamp | GOp::LocalSystem))
+    }
+}
+
+impl Interpreter<'_> {
+    pub(crate) fn execute<S: Sink>(
+        &mut self,
+        w: &Words,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        let path_before = self.state.modal.path;
+        self.apply_modal(w);
+        w.check_used(self.allowed_letters(w))?;
+        if self.state.modal.path != path_before {
+            let mode = self.state.modal.path;
+            self.emit(sink, |loc| Event::PathMode { loc, mode });
+        }
+        self.feed_word(w)?;
+        self.tool_words(w, sink)?;
+        self.spindle_words(w, sink)?;
+        if let Some(m) = w.m_of(MGroup::Coolant) {
+            let on = m.def.op == MOp::CoolantOn;
+            self.emit(sink, |loc| Event::Coolant { loc, on });
+        }
+        match w.axis_user {
+            Some(user) => self.one_shot(user.def.op, user.span, w, sink)?,
+            None => self.modal_motion(w, sink)?,
+        }
+        self.program_flow(w, here, next, store, sink)
+    }
+
+    /// Step 1: the modal groups written in the block.
+    fn apply_modal(&mut self, w: &Words) {
+        let m = &mut self.state.modal;
+        let mut wcs_changed = false;
+        for at in w.modal.iter().flatten() {
+            match at.def.op {
+                GOp::Rapid => m.motion = Motion::Rapid,
+                GOp::Linear => m.motion = Motion::Linear,
+                GOp::ArcCw => m.motion = Motion::ArcCw,
+                GOp::ArcCcw => m.motion = Motion::ArcCcw,
+                GOp::Thread => m.motion = Motion::Thread,
+                GOp::PlaneXy => m.plane = Plane::Xy,
+                GOp::PlaneZx => m.plane = Plane::Zx,
+                GOp::PlaneYz => m.plane = Plane::Yz,
+                GOp::Absolute => m.incremental = false,
+                GOp::Incremental => m.incremental = true,
+                GOp::PerMinute => m.per_rev = false,
+                GOp::PerRev => m.per_rev = true,
+                GOp::Inch => m.inch = true,
+                GOp::Metric => m.inch = false,
+                GOp::SurfaceSpeed => m.css = true,
+                GOp::SpindleRpm => m.css = false,
+                GOp::WorkSystem(n) => {
+                    wcs_changed |= m.wcs != usize::from(n);
+                    m.wcs = usize::from(n);
+                }
+                GOp::PathExact => m.path = PathMode::ExactStop,
+                GOp::PathSurface => m.path = PathMode::Surface,
+                GOp::PathTapping => m.path = PathMode::Tapping,
+                GOp::PathCutting => m.path = PathMode::Cutting,
+                _ => {}
+            }
+        }
+        if wcs_changed {
+            self.state.refresh_origin();
+        }
+    }
+
+    /// Letters this block may carry, given its codes and the modal motion.
+    fn allowed_letters(&self, w: &Words) -> u32 {
+        let mut allowed = ALWAYS | w.code_letters();
+        match w.axis_user {
+            Some(user) if user.def.op == GOp::Dwell => {}
+            Some(_) => allowed |= self.axis_mask,
+            None => {
+                allowed |= self.axis_mask;
+                if matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw) {
+                    allowed |= bit(b'R')
+                        | match self.state.modal.plane {
+                            Plane::Xy => bit(b'I') | bit(b'J'),
+                            Plane::Zx => bit(b'I') | bit(b'K'),
+                            Plane::Yz => bit(b'J') | bit(b'K'),
+                        };
+                }
+            }
+        }
+        allowed
+    }
+
+    /// Step 2a: F (a thread lead under G33, kept apart from the feed).
+    fn feed_word(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        let Some(f) = w.get(b'F') else { return Ok(()) };
+        if f.value < 0.0 {
+            return Err(alarms::value_out_of_range(f.span, b'F', f.value, "a feed is not negative"));
+        }
+        if self.state.modal.motion == Motion::Thread && w.axis_user.is_none() {
+            self.state.thread_lead_mm = Some(f.value * self.unit_mm());
+        } else {
+            self.state.feed = f.value;
+        }
+        Ok(())
+    }
+
+    /// Steps 2b–3: T selects, M06 changes.
+    fn tool_words<S: Sink>(&mut self, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+        if let Some(t) = w.get(b'T') {
+            let n = crate::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
+            self.state.tool_selected = Some(n);
+        }
+        if let Some(m6) = w.m_of(MGroup::Tool) {
+            let tool = self.state.tool_selected.ok_or_else(|| alarms::m06_without_tool(m6.span))?;
+            self.state.tool_active = Some(tool);
+            self.emit(sink, |loc| Event::ToolChange { loc, tool });
+        }
+        Ok(())
+    }
+
+    /// Steps 2c and 4: S, G96/G97 and the spindle M codes, one event at most.
+    fn spindle_words<S: Sink>(&mut self, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+        let clamp_block = w.axis_user.is_some_and(|a| a.def.op == GOp::PresetOrClamp);
+        let s_word = w.get(b'S').filter(|_| !clamp_block);
+        if let Some(s) = s_word {
+            if s.value < 0.0 {
+                return Err(alarms::value_out_of_range(s.span, b'S', s.value, "a spindle speed is not negative"));
+            }
+            self.state.s_value = s.value;
+        }
+        let m = w.m_of(MGroup::Spindle);
+        let dir = match m.map(|a| a.def.op) {
+            Some(MOp::SpindleCw) => SpindleDir::Cw,
+            Some(MOp::SpindleCcw) => SpindleDir::Ccw,
+            Some(MOp::SpindleStop) => SpindleDir::Stop,
+            Some(MOp::SpindleOrient) => SpindleDir::Orient,
+            _ => self.state.spindle,
+        };
+        let turning = matches!(dir, SpindleDir::Cw | SpindleDir::Ccw);
+        let changed = m.is_some() || (turning && (s_word.is_some() || w.group(Group::SpindleMode).is_some()));
+        if !changed {
+            return Ok(());
+        }
+        let why = m.map(|a| a.span).or(w.group(Group::SpindleMode).map(|a| a.span)).or(s_word.map(|s| s.span));
+        let (rpm, surface) = if turning { self.spindle_rpm(why.unwrap_or(w.first))? } else { (0.0, None) };
+        self.state.spindle = dir;
+        self.emit(sink, |loc| Event::Spindle { loc, dir, rpm, surface_m_per_min: surface });
+        Ok(())
+    }
+
+    /// The speed the spindle turns at now: S rpm, or the surface speed over
+    /// the active tool's diameter under G96, clamped by G92 S.
+    pub(crate) fn spindle_rpm(&self, span: Span) -> Result<(f64, Option<f64>), Diagnostic> {
+        if !self.state.modal.css {
+            return Ok((self.state.s_value, None));
+        }
+        // S is m/min, or ft/min in inch mode.
+        let surface_m_per_min = if self.state.modal.inch { self.state.s_value * 0.3048 } else { self.state.s_value };
+        let radius = self.state.tool_active.and_then(|t| self.machine.tools.get(&t)).map(|t| t.d_mm + t.d_wear_mm);
+        let diameter_mm = radius.filter(|r| *r > 0.0).map(|r| 2.0 * r).ok_or_else(|| alarms::css_without_diameter(span))?;
+        let rpm = 1000.0 * surface_m_per_min / (std::f64::consts::PI * diameter_mm);
+        let rpm = self.state.max_rpm.map_or(rpm, |max| rpm.min(max));
+        Ok((rpm, Some(surface_m_per_min)))
+    }
+
+    /// Step 8: stops, ends, calls and returns.
+    fn program_flow<S: Sink>(
+        &mut self,
+        w: &Words,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        let Some(m) = w.m_of(MGroup::Flow) else { return Ok(Step::Next) };
+        match m.def.op {
+            MOp::Stop => self.emit(sink, |loc| Event::Stop { loc, code: "M00" }),
+            MOp::OptionalStop if self.opts.optional_stop => self.emit(sink, |loc| Event::Stop { loc, code: "M01" }),
+            MOp::End | MOp::EndRewind => {
+                let code = if m.def.op == MOp::End { "M02" } else { "M30" };
+                self.emit(sink, |loc| Event::End { loc, code });
+                return Ok(Step::End(code));
+            }
+            MOp::Call => return self.call(w, m.span, here, next, store),
+            MOp::Return => return self.ret(w, m.span),
+            _ => {}
+        }
+        Ok(Step::Next)
+    }
+
+    /// Sends an event located at the current block.
+    pub(crate) fn emit<S: Sink>(&mut self, sink: &mut S, make: impl FnOnce(crate::events::Loc) -> Event) {
+        let loc = self.flow().loc.clone();
+        sink.event(&make(loc));
+    }
+}

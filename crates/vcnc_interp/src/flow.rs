@@ -1,0 +1,255 @@
+//! Program flow: where blocks come from, subprogram calls and returns, and
+//! searches for program and sequence numbers.
+//!
+//! ```text
+//!   frames (call stack)            sources (open program texts)
+//!   ┌──────────────────────┐       ┌─────────────────────────────┐
+//!   │ main: source 0       │──────▶│ 0: main file (LineReader)   │
+//!   │ O0010: source 0, ×2  │──┘    │ 1: O0020.nc from program dir│
+//!   │ O0020: source 1      │──────▶│ …                           │
+//!   └──────────────────────┘       └─────────────────────────────┘
+//! ```
+//!
+//! Programs are never loaded whole: each source is a streaming
+//! [`LineReader`], and a call, return or jump is a seek to a [`Cursor`].
+//! Where a program or a sequence number is, is found by a forward scan from
+//! the program's start (as Fanuc searches for `M99 P`) and remembered in a
+//! bounded cache, so a loop does not rescan and memory stays bounded. Files
+//! are opened only through the [`ProgramStore`] trait the caller provides.
+
+use crate::events::Loc;
+use std::collections::HashMap;
+use std::io;
+use std::sync::Arc;
+use vcnc_syntax::{Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block};
+
+/// Finds called programs outside the main file.
+pub trait ProgramStore {
+    /// Opens program `number` (e.g. `O0010.nc` in a directory); `None` when
+    /// there is no such program. The string names it in events and alarms.
+    fn open(&mut self, number: u32) -> Option<io::Result<(Box<dyn TextSource>, String)>>;
+}
+
+/// A store with no programs: every call must be satisfied by the main file.
+#[derive(Debug, Default)]
+pub struct NoPrograms;
+
+impl ProgramStore for NoPrograms {
+    fn open(&mut self, _: u32) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
+        None
+    }
+}
+
+/// Most entries of each search cache before it is cleared.
+const CACHE_LIMIT: usize = 4096;
+/// Most open sources; beyond that an unused one is closed.
+const MAX_SOURCES: usize = 64;
+
+pub(crate) struct Source {
+    pub reader: LineReader<Box<dyn TextSource>>,
+    pub name: Option<Arc<str>>,
+    number: Option<u32>,
+}
+
+/// One level of the call stack.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Frame {
+    pub source: usize,
+    /// Where the program (or the called sequence) starts; repeats go here.
+    pub start: Cursor,
+    /// Where the caller continues.
+    pub ret: Cursor,
+    /// Runs left, this one included (M98 L).
+    pub runs_left: u32,
+    /// Whether a block has executed in this run (an `O` header or `%` after
+    /// that ends the program).
+    pub started: bool,
+}
+
+pub(crate) struct Flow {
+    pub sources: Vec<Option<Source>>,
+    pub frames: Vec<Frame>,
+    programs: HashMap<(usize, u32), Cursor>,
+    sequences: HashMap<(usize, u64, u32, u32), Cursor>,
+    scratch: Block,
+    /// Calls, returns to a sequence and repeats so far.
+    pub jumps: u64,
+    /// Location of the block being executed.
+    pub loc: Loc,
+}
+
+impl Flow {
+    pub fn new(main: Box<dyn TextSource>) -> Flow {
+        let main = Source { reader: LineReader::new(main), name: None, number: None };
+        Flow {
+            sources: vec![Some(main)],
+            frames: vec![Frame { source: 0, start: Cursor::default(), ret: Cursor::default(), runs_left: 1, started: false }],
+            programs: HashMap::new(),
+            sequences: HashMap::new(),
+            scratch: Block::default(),
+            jumps: 0,
+            loc: Loc::default(),
+        }
+    }
+
+    pub fn frame(&self) -> Frame {
+        self.frames.last().copied().unwrap_or(Frame {
+            source: 0,
+            start: Cursor::default(),
+            ret: Cursor::default(),
+            runs_left: 1,
+            started: false,
+        })
+    }
+
+    pub fn frame_mut(&mut self) -> Option<&mut Frame> {
+        self.frames.last_mut()
+    }
+
+    pub fn source(&mut self, i: usize) -> Option<&mut Source> {
+        self.sources.get_mut(i).and_then(Option::as_mut)
+    }
+
+    /// Seeks the current frame's source to `to`.
+    pub fn seek_current(&mut self, to: Cursor) {
+        let src = self.frame().source;
+        if let Some(s) = self.source(src) {
+            s.reader.seek(Cursor { col: 0, ..to });
+        }
+        self.loc.file = self.source(src).and_then(|s| s.name.clone());
+    }
+
+    /// Finds program `number`: in the current source, in the main file, then
+    /// in the store. Returns its source and the cursor after its `O` header.
+    pub fn find_program(
+        &mut self,
+        number: u32,
+        lex: &LexRules,
+        store: &mut dyn super::ProgramStore,
+    ) -> Result<Option<(usize, Cursor)>, io::Error> {
+        let current = self.frame().source;
+        for src in [current, 0] {
+            if let Some(c) = self.program_in(src, number, lex) {
+                return Ok(Some((src, c)));
+            }
+        }
+        if let Some(i) = self.sources.iter().position(|s| s.as_ref().is_some_and(|s| s.number == Some(number))) {
+            return Ok(Some((i, Cursor::default())));
+        }
+        match store.open(number) {
+            None => Ok(None),
+            Some(Err(e)) => Err(e),
+            Some(Ok((text, name))) => {
+                let src = Source { reader: LineReader::new(text), name: Some(name.into()), number: Some(number) };
+                Ok(Some((self.install(src), Cursor::default())))
+            }
+        }
+    }
+
+    fn install(&mut self, src: Source) -> usize {
+        if let Some(i) = self.sources.iter().position(Option::is_none) {
+            self.sources[i] = Some(src);
+            return i;
+        }
+        if self.sources.len() >= MAX_SOURCES {
+            let busy: Vec<usize> = self.frames.iter().map(|f| f.source).collect();
+            if let Some(i) = (1..self.sources.len()).find(|i| !busy.contains(i)) {
+                self.programs.retain(|k, _| k.0 != i);
+                self.sequences.retain(|k, _| k.0 != i);
+                self.sources[i] = Some(src);
+                return i;
+            }
+        }
+        self.sources.push(Some(src));
+        self.sources.len() - 1
+    }
+
+    fn program_in(&mut self, src: usize, number: u32, lex: &LexRules) -> Option<Cursor> {
+        if let Some(c) = self.programs.get(&(src, number)) {
+            return Some(*c);
+        }
+        let found = self.scan(src, Cursor::default(), lex, |b| first_value(b, b'O') == Some(number), false)?;
+        bounded_insert(&mut self.programs, (src, number), found);
+        Some(found)
+    }
+
+    /// Finds `N seq` in the program of `src` that starts at `start`.
+    pub fn find_sequence(&mut self, src: usize, start: Cursor, seq: u32, lex: &LexRules) -> Option<Cursor> {
+        let key = (src, start.offset, start.col, seq);
+        if let Some(c) = self.sequences.get(&key) {
+            return Some(*c);
+        }
+        let found = self.scan(src, start, lex, |b| has_sequence(b, seq), true)?;
+        bounded_insert(&mut self.sequences, key, found);
+        Some(found)
+    }
+
+    /// Scans blocks from `from` for one that `hit` accepts. With `to_hit`
+    /// the cursor of the hit block is returned, else the cursor after it.
+    /// With `within_program` the scan stops at the program's end (`%` or
+    /// another `O` header). Unreadable lines are skipped: a search is not a
+    /// syntax check.
+    fn scan(
+        &mut self,
+        src: usize,
+        from: Cursor,
+        lex: &LexRules,
+        hit: impl Fn(&Block) -> bool,
+        within_program: bool,
+    ) -> Option<Cursor> {
+        let mut block = std::mem::take(&mut self.scratch);
+        let source = self.sources.get_mut(src).and_then(Option::as_mut)?;
+        source.reader.seek(Cursor { col: 0, ..from });
+        let mut col = from.col as usize;
+        let mut result = None;
+        'lines: loop {
+            let line = match source.reader.next_line() {
+                Ok(Some(l)) => l,
+                Ok(None) | Err(ReadError::Io(_)) => break,
+                Err(ReadError::TooLong { .. }) => continue,
+            };
+            let bytes = source.reader.bytes(&line);
+            let mut i = std::mem::take(&mut col);
+            while i < bytes.len() {
+                let start = i;
+                i = match lex_block(bytes, i, lex, &mut block) {
+                    Ok(next) => next,
+                    Err(_) => continue 'lines,
+                };
+                let at = Cursor { offset: line.offset, line: line.number, col: clamp_u32(start) };
+                if hit(&block) {
+                    result = Some(if within_program { at } else { Cursor { col: clamp_u32(i), ..at } });
+                    break 'lines;
+                }
+                if within_program && (block.percent || first_value(&block, b'O').is_some()) {
+                    break 'lines;
+                }
+            }
+        }
+        self.scratch = block;
+        result
+    }
+}
+
+fn bounded_insert<K: std::hash::Hash + Eq>(map: &mut HashMap<K, Cursor>, key: K, value: Cursor) {
+    if map.len() >= CACHE_LIMIT {
+        map.clear();
+    }
+    map.insert(key, value);
+}
+
+/// The integer value of the block's first word if it has address `letter`.
+pub(crate) fn first_value(block: &Block, letter: u8) -> Option<u32> {
+    let w = block.words().first()?;
+    let whole = w.addr == Addr::letter(letter) && !w.point && w.value >= 0.0 && w.value <= f64::from(u32::MAX);
+    // Whole (no point) and within u32, so the cast is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    whole.then_some(w.value as u32)
+}
+
+fn has_sequence(block: &Block, seq: u32) -> bool {
+    block
+        .words()
+        .iter()
+        .any(|w| w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(seq))
+}

@@ -1,0 +1,285 @@
+//! The interpreter: an owned state machine that pulls blocks from the
+//! program, executes them and pushes canonical events into a [`Sink`].
+//!
+//! ```text
+//!   LineReader ─▶ lex_block ─▶ Words::collect ─▶ execute ─▶ Sink
+//!   (flow.rs)     (syntax)     (validate)         (convert, exec)
+//! ```
+//!
+//! One block at a time, in bounded memory: the current line is copied into a
+//! small reused buffer, lexed into a reused [`Block`], validated into a
+//! stack-allocated [`Words`] table and executed. An alarm anywhere becomes
+//! the last event; the block that raised it leaves no motion and no modal
+//! change behind. There is no I/O here: program text comes from
+//! [`TextSource`]s and called programs from a [`ProgramStore`].
+
+use crate::alarms;
+use crate::dialect::Dialect;
+use crate::events::Event;
+use crate::flow::{Flow, ProgramStore, first_value};
+use crate::machine::Machine;
+use crate::sink::Sink;
+use crate::state::State;
+use crate::words::Words;
+use vcnc_syntax::{Block, Cursor, Diagnostic, Line, MemSource, ReadError, Span, TextSource, clamp_u32, column_of, lex_block};
+
+/// Operator switches.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Options {
+    /// Skip blocks that start with `/`.
+    pub block_delete: bool,
+    /// Stop at M01.
+    pub optional_stop: bool,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// Normal end: `"M02"`, `"M30"` or `"EOF"`.
+    Ended(&'static str),
+    /// Stopped by an alarm (also emitted as the last event).
+    Alarm(Diagnostic),
+}
+
+/// What the run loop does after a block.
+pub(crate) enum Step {
+    Next,
+    /// Continue at this cursor of the (possibly new) current frame's source.
+    Jump(Cursor),
+    End(&'static str),
+}
+
+/// The interpreter. Create one per run.
+pub struct Interpreter<'a> {
+    pub(crate) machine: &'a Machine,
+    pub(crate) dialect: &'a Dialect,
+    pub(crate) opts: Options,
+    pub(crate) state: State,
+    pub(crate) flow: Option<Flow>,
+    pub(crate) axis_mask: u32,
+    executed: u64,
+}
+
+impl<'a> Interpreter<'a> {
+    /// An interpreter at power-on state.
+    pub fn new(machine: &'a Machine, dialect: &'a Dialect, opts: Options) -> Interpreter<'a> {
+        Interpreter {
+            machine,
+            dialect,
+            opts,
+            state: State::power_on(machine),
+            flow: None,
+            axis_mask: machine.axis_letter_mask(),
+            executed: 0,
+        }
+    }
+
+    /// The state after the run (or at the alarm).
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Runs a program held in memory with no external programs.
+    pub fn run_str<S: Sink>(&mut self, program: &str, sink: &mut S) -> Outcome {
+        self.run(Box::new(MemSource(program.as_bytes().to_vec())), &mut crate::NoPrograms, sink)
+    }
+
+    /// Runs the main program `main` to its end or first alarm.
+    pub fn run<S: Sink>(&mut self, main: Box<dyn TextSource>, store: &mut dyn ProgramStore, sink: &mut S) -> Outcome {
+        self.flow = Some(Flow::new(main));
+        let result = self.run_loop(store, sink);
+        match result {
+            Ok(code) => Outcome::Ended(code),
+            Err(d) => {
+                sink.event(&Event::Alarm(d.clone()));
+                Outcome::Alarm(d)
+            }
+        }
+    }
+
+    pub(crate) fn flow(&mut self) -> &mut Flow {
+        // `run` installs the flow before any block executes.
+        self.flow.get_or_insert_with(|| Flow::new(Box::new(MemSource(Vec::<u8>::new()))))
+    }
+
+    fn run_loop<S: Sink>(&mut self, store: &mut dyn ProgramStore, sink: &mut S) -> Result<&'static str, Diagnostic> {
+        let mut block = Block::default();
+        let mut text: Vec<u8> = Vec::with_capacity(256);
+        // The line of the last executed block, kept for alarms at the end.
+        let mut prev: Vec<u8> = Vec::with_capacity(256);
+        let mut last: Option<(Line, Span)> = None;
+        let mut text_has_last = false;
+        let mut col = 0usize;
+        loop {
+            if text_has_last {
+                std::mem::swap(&mut text, &mut prev);
+                text_has_last = false;
+            }
+            let Some(line) = self.next_line(&mut text)? else {
+                match self.end_of_program(&prev, last, sink)? {
+                    Some(code) => return Ok(code),
+                    None => continue,
+                }
+            };
+            self.flow().loc.line = line.number;
+            let mut i = std::mem::take(&mut col);
+            while i < text.len() {
+                let start = i;
+                i = lex_block(&text, i, &self.dialect.lex, &mut block).map_err(|d| self.locate(d, &text, &line))?;
+                if block.is_empty() {
+                    continue;
+                }
+                last = Some((line, block.first_span()));
+                text_has_last = true;
+                let here = Cursor { offset: line.offset, line: line.number, col: clamp_u32(start) };
+                let next = Cursor { col: clamp_u32(i), ..here };
+                let step = self.block(&block, here, next, store, sink).map_err(|d| self.locate(d, &text, &line))?;
+                match step {
+                    Step::Next => {}
+                    Step::Jump(to) => {
+                        self.flow().seek_current(to);
+                        col = to.col as usize;
+                        break;
+                    }
+                    Step::End(code) => return Ok(code),
+                }
+            }
+        }
+    }
+
+    /// Reads the next line of the current source into `text`.
+    fn next_line(&mut self, text: &mut Vec<u8>) -> Result<Option<Line>, Diagnostic> {
+        let flow = self.flow();
+        let src = flow.frame().source;
+        let Some(source) = flow.source(src) else { return Ok(None) };
+        match source.reader.next_line() {
+            Ok(Some(line)) => {
+                text.clear();
+                text.extend_from_slice(source.reader.bytes(&line));
+                Ok(Some(line))
+            }
+            Ok(None) => Ok(None),
+            Err(ReadError::TooLong { offset, line }) => {
+                let mut d = alarms::line_too_long();
+                d.line = line;
+                d.column = 1;
+                d.line_offset = offset;
+                d.file = flow.loc.file.as_deref().map(str::to_string);
+                Err(d)
+            }
+            Err(ReadError::Io(e)) => {
+                let mut d = alarms::program_unreadable(Span::new(0, 1), 0, &e);
+                d.line = flow.loc.line;
+                Err(d)
+            }
+        }
+    }
+
+    /// Fills in line, column and file of a diagnostic raised in `line`.
+    fn locate(&mut self, mut d: Diagnostic, text: &[u8], line: &Line) -> Diagnostic {
+        d.line = line.number;
+        d.column = column_of(text, d.span.start);
+        d.line_offset = line.offset;
+        d.file = self.flow().loc.file.as_deref().map(str::to_string);
+        d
+    }
+
+    /// One non-empty block: block delete, tape marks, headers, then execution.
+    fn block<S: Sink>(
+        &mut self,
+        block: &Block,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        if block.deleted.is_some() && self.opts.block_delete {
+            return Ok(Step::Next);
+        }
+        let started = self.flow().frame().started;
+        if block.percent || first_value(block, b'O').is_some() {
+            return self.program_boundary(block, started, next, sink);
+        }
+        if let Some(f) = self.flow().frame_mut() {
+            f.started = true;
+        }
+        self.executed += 1;
+        if self.executed > self.machine.limits.max_executed_blocks {
+            return Err(alarms::block_limit(block.first_span(), self.machine.limits.max_executed_blocks));
+        }
+        let words = Words::collect(block, self.dialect, self.machine.params.same_group_in_block)?;
+        let saved = self.state.modal;
+        let offsets = words.changes_offsets().then(|| self.state.offsets.clone());
+        let result = self.execute(&words, here, next, store, sink);
+        if result.is_err() {
+            self.state.modal = saved;
+            if let Some(o) = offsets {
+                self.state.offsets = o;
+            }
+            self.state.refresh_origin();
+        }
+        result
+    }
+
+    /// `%` or an `O` header: the start of this program, or the end of it.
+    fn program_boundary<S: Sink>(
+        &mut self,
+        block: &Block,
+        started: bool,
+        next: Cursor,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        if let Some(w) = block.words().get(1) {
+            return Err(alarms::word_not_allowed(w.span, w.addr.0));
+        }
+        if !started {
+            if let Some(f) = self.flow().frame_mut().filter(|_| !block.percent) {
+                f.start = next;
+            }
+            return Ok(Step::Next);
+        }
+        self.finish_program(block.first_span(), sink)
+    }
+
+    /// The current program ran out of blocks; `last` is its last block.
+    fn end_of_program<S: Sink>(
+        &mut self,
+        text: &[u8],
+        last: Option<(Line, Span)>,
+        sink: &mut S,
+    ) -> Result<Option<&'static str>, Diagnostic> {
+        let span = last.map_or(Span::new(0, 1), |(_, s)| s);
+        if let Some((line, _)) = last {
+            self.flow().loc.line = line.number;
+        }
+        match self.finish_program(span, sink) {
+            Ok(Step::End(code)) => Ok(Some(code)),
+            Ok(_) => Ok(None),
+            Err(d) => Err(match last {
+                Some((line, _)) => self.locate(d, text, &line),
+                None => d,
+            }),
+        }
+    }
+
+    /// End of the main program (an `end` event) or of a subprogram (E406).
+    fn finish_program<S: Sink>(&mut self, span: Span, sink: &mut S) -> Result<Step, Diagnostic> {
+        if self.flow().frames.len() > 1 {
+            return Err(alarms::sub_without_m99(span));
+        }
+        let loc = self.flow().loc.clone();
+        sink.event(&Event::End { loc, code: "EOF" });
+        Ok(Step::End("EOF"))
+    }
+
+    /// Counts a jump against the runaway limit.
+    pub(crate) fn count_jump(&mut self, span: Span) -> Result<(), Diagnostic> {
+        let max = self.machine.limits.max_jumps;
+        let flow = self.flow();
+        flow.jumps += 1;
+        if flow.jumps > max {
+            return Err(alarms::jump_limit(span, max));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,44 @@
+//! `vcnc_interp` executes part programs the way a CNC controller does and
+//! reports what the machine does as canonical [`Event`]s.
+//!
+//! It owns one [`State`] per run, reads blocks from `vcnc_syntax`, maps codes
+//! to operations through a [`Dialect`] table and sends events to a [`Sink`].
+//! It knows nothing of planning, rendering, terminals or files: program text
+//! arrives through [`vcnc_syntax::TextSource`] and called programs through a
+//! [`ProgramStore`]. See `ARCHITECTURE.md` for the whole pipeline.
+//!
+//! ```
+//! use vcnc_interp::{Dialect, Interpreter, Machine, Options, VecSink, Outcome};
+//! let machine = Machine::default_mill();
+//! let dialect = Dialect::syntec();
+//! let mut sink = VecSink::default();
+//! let out = Interpreter::new(&machine, &dialect, Options::default())
+//!     .run_str("G01 X10. F300;\nM30\n", &mut sink);
+//! assert_eq!(out, Outcome::Ended("M30"));
+//! assert_eq!(sink.0.len(), 2);
+//! ```
+
+pub mod alarms;
+pub mod arc;
+mod calls;
+mod convert;
+mod coords;
+pub mod dialect;
+pub mod events;
+mod execute;
+mod flow;
+mod interpreter;
+pub mod machine;
+mod motion;
+mod refs;
+mod sink;
+pub mod state;
+mod words;
+
+pub use dialect::Dialect;
+pub use events::{ArcDir, Event, Feed, Loc, MAX_AXES, PathMode, Plane, Pos, SpindleDir};
+pub use flow::{NoPrograms, ProgramStore};
+pub use interpreter::{Interpreter, Options, Outcome};
+pub use machine::Machine;
+pub use sink::{NullSink, Sink, VecSink};
+pub use state::State;

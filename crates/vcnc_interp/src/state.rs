@@ -1,0 +1,145 @@
+//! The machine state the interpreter owns: modal codes, position, offsets,
+//! spindle, tool and the values that outlive a block.
+//!
+//! ```text
+//!   machine = program + work offset (G54…) + local (G52) + shift (G92)
+//!             └─ what the program writes ─┘ └────── `origin` ──────┘
+//! ```
+//!
+//! Positions are stored in machine coordinates; program coordinates are
+//! derived by subtracting the cached `origin`, which is recomputed only when
+//! an offset or the active work system changes. [`Modal`] is a small `Copy`
+//! value so that a block updates a copy and commits it only when the whole
+//! block has succeeded.
+
+use crate::events::{PathMode, Plane, Pos, SpindleDir};
+use crate::machine::{Machine, WORK_SYSTEMS};
+
+/// Active codes of the modal groups.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Modal {
+    /// Group 01.
+    pub motion: Motion,
+    /// Group 02.
+    pub plane: Plane,
+    /// Group 03: G91 when true.
+    pub incremental: bool,
+    /// Group 05: G95 when true.
+    pub per_rev: bool,
+    /// Group 06: G70/G20 when true.
+    pub inch: bool,
+    /// Group 13: G96 when true.
+    pub css: bool,
+    /// Group 14: index into the work offsets (0 = G54).
+    pub wcs: usize,
+    /// Group 15.
+    pub path: PathMode,
+}
+
+/// The modal motion (group 01).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Motion {
+    /// G00.
+    Rapid,
+    /// G01.
+    Linear,
+    /// G02.
+    ArcCw,
+    /// G03.
+    ArcCcw,
+    /// G33.
+    Thread,
+}
+
+impl Default for Modal {
+    /// Power-on state (Fanuc 0i defaults; Syntec manual 1.2.12 for G17).
+    fn default() -> Modal {
+        Modal {
+            motion: Motion::Rapid,
+            plane: Plane::Xy,
+            incremental: false,
+            per_rev: false,
+            inch: false,
+            css: false,
+            wcs: 0,
+            path: PathMode::Cutting,
+        }
+    }
+}
+
+/// Offsets that together make the program origin.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Offsets {
+    /// Work offsets, G54 first (G10 L2 changes them).
+    pub work: [Pos; WORK_SYSTEMS],
+    /// G52 local offset, in the active work system.
+    pub local: Pos,
+    /// G92 shift, common to all work systems.
+    pub shift: Pos,
+}
+
+/// Everything the interpreter remembers between blocks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Modal codes.
+    pub modal: Modal,
+    /// Current position, machine coordinates.
+    pub pos: Pos,
+    /// Offsets.
+    pub offsets: Offsets,
+    /// `work[wcs] + local + shift`, kept current.
+    pub origin: Pos,
+    /// Programmed F, in program units (converted when used).
+    pub feed: f64,
+    /// Programmed S (rpm under G97, m/min under G96).
+    pub s_value: f64,
+    /// G92 S spindle clamp, rpm.
+    pub max_rpm: Option<f64>,
+    /// Spindle direction.
+    pub spindle: SpindleDir,
+    /// Last T word.
+    pub tool_selected: Option<u32>,
+    /// Tool in the spindle.
+    pub tool_active: Option<u32>,
+    /// G28/G30 intermediate point, program coordinates, per axis.
+    pub intermediate: [Option<f64>; crate::events::MAX_AXES],
+    /// Last G33 lead, mm.
+    pub thread_lead_mm: Option<f64>,
+    /// Where the last G31 stopped, machine coordinates.
+    pub skip_pos: Option<Pos>,
+}
+
+impl State {
+    /// Power-on state of `machine`.
+    pub fn power_on(machine: &Machine) -> State {
+        let offsets = Offsets { work: machine.work_offsets, local: Pos::default(), shift: Pos::default() };
+        let mut s = State {
+            modal: Modal::default(),
+            pos: machine.start,
+            offsets,
+            origin: Pos::default(),
+            feed: 0.0,
+            s_value: 0.0,
+            max_rpm: None,
+            spindle: SpindleDir::Stop,
+            tool_selected: None,
+            tool_active: None,
+            intermediate: [None; crate::events::MAX_AXES],
+            thread_lead_mm: None,
+            skip_pos: None,
+        };
+        s.refresh_origin();
+        s
+    }
+
+    /// Recomputes `origin` after an offset or work-system change.
+    pub fn refresh_origin(&mut self) {
+        let o = &self.offsets;
+        self.origin = o.work.get(self.modal.wcs).copied().unwrap_or_default().plus(o.local).plus(o.shift);
+    }
+
+    /// Current position in program coordinates.
+    pub fn program_pos(&self) -> Pos {
+        self.pos.minus(self.origin)
+    }
+}

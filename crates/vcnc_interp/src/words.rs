@@ -1,0 +1,173 @@
+//! Validation of one block: from the lexer's word list to a table the
+//! executor reads by letter and by modal group.
+//!
+//! This is the "validate" phase: unknown codes, duplicate words, two codes of
+//! one group, two codes wanting the axis words, and words nothing uses are
+//! all rejected here, before anything is executed, so an alarm leaves the
+//! machine untouched. Nothing is allocated: the table is a few fixed arrays.
+
+use crate::alarms;
+use crate::dialect::{Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit};
+use crate::machine::SameGroup;
+use vcnc_syntax::{Block, Diagnostic, Span, Word};
+
+/// Most one-shot (group 00) codes in one block.
+const MAX_ONCE: usize = 4;
+
+/// A code with the span of the word that wrote it.
+#[derive(Debug, Clone, Copy)]
+pub struct At<T> {
+    /// The definition.
+    pub def: T,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// The validated words of one block.
+#[derive(Debug)]
+pub struct Words {
+    letters: [Option<Word>; 26],
+    present: u32,
+    /// Modal-group codes, by [`Group::slot`].
+    pub modal: [Option<At<GDef>>; MODAL_GROUPS],
+    once: [Option<At<GDef>>; MAX_ONCE],
+    /// The group 00 code that takes the axis words, if any.
+    pub axis_user: Option<At<GDef>>,
+    /// M codes by group.
+    pub m: [Option<At<MDef>>; M_GROUPS],
+    /// The block's first word span (for alarms about the whole block).
+    pub first: Span,
+}
+
+impl Words {
+    /// Collects and checks the words of `block`.
+    pub fn collect(block: &Block, dialect: &Dialect, same_group: SameGroup) -> Result<Words, Diagnostic> {
+        let mut w = Words {
+            letters: [None; 26],
+            present: 0,
+            modal: [None; MODAL_GROUPS],
+            once: [None; MAX_ONCE],
+            axis_user: None,
+            m: [None; M_GROUPS],
+            first: block.first_span(),
+        };
+        for word in block.words() {
+            match word.addr.as_letter() {
+                Some(b'G') => w.add_g(word, dialect, same_group)?,
+                Some(b'M') => w.add_m(word, dialect)?,
+                Some(l) => w.add_letter(l, word)?,
+                None => return Err(alarms::address_not_in_dialect(word.span, dialect.name)),
+            }
+        }
+        Ok(w)
+    }
+
+    fn add_g(&mut self, word: &Word, dialect: &Dialect, same_group: SameGroup) -> Result<(), Diagnostic> {
+        let def = dialect
+            .g(word.value)
+            .ok_or_else(|| alarms::unknown_g(word.span, word.value, dialect.name, dialect.g_elsewhere(word.value)))?;
+        let at = At { def, span: word.span };
+        match def.group.slot() {
+            Some(slot) => {
+                if self.modal[slot].is_some() && same_group == SameGroup::Alarm {
+                    return Err(alarms::same_group(word.span));
+                }
+                self.modal[slot] = Some(at);
+            }
+            None => {
+                if def.takes_axes {
+                    if self.axis_user.is_some() {
+                        return Err(alarms::axis_conflict(word.span));
+                    }
+                    self.axis_user = Some(at);
+                }
+                if self.has_once(def.op) {
+                    return Err(alarms::same_group(word.span));
+                }
+                match self.once.iter_mut().find(|s| s.is_none()) {
+                    Some(slot) => *slot = Some(at),
+                    None => return Err(alarms::same_group(word.span)),
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn add_m(&mut self, word: &Word, dialect: &Dialect) -> Result<(), Diagnostic> {
+        if word.point {
+            return Err(alarms::no_decimal_point(word.span, b'M', "M codes are whole numbers"));
+        }
+        let def = dialect.m(word.value).ok_or_else(|| alarms::unknown_m(word.span, word.value, dialect.name))?;
+        let slot = &mut self.m[def.group as usize];
+        if slot.is_some() {
+            return Err(alarms::same_m_group(word.span));
+        }
+        *slot = Some(At { def, span: word.span });
+        Ok(())
+    }
+
+    fn add_letter(&mut self, l: u8, word: &Word) -> Result<(), Diagnostic> {
+        let i = usize::from(l - b'A');
+        if self.present & (1 << i) != 0 {
+            return Err(alarms::duplicate_word(word.span, l));
+        }
+        self.present |= 1 << i;
+        self.letters[i] = Some(*word);
+        Ok(())
+    }
+
+    /// Rejects any letter outside `allowed` (bit mask), pointing at the first.
+    pub fn check_used(&self, allowed: u32) -> Result<(), Diagnostic> {
+        let stray = self.present & !allowed;
+        if stray == 0 {
+            return Ok(());
+        }
+        let first = self
+            .letters
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| stray & (1 << i) != 0)
+            .filter_map(|(_, w)| *w)
+            .min_by_key(|w| w.span.start)
+            .unwrap_or_default();
+        Err(alarms::word_not_allowed(first.span, first.addr.0))
+    }
+
+    /// The word of letter `l`, if present.
+    pub fn get(&self, l: u8) -> Option<Word> {
+        self.letters.get(usize::from(l.wrapping_sub(b'A'))).copied().flatten()
+    }
+
+    /// Whether any letter of `mask` is present.
+    pub fn any(&self, mask: u32) -> bool {
+        self.present & mask != 0
+    }
+
+    /// The one-shot code `op`, if written.
+    pub fn once(&self, op: GOp) -> Option<At<GDef>> {
+        self.once.iter().flatten().find(|a| a.def.op == op).copied()
+    }
+
+    fn has_once(&self, op: GOp) -> bool {
+        self.once(op).is_some()
+    }
+
+    /// The code written for modal `group`, if any.
+    pub fn group(&self, group: Group) -> Option<At<GDef>> {
+        group.slot().and_then(|s| self.modal[s])
+    }
+
+    /// The M code written for `group`, if any.
+    pub fn m_of(&self, group: MGroup) -> Option<At<MDef>> {
+        self.m[group as usize]
+    }
+
+    /// Letters read by the one-shot and M codes of this block.
+    pub fn code_letters(&self) -> u32 {
+        let g = self.once.iter().flatten().fold(0, |m, a| m | a.def.letters);
+        self.m.iter().flatten().fold(g, |m, a| m | a.def.letters)
+    }
+}
+
+/// Letters every block may carry.
+pub const ALWAYS: u32 = bit(b'N') | bit(b'F') | bit(b'S') | bit(b'T');

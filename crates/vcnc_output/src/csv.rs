@@ -1,0 +1,160 @@
+//! CSV: one row per event with a fixed header, for spreadsheets and quick
+//! plots. Columns that do not apply to an event are empty.
+//!
+//! Header: `type,line,file,<axes>,<center_axes>,plane,dir,feed,feed_per_rev,
+//! lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message`.
+
+use crate::jsonl::{path_mode, spindle_dir};
+use crate::num::push_f64;
+use std::io::{self, Write};
+use vcnc_interp::{ArcDir, Event, Feed, Machine, Pos, Sink};
+
+const TAIL: [&str; 13] = [
+    "plane", "dir", "feed", "feed_per_rev", "lead_mm", "seconds", "tool", "spindle", "rpm", "on", "mode", "code", "column",
+];
+
+/// Writes events as CSV rows.
+pub struct CsvSink<W: Write> {
+    out: W,
+    n_axes: usize,
+    row: Vec<String>,
+    buf: Vec<u8>,
+    error: Option<io::Error>,
+}
+
+impl<W: Write> CsvSink<W> {
+    /// A sink writing the header and then one row per event.
+    pub fn new(mut out: W, machine: &Machine) -> CsvSink<W> {
+        let letters: Vec<char> = machine.axes.iter().map(|a| char::from(a.letter.to_ascii_lowercase())).collect();
+        let mut header = vec!["type".to_string(), "line".into(), "file".into()];
+        header.extend(letters.iter().map(|l| l.to_string()));
+        header.extend(letters.iter().map(|l| format!("center_{l}")));
+        header.extend(TAIL.iter().map(|s| s.to_string()));
+        header.push("message".into());
+        let error = writeln!(out, "{}", header.join(",")).err();
+        let cols = header.len();
+        CsvSink { out, n_axes: letters.len(), row: vec![String::new(); cols], buf: Vec::new(), error }
+    }
+
+    /// Flushes and returns the writer, or the first write error.
+    pub fn finish(mut self) -> io::Result<W> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()?;
+        Ok(self.out)
+    }
+
+    fn set(&mut self, col: &str, v: String) {
+        let base = 3 + 2 * self.n_axes;
+        let i = match col {
+            "type" => 0,
+            "line" => 1,
+            "file" => 2,
+            "message" => base + TAIL.len(),
+            _ => TAIL.iter().position(|c| *c == col).map_or(0, |k| base + k),
+        };
+        self.row[i] = v;
+    }
+
+    fn num(&mut self, v: f64) -> String {
+        self.buf.clear();
+        push_f64(&mut self.buf, v);
+        String::from_utf8_lossy(&self.buf).into_owned()
+    }
+
+    fn pos(&mut self, p: &Pos, offset: usize) {
+        for i in 0..self.n_axes {
+            let v = self.num(p.get(i));
+            self.row[3 + offset + i] = v;
+        }
+    }
+
+    fn feed(&mut self, f: Feed) {
+        match f {
+            Feed::PerMin(v) => {
+                let s = self.num(v);
+                self.set("feed", s);
+            }
+            Feed::PerRev(v) => {
+                let s = self.num(v);
+                self.set("feed_per_rev", s);
+            }
+        }
+    }
+}
+
+fn quote(s: &str) -> String {
+    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+impl<W: Write> Sink for CsvSink<W> {
+    fn event(&mut self, event: &Event) {
+        if self.error.is_some() {
+            return;
+        }
+        self.row.iter_mut().for_each(String::clear);
+        let (kind, loc) = match event {
+            Event::Rapid { loc, .. } => ("rapid", Some(loc)),
+            Event::Feed { loc, .. } => ("feed", Some(loc)),
+            Event::Arc { loc, .. } => ("arc", Some(loc)),
+            Event::Thread { loc, .. } => ("thread", Some(loc)),
+            Event::Skip { loc, .. } => ("skip", Some(loc)),
+            Event::Dwell { loc, .. } => ("dwell", Some(loc)),
+            Event::ToolChange { loc, .. } => ("tool_change", Some(loc)),
+            Event::Spindle { loc, .. } => ("spindle", Some(loc)),
+            Event::Coolant { loc, .. } => ("coolant", Some(loc)),
+            Event::PathMode { loc, .. } => ("path_mode", Some(loc)),
+            Event::Stop { loc, .. } => ("stop", Some(loc)),
+            Event::End { loc, .. } => ("end", Some(loc)),
+            Event::Alarm(_) => ("alarm", None),
+        };
+        self.set("type", kind.to_string());
+        if let Some(loc) = loc {
+            self.set("line", loc.line.to_string());
+            self.set("file", loc.file.as_deref().map(quote).unwrap_or_default());
+        }
+        match event {
+            Event::Rapid { to, .. } => self.pos(to, 0),
+            Event::Feed { to, feed, .. } | Event::Skip { to, feed, .. } => {
+                self.pos(to, 0);
+                self.feed(*feed);
+            }
+            Event::Arc { to, center, plane, dir, feed, .. } => {
+                self.pos(to, 0);
+                self.pos(center, self.n_axes);
+                self.set("plane", plane.as_str().into());
+                self.set("dir", if *dir == ArcDir::Cw { "cw" } else { "ccw" }.into());
+                self.feed(*feed);
+            }
+            Event::Thread { to, lead_mm, .. } => {
+                self.pos(to, 0);
+                let s = self.num(*lead_mm);
+                self.set("lead_mm", s);
+            }
+            Event::Dwell { seconds, .. } => {
+                let s = self.num(*seconds);
+                self.set("seconds", s);
+            }
+            Event::ToolChange { tool, .. } => self.set("tool", tool.to_string()),
+            Event::Spindle { dir, rpm, .. } => {
+                self.set("spindle", spindle_dir(*dir).into());
+                let s = self.num(*rpm);
+                self.set("rpm", s);
+            }
+            Event::Coolant { on, .. } => self.set("on", on.to_string()),
+            Event::PathMode { mode, .. } => self.set("mode", path_mode(*mode).into()),
+            Event::Stop { code, .. } | Event::End { code, .. } => self.set("code", (*code).into()),
+            Event::Alarm(d) => {
+                self.set("line", d.line.to_string());
+                self.set("file", d.file.as_deref().map(quote).unwrap_or_default());
+                self.set("code", d.code.as_str().into());
+                self.set("column", d.column.to_string());
+                self.set("message", quote(&d.message));
+            }
+        }
+        if let Err(e) = writeln!(self.out, "{}", self.row.join(",")) {
+            self.error = Some(e);
+        }
+    }
+}

@@ -1,0 +1,154 @@
+//! A flattened plain program: what the controller did, as G0/G1/G2/G3/G4,
+//! T/M6, S/M3–M5 and M8/M9 that grbl and LinuxCNC run as they are.
+//!
+//! Every offset, unit, subprogram and repeat is already resolved in the
+//! events, so the output is one absolute, metric block per event, written in
+//! the machine coordinates of the source machine (documented in the
+//! program's header comment). Feed per revolution becomes feed per minute at
+//! the spindle speed in force (grbl has no G95); G33 threads stay G33 with K
+//! (LinuxCNC); path modes and the G31 skip become comments. An alarm ends
+//! the program with a comment and M2, so the flattened program never does
+//! more than the original.
+
+use std::io::{self, Write};
+use vcnc_interp::{ArcDir, Event, Feed, Machine, Plane, Pos, Sink, SpindleDir};
+
+/// Writes a flattened G-code program.
+pub struct GcodeSink<W: Write> {
+    out: W,
+    letters: Vec<char>,
+    pos: Pos,
+    plane: Plane,
+    feed: Option<f64>,
+    rpm: f64,
+    error: Option<io::Error>,
+}
+
+impl<W: Write> GcodeSink<W> {
+    /// A sink writing the header and then one block per event.
+    pub fn new(mut out: W, machine: &Machine) -> GcodeSink<W> {
+        let header = format!(
+            "(flattened by vcnc for {}: absolute machine coordinates, mm)\nG21 G90 G94 G17\n",
+            machine.name.replace(['(', ')'], "")
+        );
+        let error = out.write_all(header.as_bytes()).err();
+        GcodeSink {
+            out,
+            letters: machine.axes.iter().map(|a| char::from(a.letter)).collect(),
+            pos: machine.start,
+            plane: Plane::Xy,
+            feed: None,
+            rpm: 0.0,
+            error,
+        }
+    }
+
+    /// Flushes and returns the writer, or the first write error.
+    pub fn finish(mut self) -> io::Result<W> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()?;
+        Ok(self.out)
+    }
+
+    fn axes(&self, to: &Pos) -> String {
+        let mut s = String::new();
+        for (i, l) in self.letters.iter().enumerate() {
+            s.push_str(&format!(" {l}{}", fmt(to.get(i))));
+        }
+        s
+    }
+
+    fn feed_word(&mut self, f: Feed) -> String {
+        let per_min = match f {
+            Feed::PerMin(v) => v,
+            Feed::PerRev(v) => v * self.rpm,
+        };
+        if self.feed == Some(per_min) {
+            return String::new();
+        }
+        self.feed = Some(per_min);
+        format!(" F{}", fmt(per_min))
+    }
+
+    fn arc(&mut self, to: &Pos, center: &Pos, plane: Plane, dir: ArcDir, feed: Feed) -> String {
+        let mut s = String::new();
+        if plane != self.plane {
+            self.plane = plane;
+            s.push_str(match plane {
+                Plane::Xy => "G17\n",
+                Plane::Zx => "G18\n",
+                Plane::Yz => "G19\n",
+            });
+        }
+        s.push_str(if dir == ArcDir::Cw { "G2" } else { "G3" });
+        s.push_str(&self.axes(to));
+        for (i, l) in self.letters.iter().enumerate() {
+            let offset = match l {
+                'X' => 'I',
+                'Y' => 'J',
+                'Z' => 'K',
+                _ => continue,
+            };
+            let d = center.get(i) - self.pos.get(i);
+            if d != 0.0 {
+                s.push_str(&format!(" {offset}{}", fmt(d)));
+            }
+        }
+        s.push_str(&self.feed_word(feed));
+        s
+    }
+
+    fn block(&mut self, event: &Event) -> Option<String> {
+        Some(match event {
+            Event::Rapid { to, .. } => format!("G0{}", self.axes(to)),
+            Event::Feed { to, feed, .. } => format!("G1{}{}", self.axes(to), self.feed_word(*feed)),
+            Event::Arc { to, center, plane, dir, feed, .. } => self.arc(to, center, *plane, *dir, *feed),
+            Event::Thread { to, lead_mm, .. } => format!("G33{} K{}", self.axes(to), fmt(*lead_mm)),
+            Event::Skip { to, feed, triggered, .. } => {
+                format!("(G31 skip, signal {})\nG1{}{}", if *triggered { "fired" } else { "not fired" }, self.axes(to), self.feed_word(*feed))
+            }
+            Event::Dwell { seconds, .. } => format!("G4 P{}", fmt(*seconds)),
+            Event::ToolChange { tool, .. } => format!("T{tool} M6"),
+            Event::Spindle { dir, rpm, .. } => {
+                self.rpm = *rpm;
+                match dir {
+                    SpindleDir::Cw => format!("M3 S{}", fmt(*rpm)),
+                    SpindleDir::Ccw => format!("M4 S{}", fmt(*rpm)),
+                    SpindleDir::Stop => "M5".into(),
+                    SpindleDir::Orient => "M5 (M19 spindle orientation)".into(),
+                }
+            }
+            Event::Coolant { on, .. } => (if *on { "M8" } else { "M9" }).into(),
+            Event::PathMode { mode, .. } => format!("(path mode {})", crate::jsonl::path_mode(*mode)),
+            Event::Stop { code, .. } => (if *code == "M01" { "M1" } else { "M0" }).into(),
+            Event::End { code, .. } => (if *code == "M30" { "M30" } else { "M2" }).into(),
+            Event::Alarm(d) => format!("(ALARM {} line {}: {})\nM2", d.code.as_str(), d.line, d.message.replace(['(', ')'], "")),
+        })
+    }
+}
+
+/// Four decimals without trailing zeros: `5.5`, `-0.0125`, `10`.
+fn fmt(v: f64) -> String {
+    let s = format!("{:.4}", crate::num::round6(v));
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
+}
+
+impl<W: Write> Sink for GcodeSink<W> {
+    fn event(&mut self, event: &Event) {
+        if self.error.is_some() {
+            return;
+        }
+        if let Some(Err(e)) = self.block(event).map(|text| writeln!(self.out, "{text}")) {
+            self.error = Some(e);
+        }
+        match event {
+            Event::Rapid { to, .. } | Event::Feed { to, .. } | Event::Arc { to, .. } | Event::Thread { to, .. } | Event::Skip { to, .. } => {
+                self.pos = *to;
+            }
+            _ => {}
+        }
+    }
+}

@@ -1,0 +1,214 @@
+//! The JSON-lines event format: the public contract of `vcnc run --format
+//! jsonl`, documented in `docs/events.md`.
+//!
+//! Hand-written rather than serde-derived because the field order, the
+//! rounding and the omission of default fields (`exact_stop`, `file`) are
+//! part of the contract, and because this is the hot path of `vcnc run`
+//! (millions of events per second): one reused buffer, no allocation per
+//! event.
+
+use crate::num::{push_f64, push_json_str, push_u64};
+use std::io::{self, Write};
+use vcnc_interp::{ArcDir, Event, Feed, Loc, Machine, PathMode, Pos, Sink, SpindleDir};
+
+/// Writes one JSON object per event.
+pub struct JsonlSink<W: Write> {
+    out: W,
+    axes: Vec<u8>,
+    buf: Vec<u8>,
+    error: Option<io::Error>,
+}
+
+impl<W: Write> JsonlSink<W> {
+    /// A sink writing to `out` for a machine's axes.
+    pub fn new(out: W, machine: &Machine) -> JsonlSink<W> {
+        let axes = machine.axes.iter().map(|a| a.letter.to_ascii_lowercase()).collect();
+        JsonlSink { out, axes, buf: Vec::with_capacity(512), error: None }
+    }
+
+    /// Flushes and returns the writer, or the first write error.
+    pub fn finish(mut self) -> io::Result<W> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()?;
+        Ok(self.out)
+    }
+}
+
+impl<W: Write> Sink for JsonlSink<W> {
+    fn event(&mut self, event: &Event) {
+        if self.error.is_some() {
+            return;
+        }
+        self.buf.clear();
+        write_event(&mut self.buf, &self.axes, event);
+        self.buf.push(b'\n');
+        if let Err(e) = self.out.write_all(&self.buf) {
+            self.error = Some(e);
+        }
+    }
+}
+
+/// Appends the JSON object of `event` (no newline) for the given lowercase
+/// axis letters.
+pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
+    let mut j = Obj { out, axes };
+    match event {
+        Event::Rapid { loc, to, exact_stop } => {
+            j.head("rapid", loc);
+            j.pos("to", to);
+            j.flag("exact_stop", *exact_stop);
+        }
+        Event::Feed { loc, to, feed, exact_stop } => {
+            j.head("feed", loc);
+            j.pos("to", to);
+            j.feed(*feed);
+            j.flag("exact_stop", *exact_stop);
+        }
+        Event::Arc { loc, to, center, plane, dir, feed, exact_stop } => {
+            j.head("arc", loc);
+            j.pos("to", to);
+            j.pos("center", center);
+            j.str("plane", plane.as_str());
+            j.str("dir", if *dir == ArcDir::Cw { "cw" } else { "ccw" });
+            j.feed(*feed);
+            j.flag("exact_stop", *exact_stop);
+        }
+        Event::Thread { loc, to, lead_mm } => {
+            j.head("thread", loc);
+            j.pos("to", to);
+            j.num("lead_mm", *lead_mm);
+        }
+        Event::Skip { loc, to, feed, triggered } => {
+            j.head("skip", loc);
+            j.pos("to", to);
+            j.feed(*feed);
+            j.boolean("triggered", *triggered);
+        }
+        Event::Dwell { loc, seconds } => {
+            j.head("dwell", loc);
+            j.num("seconds", *seconds);
+        }
+        Event::ToolChange { loc, tool } => {
+            j.head("tool_change", loc);
+            j.int("tool", u64::from(*tool));
+        }
+        Event::Spindle { loc, dir, rpm, surface_m_per_min } => {
+            j.head("spindle", loc);
+            j.str("dir", spindle_dir(*dir));
+            j.num("rpm", *rpm);
+            if let Some(s) = surface_m_per_min {
+                j.num("surface_m_per_min", *s);
+            }
+        }
+        Event::Coolant { loc, on } => {
+            j.head("coolant", loc);
+            j.boolean("on", *on);
+        }
+        Event::PathMode { loc, mode } => {
+            j.head("path_mode", loc);
+            j.str("mode", path_mode(*mode));
+        }
+        Event::Stop { loc, code } => {
+            j.head("stop", loc);
+            j.str("code", code);
+        }
+        Event::End { loc, code } => {
+            j.head("end", loc);
+            j.str("code", code);
+        }
+        Event::Alarm(d) => {
+            j.head("alarm", &Loc { line: d.line, file: d.file.as_deref().map(Into::into) });
+            j.int("column", u64::from(d.column));
+            j.str("code", d.code.as_str());
+            j.key("message");
+            push_json_str(j.out, &d.message);
+            j.key("help");
+            push_json_str(j.out, &d.help);
+        }
+    }
+    j.out.push(b'}');
+}
+
+/// `"cw"`, `"ccw"`, `"stop"`, `"orient"`.
+pub(crate) fn spindle_dir(d: SpindleDir) -> &'static str {
+    match d {
+        SpindleDir::Cw => "cw",
+        SpindleDir::Ccw => "ccw",
+        SpindleDir::Stop => "stop",
+        SpindleDir::Orient => "orient",
+    }
+}
+
+/// The `path_mode` names.
+pub(crate) fn path_mode(m: PathMode) -> &'static str {
+    match m {
+        PathMode::ExactStop => "exact_stop",
+        PathMode::Surface => "surface",
+        PathMode::Tapping => "tapping",
+        PathMode::Cutting => "cutting",
+    }
+}
+
+struct Obj<'a> {
+    out: &'a mut Vec<u8>,
+    axes: &'a [u8],
+}
+
+impl Obj<'_> {
+    fn head(&mut self, kind: &str, loc: &Loc) {
+        self.out.extend_from_slice(b"{\"type\":\"");
+        self.out.extend_from_slice(kind.as_bytes());
+        self.out.extend_from_slice(b"\",\"line\":");
+        push_u64(self.out, loc.line);
+        if let Some(f) = &loc.file {
+            self.key("file");
+            push_json_str(self.out, f);
+        }
+    }
+    fn key(&mut self, k: &str) {
+        self.out.extend_from_slice(b",\"");
+        self.out.extend_from_slice(k.as_bytes());
+        self.out.extend_from_slice(b"\":");
+    }
+    fn pos(&mut self, k: &str, p: &Pos) {
+        self.key(k);
+        self.out.push(b'{');
+        for (i, letter) in self.axes.iter().enumerate() {
+            if i > 0 {
+                self.out.push(b',');
+            }
+            self.out.extend_from_slice(&[b'"', *letter, b'"', b':']);
+            push_f64(self.out, p.get(i));
+        }
+        self.out.push(b'}');
+    }
+    fn num(&mut self, k: &str, v: f64) {
+        self.key(k);
+        push_f64(self.out, v);
+    }
+    fn int(&mut self, k: &str, v: u64) {
+        self.key(k);
+        push_u64(self.out, v);
+    }
+    fn str(&mut self, k: &str, v: &str) {
+        self.key(k);
+        push_json_str(self.out, v);
+    }
+    fn boolean(&mut self, k: &str, v: bool) {
+        self.key(k);
+        self.out.extend_from_slice(if v { b"true" } else { b"false" });
+    }
+    fn flag(&mut self, k: &str, v: bool) {
+        if v {
+            self.boolean(k, true);
+        }
+    }
+    fn feed(&mut self, f: Feed) {
+        match f {
+            Feed::PerMin(v) => self.num("feed", v),
+            Feed::PerRev(v) => self.num("feed_per_rev", v),
+        }
+    }
+}

@@ -1,0 +1,168 @@
+//! The numbers `vcnc check` prints: cycle time, rapid and cutting distance,
+//! extents, tools and spindle speeds.
+//!
+//! Cycle time here is kinematic-free: a rapid takes as long as its slowest
+//! axis at that axis's rapid rate, a cut takes its path length over the feed
+//! (capped by the axes' maximum feed; per-revolution feeds and threads use
+//! the spindle speed in force), plus dwells. Acceleration is the planner's
+//! business (a later crate); this is the distance/feed estimate.
+
+use vcnc_interp::arc::arc_bounds;
+use vcnc_interp::{Event, Feed, Machine, Plane, Pos, Sink};
+
+/// Accumulates the summary of a run.
+#[derive(Debug, Clone)]
+pub struct Summary {
+    rapid_rates: Vec<f64>,
+    max_feeds: Vec<f64>,
+    letters: Vec<u8>,
+    pos: Pos,
+    rpm: f64,
+    /// Events seen.
+    pub events: u64,
+    /// Estimated cycle time.
+    pub cycle_time_s: f64,
+    /// Rapid path length.
+    pub rapid_mm: f64,
+    /// Cutting path length (feeds, arcs, threads, skips).
+    pub cut_mm: f64,
+    /// Smallest and largest machine coordinate per axis (`None` if no motion).
+    pub extents: Option<(Pos, Pos)>,
+    /// Tools changed to, in order of first use.
+    pub tools: Vec<u32>,
+    /// Slowest and fastest spindle speed commanded, rpm.
+    pub spindle_rpm: Option<(f64, f64)>,
+    /// Cutting moves whose time is unknown (feed per rev with the spindle stopped).
+    pub untimed_moves: u64,
+}
+
+impl Summary {
+    /// An empty summary for `machine`, starting at its power-on position.
+    pub fn new(machine: &Machine) -> Summary {
+        Summary {
+            rapid_rates: machine.axes.iter().map(|a| a.rapid_mm_per_min / 60.0).collect(),
+            max_feeds: machine.axes.iter().map(|a| a.max_feed_mm_per_min).collect(),
+            letters: machine.axes.iter().map(|a| a.letter).collect(),
+            pos: machine.start,
+            rpm: 0.0,
+            events: 0,
+            cycle_time_s: 0.0,
+            rapid_mm: 0.0,
+            cut_mm: 0.0,
+            extents: None,
+            tools: Vec::new(),
+            spindle_rpm: None,
+            untimed_moves: 0,
+        }
+    }
+
+    /// The machine's axis letters, in event order.
+    pub fn axis_letters(&self) -> &[u8] {
+        &self.letters
+    }
+
+    fn extend(&mut self, lo: Pos, hi: Pos) {
+        let (mut a, mut b) = self.extents.unwrap_or((lo, hi));
+        for i in 0..self.letters.len() {
+            a.set(i, a.get(i).min(lo.get(i)));
+            b.set(i, b.get(i).max(hi.get(i)));
+        }
+        self.extents = Some((a, b));
+    }
+
+    fn line_box(&mut self, to: &Pos) {
+        let (mut lo, mut hi) = (self.pos, self.pos);
+        for i in 0..self.letters.len() {
+            lo.set(i, lo.get(i).min(to.get(i)));
+            hi.set(i, hi.get(i).max(to.get(i)));
+        }
+        self.extend(lo, hi);
+    }
+
+    fn distance(&self, to: &Pos) -> f64 {
+        (0..self.letters.len()).map(|i| (to.get(i) - self.pos.get(i)).powi(2)).sum::<f64>().sqrt()
+    }
+
+    /// Cut time at `feed` over `len_mm`, capped by the slowest axis limit.
+    fn cut_time(&mut self, len_mm: f64, feed: Feed) -> f64 {
+        let per_min = match feed {
+            Feed::PerMin(f) => f,
+            Feed::PerRev(f) => f * self.rpm,
+        };
+        let cap = self.max_feeds.iter().copied().fold(f64::INFINITY, f64::min);
+        let per_min = per_min.min(cap);
+        if per_min <= 0.0 {
+            self.untimed_moves += 1;
+            return 0.0;
+        }
+        len_mm / per_min * 60.0
+    }
+
+    fn arc_len(&self, to: &Pos, center: &Pos, plane: Plane, cw: bool) -> (f64, (usize, usize)) {
+        let idx = |l: u8| self.letters.iter().position(|x| *x == l).unwrap_or(0);
+        let [a, b, n] = plane.letters();
+        let (ia, ib, inn) = (idx(a), idx(b), idx(n));
+        let (sa, sb) = (self.pos.get(ia) - center.get(ia), self.pos.get(ib) - center.get(ib));
+        let (ea, eb) = (to.get(ia) - center.get(ia), to.get(ib) - center.get(ib));
+        let r = sa.hypot(sb);
+        let mut sweep = (eb.atan2(ea) - sb.atan2(sa)).rem_euclid(std::f64::consts::TAU);
+        if cw {
+            sweep = (std::f64::consts::TAU - sweep) % std::f64::consts::TAU;
+        }
+        if sweep < 1e-12 {
+            sweep = std::f64::consts::TAU;
+        }
+        let h = if self.letters.contains(&n) { to.get(inn) - self.pos.get(inn) } else { 0.0 };
+        ((r * sweep).hypot(h), (ia, ib))
+    }
+}
+
+impl Sink for Summary {
+    fn event(&mut self, event: &Event) {
+        self.events += 1;
+        match event {
+            Event::Rapid { to, .. } => {
+                let t = (0..self.letters.len())
+                    .map(|i| (to.get(i) - self.pos.get(i)).abs() / self.rapid_rates[i])
+                    .fold(0.0, f64::max);
+                self.cycle_time_s += t;
+                self.rapid_mm += self.distance(to);
+                self.line_box(to);
+                self.pos = *to;
+            }
+            Event::Feed { to, feed, .. } | Event::Skip { to, feed, .. } => {
+                let d = self.distance(to);
+                self.cut_mm += d;
+                self.cycle_time_s += self.cut_time(d, *feed);
+                self.line_box(to);
+                self.pos = *to;
+            }
+            Event::Thread { to, lead_mm, .. } => {
+                let d = self.distance(to);
+                self.cut_mm += d;
+                self.cycle_time_s += self.cut_time(d, Feed::PerRev(*lead_mm));
+                self.line_box(to);
+                self.pos = *to;
+            }
+            Event::Arc { to, center, plane, dir, feed, .. } => {
+                let cw = *dir == vcnc_interp::ArcDir::Cw;
+                let (len, axes) = self.arc_len(to, center, *plane, cw);
+                self.cut_mm += len;
+                self.cycle_time_s += self.cut_time(len, *feed);
+                let (lo, hi) = arc_bounds(self.pos, *to, *center, axes, *dir, self.letters.len());
+                self.extend(lo, hi);
+                self.pos = *to;
+            }
+            Event::Dwell { seconds, .. } => self.cycle_time_s += seconds,
+            Event::ToolChange { tool, .. } if !self.tools.contains(tool) => self.tools.push(*tool),
+            Event::Spindle { rpm, .. } => {
+                self.rpm = *rpm;
+                if *rpm > 0.0 {
+                    let (lo, hi) = self.spindle_rpm.unwrap_or((*rpm, *rpm));
+                    self.spindle_rpm = Some((lo.min(*rpm), hi.max(*rpm)));
+                }
+            }
+            _ => {}
+        }
+    }
+}

@@ -1,0 +1,103 @@
+//! Blocks and words: what the lexer produces and the interpreter consumes.
+//!
+//! A [`Block`] is a fixed-capacity buffer reused for every block of a program,
+//! so lexing allocates nothing. A [`Word`] keeps its value as written (sign,
+//! digits, whether it had a decimal point) and its span; what the value means
+//! (millimetres, least input increments, a count) is decided by the
+//! interpreter, which knows the word's role.
+
+use crate::span::Span;
+
+/// Most words one block may hold (E107 beyond).
+pub const MAX_WORDS: usize = 48;
+
+/// A word address: an uppercase ASCII letter, or a dialect's multi-character
+/// address (`CR=`, `IX`) numbered from 128 by the dialect's [`LexRules`].
+///
+/// [`LexRules`]: crate::LexRules
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Addr(pub u8);
+
+impl Addr {
+    /// The address of an uppercase letter.
+    pub const fn letter(l: u8) -> Addr {
+        Addr(l)
+    }
+    /// The letter if this is a single-letter address.
+    pub fn as_letter(self) -> Option<u8> {
+        self.0.is_ascii_uppercase().then_some(self.0)
+    }
+    /// Index 0..26 for letters, `None` for extended addresses.
+    pub fn letter_index(self) -> Option<usize> {
+        self.as_letter().map(|l| usize::from(l - b'A'))
+    }
+}
+
+/// One word: address, value and span.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Word {
+    /// The address.
+    pub addr: Addr,
+    /// The value exactly as written (`X5500` → 5500.0, `X5.5` → 5.5).
+    pub value: f64,
+    /// Whether the value was written with a decimal point.
+    pub point: bool,
+    /// Bytes of the whole word (letter and value) within the line.
+    pub span: Span,
+}
+
+/// One block: the words between two block ends.
+#[derive(Debug, Clone)]
+pub struct Block {
+    words: [Word; MAX_WORDS],
+    len: usize,
+    /// Bytes of the block within its line (without the terminator).
+    pub span: Span,
+    /// The block began with `/` (block delete); the digit after it, 1 if none.
+    pub deleted: Option<u8>,
+    /// The block is a `%` tape mark.
+    pub percent: bool,
+}
+
+impl Default for Block {
+    fn default() -> Block {
+        Block {
+            words: [Word::default(); MAX_WORDS],
+            len: 0,
+            span: Span::default(),
+            deleted: None,
+            percent: false,
+        }
+    }
+}
+
+impl Block {
+    /// The words in the order written.
+    pub fn words(&self) -> &[Word] {
+        &self.words[..self.len]
+    }
+    /// Whether the block holds no words (a comment or an empty line).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0 && !self.percent
+    }
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+        self.deleted = None;
+        self.percent = false;
+    }
+    /// Appends a word; `false` when the block is full.
+    pub(crate) fn push(&mut self, w: Word) -> bool {
+        match self.words.get_mut(self.len) {
+            Some(slot) => {
+                *slot = w;
+                self.len += 1;
+                true
+            }
+            None => false,
+        }
+    }
+    /// The first word's span, or the block's start when it has none.
+    pub fn first_span(&self) -> Span {
+        self.words().first().map_or(Span::new(self.span.start as usize, self.span.start as usize + 1), |w| w.span)
+    }
+}

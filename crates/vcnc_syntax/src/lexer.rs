@@ -1,0 +1,199 @@
+//! The lexer: one block out of one physical line.
+//!
+//! ```text
+//!   line:  N10 G01 X5.5 (cut) Y-2 ; G04 P500   // note
+//!          └───────── block 1 ──────┘ └ block 2 ┘└ comment ┘
+//! ```
+//!
+//! A block ends at `;`, at the full-width `；` the Syntec manual prints, at a
+//! `//` annotation (when the dialect's [`LexRules`] allow it) or at the end of
+//! the line. `( )` comments are skipped, `%` alone is a tape mark, `/` at the
+//! start marks a block-delete block, letters are case-insensitive and spaces
+//! are ignored inside words. Multi-character addresses (`CR=`) come from the
+//! rules table so that dialects differ by data, not by code.
+
+use crate::block::{Addr, Block, MAX_WORDS, Word};
+use crate::diagnostics::{self as diag, Diagnostic};
+use crate::number::{NumberError, parse_number};
+use crate::span::Span;
+
+/// Longest block the lexer accepts (E106 beyond).
+pub const MAX_BLOCK_BYTES: usize = 4096;
+
+/// Dialect-dependent lexical rules.
+#[derive(Debug, Clone, Copy)]
+pub struct LexRules {
+    /// `//` starts a comment that runs to the end of the line (Syntec).
+    pub slash_comments: bool,
+    /// The full-width `；` (U+FF1B) ends a block like `;`.
+    pub fullwidth_semicolon: bool,
+    /// Multi-character addresses, tried before single letters, longest
+    /// first, matched case-insensitively: (`"CR="`, its [`Addr`]).
+    pub extended: &'static [(&'static str, Addr)],
+}
+
+const FULLWIDTH_SEMICOLON: &[u8] = "；".as_bytes();
+
+/// Lexes the block that starts at `start` in `line` into `out`.
+///
+/// Returns the index where the next block starts (past the terminator), or
+/// `line.len()` when the line is used up.
+pub fn lex_block(line: &[u8], start: usize, rules: &LexRules, out: &mut Block) -> Result<usize, Diagnostic> {
+    out.clear();
+    let mut i = start;
+    let mut first = true;
+    loop {
+        let Some(&b) = line.get(i) else {
+            return finish(out, start, i, line.len());
+        };
+        match b {
+            b' ' | b'\t' | b'\r' | b'\n' | 0x0c => i += 1,
+            b';' => return finish(out, start, i, i + 1),
+            b'(' => i = skip_comment(line, i)?,
+            b'/' if rules.slash_comments && line.get(i + 1) == Some(&b'/') => return finish(out, start, i, line.len()),
+            b'/' if first => {
+                i += 1;
+                let level = match line.get(i) {
+                    Some(d @ b'1'..=b'9') => {
+                        i += 1;
+                        d - b'0'
+                    }
+                    _ => 1,
+                };
+                out.deleted = Some(level);
+            }
+            b'%' if first && out.deleted.is_none() => {
+                out.percent = true;
+                return finish(out, start, i + 1, line.len());
+            }
+            b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, i, rules, out)?,
+            0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
+                return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
+            }
+            _ => return Err(illegal_at(line, i)),
+        }
+        first = first && matches!(b, b' ' | b'\t' | b'\r' | b'(' | 0x0c);
+        if i - start > MAX_BLOCK_BYTES {
+            return Err(diag::block_too_long(Span::new(start, start + 1), MAX_BLOCK_BYTES));
+        }
+    }
+}
+
+fn finish(out: &mut Block, start: usize, end: usize, next: usize) -> Result<usize, Diagnostic> {
+    out.span = Span::new(start, end);
+    Ok(next)
+}
+
+fn skip_comment(line: &[u8], open: usize) -> Result<usize, Diagnostic> {
+    match memchr::memchr(b')', &line[open + 1..]) {
+        Some(k) => Ok(open + 1 + k + 1),
+        None => Err(diag::unterminated_comment(Span::new(open, open + 1))),
+    }
+}
+
+fn lex_word(line: &[u8], at: usize, rules: &LexRules, out: &mut Block) -> Result<usize, Diagnostic> {
+    let (addr, value_at) = address(line, at, rules);
+    let letter = char::from(line[at].to_ascii_uppercase());
+    let n = match parse_number(line, value_at) {
+        Ok(n) => n,
+        Err(e) => {
+            let end = (value_at + 1).min(line.len()).max(at + 1);
+            let span = Span::new(at, end);
+            return Err(match e {
+                NumberError::Missing => diag::missing_value(span, letter),
+                NumberError::Malformed => diag::malformed_number(span, letter),
+                NumberError::OutOfRange => diag::number_out_of_range(span, letter),
+            });
+        }
+    };
+    let word = Word { addr, value: n.value, point: n.point, span: Span::new(at, n.end) };
+    if !out.push(word) {
+        return Err(diag::too_many_words(word.span, MAX_WORDS));
+    }
+    Ok(n.end)
+}
+
+/// The address at `at` and the index where its value starts.
+fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
+    for (text, addr) in rules.extended {
+        let t = text.as_bytes();
+        if line.len() >= at + t.len() && line[at..at + t.len()].eq_ignore_ascii_case(t) {
+            return (*addr, at + t.len());
+        }
+    }
+    (Addr::letter(line[at].to_ascii_uppercase()), at + 1)
+}
+
+fn illegal_at(line: &[u8], i: usize) -> Diagnostic {
+    let rest = &line[i..];
+    let len = utf8_len(rest);
+    let ch = std::str::from_utf8(&rest[..len]).ok().and_then(|s| s.chars().next()).unwrap_or('\u{FFFD}');
+    diag::illegal_character(Span::new(i, i + len), ch)
+}
+
+fn utf8_len(rest: &[u8]) -> usize {
+    let want = match rest.first() {
+        Some(b) if *b >= 0xF0 => 4,
+        Some(b) if *b >= 0xE0 => 3,
+        Some(b) if *b >= 0xC0 => 2,
+        _ => 1,
+    };
+    if rest.len() >= want && std::str::from_utf8(&rest[..want]).is_ok() { want } else { 1 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostics::Code;
+
+    const SYNTEC: LexRules = LexRules { slash_comments: true, fullwidth_semicolon: true, extended: &[] };
+
+    fn blocks(src: &str) -> Result<Vec<String>, Code> {
+        let line = src.as_bytes();
+        let mut out = Block::default();
+        let mut res = Vec::new();
+        let mut i = 0;
+        while i < line.len() {
+            i = lex_block(line, i, &SYNTEC, &mut out).map_err(|d| d.code)?;
+            let words: Vec<String> = out
+                .words()
+                .iter()
+                .map(|w| format!("{}{}{}", char::from(w.addr.0), w.value, if w.point { "." } else { "" }))
+                .collect();
+            res.push(words.join(" "));
+        }
+        Ok(res)
+    }
+
+    #[test]
+    fn splits_blocks_and_skips_comments() {
+        assert_eq!(blocks("n10 g1 x5.5 (cut; here) y-2;G4 P500 // note").unwrap(), vec![
+            "N10 G1 X5.5. Y-2",
+            "G4 P500"
+        ]);
+        assert_eq!(blocks("G90 G00 X5500 Y4000；//positioning").unwrap(), vec!["G90 G0 X5500 Y4000", ""]);
+        assert_eq!(blocks("X 1 0 . 5").unwrap(), vec!["X10.5."]);
+    }
+
+    #[test]
+    fn marks_block_delete_and_tape_marks() {
+        let mut out = Block::default();
+        lex_block(b"/2 G00 X1", 0, &SYNTEC, &mut out).unwrap();
+        assert_eq!(out.deleted, Some(2));
+        lex_block(b"%", 0, &SYNTEC, &mut out).unwrap();
+        assert!(out.percent);
+    }
+
+    #[test]
+    fn reports_bad_input_with_codes() {
+        assert_eq!(blocks("G01 X1 #1"), Err(Code::E101));
+        assert_eq!(blocks("G01 X#1"), Err(Code::E104));
+        assert_eq!(blocks("G01 X1.2.3"), Err(Code::E102));
+        // An exponent is just another word for the interpreter to reject.
+        assert_eq!(blocks("X1e400").unwrap(), vec!["X1 E400"]);
+        assert_eq!(blocks("G X10"), Err(Code::E104));
+        assert_eq!(blocks("G01 (open"), Err(Code::E105));
+        assert_eq!(blocks("X12345678901234567890"), Err(Code::E103));
+        assert_eq!(blocks("G01 X1 % "), Err(Code::E101));
+    }
+}

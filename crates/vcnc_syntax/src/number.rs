@@ -1,0 +1,156 @@
+//! Decimal numbers parsed digit by digit, never by Rust's float parser.
+//!
+//! A program number is an optional sign, digits and at most one decimal
+//! point. The digits accumulate into an integer mantissa (at most 15
+//! significant digits, so it is exact in an `f64`) and the value is
+//! `mantissa / 10^fraction_digits`, one correctly rounded division: `5.5`,
+//! `5500 / 1000` and `0.1` come out as the nearest doubles, with no `inf`,
+//! `NaN` or exponent possible. Spaces between the characters of a number are
+//! ignored, as on a tape reader.
+
+/// Most digits before the decimal point.
+const MAX_INT_DIGITS: u32 = 9;
+/// Most significant digits in all.
+const MAX_SIG_DIGITS: u32 = 15;
+
+const POW10: [f64; 16] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+];
+
+/// Why a number could not be read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NumberError {
+    /// Nothing that starts a number.
+    Missing,
+    /// A sign or point without digits, or a second point or sign.
+    Malformed,
+    /// Too many digits.
+    OutOfRange,
+}
+
+/// A parsed number and where it ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Number {
+    /// The value as written.
+    pub value: f64,
+    /// Whether a decimal point was written.
+    pub point: bool,
+    /// Byte index just past the number (trailing spaces not included).
+    pub end: usize,
+}
+
+/// Parses a number starting at `bytes[start]`, skipping spaces and tabs.
+///
+/// ```
+/// let n = vcnc_syntax::parse_number(b"-12.50 Y", 0).unwrap();
+/// assert_eq!((n.value, n.point, n.end), (-12.5, true, 6));
+/// ```
+pub fn parse_number(bytes: &[u8], start: usize) -> Result<Number, NumberError> {
+    let mut i = skip_blanks(bytes, start);
+    let mut negative = false;
+    let mut signed = false;
+    if let Some(&s @ (b'+' | b'-')) = bytes.get(i) {
+        negative = s == b'-';
+        signed = true;
+        i = skip_blanks(bytes, i + 1);
+    }
+    let mut acc = Digits::default();
+    let mut end = i;
+    while let Some(&b) = bytes.get(i) {
+        match b {
+            b'0'..=b'9' => acc.digit(b - b'0')?,
+            b'.' if !acc.point => acc.point = true,
+            b'.' | b'+' | b'-' => return Err(NumberError::Malformed),
+            b' ' | b'\t' => {
+                i += 1;
+                continue;
+            }
+            _ => break,
+        }
+        i += 1;
+        end = i;
+    }
+    if acc.digits == 0 {
+        return Err(if signed || acc.point { NumberError::Malformed } else { NumberError::Missing });
+    }
+    let magnitude = acc.mantissa as f64 / POW10[acc.frac as usize];
+    let value = if negative { -magnitude } else { magnitude };
+    Ok(Number { value, point: acc.point, end })
+}
+
+fn skip_blanks(bytes: &[u8], mut i: usize) -> usize {
+    while matches!(bytes.get(i), Some(b' ' | b'\t')) {
+        i += 1;
+    }
+    i
+}
+
+#[derive(Default)]
+struct Digits {
+    mantissa: u64,
+    digits: u32,
+    significant: u32,
+    int_digits: u32,
+    frac: u32,
+    point: bool,
+}
+
+impl Digits {
+    fn digit(&mut self, d: u8) -> Result<(), NumberError> {
+        self.digits += 1;
+        if self.significant == 0 && d == 0 {
+            // Leading zeros cost nothing, but fraction zeros still scale.
+            if self.point {
+                self.frac += 1;
+                if self.frac > MAX_SIG_DIGITS {
+                    return Err(NumberError::OutOfRange);
+                }
+            }
+            return Ok(());
+        }
+        self.significant += 1;
+        if self.point {
+            self.frac += 1;
+        } else {
+            self.int_digits += 1;
+        }
+        if self.significant > MAX_SIG_DIGITS || self.int_digits > MAX_INT_DIGITS || self.frac > MAX_SIG_DIGITS {
+            return Err(NumberError::OutOfRange);
+        }
+        self.mantissa = self.mantissa * 10 + u64::from(d);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn val(s: &str) -> Result<(f64, bool), NumberError> {
+        parse_number(s.as_bytes(), 0).map(|n| (n.value, n.point))
+    }
+
+    #[test]
+    fn reads_the_forms_programs_use() {
+        assert_eq!(val("5500"), Ok((5500.0, false)));
+        assert_eq!(val("5.5"), Ok((5.5, true)));
+        assert_eq!(val("-.5"), Ok((-0.5, true)));
+        assert_eq!(val("5."), Ok((5.0, true)));
+        assert_eq!(val("+ 1 2.5"), Ok((12.5, true)));
+        assert_eq!(val("0.1"), Ok((0.1, true)));
+        assert_eq!(val("0.000000000000001"), Ok((1e-15, true)));
+    }
+
+    #[test]
+    fn rejects_what_is_not_a_number() {
+        assert_eq!(val(""), Err(NumberError::Missing));
+        assert_eq!(val("Y"), Err(NumberError::Missing));
+        assert_eq!(val("-"), Err(NumberError::Malformed));
+        assert_eq!(val("."), Err(NumberError::Malformed));
+        assert_eq!(val("1.2.3"), Err(NumberError::Malformed));
+        assert_eq!(val("1-2"), Err(NumberError::Malformed));
+        assert_eq!(val("1234567890"), Err(NumberError::OutOfRange));
+        assert_eq!(val("0.1234567890123456"), Err(NumberError::OutOfRange));
+        assert_eq!(val("0000000000000000000000001"), Ok((1.0, false)));
+    }
+}
