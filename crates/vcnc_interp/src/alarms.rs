@@ -14,26 +14,48 @@ fn letter(l: u8) -> char {
 
 /// E106: a physical line too long to read.
 pub fn line_too_long() -> Diagnostic {
-    d(Code::E106, Span::new(0, 1), "line is longer than 64 KiB".into(), "split it into several blocks")
+    d(
+        Code::E106,
+        Span::new(0, 1),
+        "line is longer than 64 KiB".into(),
+        "split it into several blocks",
+    )
 }
 
 /// E108: a decimal point in a word that counts or numbers things.
 pub fn no_decimal_point(span: Span, l: u8, why: &str) -> Diagnostic {
-    d(Code::E108, span, format!("{} does not take a decimal point: {why}", letter(l)), "write a whole number")
+    d(
+        Code::E108,
+        span,
+        format!("{} does not take a decimal point: {why}", letter(l)),
+        "write a whole number",
+    )
 }
 
 /// E109: a value outside what the word allows.
 pub fn value_out_of_range(span: Span, l: u8, value: f64, allowed: &str) -> Diagnostic {
-    d(Code::E109, span, format!("{}{value} is out of range: {allowed}", letter(l)), "use a value in the allowed range")
+    d(
+        Code::E109,
+        span,
+        format!("{}{value} is out of range: {allowed}", letter(l)),
+        "use a value in the allowed range",
+    )
 }
 
 /// E201: unknown G code.
 pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>) -> Diagnostic {
     let help = match elsewhere {
-        Some(other) => format!("G{value} exists in the {other} dialect: run with --dialect {other}"),
+        Some(other) => {
+            format!("G{value} exists in the {other} dialect: run with --dialect {other}")
+        }
         None => "check the code against the controller's G-code list".to_string(),
     };
-    let mut diag = d(Code::E201, span, format!("G{value} is not a G code of the {dialect} dialect"), "");
+    let mut diag = d(
+        Code::E201,
+        span,
+        format!("G{value} is not a G code of the {dialect} dialect"),
+        "",
+    );
     diag.help = help;
     diag
 }
@@ -60,12 +82,22 @@ pub fn word_not_allowed(span: Span, l: u8) -> Diagnostic {
 
 /// E203 for a multi-character address the dialect does not have.
 pub fn address_not_in_dialect(span: Span, dialect: &str) -> Diagnostic {
-    d(Code::E203, span, format!("this address does not exist in the {dialect} dialect"), "check --dialect")
+    d(
+        Code::E203,
+        span,
+        format!("this address does not exist in the {dialect} dialect"),
+        "check --dialect",
+    )
 }
 
 /// E204: the same address twice.
 pub fn duplicate_word(span: Span, l: u8) -> Diagnostic {
-    d(Code::E204, span, format!("{} appears twice in this block", letter(l)), "keep one of them")
+    d(
+        Code::E204,
+        span,
+        format!("{} appears twice in this block", letter(l)),
+        "keep one of them",
+    )
 }
 
 /// E205: two G codes of one modal group.
@@ -80,7 +112,12 @@ pub fn same_group(span: Span) -> Diagnostic {
 
 /// E206: two M codes of one group.
 pub fn same_m_group(span: Span) -> Diagnostic {
-    d(Code::E206, span, "two M codes of the same group in one block".into(), "put them in separate blocks")
+    d(
+        Code::E206,
+        span,
+        "two M codes of the same group in one block".into(),
+        "put them in separate blocks",
+    )
 }
 
 /// E207: two G codes both taking the axis words.
@@ -98,14 +135,20 @@ pub fn g92_axes_and_s(span: Span) -> Diagnostic {
     d(
         Code::E208,
         span,
-        "G92 with axis words presets coordinates, G92 with S clamps the spindle: not both at once".into(),
+        "G92 with axis words presets coordinates, G92 with S clamps the spindle: not both at once"
+            .into(),
         "write G92 S… and G92 X… in separate blocks",
     )
 }
 
 /// E301: zero feed on a cutting move.
 pub fn zero_feed(span: Span) -> Diagnostic {
-    d(Code::E301, span, "cutting move with zero feed".into(), "program F before or in this block, e.g. F300")
+    d(
+        Code::E301,
+        span,
+        "cutting move with zero feed".into(),
+        "program F before or in this block, e.g. F300",
+    )
 }
 
 /// E302: chord longer than the diameter.
@@ -123,14 +166,21 @@ pub fn end_off_circle(span: Span, r_start: f64, r_end: f64) -> Diagnostic {
     d(
         Code::E303,
         span,
-        format!("arc end point is not on the circle: start radius {r_start:.4} mm, end radius {r_end:.4} mm"),
+        format!(
+            "arc end point is not on the circle: start radius {r_start:.4} mm, end radius {r_end:.4} mm"
+        ),
         "check the end point and I/J/K (I/J/K are measured from the start point to the centre)",
     )
 }
 
 /// E304: zero radius.
 pub fn zero_radius(span: Span) -> Diagnostic {
-    d(Code::E304, span, "arc has zero radius".into(), "give the centre offset (I/J/K) or a non-zero R")
+    d(
+        Code::E304,
+        span,
+        "arc has zero radius".into(),
+        "give the centre offset (I/J/K) or a non-zero R",
+    )
 }
 
 /// E305: neither centre nor radius.
@@ -158,7 +208,10 @@ pub fn g29_without_g28(span: Span, axis: u8) -> Diagnostic {
     d(
         Code::E307,
         span,
-        format!("G29 has no intermediate point for {}: no G28/G30 moved that axis before", letter(axis)),
+        format!(
+            "G29 has no intermediate point for {}: no G28/G30 moved that axis before",
+            letter(axis)
+        ),
         "run G28 or G30 with that axis first",
     )
 }
@@ -168,14 +221,20 @@ pub fn g53_incremental(span: Span) -> Diagnostic {
     d(
         Code::E308,
         span,
-        "G53 takes absolute machine coordinates and is not effective in incremental mode (G91)".into(),
+        "G53 takes absolute machine coordinates and is not effective in incremental mode (G91)"
+            .into(),
         "write G90 before G53 (manual 1.2.23, note 2)",
     )
 }
 
 /// E309: M06 without T.
 pub fn m06_without_tool(span: Span) -> Diagnostic {
-    d(Code::E309, span, "M06 with no tool selected".into(), "select the tool with T in this or an earlier block")
+    d(
+        Code::E309,
+        span,
+        "M06 with no tool selected".into(),
+        "select the tool with T in this or an earlier block",
+    )
 }
 
 /// E310: G96 without a tool diameter.
@@ -190,12 +249,22 @@ pub fn css_without_diameter(span: Span) -> Diagnostic {
 
 /// E311: G33 without lead.
 pub fn thread_without_lead(span: Span) -> Diagnostic {
-    d(Code::E311, span, "G33 without a thread lead".into(), "give the lead with F, e.g. G33 Z-20. F1.5")
+    d(
+        Code::E311,
+        span,
+        "G33 without a thread lead".into(),
+        "give the lead with F, e.g. G33 Z-20. F1.5",
+    )
 }
 
 /// E312: a code that needs axis words has none.
 pub fn needs_axes(span: Span, what: &str) -> Diagnostic {
-    d(Code::E312, span, format!("{what} needs axis words"), "name the axes it applies to, e.g. X0 Y0")
+    d(
+        Code::E312,
+        span,
+        format!("{what} needs axis words"),
+        "name the axes it applies to, e.g. X0 Y0",
+    )
 }
 
 /// E401: program not found.
@@ -210,7 +279,12 @@ pub fn program_not_found(span: Span, number: u32) -> Diagnostic {
 
 /// E402: sequence number not found.
 pub fn sequence_not_found(span: Span, seq: u32) -> Diagnostic {
-    d(Code::E402, span, format!("sequence number N{seq} not found in the program"), "check the N number")
+    d(
+        Code::E402,
+        span,
+        format!("sequence number N{seq} not found in the program"),
+        "check the N number",
+    )
 }
 
 /// E403: nesting too deep.
@@ -245,12 +319,22 @@ pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
 
 /// E406: subprogram without M99.
 pub fn sub_without_m99(span: Span) -> Diagnostic {
-    d(Code::E406, span, "subprogram ended without M99".into(), "end every subprogram with M99")
+    d(
+        Code::E406,
+        span,
+        "subprogram ended without M99".into(),
+        "end every subprogram with M99",
+    )
 }
 
 /// E408: called program unreadable.
 pub fn program_unreadable(span: Span, number: u32, err: &std::io::Error) -> Diagnostic {
-    d(Code::E408, span, format!("program O{number:04} could not be read: {err}"), "check the file's permissions")
+    d(
+        Code::E408,
+        span,
+        format!("program O{number:04} could not be read: {err}"),
+        "check the file's permissions",
+    )
 }
 
 /// E501: soft over-travel.
@@ -278,5 +362,10 @@ pub fn no_reference(span: Span, n: usize) -> Diagnostic {
 
 /// E503: work offset number out of range.
 pub fn bad_offset_number(span: Span, p: f64) -> Diagnostic {
-    d(Code::E503, span, format!("G10 L2 P{p}: no such work coordinate system"), "use P1 (G54) to P6 (G59)")
+    d(
+        Code::E503,
+        span,
+        format!("G10 L2 P{p}: no such work coordinate system"),
+        "use P1 (G54) to P6 (G59)",
+    )
 }

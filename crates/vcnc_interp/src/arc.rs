@@ -39,7 +39,13 @@ struct Geometry {
 
 impl Interpreter<'_> {
     /// One G02/G03 block (a block with no arc words only sets the mode).
-    pub(crate) fn arc<S: Sink>(&mut self, w: &Words, cmd: Span, cw: bool, sink: &mut S) -> Result<(), Diagnostic> {
+    pub(crate) fn arc<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        cw: bool,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         let plane = self.state.modal.plane;
         let [la, lb, _] = plane.letters();
         let [oa, ob] = center_letters(plane);
@@ -71,13 +77,28 @@ impl Interpreter<'_> {
         c.set(ib, center.1);
         let dir = if cw { ArcDir::Cw } else { ArcDir::Ccw };
         let exact_stop = self.exact_stop(w);
-        self.emit(sink, |loc| Event::Arc { loc, to, center: c, plane, dir, feed, exact_stop });
+        self.emit(sink, |loc| Event::Arc {
+            loc,
+            to,
+            center: c,
+            plane,
+            dir,
+            feed,
+            exact_stop,
+        });
         self.state.pos = to;
         Ok(())
     }
 
     /// Centre of an R arc; negative R takes the arc over 180°.
-    fn center_from_radius(&self, s: (f64, f64), e: (f64, f64), r: f64, cw: bool, span: Span) -> Result<(f64, f64), Diagnostic> {
+    fn center_from_radius(
+        &self,
+        s: (f64, f64),
+        e: (f64, f64),
+        r: f64,
+        cw: bool,
+        span: Span,
+    ) -> Result<(f64, f64), Diagnostic> {
         let (dx, dy) = (e.0 - s.0, e.1 - s.1);
         let chord = dx.hypot(dy);
         if r.abs() < ZERO_MM {
@@ -95,11 +116,21 @@ impl Interpreter<'_> {
         // Left normal of the chord; G03 with R > 0 has its centre on the left.
         let (nx, ny) = (-dy / chord, dx / chord);
         let side = if cw { -1.0 } else { 1.0 } * r.signum();
-        Ok((s.0 + dx / 2.0 + side * h * nx, s.1 + dy / 2.0 + side * h * ny))
+        Ok((
+            s.0 + dx / 2.0 + side * h * nx,
+            s.1 + dy / 2.0 + side * h * ny,
+        ))
     }
 
     /// Radius, sweep and the on-circle check (E303, E304).
-    fn geometry(&self, s: (f64, f64), e: (f64, f64), c: (f64, f64), cw: bool, cmd: Span) -> Result<Geometry, Diagnostic> {
+    fn geometry(
+        &self,
+        s: (f64, f64),
+        e: (f64, f64),
+        c: (f64, f64),
+        cw: bool,
+        cmd: Span,
+    ) -> Result<Geometry, Diagnostic> {
         let r_start = (s.0 - c.0).hypot(s.1 - c.1);
         let r_end = (e.0 - c.0).hypot(e.1 - c.1);
         if r_start < ZERO_MM {
@@ -112,13 +143,39 @@ impl Interpreter<'_> {
         let a1 = (e.1 - c.1).atan2(e.0 - c.0);
         let full = (s.0 - e.0).hypot(s.1 - e.1) < ZERO_MM;
         let ccw_sweep = if full { TAU } else { (a1 - a0).rem_euclid(TAU) };
-        let sweep = if cw { -(if full { TAU } else { TAU - ccw_sweep }) } else { ccw_sweep };
-        Ok(Geometry { center: c, radius: r_start, sweep, start_angle: a0 })
+        let sweep = if cw {
+            -(if full { TAU } else { TAU - ccw_sweep })
+        } else {
+            ccw_sweep
+        };
+        Ok(Geometry {
+            center: c,
+            radius: r_start,
+            sweep,
+            start_angle: a0,
+        })
     }
 
     /// Travel check of the swept arc.
-    fn check_arc(&self, g: &Geometry, from: Pos, to: Pos, axes: (usize, usize), w: &Words, cmd: Span) -> Result<(), Diagnostic> {
-        let (lo, hi) = swept_box(from, to, g.center, axes, g.start_angle, g.sweep, g.radius, self.machine.axes.len());
+    fn check_arc(
+        &self,
+        g: &Geometry,
+        from: Pos,
+        to: Pos,
+        axes: (usize, usize),
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let (lo, hi) = swept_box(
+            from,
+            to,
+            g.center,
+            axes,
+            g.start_angle,
+            g.sweep,
+            g.radius,
+            self.machine.axes.len(),
+        );
         self.check_box(lo, hi, w, cmd)
     }
 }
@@ -162,7 +219,14 @@ fn swept_box(
 
 /// Bounding box of an arc event's path, for sinks that report extents.
 /// `axes` are the indices of the plane's first and second axis.
-pub fn arc_bounds(from: Pos, to: Pos, center: Pos, axes: (usize, usize), dir: ArcDir, n_axes: usize) -> (Pos, Pos) {
+pub fn arc_bounds(
+    from: Pos,
+    to: Pos,
+    center: Pos,
+    axes: (usize, usize),
+    dir: ArcDir,
+    n_axes: usize,
+) -> (Pos, Pos) {
     let (ia, ib) = axes;
     let c = (center.get(ia), center.get(ib));
     let (s, e) = ((from.get(ia), from.get(ib)), (to.get(ia), to.get(ib)));

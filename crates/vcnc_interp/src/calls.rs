@@ -22,15 +22,19 @@ impl Interpreter<'_> {
     /// M98.
     pub(crate) fn call(
         &mut self,
-        w: &Words,
+        w: &Words<'_>,
         m: Span,
         here: Cursor,
         next: Cursor,
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
-        let program = w.get(b'P').map(|p| whole(&p, b'P', 0.0, 99_999_999.0, "P is a program number").map(|n| (n, p.span)));
+        let program = w.get(b'P').map(|p| {
+            whole(&p, b'P', 0.0, 99_999_999.0, "P is a program number").map(|n| (n, p.span))
+        });
         let program = program.transpose()?;
-        let seq = w.get(b'H').map(|h| whole(&h, b'H', 0.0, 99_999_999.0, "H is a sequence number").map(|n| (n, h.span)));
+        let seq = w.get(b'H').map(|h| {
+            whole(&h, b'H', 0.0, 99_999_999.0, "H is a sequence number").map(|n| (n, h.span))
+        });
         let seq = seq.transpose()?;
         let runs = match w.get(b'L') {
             Some(l) => whole(&l, b'L', 1.0, 99_999_999.0, "L is a repeat count")?,
@@ -41,7 +45,10 @@ impl Interpreter<'_> {
         }
         let depth = self.flow().frames.len() as u64;
         if depth > u64::from(self.machine.limits.max_call_depth) {
-            return Err(alarms::nesting_too_deep(m, self.machine.limits.max_call_depth));
+            return Err(alarms::nesting_too_deep(
+                m,
+                self.machine.limits.max_call_depth,
+            ));
         }
         self.count_jump(m)?;
         let lex = self.dialect.lex;
@@ -55,17 +62,28 @@ impl Interpreter<'_> {
             None => (caller.source, caller.start),
         };
         if let Some((n, span)) = seq {
-            start = self.flow().find_sequence(source, start, n, &lex).ok_or_else(|| alarms::sequence_not_found(span, n))?;
+            start = self
+                .flow()
+                .find_sequence(source, start, n, &lex)
+                .ok_or_else(|| alarms::sequence_not_found(span, n))?;
         }
         let _ = here;
         let flow = self.flow();
-        flow.frames.push(Frame { source, start, ret: next, runs_left: runs, started: seq.is_some() });
+        flow.frames.push(Frame {
+            source,
+            start,
+            ret: next,
+            runs_left: runs,
+            started: seq.is_some(),
+        });
         Ok(Step::Jump(start))
     }
 
     /// M99.
-    pub(crate) fn ret(&mut self, w: &Words, m: Span) -> Result<Step, Diagnostic> {
-        let target = w.get(b'P').map(|p| whole(&p, b'P', 0.0, 99_999_999.0, "M99 P is a sequence number").map(|n| (n, p.span)));
+    pub(crate) fn ret(&mut self, w: &Words<'_>, m: Span) -> Result<Step, Diagnostic> {
+        let target = w.get(b'P').map(|p| {
+            whole(&p, b'P', 0.0, 99_999_999.0, "M99 P is a sequence number").map(|n| (n, p.span))
+        });
         let target = target.transpose()?;
         self.count_jump(m)?;
         let lex = self.dialect.lex;
@@ -74,7 +92,9 @@ impl Interpreter<'_> {
         if flow.frames.len() == 1 {
             // A main program: start again, or jump to N n.
             let to = match target {
-                Some((n, span)) => flow.find_sequence(frame.source, frame.start, n, &lex).ok_or_else(|| alarms::sequence_not_found(span, n))?,
+                Some((n, span)) => flow
+                    .find_sequence(frame.source, frame.start, n, &lex)
+                    .ok_or_else(|| alarms::sequence_not_found(span, n))?,
                 None => frame.start,
             };
             return Ok(Step::Jump(to));
@@ -88,7 +108,9 @@ impl Interpreter<'_> {
         flow.frames.pop();
         let caller = flow.frame();
         let to = match target {
-            Some((n, span)) => flow.find_sequence(caller.source, caller.start, n, &lex).ok_or_else(|| alarms::sequence_not_found(span, n))?,
+            Some((n, span)) => flow
+                .find_sequence(caller.source, caller.start, n, &lex)
+                .ok_or_else(|| alarms::sequence_not_found(span, n))?,
             None => frame.ret,
         };
         Ok(Step::Jump(to))

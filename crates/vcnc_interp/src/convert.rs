@@ -19,7 +19,11 @@ pub const MM_PER_INCH: f64 = 25.4;
 impl Interpreter<'_> {
     /// Program units → mm factor.
     pub(crate) fn unit_mm(&self) -> f64 {
-        if self.state.modal.inch { MM_PER_INCH } else { 1.0 }
+        if self.state.modal.inch {
+            MM_PER_INCH
+        } else {
+            1.0
+        }
     }
 
     fn whole_units(&self, w: &Word) -> bool {
@@ -40,7 +44,11 @@ impl Interpreter<'_> {
     /// The value of an axis word: mm for linear axes, degrees for rotary.
     pub(crate) fn axis_value(&self, letter: u8, w: &Word) -> f64 {
         if matches!(letter, b'A' | b'B' | b'C') {
-            if self.whole_units(w) { w.value } else { w.value * 0.001 }
+            if self.whole_units(w) {
+                w.value
+            } else {
+                w.value * 0.001
+            }
         } else {
             self.length_mm(w)
         }
@@ -48,19 +56,27 @@ impl Interpreter<'_> {
 
     /// A time word (G04 X): seconds with a point, milliseconds without.
     pub(crate) fn seconds(&self, w: &Word) -> f64 {
-        if self.whole_units(w) { w.value } else { w.value * 0.001 }
+        if self.whole_units(w) {
+            w.value
+        } else {
+            w.value * 0.001
+        }
     }
 
     /// Target of the block's axis words in machine coordinates, absolute or
     /// incremental from the current position; axes not named stay put.
     /// The mask says which axes were named.
-    pub(crate) fn target(&self, w: &Words, incremental: bool) -> (Pos, u32) {
+    pub(crate) fn target(&self, w: &Words<'_>, incremental: bool) -> (Pos, u32) {
         let mut to = self.state.pos;
         let mut named = 0;
         for (i, axis) in self.machine.axes.iter().enumerate() {
             if let Some(word) = w.get(axis.letter) {
                 let v = self.axis_value(axis.letter, &word);
-                let machine = if incremental { self.state.pos.get(i) + v } else { v + self.state.origin.get(i) };
+                let machine = if incremental {
+                    self.state.pos.get(i) + v
+                } else {
+                    v + self.state.origin.get(i)
+                };
                 to.set(i, machine);
                 named |= 1 << i;
             }
@@ -70,12 +86,23 @@ impl Interpreter<'_> {
 }
 
 /// A whole number word in `min..=max`.
-pub(crate) fn whole(w: &Word, letter: u8, min: f64, max: f64, why: &str) -> Result<u32, Diagnostic> {
+pub(crate) fn whole(
+    w: &Word,
+    letter: u8,
+    min: f64,
+    max: f64,
+    why: &str,
+) -> Result<u32, Diagnostic> {
     if w.point {
         return Err(alarms::no_decimal_point(w.span, letter, why));
     }
     if w.value < min || w.value > max {
-        return Err(alarms::value_out_of_range(w.span, letter, w.value, &format!("{letter_c} is {min}..{max}", letter_c = char::from(letter))));
+        return Err(alarms::value_out_of_range(
+            w.span,
+            letter,
+            w.value,
+            &format!("{letter_c} is {min}..{max}", letter_c = char::from(letter)),
+        ));
     }
     // In range and whole (no point), so the cast is exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]

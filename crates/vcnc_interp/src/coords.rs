@@ -14,22 +14,29 @@ use vcnc_syntax::{Diagnostic, Span};
 
 impl Interpreter<'_> {
     /// `(axis index, value in mm)` of each named axis.
-    fn named_values(&self, w: &Words) -> impl Iterator<Item = (usize, f64)> + '_ {
+    fn named_values(&self, w: &Words<'_>) -> impl Iterator<Item = (usize, f64)> + '_ {
         let words: Vec<_> = self
             .machine
             .axes
             .iter()
             .enumerate()
-            .filter_map(|(i, a)| w.get(a.letter).map(|word| (i, self.axis_value(a.letter, &word))))
+            .filter_map(|(i, a)| {
+                w.get(a.letter)
+                    .map(|word| (i, self.axis_value(a.letter, &word)))
+            })
             .collect();
         words.into_iter()
     }
 
     /// G10 L2 Pn: sets work offset n (1 = G54 … 6 = G59).
-    pub(crate) fn set_work_offset(&mut self, w: &Words, cmd: Span) -> Result<(), Diagnostic> {
-        let l = w.get(b'L').ok_or_else(|| alarms::needs_axes(cmd, "G10 (L2 P…)"))?;
+    pub(crate) fn set_work_offset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let l = w
+            .get(b'L')
+            .ok_or_else(|| alarms::needs_axes(cmd, "G10 (L2 P…)"))?;
         whole(&l, b'L', 2.0, 2.0, "G10 L2 sets work offsets")?;
-        let p = w.get(b'P').ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
         if p.point || !(1.0..=6.0).contains(&p.value) {
             return Err(alarms::bad_offset_number(p.span, p.value));
         }
@@ -48,14 +55,19 @@ impl Interpreter<'_> {
     }
 
     /// G92: preset the current position (axes), or clamp the spindle (S).
-    pub(crate) fn preset(&mut self, w: &Words, cmd: Span) -> Result<(), Diagnostic> {
+    pub(crate) fn preset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let values: Vec<_> = self.named_values(w).collect();
         if let Some(s) = w.get(b'S') {
             if !values.is_empty() {
                 return Err(alarms::g92_axes_and_s(s.span));
             }
             if s.value < 0.0 {
-                return Err(alarms::value_out_of_range(s.span, b'S', s.value, "a spindle clamp is not negative"));
+                return Err(alarms::value_out_of_range(
+                    s.span,
+                    b'S',
+                    s.value,
+                    "a spindle clamp is not negative",
+                ));
             }
             self.state.max_rpm = Some(s.value);
             return Ok(());
@@ -75,7 +87,7 @@ impl Interpreter<'_> {
     }
 
     /// G52: the local system's origin in the work system; zero cancels.
-    pub(crate) fn local_system(&mut self, w: &Words, cmd: Span) -> Result<(), Diagnostic> {
+    pub(crate) fn local_system(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let values: Vec<_> = self.named_values(w).collect();
         if values.is_empty() {
             return Err(alarms::needs_axes(cmd, "G52"));

@@ -168,7 +168,9 @@ pub struct Dialect {
 
 impl std::fmt::Debug for Dialect {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Dialect").field("name", &self.name).finish_non_exhaustive()
+        f.debug_struct("Dialect")
+            .field("name", &self.name)
+            .finish_non_exhaustive()
     }
 }
 
@@ -187,7 +189,13 @@ const MILL_G: &[GRow] = &[
     (30, GOp::ArcCcw, Group::Motion, NONE, false),
     (40, GOp::Dwell, Group::NonModal, bit(b'P') | bit(b'X'), true),
     (90, GOp::ExactStopOnce, Group::NonModal, NONE, false),
-    (100, GOp::SetData, Group::NonModal, bit(b'L') | bit(b'P'), true),
+    (
+        100,
+        GOp::SetData,
+        Group::NonModal,
+        bit(b'L') | bit(b'P'),
+        true,
+    ),
     (170, GOp::PlaneXy, Group::Plane, NONE, false),
     (180, GOp::PlaneZx, Group::Plane, NONE, false),
     (190, GOp::PlaneYz, Group::Plane, NONE, false),
@@ -253,11 +261,20 @@ const MILL_M: &[MRow] = &[
     (9, MOp::CoolantOff, MGroup::Coolant, NONE),
     (19, MOp::SpindleOrient, MGroup::Spindle, NONE),
     (30, MOp::EndRewind, MGroup::Flow, NONE),
-    (98, MOp::Call, MGroup::Flow, bit(b'P') | bit(b'H') | bit(b'L')),
+    (
+        98,
+        MOp::Call,
+        MGroup::Flow,
+        bit(b'P') | bit(b'H') | bit(b'L'),
+    ),
     (99, MOp::Return, MGroup::Flow, bit(b'P')),
 ];
 
-const MILL_LEX: LexRules = LexRules { slash_comments: true, fullwidth_semicolon: true, extended: &[] };
+const MILL_LEX: LexRules = LexRules {
+    slash_comments: true,
+    fullwidth_semicolon: true,
+    extended: &[],
+};
 
 impl Dialect {
     /// Looks a dialect up by its `--dialect` name.
@@ -285,7 +302,12 @@ impl Dialect {
     fn build(name: &'static str, lex: LexRules, g_rows: &[&[GRow]], m_rows: &[MRow]) -> Dialect {
         let mut g = vec![None; G_SLOTS];
         for &(code, op, group, letters, takes_axes) in g_rows.iter().flat_map(|r| r.iter()) {
-            g[usize::from(code)] = Some(GDef { op, group, letters, takes_axes });
+            g[usize::from(code)] = Some(GDef {
+                op,
+                group,
+                letters,
+                takes_axes,
+            });
         }
         let mut m = vec![None; M_SLOTS];
         for &(code, op, group, letters) in m_rows {
@@ -319,7 +341,10 @@ impl Dialect {
 
     /// Another dialect that knows G `value`, for a hint.
     pub fn g_elsewhere(&self, value: f64) -> Option<&'static str> {
-        Dialect::NAMES.iter().copied().find(|n| *n != self.name && Dialect::by_name(n).and_then(|d| d.g(value)).is_some())
+        Dialect::NAMES
+            .iter()
+            .copied()
+            .find(|n| *n != self.name && Dialect::by_name(n).and_then(|d| d.g(value)).is_some())
     }
 }
 

@@ -23,24 +23,42 @@ use crate::state::Motion;
 use crate::words::{ALWAYS, Words};
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 
-impl Words {
+impl Words<'_> {
     /// Whether the block changes offsets (so they are saved for rollback).
     pub(crate) fn changes_offsets(&self) -> bool {
-        self.axis_user.is_some_and(|a| matches!(a.def.op, GOp::SetData | GOp::PresetOrClamp | GOp::LocalSystem))
+        self.axis_user.is_some_and(|a| {
+            matches!(
+                a.def.op,
+                GOp::SetData | GOp::PresetOrClamp | GOp::LocalSystem
+            )
+        })
     }
 }
 
 impl Interpreter<'_> {
     pub(crate) fn execute<S: Sink>(
         &mut self,
-        w: &Words,
+        w: &Words<'_>,
         here: Cursor,
         next: Cursor,
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
+        if !w.has_codes && w.present() & !(self.axis_mask | bit(b'F') | bit(b'N')) == 0 {
+            // The common block of a CAM program: axis words, maybe F and a
+            // motion code. Every such letter is always allowed, and there is
+            // nothing to do but move.
+            if let Some(motion) = w.group(Group::Motion) {
+                self.apply_modal(motion.def.op);
+            }
+            self.feed_word(w)?;
+            self.modal_motion(w, sink)?;
+            return Ok(Step::Next);
+        }
         let path_before = self.state.modal.path;
-        self.apply_modal(w);
+        for at in w.modal.iter().flatten() {
+            self.apply_modal(at.def.op);
+        }
         w.check_used(self.allowed_letters(w))?;
         if self.state.modal.path != path_before {
             let mode = self.state.modal.path;
@@ -60,12 +78,12 @@ impl Interpreter<'_> {
         self.program_flow(w, here, next, store, sink)
     }
 
-    /// Step 1: the modal groups written in the block.
-    fn apply_modal(&mut self, w: &Words) {
+    /// Step 1: one modal code written in the block.
+    fn apply_modal(&mut self, op: GOp) {
         let m = &mut self.state.modal;
         let mut wcs_changed = false;
-        for at in w.modal.iter().flatten() {
-            match at.def.op {
+        {
+            match op {
                 GOp::Rapid => m.motion = Motion::Rapid,
                 GOp::Linear => m.motion = Motion::Linear,
                 GOp::ArcCw => m.motion = Motion::ArcCw,
@@ -99,7 +117,7 @@ impl Interpreter<'_> {
     }
 
     /// Letters this block may carry, given its codes and the modal motion.
-    fn allowed_letters(&self, w: &Words) -> u32 {
+    fn allowed_letters(&self, w: &Words<'_>) -> u32 {
         let mut allowed = ALWAYS | w.code_letters();
         match w.axis_user {
             Some(user) if user.def.op == GOp::Dwell => {}
@@ -120,10 +138,15 @@ impl Interpreter<'_> {
     }
 
     /// Step 2a: F (a thread lead under G33, kept apart from the feed).
-    fn feed_word(&mut self, w: &Words) -> Result<(), Diagnostic> {
+    fn feed_word(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let Some(f) = w.get(b'F') else { return Ok(()) };
         if f.value < 0.0 {
-            return Err(alarms::value_out_of_range(f.span, b'F', f.value, "a feed is not negative"));
+            return Err(alarms::value_out_of_range(
+                f.span,
+                b'F',
+                f.value,
+                "a feed is not negative",
+            ));
         }
         if self.state.modal.motion == Motion::Thread && w.axis_user.is_none() {
             self.state.thread_lead_mm = Some(f.value * self.unit_mm());
@@ -134,13 +157,16 @@ impl Interpreter<'_> {
     }
 
     /// Steps 2b–3: T selects, M06 changes.
-    fn tool_words<S: Sink>(&mut self, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+    fn tool_words<S: Sink>(&mut self, w: &Words<'_>, sink: &mut S) -> Result<(), Diagnostic> {
         if let Some(t) = w.get(b'T') {
             let n = crate::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
             self.state.tool_selected = Some(n);
         }
         if let Some(m6) = w.m_of(MGroup::Tool) {
-            let tool = self.state.tool_selected.ok_or_else(|| alarms::m06_without_tool(m6.span))?;
+            let tool = self
+                .state
+                .tool_selected
+                .ok_or_else(|| alarms::m06_without_tool(m6.span))?;
             self.state.tool_active = Some(tool);
             self.emit(sink, |loc| Event::ToolChange { loc, tool });
         }
@@ -148,12 +174,17 @@ impl Interpreter<'_> {
     }
 
     /// Steps 2c and 4: S, G96/G97 and the spindle M codes, one event at most.
-    fn spindle_words<S: Sink>(&mut self, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+    fn spindle_words<S: Sink>(&mut self, w: &Words<'_>, sink: &mut S) -> Result<(), Diagnostic> {
         let clamp_block = w.axis_user.is_some_and(|a| a.def.op == GOp::PresetOrClamp);
         let s_word = w.get(b'S').filter(|_| !clamp_block);
         if let Some(s) = s_word {
             if s.value < 0.0 {
-                return Err(alarms::value_out_of_range(s.span, b'S', s.value, "a spindle speed is not negative"));
+                return Err(alarms::value_out_of_range(
+                    s.span,
+                    b'S',
+                    s.value,
+                    "a spindle speed is not negative",
+                ));
             }
             self.state.s_value = s.value;
         }
@@ -166,14 +197,27 @@ impl Interpreter<'_> {
             _ => self.state.spindle,
         };
         let turning = matches!(dir, SpindleDir::Cw | SpindleDir::Ccw);
-        let changed = m.is_some() || (turning && (s_word.is_some() || w.group(Group::SpindleMode).is_some()));
+        let changed =
+            m.is_some() || (turning && (s_word.is_some() || w.group(Group::SpindleMode).is_some()));
         if !changed {
             return Ok(());
         }
-        let why = m.map(|a| a.span).or(w.group(Group::SpindleMode).map(|a| a.span)).or(s_word.map(|s| s.span));
-        let (rpm, surface) = if turning { self.spindle_rpm(why.unwrap_or(w.first))? } else { (0.0, None) };
+        let why = m
+            .map(|a| a.span)
+            .or(w.group(Group::SpindleMode).map(|a| a.span))
+            .or(s_word.map(|s| s.span));
+        let (rpm, surface) = if turning {
+            self.spindle_rpm(why.unwrap_or(w.first))?
+        } else {
+            (0.0, None)
+        };
         self.state.spindle = dir;
-        self.emit(sink, |loc| Event::Spindle { loc, dir, rpm, surface_m_per_min: surface });
+        self.emit(sink, |loc| Event::Spindle {
+            loc,
+            dir,
+            rpm,
+            surface_m_per_min: surface,
+        });
         Ok(())
     }
 
@@ -184,9 +228,20 @@ impl Interpreter<'_> {
             return Ok((self.state.s_value, None));
         }
         // S is m/min, or ft/min in inch mode.
-        let surface_m_per_min = if self.state.modal.inch { self.state.s_value * 0.3048 } else { self.state.s_value };
-        let radius = self.state.tool_active.and_then(|t| self.machine.tools.get(&t)).map(|t| t.d_mm + t.d_wear_mm);
-        let diameter_mm = radius.filter(|r| *r > 0.0).map(|r| 2.0 * r).ok_or_else(|| alarms::css_without_diameter(span))?;
+        let surface_m_per_min = if self.state.modal.inch {
+            self.state.s_value * 0.3048
+        } else {
+            self.state.s_value
+        };
+        let radius = self
+            .state
+            .tool_active
+            .and_then(|t| self.machine.tools.get(&t))
+            .map(|t| t.d_mm + t.d_wear_mm);
+        let diameter_mm = radius
+            .filter(|r| *r > 0.0)
+            .map(|r| 2.0 * r)
+            .ok_or_else(|| alarms::css_without_diameter(span))?;
         let rpm = 1000.0 * surface_m_per_min / (std::f64::consts::PI * diameter_mm);
         let rpm = self.state.max_rpm.map_or(rpm, |max| rpm.min(max));
         Ok((rpm, Some(surface_m_per_min)))
@@ -195,16 +250,20 @@ impl Interpreter<'_> {
     /// Step 8: stops, ends, calls and returns.
     fn program_flow<S: Sink>(
         &mut self,
-        w: &Words,
+        w: &Words<'_>,
         here: Cursor,
         next: Cursor,
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        let Some(m) = w.m_of(MGroup::Flow) else { return Ok(Step::Next) };
+        let Some(m) = w.m_of(MGroup::Flow) else {
+            return Ok(Step::Next);
+        };
         match m.def.op {
             MOp::Stop => self.emit(sink, |loc| Event::Stop { loc, code: "M00" }),
-            MOp::OptionalStop if self.opts.optional_stop => self.emit(sink, |loc| Event::Stop { loc, code: "M01" }),
+            MOp::OptionalStop if self.opts.optional_stop => {
+                self.emit(sink, |loc| Event::Stop { loc, code: "M01" })
+            }
             MOp::End | MOp::EndRewind => {
                 let code = if m.def.op == MOp::End { "M02" } else { "M30" };
                 self.emit(sink, |loc| Event::End { loc, code });
@@ -218,7 +277,11 @@ impl Interpreter<'_> {
     }
 
     /// Sends an event located at the current block.
-    pub(crate) fn emit<S: Sink>(&mut self, sink: &mut S, make: impl FnOnce(crate::events::Loc) -> Event) {
+    pub(crate) fn emit<S: Sink>(
+        &mut self,
+        sink: &mut S,
+        make: impl FnOnce(crate::events::Loc) -> Event,
+    ) {
         let loc = self.flow().loc.clone();
         sink.event(&make(loc));
     }

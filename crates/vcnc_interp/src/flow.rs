@@ -21,7 +21,9 @@ use crate::events::Loc;
 use std::collections::HashMap;
 use std::io;
 use std::sync::Arc;
-use vcnc_syntax::{Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block};
+use vcnc_syntax::{
+    Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block,
+};
 
 /// Finds called programs outside the main file.
 pub trait ProgramStore {
@@ -80,10 +82,20 @@ pub(crate) struct Flow {
 
 impl Flow {
     pub fn new(main: Box<dyn TextSource>) -> Flow {
-        let main = Source { reader: LineReader::new(main), name: None, number: None };
+        let main = Source {
+            reader: LineReader::new(main),
+            name: None,
+            number: None,
+        };
         Flow {
             sources: vec![Some(main)],
-            frames: vec![Frame { source: 0, start: Cursor::default(), ret: Cursor::default(), runs_left: 1, started: false }],
+            frames: vec![Frame {
+                source: 0,
+                start: Cursor::default(),
+                ret: Cursor::default(),
+                runs_left: 1,
+                started: false,
+            }],
             programs: HashMap::new(),
             sequences: HashMap::new(),
             scratch: Block::default(),
@@ -133,14 +145,22 @@ impl Flow {
                 return Ok(Some((src, c)));
             }
         }
-        if let Some(i) = self.sources.iter().position(|s| s.as_ref().is_some_and(|s| s.number == Some(number))) {
+        if let Some(i) = self
+            .sources
+            .iter()
+            .position(|s| s.as_ref().is_some_and(|s| s.number == Some(number)))
+        {
             return Ok(Some((i, Cursor::default())));
         }
         match store.open(number) {
             None => Ok(None),
             Some(Err(e)) => Err(e),
             Some(Ok((text, name))) => {
-                let src = Source { reader: LineReader::new(text), name: Some(name.into()), number: Some(number) };
+                let src = Source {
+                    reader: LineReader::new(text),
+                    name: Some(name.into()),
+                    number: Some(number),
+                };
                 Ok(Some((self.install(src), Cursor::default())))
             }
         }
@@ -168,13 +188,25 @@ impl Flow {
         if let Some(c) = self.programs.get(&(src, number)) {
             return Some(*c);
         }
-        let found = self.scan(src, Cursor::default(), lex, |b| first_value(b, b'O') == Some(number), false)?;
+        let found = self.scan(
+            src,
+            Cursor::default(),
+            lex,
+            |b| first_value(b, b'O') == Some(number),
+            false,
+        )?;
         bounded_insert(&mut self.programs, (src, number), found);
         Some(found)
     }
 
     /// Finds `N seq` in the program of `src` that starts at `start`.
-    pub fn find_sequence(&mut self, src: usize, start: Cursor, seq: u32, lex: &LexRules) -> Option<Cursor> {
+    pub fn find_sequence(
+        &mut self,
+        src: usize,
+        start: Cursor,
+        seq: u32,
+        lex: &LexRules,
+    ) -> Option<Cursor> {
         let key = (src, start.offset, start.col, seq);
         if let Some(c) = self.sequences.get(&key) {
             return Some(*c);
@@ -216,9 +248,20 @@ impl Flow {
                     Ok(next) => next,
                     Err(_) => continue 'lines,
                 };
-                let at = Cursor { offset: line.offset, line: line.number, col: clamp_u32(start) };
+                let at = Cursor {
+                    offset: line.offset,
+                    line: line.number,
+                    col: clamp_u32(start),
+                };
                 if hit(&block) {
-                    result = Some(if within_program { at } else { Cursor { col: clamp_u32(i), ..at } });
+                    result = Some(if within_program {
+                        at
+                    } else {
+                        Cursor {
+                            col: clamp_u32(i),
+                            ..at
+                        }
+                    });
                     break 'lines;
                 }
                 if within_program && (block.percent || first_value(&block, b'O').is_some()) {
@@ -241,7 +284,10 @@ fn bounded_insert<K: std::hash::Hash + Eq>(map: &mut HashMap<K, Cursor>, key: K,
 /// The integer value of the block's first word if it has address `letter`.
 pub(crate) fn first_value(block: &Block, letter: u8) -> Option<u32> {
     let w = block.words().first()?;
-    let whole = w.addr == Addr::letter(letter) && !w.point && w.value >= 0.0 && w.value <= f64::from(u32::MAX);
+    let whole = w.addr == Addr::letter(letter)
+        && !w.point
+        && w.value >= 0.0
+        && w.value <= f64::from(u32::MAX);
     // Whole (no point) and within u32, so the cast is exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     whole.then_some(w.value as u32)

@@ -21,7 +21,10 @@ use crate::machine::Machine;
 use crate::sink::Sink;
 use crate::state::State;
 use crate::words::Words;
-use vcnc_syntax::{Block, Cursor, Diagnostic, Line, MemSource, ReadError, Span, TextSource, clamp_u32, column_of, lex_block};
+use vcnc_syntax::{
+    Block, Cursor, Diagnostic, Line, MemSource, ReadError, Span, TextSource, clamp_u32, column_of,
+    lex_block,
+};
 
 /// Operator switches.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -55,7 +58,7 @@ pub struct Interpreter<'a> {
     pub(crate) dialect: &'a Dialect,
     pub(crate) opts: Options,
     pub(crate) state: State,
-    pub(crate) flow: Option<Flow>,
+    pub(crate) flow: Flow,
     pub(crate) axis_mask: u32,
     executed: u64,
 }
@@ -68,7 +71,7 @@ impl<'a> Interpreter<'a> {
             dialect,
             opts,
             state: State::power_on(machine),
-            flow: None,
+            flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
             axis_mask: machine.axis_letter_mask(),
             executed: 0,
         }
@@ -81,12 +84,21 @@ impl<'a> Interpreter<'a> {
 
     /// Runs a program held in memory with no external programs.
     pub fn run_str<S: Sink>(&mut self, program: &str, sink: &mut S) -> Outcome {
-        self.run(Box::new(MemSource(program.as_bytes().to_vec())), &mut crate::NoPrograms, sink)
+        self.run(
+            Box::new(MemSource(program.as_bytes().to_vec())),
+            &mut crate::NoPrograms,
+            sink,
+        )
     }
 
     /// Runs the main program `main` to its end or first alarm.
-    pub fn run<S: Sink>(&mut self, main: Box<dyn TextSource>, store: &mut dyn ProgramStore, sink: &mut S) -> Outcome {
-        self.flow = Some(Flow::new(main));
+    pub fn run<S: Sink>(
+        &mut self,
+        main: Box<dyn TextSource>,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Outcome {
+        self.flow = Flow::new(main);
         let result = self.run_loop(store, sink);
         match result {
             Ok(code) => Outcome::Ended(code),
@@ -98,46 +110,60 @@ impl<'a> Interpreter<'a> {
     }
 
     pub(crate) fn flow(&mut self) -> &mut Flow {
-        // `run` installs the flow before any block executes.
-        self.flow.get_or_insert_with(|| Flow::new(Box::new(MemSource(Vec::<u8>::new()))))
+        &mut self.flow
     }
 
-    fn run_loop<S: Sink>(&mut self, store: &mut dyn ProgramStore, sink: &mut S) -> Result<&'static str, Diagnostic> {
+    fn run_loop<S: Sink>(
+        &mut self,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<&'static str, Diagnostic> {
         let mut block = Block::default();
-        let mut text: Vec<u8> = Vec::with_capacity(256);
-        // The line of the last executed block, kept for alarms at the end.
-        let mut prev: Vec<u8> = Vec::with_capacity(256);
-        let mut last: Option<(Line, Span)> = None;
-        let mut text_has_last = false;
+        let lex = self.dialect.lex;
+        // The source, line and first word of the last executed block, for
+        // an alarm at the end of a program.
+        let mut last: Option<(usize, Line, Span)> = None;
         let mut col = 0usize;
         loop {
-            if text_has_last {
-                std::mem::swap(&mut text, &mut prev);
-                text_has_last = false;
-            }
-            let Some(line) = self.next_line(&mut text)? else {
-                match self.end_of_program(&prev, last, sink)? {
+            let src = self.flow.frames.last().map_or(0, |f| f.source);
+            let Some(line) = self.next_line(src)? else {
+                match self.end_of_program(last, sink)? {
                     Some(code) => return Ok(code),
                     None => continue,
                 }
             };
-            self.flow().loc.line = line.number;
+            self.flow.loc.line = line.number;
             let mut i = std::mem::take(&mut col);
-            while i < text.len() {
+            loop {
+                // Lex straight from the reader's buffer: no copy of the line.
+                let lexed = match self.flow.source(src) {
+                    Some(s) if i < s.reader.bytes(&line).len() => {
+                        lex_block(s.reader.bytes(&line), i, &lex, &mut block)
+                    }
+                    _ => break,
+                };
                 let start = i;
-                i = lex_block(&text, i, &self.dialect.lex, &mut block).map_err(|d| self.locate(d, &text, &line))?;
+                i = lexed.map_err(|d| self.locate(d, src, &line))?;
                 if block.is_empty() {
                     continue;
                 }
-                last = Some((line, block.first_span()));
-                text_has_last = true;
-                let here = Cursor { offset: line.offset, line: line.number, col: clamp_u32(start) };
-                let next = Cursor { col: clamp_u32(i), ..here };
-                let step = self.block(&block, here, next, store, sink).map_err(|d| self.locate(d, &text, &line))?;
+                last = Some((src, line, block.first_span()));
+                let here = Cursor {
+                    offset: line.offset,
+                    line: line.number,
+                    col: clamp_u32(start),
+                };
+                let next = Cursor {
+                    col: clamp_u32(i),
+                    ..here
+                };
+                let step = self
+                    .block(&block, here, next, store, sink)
+                    .map_err(|d| self.locate(d, src, &line))?;
                 match step {
                     Step::Next => {}
                     Step::Jump(to) => {
-                        self.flow().seek_current(to);
+                        self.flow.seek_current(to);
                         col = to.col as usize;
                         break;
                     }
@@ -147,40 +173,45 @@ impl<'a> Interpreter<'a> {
         }
     }
 
-    /// Reads the next line of the current source into `text`.
-    fn next_line(&mut self, text: &mut Vec<u8>) -> Result<Option<Line>, Diagnostic> {
-        let flow = self.flow();
-        let src = flow.frame().source;
-        let Some(source) = flow.source(src) else { return Ok(None) };
+    /// The next line of source `src`.
+    fn next_line(&mut self, src: usize) -> Result<Option<Line>, Diagnostic> {
+        let Some(source) = self.flow.source(src) else {
+            return Ok(None);
+        };
         match source.reader.next_line() {
-            Ok(Some(line)) => {
-                text.clear();
-                text.extend_from_slice(source.reader.bytes(&line));
-                Ok(Some(line))
-            }
-            Ok(None) => Ok(None),
+            Ok(line) => Ok(line),
             Err(ReadError::TooLong { offset, line }) => {
+                let file = self.flow.loc.file.clone();
                 let mut d = alarms::line_too_long();
                 d.line = line;
                 d.column = 1;
                 d.line_offset = offset;
-                d.file = flow.loc.file.as_deref().map(str::to_string);
+                d.file = file.as_deref().map(str::to_string);
                 Err(d)
             }
             Err(ReadError::Io(e)) => {
                 let mut d = alarms::program_unreadable(Span::new(0, 1), 0, &e);
-                d.line = flow.loc.line;
+                d.line = self.flow.loc.line;
                 Err(d)
             }
         }
     }
 
-    /// Fills in line, column and file of a diagnostic raised in `line`.
-    fn locate(&mut self, mut d: Diagnostic, text: &[u8], line: &Line) -> Diagnostic {
+    /// Fills in line, column and file of a diagnostic raised in `line` of
+    /// source `src` (cold path: the line is read again for the column).
+    fn locate(&mut self, mut d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
+        let text = self
+            .flow
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default();
         d.line = line.number;
-        d.column = column_of(text, d.span.start);
+        d.column = column_of(&text, d.span.start);
         d.line_offset = line.offset;
-        d.file = self.flow().loc.file.as_deref().map(str::to_string);
+        d.file = self
+            .flow
+            .source(src)
+            .and_then(|s| s.name.as_deref().map(str::to_string));
         d
     }
 
@@ -196,18 +227,22 @@ impl<'a> Interpreter<'a> {
         if block.deleted.is_some() && self.opts.block_delete {
             return Ok(Step::Next);
         }
-        let started = self.flow().frame().started;
         if block.percent || first_value(block, b'O').is_some() {
+            let started = self.flow.frames.last().is_some_and(|f| f.started);
             return self.program_boundary(block, started, next, sink);
         }
-        if let Some(f) = self.flow().frame_mut() {
+        if let Some(f) = self.flow.frames.last_mut() {
             f.started = true;
         }
         self.executed += 1;
         if self.executed > self.machine.limits.max_executed_blocks {
-            return Err(alarms::block_limit(block.first_span(), self.machine.limits.max_executed_blocks));
+            return Err(alarms::block_limit(
+                block.first_span(),
+                self.machine.limits.max_executed_blocks,
+            ));
         }
-        let words = Words::collect(block, self.dialect, self.machine.params.same_group_in_block)?;
+        let mut words = Words::new(block);
+        words.fill(self.dialect, self.machine.params.same_group_in_block)?;
         let saved = self.state.modal;
         let offsets = words.changes_offsets().then(|| self.state.offsets.clone());
         let result = self.execute(&words, here, next, store, sink);
@@ -244,19 +279,18 @@ impl<'a> Interpreter<'a> {
     /// The current program ran out of blocks; `last` is its last block.
     fn end_of_program<S: Sink>(
         &mut self,
-        text: &[u8],
-        last: Option<(Line, Span)>,
+        last: Option<(usize, Line, Span)>,
         sink: &mut S,
     ) -> Result<Option<&'static str>, Diagnostic> {
-        let span = last.map_or(Span::new(0, 1), |(_, s)| s);
-        if let Some((line, _)) = last {
-            self.flow().loc.line = line.number;
+        let span = last.map_or(Span::new(0, 1), |(_, _, s)| s);
+        if let Some((_, line, _)) = last {
+            self.flow.loc.line = line.number;
         }
         match self.finish_program(span, sink) {
             Ok(Step::End(code)) => Ok(Some(code)),
             Ok(_) => Ok(None),
             Err(d) => Err(match last {
-                Some((line, _)) => self.locate(d, text, &line),
+                Some((src, line, _)) => self.locate(d, src, &line),
                 None => d,
             }),
         }

@@ -93,7 +93,11 @@ pub struct Limits {
 
 impl Default for Limits {
     fn default() -> Limits {
-        Limits { max_call_depth: 10, max_jumps: 1_000_000, max_executed_blocks: 100_000_000 }
+        Limits {
+            max_call_depth: 10,
+            max_jumps: 1_000_000,
+            max_executed_blocks: 100_000_000,
+        }
     }
 }
 
@@ -231,7 +235,10 @@ impl Machine {
 
     fn from_file(f: File) -> Result<Machine, MachineError> {
         if f.axes.is_empty() || f.axes.len() > MAX_AXES {
-            return Err(MachineError(format!("a machine has 1 to {MAX_AXES} axes, this one has {}", f.axes.len())));
+            return Err(MachineError(format!(
+                "a machine has 1 to {MAX_AXES} axes, this one has {}",
+                f.axes.len()
+            )));
         }
         let mut m = Machine {
             name: f.name,
@@ -256,22 +263,32 @@ impl Machine {
                 "p2" => 1,
                 "p3" => 2,
                 "p4" => 3,
-                _ => return Err(MachineError(format!("reference.{key}: use p1, p2, p3 or p4"))),
+                _ => {
+                    return Err(MachineError(format!(
+                        "reference.{key}: use p1, p2, p3 or p4"
+                    )));
+                }
             };
             m.reference[n] = Some(m.pos_of(map, &format!("reference.{key}"))?);
         }
         for (key, map) in &f.work_offsets {
-            let n = work_system_index(key)
-                .ok_or_else(|| MachineError(format!("work_offsets.{key}: use G54..G59 or G59.1..G59.9")))?;
+            let n = work_system_index(key).ok_or_else(|| {
+                MachineError(format!("work_offsets.{key}: use G54..G59 or G59.1..G59.9"))
+            })?;
             m.work_offsets[n] = m.pos_of(map, &format!("work_offsets.{key}"))?;
         }
         for (key, tool) in f.tools {
-            let n: u32 = key.parse().map_err(|_| MachineError(format!("tools.{key}: a tool number is an integer")))?;
+            let n: u32 = key
+                .parse()
+                .map_err(|_| MachineError(format!("tools.{key}: a tool number is an integer")))?;
             m.tools.insert(n, tool);
         }
         for s in f.skip {
             let axis = m.letter_index(&s.axis, "skip.axis")?;
-            m.skip.push(SkipTrigger { axis, at_mm: s.at_mm });
+            m.skip.push(SkipTrigger {
+                axis,
+                at_mm: s.at_mm,
+            });
         }
         m.check_params()?;
         Ok(m)
@@ -280,19 +297,36 @@ impl Machine {
     fn add_axis(&mut self, i: usize, a: FileAxis) -> Result<(), MachineError> {
         let letter = match a.letter.to_ascii_uppercase().as_bytes() {
             [l @ (b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C')] => *l,
-            _ => return Err(MachineError(format!("axes[{i}].letter: use one of x y z a b c, not {:?}", a.letter))),
+            _ => {
+                return Err(MachineError(format!(
+                    "axes[{i}].letter: use one of x y z a b c, not {:?}",
+                    a.letter
+                )));
+            }
         };
         let slot = &mut self.letter_axis[usize::from(letter - b'A')];
         if slot.is_some() {
             return Err(MachineError(format!("axis {} is defined twice", a.letter)));
         }
         *slot = u8::try_from(i).ok();
-        let finite = [a.min_mm, a.max_mm, a.rapid_mm_per_min, a.max_feed_mm_per_min, a.accel_mm_s2];
+        let finite = [
+            a.min_mm,
+            a.max_mm,
+            a.rapid_mm_per_min,
+            a.max_feed_mm_per_min,
+            a.accel_mm_s2,
+        ];
         if finite.iter().any(|v| !v.is_finite()) || a.min_mm > a.max_mm {
-            return Err(MachineError(format!("axis {}: limits must be finite with min_mm <= max_mm", a.letter)));
+            return Err(MachineError(format!(
+                "axis {}: limits must be finite with min_mm <= max_mm",
+                a.letter
+            )));
         }
         if a.rapid_mm_per_min <= 0.0 || a.max_feed_mm_per_min <= 0.0 || a.accel_mm_s2 <= 0.0 {
-            return Err(MachineError(format!("axis {}: rates and acceleration must be positive", a.letter)));
+            return Err(MachineError(format!(
+                "axis {}: rates and acceleration must be positive",
+                a.letter
+            )));
         }
         self.axes.push(Axis {
             letter,
@@ -329,7 +363,10 @@ impl Machine {
         for (i, a) in self.axes.iter().enumerate() {
             let v = p.get(i);
             if v < a.min_mm || v > a.max_mm {
-                return Err(MachineError(format!("{what}: {} = {v} is outside the travel limits", char::from(a.letter))));
+                return Err(MachineError(format!(
+                    "{what}: {} = {v} is outside the travel limits",
+                    char::from(a.letter)
+                )));
             }
         }
         Ok(())
@@ -341,7 +378,9 @@ impl Machine {
             return Err(MachineError("parameters.g00_mode is 0 or 1".into()));
         }
         if !(p.arc_tolerance_mm.is_finite() && p.arc_tolerance_mm > 0.0) {
-            return Err(MachineError("parameters.arc_tolerance_mm must be positive".into()));
+            return Err(MachineError(
+                "parameters.arc_tolerance_mm must be positive".into(),
+            ));
         }
         if self.limits.max_call_depth == 0 || self.limits.max_call_depth > 1000 {
             return Err(MachineError("limits.max_call_depth is 1..1000".into()));

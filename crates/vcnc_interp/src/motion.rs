@@ -20,9 +20,15 @@ const TRAVEL_EPS_MM: f64 = 1e-9;
 
 impl Interpreter<'_> {
     /// Step 7 without a one-shot code: the modal motion, if the block moves.
-    pub(crate) fn modal_motion<S: Sink>(&mut self, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+    pub(crate) fn modal_motion<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         let motion = self.state.modal.motion;
-        let cmd = w.group(crate::dialect::Group::Motion).map_or(w.first, |a| a.span);
+        let cmd = w
+            .group(crate::dialect::Group::Motion)
+            .map_or(w.first, |a| a.span);
         match motion {
             Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw, sink),
             _ if !w.any(self.axis_mask) => Ok(()),
@@ -35,7 +41,12 @@ impl Interpreter<'_> {
                 let (to, _) = self.target(w, self.state.modal.incremental);
                 self.check_segment(self.state.pos, to, w, cmd)?;
                 let exact_stop = self.exact_stop(w);
-                self.emit(sink, |loc| Event::Feed { loc, to, feed, exact_stop });
+                self.emit(sink, |loc| Event::Feed {
+                    loc,
+                    to,
+                    feed,
+                    exact_stop,
+                });
                 self.state.pos = to;
                 Ok(())
             }
@@ -44,7 +55,7 @@ impl Interpreter<'_> {
     }
 
     /// Whether G09 is in the block.
-    pub(crate) fn exact_stop(&self, w: &Words) -> bool {
+    pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
         w.once(GOp::ExactStopOnce).is_some()
     }
 
@@ -54,19 +65,37 @@ impl Interpreter<'_> {
         if f <= 0.0 {
             return Err(alarms::zero_feed(cmd));
         }
-        Ok(if self.state.modal.per_rev { Feed::PerRev(f) } else { Feed::PerMin(f) })
+        Ok(if self.state.modal.per_rev {
+            Feed::PerRev(f)
+        } else {
+            Feed::PerMin(f)
+        })
     }
 
     /// A rapid to `to`: one event, or the dog-leg of parameter 411 = 1.
-    pub(crate) fn rapid_to<S: Sink>(&mut self, to: Pos, w: &Words, cmd: Span, sink: &mut S) -> Result<(), Diagnostic> {
+    pub(crate) fn rapid_to<S: Sink>(
+        &mut self,
+        to: Pos,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         self.check_segment(self.state.pos, to, w, cmd)?;
         let exact_stop = self.exact_stop(w);
         if self.machine.params.g00_mode == 1 {
             for corner in self.dog_leg(self.state.pos, to) {
-                self.emit(sink, |loc| Event::Rapid { loc, to: corner, exact_stop });
+                self.emit(sink, |loc| Event::Rapid {
+                    loc,
+                    to: corner,
+                    exact_stop,
+                });
             }
         } else {
-            self.emit(sink, |loc| Event::Rapid { loc, to, exact_stop });
+            self.emit(sink, |loc| Event::Rapid {
+                loc,
+                to,
+                exact_stop,
+            });
         }
         self.state.pos = to;
         Ok(())
@@ -95,7 +124,14 @@ impl Interpreter<'_> {
             for (i, axis) in self.machine.axes.iter().enumerate() {
                 let d = to.get(i) - from.get(i);
                 let moved = (t * axis.rapid_mm_per_min).min(d.abs());
-                p.set(i, if t >= times[i] { to.get(i) } else { from.get(i) + moved.copysign(d) });
+                p.set(
+                    i,
+                    if t >= times[i] {
+                        to.get(i)
+                    } else {
+                        from.get(i) + moved.copysign(d)
+                    },
+                );
             }
             corners.push(p);
         }
@@ -106,8 +142,16 @@ impl Interpreter<'_> {
     }
 
     /// G33: a straight move whose feed is locked to the spindle.
-    fn thread<S: Sink>(&mut self, w: &Words, cmd: Span, sink: &mut S) -> Result<(), Diagnostic> {
-        let lead_mm = self.state.thread_lead_mm.ok_or_else(|| alarms::thread_without_lead(cmd))?;
+    fn thread<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        let lead_mm = self
+            .state
+            .thread_lead_mm
+            .ok_or_else(|| alarms::thread_without_lead(cmd))?;
         let (to, _) = self.target(w, self.state.modal.incremental);
         self.check_segment(self.state.pos, to, w, cmd)?;
         self.emit(sink, |loc| Event::Thread { loc, to, lead_mm });
@@ -116,7 +160,12 @@ impl Interpreter<'_> {
     }
 
     /// G31: moves like G01 until the skip signal of the machine file fires.
-    pub(crate) fn skip<S: Sink>(&mut self, w: &Words, cmd: Span, sink: &mut S) -> Result<(), Diagnostic> {
+    pub(crate) fn skip<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         let feed = self.feed(cmd)?;
         let (end, named) = self.target(w, self.state.modal.incremental);
         if named == 0 {
@@ -130,7 +179,12 @@ impl Interpreter<'_> {
             None => end,
         };
         let triggered = hit.is_some();
-        self.emit(sink, |loc| Event::Skip { loc, to, feed, triggered });
+        self.emit(sink, |loc| Event::Skip {
+            loc,
+            to,
+            feed,
+            triggered,
+        });
         self.state.pos = to;
         self.state.skip_pos = Some(to);
         Ok(())
@@ -149,19 +203,35 @@ impl Interpreter<'_> {
             .min_by(f64::total_cmp)
     }
 
-    /// E501 unless the segment `from → to` stays inside the travel limits.
-    pub(crate) fn check_segment(&self, from: Pos, to: Pos, w: &Words, cmd: Span) -> Result<(), Diagnostic> {
-        let mut lo = from;
-        let mut hi = from;
-        for i in 0..self.machine.axes.len() {
-            lo.set(i, from.get(i).min(to.get(i)));
-            hi.set(i, from.get(i).max(to.get(i)));
+    /// E501 unless the segment `from → to` stays inside the travel limits
+    /// (the limit box is convex, so its end points decide).
+    #[inline]
+    pub(crate) fn check_segment(
+        &self,
+        from: Pos,
+        to: Pos,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        for (i, axis) in self.machine.axes.iter().enumerate() {
+            let (a, b) = (from.get(i), to.get(i));
+            if a.min(b) < axis.min_mm - TRAVEL_EPS_MM || a.max(b) > axis.max_mm + TRAVEL_EPS_MM {
+                return self
+                    .check_box(from, to, w, cmd)
+                    .and_then(|()| self.check_box(to, from, w, cmd));
+            }
         }
-        self.check_box(lo, hi, w, cmd)
+        Ok(())
     }
 
     /// E501 unless the box `lo..hi` is inside the travel limits.
-    pub(crate) fn check_box(&self, lo: Pos, hi: Pos, w: &Words, cmd: Span) -> Result<(), Diagnostic> {
+    pub(crate) fn check_box(
+        &self,
+        lo: Pos,
+        hi: Pos,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
         for (i, axis) in self.machine.axes.iter().enumerate() {
             let bad = if lo.get(i) < axis.min_mm - TRAVEL_EPS_MM {
                 Some(lo.get(i))
@@ -172,7 +242,13 @@ impl Interpreter<'_> {
             };
             if let Some(v) = bad {
                 let span = w.get(axis.letter).map_or(cmd, |word| word.span);
-                return Err(alarms::over_travel(span, axis.letter, v, axis.min_mm, axis.max_mm));
+                return Err(alarms::over_travel(
+                    span,
+                    axis.letter,
+                    v,
+                    axis.min_mm,
+                    axis.max_mm,
+                ));
             }
         }
         Ok(())

@@ -22,7 +22,13 @@ use vcnc_syntax::{Diagnostic, Span};
 
 impl Interpreter<'_> {
     /// Step 6/7: the block's axis-taking one-shot code.
-    pub(crate) fn one_shot<S: Sink>(&mut self, op: GOp, cmd: Span, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+    pub(crate) fn one_shot<S: Sink>(
+        &mut self,
+        op: GOp,
+        cmd: Span,
+        w: &Words<'_>,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         match op {
             GOp::Dwell => self.dwell(w, sink),
             GOp::SetData => self.set_work_offset(w, cmd),
@@ -44,14 +50,25 @@ impl Interpreter<'_> {
     }
 
     /// G04: P whole milliseconds, or X seconds (milliseconds without a point).
-    fn dwell<S: Sink>(&mut self, w: &Words, sink: &mut S) -> Result<(), Diagnostic> {
+    fn dwell<S: Sink>(&mut self, w: &Words<'_>, sink: &mut S) -> Result<(), Diagnostic> {
         let seconds = match (w.get(b'P'), w.get(b'X')) {
             (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, b'X')),
             (Some(p), None) => {
-                f64::from(whole(&p, b'P', 0.0, 99_999_999.0, "G04 P is whole milliseconds (use X for seconds)")?) / 1000.0
+                f64::from(whole(
+                    &p,
+                    b'P',
+                    0.0,
+                    99_999_999.0,
+                    "G04 P is whole milliseconds (use X for seconds)",
+                )?) / 1000.0
             }
             (None, Some(x)) if x.value < 0.0 => {
-                return Err(alarms::value_out_of_range(x.span, b'X', x.value, "a dwell is not negative"));
+                return Err(alarms::value_out_of_range(
+                    x.span,
+                    b'X',
+                    x.value,
+                    "a dwell is not negative",
+                ));
             }
             (None, Some(x)) => self.seconds(&x),
             (None, None) => 0.0,
@@ -64,7 +81,12 @@ impl Interpreter<'_> {
     fn with_program_coords(&self, base: Pos, named: u32, prog: &[Option<f64>]) -> Pos {
         let mut p = base;
         for i in 0..self.machine.axes.len() {
-            if let Some(v) = prog.get(i).copied().flatten().filter(|_| named & (1 << i) != 0) {
+            if let Some(v) = prog
+                .get(i)
+                .copied()
+                .flatten()
+                .filter(|_| named & (1 << i) != 0)
+            {
                 p.set(i, v + self.state.origin.get(i));
             }
         }
@@ -72,13 +94,20 @@ impl Interpreter<'_> {
     }
 
     /// G28 (n = 1) and G30 Pn.
-    fn reference_return<S: Sink>(&mut self, w: &Words, cmd: Span, n: usize, sink: &mut S) -> Result<(), Diagnostic> {
+    fn reference_return<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        n: usize,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         let (mid, named) = self.target(w, self.state.modal.incremental);
         if named == 0 {
             return Err(alarms::needs_axes(cmd, "a reference return"));
         }
         let reference = self.machine.reference.get(n - 1).copied().flatten();
-        let reference = reference.ok_or_else(|| alarms::no_reference(w.get(b'P').map_or(cmd, |p| p.span), n))?;
+        let reference = reference
+            .ok_or_else(|| alarms::no_reference(w.get(b'P').map_or(cmd, |p| p.span), n))?;
         let mut end = mid;
         for i in 0..self.machine.axes.len() {
             if named & (1 << i) != 0 {
@@ -93,21 +122,41 @@ impl Interpreter<'_> {
                 self.state.intermediate[i] = Some(mid.get(i) - self.state.origin.get(i));
             }
         }
-        self.emit(sink, |loc| Event::Rapid { loc, to: mid, exact_stop });
-        self.emit(sink, |loc| Event::Rapid { loc, to: end, exact_stop });
+        self.emit(sink, |loc| Event::Rapid {
+            loc,
+            to: mid,
+            exact_stop,
+        });
+        self.emit(sink, |loc| Event::Rapid {
+            loc,
+            to: end,
+            exact_stop,
+        });
         self.state.pos = end;
         Ok(())
     }
 
     /// G29: back through the intermediate point to the commanded point.
-    fn return_from_reference<S: Sink>(&mut self, w: &Words, cmd: Span, sink: &mut S) -> Result<(), Diagnostic> {
+    fn return_from_reference<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         let mut named = 0u32;
         let mut target = self.state.pos;
         for (i, axis) in self.machine.axes.iter().enumerate() {
-            let Some(word) = w.get(axis.letter) else { continue };
-            let mid = self.state.intermediate[i].ok_or_else(|| alarms::g29_without_g28(cmd, axis.letter))?;
+            let Some(word) = w.get(axis.letter) else {
+                continue;
+            };
+            let mid = self.state.intermediate[i]
+                .ok_or_else(|| alarms::g29_without_g28(cmd, axis.letter))?;
             let v = self.axis_value(axis.letter, &word);
-            let prog = if self.state.modal.incremental { mid + v } else { v };
+            let prog = if self.state.modal.incremental {
+                mid + v
+            } else {
+                v
+            };
             target.set(i, prog + self.state.origin.get(i));
             named |= 1 << i;
         }
@@ -118,14 +167,27 @@ impl Interpreter<'_> {
         self.check_segment(self.state.pos, mid, w, cmd)?;
         self.check_segment(mid, target, w, cmd)?;
         let exact_stop = self.exact_stop(w);
-        self.emit(sink, |loc| Event::Rapid { loc, to: mid, exact_stop });
-        self.emit(sink, |loc| Event::Rapid { loc, to: target, exact_stop });
+        self.emit(sink, |loc| Event::Rapid {
+            loc,
+            to: mid,
+            exact_stop,
+        });
+        self.emit(sink, |loc| Event::Rapid {
+            loc,
+            to: target,
+            exact_stop,
+        });
         self.state.pos = target;
         Ok(())
     }
 
     /// G53: a rapid to machine coordinates (absolute only).
-    fn machine_move<S: Sink>(&mut self, w: &Words, cmd: Span, sink: &mut S) -> Result<(), Diagnostic> {
+    fn machine_move<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
         if self.state.modal.incremental {
             return Err(alarms::g53_incremental(cmd));
         }

@@ -112,7 +112,11 @@ pub struct State {
 impl State {
     /// Power-on state of `machine`.
     pub fn power_on(machine: &Machine) -> State {
-        let offsets = Offsets { work: machine.work_offsets, local: Pos::default(), shift: Pos::default() };
+        let offsets = Offsets {
+            work: machine.work_offsets,
+            local: Pos::default(),
+            shift: Pos::default(),
+        };
         let mut s = State {
             modal: Modal::default(),
             pos: machine.start,
@@ -135,7 +139,13 @@ impl State {
     /// Recomputes `origin` after an offset or work-system change.
     pub fn refresh_origin(&mut self) {
         let o = &self.offsets;
-        self.origin = o.work.get(self.modal.wcs).copied().unwrap_or_default().plus(o.local).plus(o.shift);
+        self.origin = o
+            .work
+            .get(self.modal.wcs)
+            .copied()
+            .unwrap_or_default()
+            .plus(o.local)
+            .plus(o.shift);
     }
 
     /// Current position in program coordinates.

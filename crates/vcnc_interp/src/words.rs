@@ -23,10 +23,13 @@ pub struct At<T> {
     pub span: Span,
 }
 
-/// The validated words of one block.
+/// The validated words of one block; letters are indices into the block,
+/// so building the table copies nothing.
 #[derive(Debug)]
-pub struct Words {
-    letters: [Option<Word>; 26],
+pub struct Words<'b> {
+    block: &'b Block,
+    /// Index + 1 of each letter's word in the block, 0 when absent.
+    letters: [u8; 26],
     present: u32,
     /// Modal-group codes, by [`Group::slot`].
     pub modal: [Option<At<GDef>>; MODAL_GROUPS],
@@ -37,36 +40,63 @@ pub struct Words {
     pub m: [Option<At<MDef>>; M_GROUPS],
     /// The block's first word span (for alarms about the whole block).
     pub first: Span,
+    /// Whether any G code other than a motion code, or any M code, is written
+    /// (lets the common "axis words only" block skip most steps).
+    pub has_codes: bool,
 }
 
-impl Words {
-    /// Collects and checks the words of `block`.
-    pub fn collect(block: &Block, dialect: &Dialect, same_group: SameGroup) -> Result<Words, Diagnostic> {
-        let mut w = Words {
-            letters: [None; 26],
+impl<'b> Words<'b> {
+    /// An empty table for `block`; [`fill`](Self::fill) validates it in place
+    /// (building in place spares copying the table out of a `Result`).
+    #[inline]
+    pub fn new(block: &'b Block) -> Words<'b> {
+        Words {
+            block,
+            letters: [0; 26],
             present: 0,
             modal: [None; MODAL_GROUPS],
             once: [None; MAX_ONCE],
             axis_user: None,
             m: [None; M_GROUPS],
             first: block.first_span(),
-        };
-        for word in block.words() {
+            has_codes: false,
+        }
+    }
+
+    /// Collects and checks the block's words.
+    #[inline]
+    pub fn fill(&mut self, dialect: &Dialect, same_group: SameGroup) -> Result<(), Diagnostic> {
+        let block = self.block;
+        for (k, word) in block.words().iter().enumerate() {
             match word.addr.as_letter() {
-                Some(b'G') => w.add_g(word, dialect, same_group)?,
-                Some(b'M') => w.add_m(word, dialect)?,
-                Some(l) => w.add_letter(l, word)?,
+                Some(b'G') => self.add_g(word, dialect, same_group)?,
+                Some(b'M') => self.add_m(word, dialect)?,
+                Some(l) => self.add_letter(l, k, word)?,
                 None => return Err(alarms::address_not_in_dialect(word.span, dialect.name)),
             }
         }
-        Ok(w)
+        Ok(())
     }
 
-    fn add_g(&mut self, word: &Word, dialect: &Dialect, same_group: SameGroup) -> Result<(), Diagnostic> {
-        let def = dialect
-            .g(word.value)
-            .ok_or_else(|| alarms::unknown_g(word.span, word.value, dialect.name, dialect.g_elsewhere(word.value)))?;
-        let at = At { def, span: word.span };
+    fn add_g(
+        &mut self,
+        word: &Word,
+        dialect: &Dialect,
+        same_group: SameGroup,
+    ) -> Result<(), Diagnostic> {
+        let def = dialect.g(word.value).ok_or_else(|| {
+            alarms::unknown_g(
+                word.span,
+                word.value,
+                dialect.name,
+                dialect.g_elsewhere(word.value),
+            )
+        })?;
+        let at = At {
+            def,
+            span: word.span,
+        };
+        self.has_codes |= def.group != Group::Motion;
         match def.group.slot() {
             Some(slot) => {
                 if self.modal[slot].is_some() && same_group == SameGroup::Alarm {
@@ -95,24 +125,36 @@ impl Words {
 
     fn add_m(&mut self, word: &Word, dialect: &Dialect) -> Result<(), Diagnostic> {
         if word.point {
-            return Err(alarms::no_decimal_point(word.span, b'M', "M codes are whole numbers"));
+            return Err(alarms::no_decimal_point(
+                word.span,
+                b'M',
+                "M codes are whole numbers",
+            ));
         }
-        let def = dialect.m(word.value).ok_or_else(|| alarms::unknown_m(word.span, word.value, dialect.name))?;
+        let def = dialect
+            .m(word.value)
+            .ok_or_else(|| alarms::unknown_m(word.span, word.value, dialect.name))?;
         let slot = &mut self.m[def.group as usize];
         if slot.is_some() {
             return Err(alarms::same_m_group(word.span));
         }
-        *slot = Some(At { def, span: word.span });
+        *slot = Some(At {
+            def,
+            span: word.span,
+        });
+        self.has_codes = true;
         Ok(())
     }
 
-    fn add_letter(&mut self, l: u8, word: &Word) -> Result<(), Diagnostic> {
+    #[inline]
+    fn add_letter(&mut self, l: u8, k: usize, word: &Word) -> Result<(), Diagnostic> {
         let i = usize::from(l - b'A');
         if self.present & (1 << i) != 0 {
             return Err(alarms::duplicate_word(word.span, l));
         }
         self.present |= 1 << i;
-        self.letters[i] = Some(*word);
+        // A block holds at most MAX_WORDS (48) words, so k + 1 fits a u8.
+        self.letters[i] = u8::try_from(k + 1).unwrap_or(0);
         Ok(())
     }
 
@@ -122,20 +164,27 @@ impl Words {
         if stray == 0 {
             return Ok(());
         }
-        let first = self
-            .letters
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| stray & (1 << i) != 0)
-            .filter_map(|(_, w)| *w)
+        let first = (0u8..26)
+            .filter(|i| stray & (1 << i) != 0)
+            .filter_map(|i| self.get(b'A' + i))
             .min_by_key(|w| w.span.start)
             .unwrap_or_default();
         Err(alarms::word_not_allowed(first.span, first.addr.0))
     }
 
     /// The word of letter `l`, if present.
+    #[inline]
     pub fn get(&self, l: u8) -> Option<Word> {
-        self.letters.get(usize::from(l.wrapping_sub(b'A'))).copied().flatten()
+        let k = *self.letters.get(usize::from(l.wrapping_sub(b'A')))?;
+        self.block
+            .words()
+            .get(usize::from(k).checked_sub(1)?)
+            .copied()
+    }
+
+    /// Letters present (bit 0 = 'A').
+    pub fn present(&self) -> u32 {
+        self.present
     }
 
     /// Whether any letter of `mask` is present.

@@ -10,7 +10,19 @@ use std::io::{self, Write};
 use vcnc_interp::{ArcDir, Event, Feed, Machine, Pos, Sink};
 
 const TAIL: [&str; 13] = [
-    "plane", "dir", "feed", "feed_per_rev", "lead_mm", "seconds", "tool", "spindle", "rpm", "on", "mode", "code", "column",
+    "plane",
+    "dir",
+    "feed",
+    "feed_per_rev",
+    "lead_mm",
+    "seconds",
+    "tool",
+    "spindle",
+    "rpm",
+    "on",
+    "mode",
+    "code",
+    "column",
 ];
 
 /// Writes events as CSV rows.
@@ -25,7 +37,11 @@ pub struct CsvSink<W: Write> {
 impl<W: Write> CsvSink<W> {
     /// A sink writing the header and then one row per event.
     pub fn new(mut out: W, machine: &Machine) -> CsvSink<W> {
-        let letters: Vec<char> = machine.axes.iter().map(|a| char::from(a.letter.to_ascii_lowercase())).collect();
+        let letters: Vec<char> = machine
+            .axes
+            .iter()
+            .map(|a| char::from(a.letter.to_ascii_lowercase()))
+            .collect();
         let mut header = vec!["type".to_string(), "line".into(), "file".into()];
         header.extend(letters.iter().map(|l| l.to_string()));
         header.extend(letters.iter().map(|l| format!("center_{l}")));
@@ -33,7 +49,13 @@ impl<W: Write> CsvSink<W> {
         header.push("message".into());
         let error = writeln!(out, "{}", header.join(",")).err();
         let cols = header.len();
-        CsvSink { out, n_axes: letters.len(), row: vec![String::new(); cols], buf: Vec::new(), error }
+        CsvSink {
+            out,
+            n_axes: letters.len(),
+            row: vec![String::new(); cols],
+            buf: Vec::new(),
+            error,
+        }
     }
 
     /// Flushes and returns the writer, or the first write error.
@@ -85,7 +107,11 @@ impl<W: Write> CsvSink<W> {
 }
 
 fn quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
 }
 
 impl<W: Write> Sink for CsvSink<W> {
@@ -120,7 +146,14 @@ impl<W: Write> Sink for CsvSink<W> {
                 self.pos(to, 0);
                 self.feed(*feed);
             }
-            Event::Arc { to, center, plane, dir, feed, .. } => {
+            Event::Arc {
+                to,
+                center,
+                plane,
+                dir,
+                feed,
+                ..
+            } => {
                 self.pos(to, 0);
                 self.pos(center, self.n_axes);
                 self.set("plane", plane.as_str().into());

@@ -104,10 +104,27 @@ impl<W: Write> GcodeSink<W> {
         Some(match event {
             Event::Rapid { to, .. } => format!("G0{}", self.axes(to)),
             Event::Feed { to, feed, .. } => format!("G1{}{}", self.axes(to), self.feed_word(*feed)),
-            Event::Arc { to, center, plane, dir, feed, .. } => self.arc(to, center, *plane, *dir, *feed),
+            Event::Arc {
+                to,
+                center,
+                plane,
+                dir,
+                feed,
+                ..
+            } => self.arc(to, center, *plane, *dir, *feed),
             Event::Thread { to, lead_mm, .. } => format!("G33{} K{}", self.axes(to), fmt(*lead_mm)),
-            Event::Skip { to, feed, triggered, .. } => {
-                format!("(G31 skip, signal {})\nG1{}{}", if *triggered { "fired" } else { "not fired" }, self.axes(to), self.feed_word(*feed))
+            Event::Skip {
+                to,
+                feed,
+                triggered,
+                ..
+            } => {
+                format!(
+                    "(G31 skip, signal {})\nG1{}{}",
+                    if *triggered { "fired" } else { "not fired" },
+                    self.axes(to),
+                    self.feed_word(*feed)
+                )
             }
             Event::Dwell { seconds, .. } => format!("G4 P{}", fmt(*seconds)),
             Event::ToolChange { tool, .. } => format!("T{tool} M6"),
@@ -121,10 +138,17 @@ impl<W: Write> GcodeSink<W> {
                 }
             }
             Event::Coolant { on, .. } => (if *on { "M8" } else { "M9" }).into(),
-            Event::PathMode { mode, .. } => format!("(path mode {})", crate::jsonl::path_mode(*mode)),
+            Event::PathMode { mode, .. } => {
+                format!("(path mode {})", crate::jsonl::path_mode(*mode))
+            }
             Event::Stop { code, .. } => (if *code == "M01" { "M1" } else { "M0" }).into(),
             Event::End { code, .. } => (if *code == "M30" { "M30" } else { "M2" }).into(),
-            Event::Alarm(d) => format!("(ALARM {} line {}: {})\nM2", d.code.as_str(), d.line, d.message.replace(['(', ')'], "")),
+            Event::Alarm(d) => format!(
+                "(ALARM {} line {}: {})\nM2",
+                d.code.as_str(),
+                d.line,
+                d.message.replace(['(', ')'], "")
+            ),
         })
     }
 }
@@ -145,7 +169,11 @@ impl<W: Write> Sink for GcodeSink<W> {
             self.error = Some(e);
         }
         match event {
-            Event::Rapid { to, .. } | Event::Feed { to, .. } | Event::Arc { to, .. } | Event::Thread { to, .. } | Event::Skip { to, .. } => {
+            Event::Rapid { to, .. }
+            | Event::Feed { to, .. }
+            | Event::Arc { to, .. }
+            | Event::Thread { to, .. }
+            | Event::Skip { to, .. } => {
                 self.pos = *to;
             }
             _ => {}

@@ -22,8 +22,17 @@ pub struct JsonlSink<W: Write> {
 impl<W: Write> JsonlSink<W> {
     /// A sink writing to `out` for a machine's axes.
     pub fn new(out: W, machine: &Machine) -> JsonlSink<W> {
-        let axes = machine.axes.iter().map(|a| a.letter.to_ascii_lowercase()).collect();
-        JsonlSink { out, axes, buf: Vec::with_capacity(512), error: None }
+        let axes = machine
+            .axes
+            .iter()
+            .map(|a| a.letter.to_ascii_lowercase())
+            .collect();
+        JsonlSink {
+            out,
+            axes,
+            buf: Vec::with_capacity(512),
+            error: None,
+        }
     }
 
     /// Flushes and returns the writer, or the first write error.
@@ -55,18 +64,35 @@ impl<W: Write> Sink for JsonlSink<W> {
 pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
     let mut j = Obj { out, axes };
     match event {
-        Event::Rapid { loc, to, exact_stop } => {
+        Event::Rapid {
+            loc,
+            to,
+            exact_stop,
+        } => {
             j.head("rapid", loc);
             j.pos("to", to);
             j.flag("exact_stop", *exact_stop);
         }
-        Event::Feed { loc, to, feed, exact_stop } => {
+        Event::Feed {
+            loc,
+            to,
+            feed,
+            exact_stop,
+        } => {
             j.head("feed", loc);
             j.pos("to", to);
             j.feed(*feed);
             j.flag("exact_stop", *exact_stop);
         }
-        Event::Arc { loc, to, center, plane, dir, feed, exact_stop } => {
+        Event::Arc {
+            loc,
+            to,
+            center,
+            plane,
+            dir,
+            feed,
+            exact_stop,
+        } => {
             j.head("arc", loc);
             j.pos("to", to);
             j.pos("center", center);
@@ -80,7 +106,12 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
             j.pos("to", to);
             j.num("lead_mm", *lead_mm);
         }
-        Event::Skip { loc, to, feed, triggered } => {
+        Event::Skip {
+            loc,
+            to,
+            feed,
+            triggered,
+        } => {
             j.head("skip", loc);
             j.pos("to", to);
             j.feed(*feed);
@@ -94,7 +125,12 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
             j.head("tool_change", loc);
             j.int("tool", u64::from(*tool));
         }
-        Event::Spindle { loc, dir, rpm, surface_m_per_min } => {
+        Event::Spindle {
+            loc,
+            dir,
+            rpm,
+            surface_m_per_min,
+        } => {
             j.head("spindle", loc);
             j.str("dir", spindle_dir(*dir));
             j.num("rpm", *rpm);
@@ -119,7 +155,13 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
             j.str("code", code);
         }
         Event::Alarm(d) => {
-            j.head("alarm", &Loc { line: d.line, file: d.file.as_deref().map(Into::into) });
+            j.head(
+                "alarm",
+                &Loc {
+                    line: d.line,
+                    file: d.file.as_deref().map(Into::into),
+                },
+            );
             j.int("column", u64::from(d.column));
             j.str("code", d.code.as_str());
             j.key("message");
@@ -198,7 +240,8 @@ impl Obj<'_> {
     }
     fn boolean(&mut self, k: &str, v: bool) {
         self.key(k);
-        self.out.extend_from_slice(if v { b"true" } else { b"false" });
+        self.out
+            .extend_from_slice(if v { b"true" } else { b"false" });
     }
     fn flag(&mut self, k: &str, v: bool) {
         if v {

@@ -40,7 +40,11 @@ impl Summary {
     /// An empty summary for `machine`, starting at its power-on position.
     pub fn new(machine: &Machine) -> Summary {
         Summary {
-            rapid_rates: machine.axes.iter().map(|a| a.rapid_mm_per_min / 60.0).collect(),
+            rapid_rates: machine
+                .axes
+                .iter()
+                .map(|a| a.rapid_mm_per_min / 60.0)
+                .collect(),
             max_feeds: machine.axes.iter().map(|a| a.max_feed_mm_per_min).collect(),
             letters: machine.axes.iter().map(|a| a.letter).collect(),
             pos: machine.start,
@@ -80,7 +84,10 @@ impl Summary {
     }
 
     fn distance(&self, to: &Pos) -> f64 {
-        (0..self.letters.len()).map(|i| (to.get(i) - self.pos.get(i)).powi(2)).sum::<f64>().sqrt()
+        (0..self.letters.len())
+            .map(|i| (to.get(i) - self.pos.get(i)).powi(2))
+            .sum::<f64>()
+            .sqrt()
     }
 
     /// Cut time at `feed` over `len_mm`, capped by the slowest axis limit.
@@ -102,7 +109,10 @@ impl Summary {
         let idx = |l: u8| self.letters.iter().position(|x| *x == l).unwrap_or(0);
         let [a, b, n] = plane.letters();
         let (ia, ib, inn) = (idx(a), idx(b), idx(n));
-        let (sa, sb) = (self.pos.get(ia) - center.get(ia), self.pos.get(ib) - center.get(ib));
+        let (sa, sb) = (
+            self.pos.get(ia) - center.get(ia),
+            self.pos.get(ib) - center.get(ib),
+        );
         let (ea, eb) = (to.get(ia) - center.get(ia), to.get(ib) - center.get(ib));
         let r = sa.hypot(sb);
         let mut sweep = (eb.atan2(ea) - sb.atan2(sa)).rem_euclid(std::f64::consts::TAU);
@@ -112,7 +122,11 @@ impl Summary {
         if sweep < 1e-12 {
             sweep = std::f64::consts::TAU;
         }
-        let h = if self.letters.contains(&n) { to.get(inn) - self.pos.get(inn) } else { 0.0 };
+        let h = if self.letters.contains(&n) {
+            to.get(inn) - self.pos.get(inn)
+        } else {
+            0.0
+        };
         ((r * sweep).hypot(h), (ia, ib))
     }
 }
@@ -144,7 +158,14 @@ impl Sink for Summary {
                 self.line_box(to);
                 self.pos = *to;
             }
-            Event::Arc { to, center, plane, dir, feed, .. } => {
+            Event::Arc {
+                to,
+                center,
+                plane,
+                dir,
+                feed,
+                ..
+            } => {
                 let cw = *dir == vcnc_interp::ArcDir::Cw;
                 let (len, axes) = self.arc_len(to, center, *plane, cw);
                 self.cut_mm += len;

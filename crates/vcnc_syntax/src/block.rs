@@ -98,6 +98,9 @@ impl Block {
     }
     /// The first word's span, or the block's start when it has none.
     pub fn first_span(&self) -> Span {
-        self.words().first().map_or(Span::new(self.span.start as usize, self.span.start as usize + 1), |w| w.span)
+        self.words().first().map_or(
+            Span::new(self.span.start as usize, self.span.start as usize + 1),
+            |w| w.span,
+        )
     }
 }

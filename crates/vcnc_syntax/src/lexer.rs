@@ -38,7 +38,12 @@ const FULLWIDTH_SEMICOLON: &[u8] = "；".as_bytes();
 ///
 /// Returns the index where the next block starts (past the terminator), or
 /// `line.len()` when the line is used up.
-pub fn lex_block(line: &[u8], start: usize, rules: &LexRules, out: &mut Block) -> Result<usize, Diagnostic> {
+pub fn lex_block(
+    line: &[u8],
+    start: usize,
+    rules: &LexRules,
+    out: &mut Block,
+) -> Result<usize, Diagnostic> {
     out.clear();
     let mut i = start;
     let mut first = true;
@@ -46,11 +51,18 @@ pub fn lex_block(line: &[u8], start: usize, rules: &LexRules, out: &mut Block) -
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
+        if b.is_ascii_alphabetic() {
+            i = lex_word(line, i, rules, out)?;
+            first = false;
+            continue;
+        }
         match b {
             b' ' | b'\t' | b'\r' | b'\n' | 0x0c => i += 1,
             b';' => return finish(out, start, i, i + 1),
             b'(' => i = skip_comment(line, i)?,
-            b'/' if rules.slash_comments && line.get(i + 1) == Some(&b'/') => return finish(out, start, i, line.len()),
+            b'/' if rules.slash_comments && line.get(i + 1) == Some(&b'/') => {
+                return finish(out, start, i, line.len());
+            }
             b'/' if first => {
                 i += 1;
                 let level = match line.get(i) {
@@ -74,7 +86,10 @@ pub fn lex_block(line: &[u8], start: usize, rules: &LexRules, out: &mut Block) -
         }
         first = first && matches!(b, b' ' | b'\t' | b'\r' | b'(' | 0x0c);
         if i - start > MAX_BLOCK_BYTES {
-            return Err(diag::block_too_long(Span::new(start, start + 1), MAX_BLOCK_BYTES));
+            return Err(diag::block_too_long(
+                Span::new(start, start + 1),
+                MAX_BLOCK_BYTES,
+            ));
         }
     }
 }
@@ -91,29 +106,43 @@ fn skip_comment(line: &[u8], open: usize) -> Result<usize, Diagnostic> {
     }
 }
 
-fn lex_word(line: &[u8], at: usize, rules: &LexRules, out: &mut Block) -> Result<usize, Diagnostic> {
+fn lex_word(
+    line: &[u8],
+    at: usize,
+    rules: &LexRules,
+    out: &mut Block,
+) -> Result<usize, Diagnostic> {
     let (addr, value_at) = address(line, at, rules);
-    let letter = char::from(line[at].to_ascii_uppercase());
     let n = match parse_number(line, value_at) {
         Ok(n) => n,
-        Err(e) => {
-            let end = (value_at + 1).min(line.len()).max(at + 1);
-            let span = Span::new(at, end);
-            return Err(match e {
-                NumberError::Missing => diag::missing_value(span, letter),
-                NumberError::Malformed => diag::malformed_number(span, letter),
-                NumberError::OutOfRange => diag::number_out_of_range(span, letter),
-            });
-        }
+        Err(e) => return Err(number_error(line, at, value_at, e)),
     };
-    let word = Word { addr, value: n.value, point: n.point, span: Span::new(at, n.end) };
+    let word = Word {
+        addr,
+        value: n.value,
+        point: n.point,
+        span: Span::new(at, n.end),
+    };
     if !out.push(word) {
         return Err(diag::too_many_words(word.span, MAX_WORDS));
     }
     Ok(n.end)
 }
 
+#[cold]
+fn number_error(line: &[u8], at: usize, value_at: usize, e: NumberError) -> Diagnostic {
+    let letter = char::from(line[at].to_ascii_uppercase());
+    let end = (value_at + 1).min(line.len()).max(at + 1);
+    let span = Span::new(at, end);
+    match e {
+        NumberError::Missing => diag::missing_value(span, letter),
+        NumberError::Malformed => diag::malformed_number(span, letter),
+        NumberError::OutOfRange => diag::number_out_of_range(span, letter),
+    }
+}
+
 /// The address at `at` and the index where its value starts.
+#[inline]
 fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
     for (text, addr) in rules.extended {
         let t = text.as_bytes();
@@ -127,7 +156,10 @@ fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
 fn illegal_at(line: &[u8], i: usize) -> Diagnostic {
     let rest = &line[i..];
     let len = utf8_len(rest);
-    let ch = std::str::from_utf8(&rest[..len]).ok().and_then(|s| s.chars().next()).unwrap_or('\u{FFFD}');
+    let ch = std::str::from_utf8(&rest[..len])
+        .ok()
+        .and_then(|s| s.chars().next())
+        .unwrap_or('\u{FFFD}');
     diag::illegal_character(Span::new(i, i + len), ch)
 }
 
@@ -138,7 +170,11 @@ fn utf8_len(rest: &[u8]) -> usize {
         Some(b) if *b >= 0xC0 => 2,
         _ => 1,
     };
-    if rest.len() >= want && std::str::from_utf8(&rest[..want]).is_ok() { want } else { 1 }
+    if rest.len() >= want && std::str::from_utf8(&rest[..want]).is_ok() {
+        want
+    } else {
+        1
+    }
 }
 
 #[cfg(test)]
@@ -146,7 +182,11 @@ mod tests {
     use super::*;
     use crate::diagnostics::Code;
 
-    const SYNTEC: LexRules = LexRules { slash_comments: true, fullwidth_semicolon: true, extended: &[] };
+    const SYNTEC: LexRules = LexRules {
+        slash_comments: true,
+        fullwidth_semicolon: true,
+        extended: &[],
+    };
 
     fn blocks(src: &str) -> Result<Vec<String>, Code> {
         let line = src.as_bytes();
@@ -158,7 +198,14 @@ mod tests {
             let words: Vec<String> = out
                 .words()
                 .iter()
-                .map(|w| format!("{}{}{}", char::from(w.addr.0), w.value, if w.point { "." } else { "" }))
+                .map(|w| {
+                    format!(
+                        "{}{}{}",
+                        char::from(w.addr.0),
+                        w.value,
+                        if w.point { "." } else { "" }
+                    )
+                })
                 .collect();
             res.push(words.join(" "));
         }
@@ -167,11 +214,14 @@ mod tests {
 
     #[test]
     fn splits_blocks_and_skips_comments() {
-        assert_eq!(blocks("n10 g1 x5.5 (cut; here) y-2;G4 P500 // note").unwrap(), vec![
-            "N10 G1 X5.5. Y-2",
-            "G4 P500"
-        ]);
-        assert_eq!(blocks("G90 G00 X5500 Y4000；//positioning").unwrap(), vec!["G90 G0 X5500 Y4000", ""]);
+        assert_eq!(
+            blocks("n10 g1 x5.5 (cut; here) y-2;G4 P500 // note").unwrap(),
+            vec!["N10 G1 X5.5. Y-2", "G4 P500"]
+        );
+        assert_eq!(
+            blocks("G90 G00 X5500 Y4000；//positioning").unwrap(),
+            vec!["G90 G0 X5500 Y4000", ""]
+        );
         assert_eq!(blocks("X 1 0 . 5").unwrap(), vec!["X10.5."]);
     }
 

@@ -30,7 +30,9 @@ pub struct MemSource<T>(pub T);
 impl<T: AsRef<[u8]>> TextSource for MemSource<T> {
     fn read_at(&mut self, offset: u64, buf: &mut [u8]) -> io::Result<usize> {
         let data = self.0.as_ref();
-        let start = usize::try_from(offset).unwrap_or(usize::MAX).min(data.len());
+        let start = usize::try_from(offset)
+            .unwrap_or(usize::MAX)
+            .min(data.len());
         let n = buf.len().min(data.len() - start);
         buf[..n].copy_from_slice(&data[start..start + n]);
         Ok(n)
@@ -57,12 +59,16 @@ pub struct Cursor {
 
 impl Default for Cursor {
     fn default() -> Cursor {
-        Cursor { offset: 0, line: 1, col: 0 }
+        Cursor {
+            offset: 0,
+            line: 1,
+            col: 0,
+        }
     }
 }
 
 /// One physical line handed out by [`LineReader::next_line`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Line {
     /// Byte offset of its first byte in the source.
     pub offset: u64,
@@ -139,7 +145,11 @@ impl<S: TextSource> LineReader<S> {
 
     /// Where the next line starts.
     pub fn position(&self) -> Cursor {
-        Cursor { offset: self.buf_offset + self.pos as u64, line: self.next_line_no, col: 0 }
+        Cursor {
+            offset: self.buf_offset + self.pos as u64,
+            line: self.next_line_no,
+            col: 0,
+        }
     }
 
     /// Continues reading at `to` (its `col` is the caller's business).
@@ -154,6 +164,27 @@ impl<S: TextSource> LineReader<S> {
             self.eof = false;
         }
         self.next_line_no = to.line;
+    }
+
+    /// The bytes of `line` again, for an alarm raised after the buffer may
+    /// have moved (a search or a later line): re-read from the source when
+    /// the buffer no longer holds it. Cold path; leaves the reader at the
+    /// line after `line`.
+    pub fn reread(&mut self, line: &Line) -> Vec<u8> {
+        let still_here =
+            self.buf_offset + line.start as u64 == line.offset && line.end <= self.filled;
+        if still_here {
+            return self.bytes(line).to_vec();
+        }
+        self.seek(Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: 0,
+        });
+        match self.next_line() {
+            Ok(Some(l)) => self.bytes(&l).to_vec(),
+            _ => Vec::new(),
+        }
     }
 
     fn take(&mut self, len: usize, consumed: usize) -> Line {
@@ -183,7 +214,10 @@ impl<S: TextSource> LineReader<S> {
 
     /// Reports a line that does not fit and moves past it.
     fn skip_long_line(&mut self) -> ReadError {
-        let err = ReadError::TooLong { offset: self.buf_offset, line: self.next_line_no };
+        let err = ReadError::TooLong {
+            offset: self.buf_offset,
+            line: self.next_line_no,
+        };
         loop {
             self.pos = self.filled;
             if self.refill().is_err() || self.eof {
@@ -215,12 +249,15 @@ mod tests {
     #[test]
     fn numbers_lines_and_keeps_offsets() {
         let got = lines(b"G0\nG1 X1\n\nM30");
-        assert_eq!(got, vec![
-            (0, 1, b"G0".to_vec()),
-            (3, 2, b"G1 X1".to_vec()),
-            (9, 3, b"".to_vec()),
-            (10, 4, b"M30".to_vec())
-        ]);
+        assert_eq!(
+            got,
+            vec![
+                (0, 1, b"G0".to_vec()),
+                (3, 2, b"G1 X1".to_vec()),
+                (9, 3, b"".to_vec()),
+                (10, 4, b"M30".to_vec())
+            ]
+        );
     }
 
     #[test]
@@ -234,7 +271,11 @@ mod tests {
         let mut count = 0;
         while let Some(l) = r.next_line().unwrap() {
             if l.number == 5 {
-                mark = Some(Cursor { offset: l.offset, line: l.number, col: 0 });
+                mark = Some(Cursor {
+                    offset: l.offset,
+                    line: l.number,
+                    col: 0,
+                });
             }
             count += 1;
         }
@@ -249,7 +290,10 @@ mod tests {
         let mut text = vec![b'X'; BUFFER_BYTES + 10];
         text.extend_from_slice(b"\nM30\n");
         let mut r = LineReader::new(MemSource(text));
-        assert!(matches!(r.next_line(), Err(ReadError::TooLong { line: 1, .. })));
+        assert!(matches!(
+            r.next_line(),
+            Err(ReadError::TooLong { line: 1, .. })
+        ));
         let l = r.next_line().unwrap().unwrap();
         assert_eq!((l.number, r.bytes(&l)), (2, &b"M30"[..]));
     }

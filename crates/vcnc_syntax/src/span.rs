@@ -17,7 +17,10 @@ pub struct Span {
 impl Span {
     /// A span from `start` to `end` (byte offsets within the line).
     pub fn new(start: usize, end: usize) -> Span {
-        Span { start: clamp_u32(start), end: clamp_u32(end) }
+        Span {
+            start: clamp_u32(start),
+            end: clamp_u32(end),
+        }
     }
 }
 
