@@ -28,7 +28,9 @@ impl TextSource for FileSource {
 /// Opens the main program.
 pub fn open_program(path: &Path) -> Result<Box<dyn TextSource>, String> {
     match File::open(path) {
-        Ok(f) if f.metadata().is_ok_and(|m| m.is_dir()) => Err(format!("{} is a directory", path.display())),
+        Ok(f) if f.metadata().is_ok_and(|m| m.is_dir()) => {
+            Err(format!("{} is a directory", path.display()))
+        }
         Ok(f) => Ok(Box::new(FileSource(f))),
         Err(e) => Err(format!("cannot open {}: {e}", path.display())),
     }
@@ -63,7 +65,10 @@ impl vcnc_interp::ProgramStore for DirStore {
             format!("O{number}"),
             format!("O{number}.nc"),
         ];
-        let path = names.iter().map(|n| self.dir.join(n)).find(|p| p.is_file())?;
+        let path = names
+            .iter()
+            .map(|n| self.dir.join(n))
+            .find(|p| p.is_file())?;
         let name = path.display().to_string();
         Some(File::open(&path).map(|f| (Box::new(FileSource(f)) as Box<dyn TextSource>, name)))
     }

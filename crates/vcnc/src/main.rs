@@ -36,6 +36,9 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
 
 /// Everything a run needs, resolved from the common options.
 struct Setup {
+    /// The main program, opened before any output is written so that a
+    /// missing file is a usage error with nothing on stdout.
+    main: Option<Box<dyn vcnc_syntax::TextSource>>,
     machine: Machine,
     dialect: Dialect,
     options: vcnc_interp::Options,
@@ -44,55 +47,74 @@ struct Setup {
 fn setup(c: &Common) -> Result<Setup, String> {
     let machine = match &c.machine {
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-            Machine::from_toml(&text).map_err(|e| format!("machine file {}: {e}", path.display()))?
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
+            Machine::from_toml(&text)
+                .map_err(|e| format!("machine file {}: {e}", path.display()))?
         }
         None => Machine::default_mill(),
     };
-    let dialect = Dialect::by_name(&c.dialect)
-        .ok_or_else(|| format!("unknown dialect {:?}: use one of {}", c.dialect, Dialect::NAMES.join(", ")))?;
-    let options = vcnc_interp::Options { block_delete: c.block_delete, optional_stop: c.optional_stop };
-    Ok(Setup { machine, dialect, options })
+    let dialect = Dialect::by_name(&c.dialect).ok_or_else(|| {
+        format!(
+            "unknown dialect {:?}: use one of {}",
+            c.dialect,
+            Dialect::NAMES.join(", ")
+        )
+    })?;
+    let options = vcnc_interp::Options {
+        block_delete: c.block_delete,
+        optional_stop: c.optional_stop,
+    };
+    Ok(Setup {
+        main: Some(files::open_program(&c.file)?),
+        machine,
+        dialect,
+        options,
+    })
 }
 
 /// Runs the program of `c` into `sink`.
-fn execute<S: Sink>(c: &Common, s: &Setup, sink: &mut S) -> Result<Outcome, String> {
-    let main = files::open_program(&c.file)?;
-    let dir = c.program_dir.clone().unwrap_or_else(|| files::parent_dir(&c.file));
+fn execute<S: Sink>(c: &Common, s: &mut Setup, sink: &mut S) -> Result<Outcome, String> {
+    let main = s.main.take().ok_or("the program was already run")?;
+    let dir = c
+        .program_dir
+        .clone()
+        .unwrap_or_else(|| files::parent_dir(&c.file));
     let mut store = files::DirStore::new(dir);
     let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
     Ok(interp.run(main, &mut store, sink))
 }
 
 fn check(c: &Common) -> Result<ExitCode, String> {
-    let s = setup(c)?;
+    let mut s = setup(c)?;
     let mut summary = Summary::new(&s.machine);
-    let outcome = execute(c, &s, &mut summary)?;
+    let outcome = execute(c, &mut s, &mut summary)?;
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, &c.file));
     }
     let mut out = std::io::stdout().lock();
-    render::summary(&mut out, c, &s.dialect, &s.machine, &summary, &outcome).map_err(|e| e.to_string())?;
+    render::summary(&mut out, c, &s.dialect, &s.machine, &summary, &outcome)
+        .map_err(|e| e.to_string())?;
     Ok(exit_code(&outcome))
 }
 
 fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
-    let s = setup(c)?;
+    let mut s = setup(c)?;
     let out = BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
     let (outcome, written) = match format {
         Format::Jsonl => {
             let mut sink = JsonlSink::new(out, &s.machine);
-            let o = execute(c, &s, &mut sink)?;
+            let o = execute(c, &mut s, &mut sink)?;
             (o, sink.finish().map(|_| ()))
         }
         Format::Csv => {
             let mut sink = CsvSink::new(out, &s.machine);
-            let o = execute(c, &s, &mut sink)?;
+            let o = execute(c, &mut s, &mut sink)?;
             (o, sink.finish().map(|_| ()))
         }
         Format::Gcode => {
             let mut sink = GcodeSink::new(out, &s.machine);
-            let o = execute(c, &s, &mut sink)?;
+            let o = execute(c, &mut s, &mut sink)?;
             (o, sink.finish().map(|_| ()))
         }
     };

@@ -18,7 +18,9 @@ fn source_line(d: &Diagnostic, main: &Path) -> Option<String> {
     let n = f.read(&mut buf).ok()?;
     buf.truncate(n);
     let end = buf.iter().position(|b| *b == b'\n').unwrap_or(buf.len());
-    let line = String::from_utf8_lossy(&buf[..end]).trim_end_matches('\r').to_string();
+    let line = String::from_utf8_lossy(&buf[..end])
+        .trim_end_matches('\r')
+        .to_string();
     Some(line)
 }
 
@@ -26,22 +28,41 @@ fn source_line(d: &Diagnostic, main: &Path) -> Option<String> {
 pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
     let file = d.file.clone().unwrap_or_else(|| main.display().to_string());
     let title = format!("alarm: {}", d.message);
-    let renderer = if std::env::var_os("NO_COLOR").is_none() && io_is_terminal() { Renderer::styled() } else { Renderer::plain() };
+    let renderer = if std::env::var_os("NO_COLOR").is_none() && io_is_terminal() {
+        Renderer::styled()
+    } else {
+        Renderer::plain()
+    };
     let text = match source_line(d, main) {
         Some(line) => {
             let len = line.len();
             let start = (d.span.start as usize).min(len);
             let end = (d.span.end as usize).clamp(start, len);
-            let report = [Level::ERROR.primary_title(title).id(d.code.as_str()).element(
-                Snippet::source(line)
-                    .line_start(usize::try_from(d.line).unwrap_or(usize::MAX))
-                    .path(file.clone())
-                    .annotation(AnnotationKind::Primary.span(start..end.max(start)).label(d.code.as_str())),
-            )
-            .element(Level::HELP.message(d.help.clone()))];
+            let report = [Level::ERROR
+                .primary_title(title)
+                .id(d.code.as_str())
+                .element(
+                    Snippet::source(line)
+                        .line_start(usize::try_from(d.line).unwrap_or(usize::MAX))
+                        .path(file.clone())
+                        .annotation(
+                            AnnotationKind::Primary
+                                .span(start..end.max(start))
+                                .label(d.code.as_str()),
+                        ),
+                )
+                .element(Level::HELP.message(d.help.clone()))];
             renderer.render(&report)
         }
-        None => format!("error[{}]: {} at {}:{}:{}\n  help: {}", d.code.as_str(), d.message, file, d.line, d.column, d.help),
+        None => format!(
+            "error[{}]: {} at {}:{}:{}\n  help: {}",
+            d.code.as_str(),
+            d.message,
+            file,
+            d.line,
+            d.column,
+            d.help
+        ),
     };
     format!("{text}\n")
 }
@@ -75,14 +96,32 @@ pub fn summary(
     s: &Summary,
     outcome: &Outcome,
 ) -> io::Result<()> {
-    writeln!(out, "program    {} ({} dialect, {})", c.file.display(), dialect.name, machine.name)?;
+    writeln!(
+        out,
+        "program    {} ({} dialect, {})",
+        c.file.display(),
+        dialect.name,
+        machine.name
+    )?;
     match outcome {
         Outcome::Ended(code) => writeln!(out, "result     ended by {code}")?,
-        Outcome::Alarm(d) => writeln!(out, "result     alarm {} at line {}, column {}", d.code.as_str(), d.line, d.column)?,
+        Outcome::Alarm(d) => writeln!(
+            out,
+            "result     alarm {} at line {}, column {}",
+            d.code.as_str(),
+            d.line,
+            d.column
+        )?,
     }
-    let mut time = format!("{} (distance/feed estimate, no acceleration)", duration(s.cycle_time_s));
+    let mut time = format!(
+        "{} (distance/feed estimate, no acceleration)",
+        duration(s.cycle_time_s)
+    );
     if s.untimed_moves > 0 {
-        time.push_str(&format!("; {} feed-per-rev moves with the spindle stopped not counted", s.untimed_moves));
+        time.push_str(&format!(
+            "; {} feed-per-rev moves with the spindle stopped not counted",
+            s.untimed_moves
+        ));
     }
     writeln!(out, "cycle time {time}")?;
     writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
@@ -100,7 +139,15 @@ pub fn summary(
         None => writeln!(out, "extents    no motion")?,
     }
     let tools: Vec<String> = s.tools.iter().map(|t| format!("T{t}")).collect();
-    writeln!(out, "tools      {}", if tools.is_empty() { "none".to_string() } else { tools.join(" ") })?;
+    writeln!(
+        out,
+        "tools      {}",
+        if tools.is_empty() {
+            "none".to_string()
+        } else {
+            tools.join(" ")
+        }
+    )?;
     match s.spindle_rpm {
         Some((lo, hi)) if (hi - lo).abs() < 1e-9 => writeln!(out, "spindle    {lo:.0} rpm")?,
         Some((lo, hi)) => writeln!(out, "spindle    {lo:.0} .. {hi:.0} rpm")?,

@@ -17,7 +17,9 @@ use std::path::{Path, PathBuf};
 use vcnc_interp::{Dialect, Interpreter, Machine, Options, VecSink};
 
 fn fixtures_dir(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/fixtures")
+        .join(name)
 }
 
 struct Args {
@@ -27,9 +29,15 @@ struct Args {
 }
 
 fn args_of(program: &str, dir: &Path, default_dialect: &str) -> Args {
-    let mut a = Args { dialect: default_dialect.into(), machine: None, options: Options::default() };
+    let mut a = Args {
+        dialect: default_dialect.into(),
+        machine: None,
+        options: Options::default(),
+    };
     let first = program.lines().next().unwrap_or("");
-    let Some(rest) = first.strip_prefix("(vcnc-args:") else { return a };
+    let Some(rest) = first.strip_prefix("(vcnc-args:") else {
+        return a;
+    };
     let mut words = rest.trim_end_matches(')').split_whitespace();
     while let Some(w) = words.next() {
         match w {
@@ -48,7 +56,8 @@ fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
     let program = std::fs::read_to_string(path).expect("fixture readable");
     let a = args_of(&program, path.parent().expect("dir"), default_dialect);
     let machine = match &a.machine {
-        Some(m) => Machine::from_toml(&std::fs::read_to_string(m).expect("machine file")).expect("valid machine"),
+        Some(m) => Machine::from_toml(&std::fs::read_to_string(m).expect("machine file"))
+            .expect("valid machine"),
         None => Machine::default_mill(),
     };
     let dialect = Dialect::by_name(&a.dialect).expect("dialect");
@@ -59,7 +68,11 @@ fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
         &mut store,
         &mut sink,
     );
-    let axes: Vec<u8> = machine.axes.iter().map(|x| x.letter.to_ascii_lowercase()).collect();
+    let axes: Vec<u8> = machine
+        .axes
+        .iter()
+        .map(|x| x.letter.to_ascii_lowercase())
+        .collect();
     sink.0
         .iter()
         .map(|e| {
@@ -73,29 +86,43 @@ fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
 struct DirStore(PathBuf);
 
 impl vcnc_interp::ProgramStore for DirStore {
-    fn open(&mut self, n: u32) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+    fn open(
+        &mut self,
+        n: u32,
+    ) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
         let p = self.0.join(format!("O{n:04}.nc"));
         let text = std::fs::read(&p).ok()?;
-        Some(Ok((Box::new(vcnc_syntax::MemSource(text)), p.display().to_string())))
+        Some(Ok((
+            Box::new(vcnc_syntax::MemSource(text)),
+            p.display().to_string(),
+        )))
     }
 }
 
 fn close(a: &Value, b: &Value, tol: f64, key: &str) -> bool {
     match (a, b) {
         (Value::Number(x), Value::Number(y)) => {
-            let (x, y) = (x.as_f64().unwrap_or(f64::NAN), y.as_f64().unwrap_or(f64::NAN));
+            let (x, y) = (
+                x.as_f64().unwrap_or(f64::NAN),
+                y.as_f64().unwrap_or(f64::NAN),
+            );
             let t = if key == "center" { tol.max(2e-3) } else { tol };
             (x - y).abs() <= t
         }
         (Value::Object(x), Value::Object(y)) => {
-            let skip = |k: &String| x.get("type") == Some(&Value::from("alarm")) && (k == "message" || k == "help");
+            let skip = |k: &String| {
+                x.get("type") == Some(&Value::from("alarm")) && (k == "message" || k == "help")
+            };
             let kx: Vec<_> = x.keys().filter(|k| !skip(k)).collect();
             let ky: Vec<_> = y.keys().filter(|k| !skip(k)).collect();
             let mut kx_sorted = kx.clone();
             kx_sorted.sort();
             let mut ky_sorted = ky.clone();
             ky_sorted.sort();
-            kx_sorted == ky_sorted && kx.iter().all(|k| close(&x[*k], &y[*k], tol, if key == "center" { key } else { k }))
+            kx_sorted == ky_sorted
+                && kx
+                    .iter()
+                    .all(|k| close(&x[*k], &y[*k], tol, if key == "center" { key } else { k }))
         }
         _ => a == b,
     }
@@ -108,7 +135,10 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
         .expect("fixture folder")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "nc"))
-        .filter(|p| !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('O')))
+        .filter(|p| {
+            !p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with('O'))
+        })
         .collect();
     programs.sort();
     let mut failures = Vec::new();
@@ -118,11 +148,14 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
             .unwrap_or_else(|_| panic!("{} has no expected trace", p.display()))
             .lines()
             .filter(|l| !l.trim().is_empty())
-            .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{}: {e}", expected_path.display())))
+            .map(|l| {
+                serde_json::from_str(l)
+                    .unwrap_or_else(|e| panic!("{}: {e}", expected_path.display()))
+            })
             .collect();
         let got = run(p, default_dialect);
-        let first_diff = (0..expected.len().max(got.len()))
-            .find(|&i| match (expected.get(i), got.get(i)) {
+        let first_diff =
+            (0..expected.len().max(got.len())).find(|&i| match (expected.get(i), got.get(i)) {
                 (Some(a), Some(b)) => !close(a, b, tol, ""),
                 _ => true,
             });
@@ -136,7 +169,13 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
             ));
         }
     }
-    assert!(failures.is_empty(), "{} of {} fixtures differ:\n{}", failures.len(), programs.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} fixtures differ:\n{}",
+        failures.len(),
+        programs.len(),
+        failures.join("\n")
+    );
     programs.len()
 }
 

@@ -63,7 +63,7 @@ impl Interpreter<'_> {
         let s = (from.get(ia), from.get(ib));
         let e = (to.get(ia), to.get(ib));
         let center = match radius_word {
-            Some(r) => self.center_from_radius(s, e, self.length_mm(&r), cw, r.span)?,
+            Some(r) => self.center_from_radius(s, e, self.length_mm(&r), cw, (r.span, cmd))?,
             None if has_center => {
                 let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
                 (s.0 + off(oa), s.1 + off(ob))
@@ -97,12 +97,12 @@ impl Interpreter<'_> {
         e: (f64, f64),
         r: f64,
         cw: bool,
-        span: Span,
+        (span, cmd): (Span, Span),
     ) -> Result<(f64, f64), Diagnostic> {
         let (dx, dy) = (e.0 - s.0, e.1 - s.1);
         let chord = dx.hypot(dy);
         if r.abs() < ZERO_MM {
-            return Err(alarms::zero_radius(span));
+            return Err(alarms::zero_radius(cmd));
         }
         if chord < ZERO_MM {
             return Err(alarms::r_full_circle(span));

@@ -24,18 +24,27 @@ use crate::words::{ALWAYS, Words};
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 
 impl Words<'_> {
-    /// Whether the block changes offsets (so they are saved for rollback).
-    pub(crate) fn changes_offsets(&self) -> bool {
-        self.axis_user.is_some_and(|a| {
-            matches!(
-                a.def.op,
-                GOp::SetData | GOp::PresetOrClamp | GOp::LocalSystem
-            )
-        })
+    /// Axis words, F, N and at most a motion code: the common block of a
+    /// CAM program. Every such letter is always allowed.
+    pub(crate) fn is_plain_motion(&self, axis_mask: u32) -> bool {
+        !self.has_codes && self.present() & !(axis_mask | bit(b'F') | bit(b'N')) == 0
     }
 }
 
 impl Interpreter<'_> {
+    /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
+    pub(crate) fn execute_motion_only<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        if let Some(motion) = w.group(Group::Motion) {
+            self.apply_modal(motion.def.op);
+        }
+        self.feed_word(w)?;
+        self.modal_motion(w, sink)
+    }
+
     pub(crate) fn execute<S: Sink>(
         &mut self,
         w: &Words<'_>,
@@ -44,17 +53,6 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        if !w.has_codes && w.present() & !(self.axis_mask | bit(b'F') | bit(b'N')) == 0 {
-            // The common block of a CAM program: axis words, maybe F and a
-            // motion code. Every such letter is always allowed, and there is
-            // nothing to do but move.
-            if let Some(motion) = w.group(Group::Motion) {
-                self.apply_modal(motion.def.op);
-            }
-            self.feed_word(w)?;
-            self.modal_motion(w, sink)?;
-            return Ok(Step::Next);
-        }
         let path_before = self.state.modal.path;
         for at in w.modal.iter().flatten() {
             self.apply_modal(at.def.op);
@@ -71,11 +69,14 @@ impl Interpreter<'_> {
             let on = m.def.op == MOp::CoolantOn;
             self.emit(sink, |loc| Event::Coolant { loc, on });
         }
+        // Resolve calls and returns before moving, so that an unknown
+        // program or sequence alarms before the block's motion.
+        let flow = self.prepare_flow(w, here, next, store)?;
         match w.axis_user {
             Some(user) => self.one_shot(user.def.op, user.span, w, sink)?,
             None => self.modal_motion(w, sink)?,
         }
-        self.program_flow(w, here, next, store, sink)
+        Ok(self.program_flow(w, flow, sink))
     }
 
     /// Step 1: one modal code written in the block.
@@ -202,10 +203,12 @@ impl Interpreter<'_> {
         if !changed {
             return Ok(());
         }
-        let why = m
+        // An alarm about the speed points at what set it: G96, S, else the M code.
+        let why = w
+            .group(Group::SpindleMode)
             .map(|a| a.span)
-            .or(w.group(Group::SpindleMode).map(|a| a.span))
-            .or(s_word.map(|s| s.span));
+            .or(s_word.map(|s| s.span))
+            .or(m.map(|a| a.span));
         let (rpm, surface) = if turning {
             self.spindle_rpm(why.unwrap_or(w.first))?
         } else {
@@ -247,17 +250,10 @@ impl Interpreter<'_> {
         Ok((rpm, Some(surface_m_per_min)))
     }
 
-    /// Step 8: stops, ends, calls and returns.
-    fn program_flow<S: Sink>(
-        &mut self,
-        w: &Words<'_>,
-        here: Cursor,
-        next: Cursor,
-        store: &mut dyn ProgramStore,
-        sink: &mut S,
-    ) -> Result<Step, Diagnostic> {
+    /// Step 8: stops, ends, calls and returns (already resolved).
+    fn program_flow<S: Sink>(&mut self, w: &Words<'_>, flow: Option<Step>, sink: &mut S) -> Step {
         let Some(m) = w.m_of(MGroup::Flow) else {
-            return Ok(Step::Next);
+            return Step::Next;
         };
         match m.def.op {
             MOp::Stop => self.emit(sink, |loc| Event::Stop { loc, code: "M00" }),
@@ -267,13 +263,29 @@ impl Interpreter<'_> {
             MOp::End | MOp::EndRewind => {
                 let code = if m.def.op == MOp::End { "M02" } else { "M30" };
                 self.emit(sink, |loc| Event::End { loc, code });
-                return Ok(Step::End(code));
+                return Step::End(code);
             }
-            MOp::Call => return self.call(w, m.span, here, next, store),
-            MOp::Return => return self.ret(w, m.span),
             _ => {}
         }
-        Ok(Step::Next)
+        flow.unwrap_or(Step::Next)
+    }
+
+    /// Resolves M98/M99 of the block into the jump it will make.
+    fn prepare_flow(
+        &mut self,
+        w: &Words<'_>,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Option<Step>, Diagnostic> {
+        let Some(m) = w.m_of(MGroup::Flow) else {
+            return Ok(None);
+        };
+        match m.def.op {
+            MOp::Call => self.call(w, m.span, here, next, store).map(Some),
+            MOp::Return => self.ret(w, m.span).map(Some),
+            _ => Ok(None),
+        }
     }
 
     /// Sends an event located at the current block.

@@ -50,7 +50,7 @@ const MAX_SOURCES: usize = 64;
 pub(crate) struct Source {
     pub reader: LineReader<Box<dyn TextSource>>,
     pub name: Option<Arc<str>>,
-    number: Option<u32>,
+    pub number: Option<u32>,
 }
 
 /// One level of the call stack.
@@ -155,7 +155,10 @@ impl Flow {
         match store.open(number) {
             None => Ok(None),
             Some(Err(e)) => Err(e),
-            Some(Ok((text, name))) => {
+            Some(Ok((mut text, name))) => {
+                // Probe the first byte so an unreadable program alarms at the
+                // call, not somewhere in the middle of it.
+                text.read_at(0, &mut [0u8; 1])?;
                 let src = Source {
                     reader: LineReader::new(text),
                     name: Some(name.into()),

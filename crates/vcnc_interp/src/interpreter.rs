@@ -50,6 +50,8 @@ pub(crate) enum Step {
     /// Continue at this cursor of the (possibly new) current frame's source.
     Jump(Cursor),
     End(&'static str),
+    /// The program ran into `%` or another program's `O` header.
+    ProgramEnd,
 }
 
 /// The interpreter. Create one per run.
@@ -61,6 +63,8 @@ pub struct Interpreter<'a> {
     pub(crate) flow: Flow,
     pub(crate) axis_mask: u32,
     executed: u64,
+    /// Events of the block being executed, sent when it succeeds.
+    pending: crate::sink::VecSink,
 }
 
 impl<'a> Interpreter<'a> {
@@ -74,6 +78,7 @@ impl<'a> Interpreter<'a> {
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
             axis_mask: machine.axis_letter_mask(),
             executed: 0,
+            pending: crate::sink::VecSink::default(),
         }
     }
 
@@ -147,7 +152,6 @@ impl<'a> Interpreter<'a> {
                 if block.is_empty() {
                     continue;
                 }
-                last = Some((src, line, block.first_span()));
                 let here = Cursor {
                     offset: line.offset,
                     line: line.number,
@@ -160,6 +164,9 @@ impl<'a> Interpreter<'a> {
                 let step = self
                     .block(&block, here, next, store, sink)
                     .map_err(|d| self.locate(d, src, &line))?;
+                if !matches!(step, Step::ProgramEnd) {
+                    last = Some((src, line, block.first_span()));
+                }
                 match step {
                     Step::Next => {}
                     Step::Jump(to) => {
@@ -168,6 +175,10 @@ impl<'a> Interpreter<'a> {
                         break;
                     }
                     Step::End(code) => return Ok(code),
+                    Step::ProgramEnd => match self.end_of_program(last, sink)? {
+                        Some(code) => return Ok(code),
+                        None => break,
+                    },
                 }
             }
         }
@@ -190,8 +201,13 @@ impl<'a> Interpreter<'a> {
                 Err(d)
             }
             Err(ReadError::Io(e)) => {
-                let mut d = alarms::program_unreadable(Span::new(0, 1), 0, &e);
-                d.line = self.flow.loc.line;
+                let at = source.reader.position();
+                let mut d =
+                    alarms::program_unreadable(Span::new(0, 1), source.number.unwrap_or(0), &e);
+                d.line = at.line;
+                d.column = 1;
+                d.line_offset = at.offset;
+                d.file = source.name.as_deref().map(str::to_string);
                 Err(d)
             }
         }
@@ -243,16 +259,29 @@ impl<'a> Interpreter<'a> {
         }
         let mut words = Words::new(block);
         words.fill(self.dialect, self.machine.params.same_group_in_block)?;
-        let saved = self.state.modal;
-        let offsets = words.changes_offsets().then(|| self.state.offsets.clone());
-        let result = self.execute(&words, here, next, store, sink);
-        if result.is_err() {
-            self.state.modal = saved;
-            if let Some(o) = offsets {
-                self.state.offsets = o;
+        if words.is_plain_motion(self.axis_mask) {
+            // Hot path: only axis words, F and a motion code. Every check
+            // happens before the one event, so only modal and F need saving.
+            let (modal, feed) = (self.state.modal, self.state.feed);
+            let result = self.execute_motion_only(&words, sink);
+            if result.is_err() {
+                self.state.modal = modal;
+                self.state.feed = feed;
             }
-            self.state.refresh_origin();
+            return result.map(|()| Step::Next);
         }
+        // Anything else is all or nothing: events wait in `pending` and the
+        // whole state is restored if the block alarms.
+        let saved = self.state.clone();
+        let mut pending = std::mem::take(&mut self.pending);
+        pending.0.clear();
+        let result = self.execute(&words, here, next, store, &mut pending);
+        match &result {
+            Ok(_) => pending.0.iter().for_each(|e| sink.event(e)),
+            Err(_) => self.state = saved,
+        }
+        pending.0.clear();
+        self.pending = pending;
         result
     }
 
@@ -273,7 +302,8 @@ impl<'a> Interpreter<'a> {
             }
             return Ok(Step::Next);
         }
-        self.finish_program(block.first_span(), sink)
+        let _ = sink;
+        Ok(Step::ProgramEnd)
     }
 
     /// The current program ran out of blocks; `last` is its last block.

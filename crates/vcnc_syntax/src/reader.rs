@@ -92,8 +92,8 @@ pub enum ReadError {
     },
 }
 
-/// Buffer size, and so the longest line that can be read.
-pub const BUFFER_BYTES: usize = 64 * 1024;
+/// Buffer size: the longest line that can be read (64 KiB) and its newline.
+pub const BUFFER_BYTES: usize = 64 * 1024 + 1;
 
 /// Reads lines from a [`TextSource`] through one fixed buffer.
 pub struct LineReader<S> {

@@ -1,0 +1,609 @@
+//! CLI tests: run the built `vcnc` binary and check its exit code, stdout and
+//! stderr.
+//!
+//! Expected text is written here by hand from the documents, not captured
+//! from a run: the summary of `examples/bracket.nc` is the README's (its
+//! distances re-derived in `check_bracket_prints_the_summary`), event lines
+//! follow `docs/events.md`, the alarm rendering follows the README's example
+//! and the exit codes follow the README (0 clean, 1 alarm, 2 usage error).
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .expect("workspace root")
+}
+
+/// Runs `vcnc args…` in `dir`, without colours.
+fn vcnc_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("vcnc runs")
+}
+
+/// Runs `vcnc args…` in the workspace root.
+fn vcnc(args: &[&str]) -> Output {
+    vcnc_in(&workspace(), args)
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).expect("stdout is UTF-8")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).expect("stderr is UTF-8")
+}
+
+fn code(o: &Output) -> i32 {
+    o.status.code().expect("exit code")
+}
+
+/// Parses JSON-lines output; every line must be one JSON object.
+fn jsonl(o: &Output) -> Vec<Value> {
+    stdout(o)
+        .lines()
+        .map(|l| {
+            let v: Value =
+                serde_json::from_str(l).unwrap_or_else(|e| panic!("not JSON ({e}): {l}"));
+            assert!(v.is_object(), "not an object: {l}");
+            v
+        })
+        .collect()
+}
+
+/// A fresh directory under the system temp dir, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("vcnc-cli-{}-{n}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        TempDir(dir)
+    }
+
+    fn write(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.0.join(name);
+        if let Some(parent) = p.parent() {
+            std::fs::create_dir_all(parent).expect("parent dir");
+        }
+        std::fs::write(&p, text).expect("write temp file");
+        p
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+// ---------------------------------------------------------------------------
+// check
+// ---------------------------------------------------------------------------
+
+/// The README's summary. Hand check of the distances: rapids 51.962 (to
+/// X-10 Y-10 Z50) + 45 (Z5) + 7 (Z5 after the outline) + 29.155 (to X15
+/// Y15) + 2 × 7 (Z+7 in the pocket) + 15.811 (to X35 Y15) + 5 (G28 Z0)
+/// = 167.928 mm; cutting: outline 7 + 60 + 30 + 50 + 30 + 4 quarter circles
+/// of R10 (62.832) = 239.832, each pocket 7 + 40 + a quarter circle of R5
+/// (7.854) = 54.854, in all 349.540 mm.
+#[test]
+fn check_bracket_prints_the_summary() {
+    let o = vcnc(&["check", "examples/bracket.nc"]);
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    assert_eq!(
+        stdout(&o),
+        "\
+program    examples/bracket.nc (syntec dialect, generic 3-axis mill)
+result     ended by M30
+cycle time 33.7s (distance/feed estimate, no acceleration)
+rapid      167.928 mm
+cutting    349.540 mm
+extents    X -10.000 .. 60.000   Y -10.000 .. 40.000   Z -2.000 .. 50.000 (machine mm)
+tools      T1
+spindle    2400 rpm
+"
+    );
+    assert_eq!(stderr(&o), "");
+}
+
+#[test]
+fn check_names_the_dialect() {
+    let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "fanuc"]);
+    // G71 is Syntec's metric code; Fanuc does not know it.
+    assert_eq!(code(&o), 1);
+    let out = stdout(&o);
+    assert!(
+        out.starts_with("program    examples/bracket.nc (fanuc dialect, generic 3-axis mill)\n"),
+        "{out}"
+    );
+    assert!(
+        out.contains("\nresult     alarm E201 at line 3, column 13\n"),
+        "{out}"
+    );
+    assert!(stderr(&o).starts_with("error[E201]: "), "{}", stderr(&o));
+}
+
+// ---------------------------------------------------------------------------
+// run --format …
+// ---------------------------------------------------------------------------
+
+#[test]
+fn run_jsonl_is_the_event_contract() {
+    let o = vcnc(&["run", "examples/bracket.nc", "--format", "jsonl"]);
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    assert_eq!(stderr(&o), "");
+    let events = jsonl(&o);
+    for e in &events {
+        assert!(
+            e["type"].is_string() && e["line"].as_u64().is_some_and(|l| l >= 1),
+            "{e}"
+        );
+    }
+    assert_eq!(
+        events.last(),
+        Some(&json!({"type": "end", "line": 30, "code": "M30"}))
+    );
+    // Hand-derived events (docs/events.md): N20 G28 Z0 goes through Z0 to
+    // reference point 1, both legs reported; T1 M06; S2400 M03.
+    assert_eq!(
+        events[0],
+        json!({"type": "rapid", "line": 4, "to": {"x": 0.0, "y": 0.0, "z": 0.0}})
+    );
+    assert_eq!(
+        events[1],
+        json!({"type": "rapid", "line": 4, "to": {"x": 0.0, "y": 0.0, "z": 0.0}})
+    );
+    assert_eq!(
+        events[2],
+        json!({"type": "tool_change", "line": 5, "tool": 1})
+    );
+    assert_eq!(
+        events[3],
+        json!({"type": "spindle", "line": 6, "dir": "cw", "rpm": 2400.0})
+    );
+    assert_eq!(events[5], json!({"type": "coolant", "line": 8, "on": true}));
+    // N100 G03 X60. Y0. R10. from X50 Y-10: a quarter circle about X50 Y0.
+    let arc = json!({"type": "arc", "line": 13, "to": {"x": 60.0, "y": 0.0, "z": -2.0},
+        "center": {"x": 50.0, "y": 0.0, "z": -2.0}, "plane": "xy", "dir": "ccw", "feed": 800.0});
+    assert!(events.contains(&arc), "no {arc}");
+    // O0100 N60 G02 X5. Y5. R5. (incremental) from X15 Y15: R > 0 clockwise
+    // is the quarter circle about X20 Y15; line 37 of the file.
+    let arc = json!({"type": "arc", "line": 37, "to": {"x": 20.0, "y": 20.0, "z": -2.0},
+        "center": {"x": 20.0, "y": 15.0, "z": -2.0}, "plane": "xy", "dir": "cw", "feed": 600.0});
+    assert_eq!(events.iter().filter(|e| **e == arc).count(), 1, "no {arc}");
+    assert!(events.contains(&json!({"type": "dwell", "line": 26, "seconds": 0.5})));
+}
+
+#[test]
+fn run_defaults_to_jsonl() {
+    let explicit = vcnc(&["run", "examples/bracket.nc", "--format", "jsonl"]);
+    let default = vcnc(&["run", "examples/bracket.nc"]);
+    assert_eq!(code(&default), 0);
+    assert_eq!(default.stdout, explicit.stdout);
+}
+
+#[test]
+fn run_csv_has_a_header_and_one_row_per_event() {
+    let o = vcnc(&["run", "examples/bracket.nc", "--format", "csv"]);
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    let text = stdout(&o);
+    let mut lines = text.lines();
+    let header = lines.next().expect("header");
+    assert_eq!(
+        header,
+        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message"
+    );
+    let columns = header.split(',').count();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    for r in &rows {
+        assert_eq!(r.len(), columns, "{r:?}");
+    }
+    let events = jsonl(&vcnc(&["run", "examples/bracket.nc"]));
+    assert_eq!(rows.len(), events.len(), "one row per event");
+    let col = |name: &str| header.split(',').position(|h| h == name).unwrap();
+    let last = rows.last().unwrap();
+    assert_eq!(
+        (last[col("type")], last[col("line")], last[col("code")]),
+        ("end", "30", "M30")
+    );
+    let arc = rows
+        .iter()
+        .find(|r| r[col("type")] == "arc" && r[col("line")] == "13")
+        .expect("arc row of N100");
+    assert_eq!(
+        [
+            arc[col("x")],
+            arc[col("y")],
+            arc[col("center_x")],
+            arc[col("center_y")],
+            arc[col("dir")],
+            arc[col("feed")]
+        ],
+        ["60.0", "0.0", "50.0", "0.0", "ccw", "800.0"]
+    );
+}
+
+#[test]
+fn run_gcode_is_a_flat_program_ending_in_m30() {
+    let o = vcnc(&["run", "examples/bracket.nc", "--format", "gcode"]);
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].starts_with('('), "header comment: {}", lines[0]);
+    let starts = |p: &str| lines.iter().any(|l| l.starts_with(p));
+    assert!(starts("G0 "), "{text}");
+    assert!(starts("G1 "), "{text}");
+    assert!(starts("G2 ") && starts("G3 "), "{text}");
+    assert!(lines.contains(&"T1 M6"), "{text}");
+    assert!(lines.contains(&"M3 S2400"), "{text}");
+    assert!(lines.contains(&"G4 P0.5"), "{text}");
+    assert_eq!(lines.last(), Some(&"M30"));
+    // Flattened: no subprogram calls, no incremental mode, no Syntec codes.
+    for l in &lines {
+        assert!(
+            !l.contains("M98") && !l.contains("M99") && !l.contains("G91") && !l.contains("G71"),
+            "{l}"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Alarms
+// ---------------------------------------------------------------------------
+
+/// The README's E303 example, started at X0 Y0: centre X-3 Y-1, start radius
+/// √10, end radius √45.25.
+const E303_PROGRAM: &str =
+    "(E303)\nG90 G00 X0 Y0\nG17 G90 G03 X1500 Y4000 I-3000 J-1000 F200; //absolute command\nM30\n";
+
+fn e303_rendering(path: &str) -> String {
+    format!(
+        "\
+error[E303]: alarm: arc end point is not on the circle: start radius 3.1623 mm, end radius 6.7268 mm
+ --> {path}:3:9
+  |
+3 | G17 G90 G03 X1500 Y4000 I-3000 J-1000 F200; //absolute command
+  |         ^^^ E303
+  |
+  = help: check the end point and I/J/K (I/J/K are measured from the start point to the centre)
+"
+    )
+}
+
+#[test]
+fn an_alarm_exits_1_and_is_rendered_like_a_compiler_error() {
+    let dir = TempDir::new("e303");
+    dir.write("arc.nc", E303_PROGRAM);
+    let o = vcnc_in(dir.path(), &["run", "arc.nc", "--format", "jsonl"]);
+    assert_eq!(code(&o), 1);
+    let events = jsonl(&o);
+    assert_eq!(events.len(), 2, "{events:?}");
+    assert_eq!(
+        events[0],
+        json!({"type": "rapid", "line": 2, "to": {"x": 0.0, "y": 0.0, "z": 0.0}})
+    );
+    let alarm = &events[1];
+    assert_eq!(
+        (
+            &alarm["type"],
+            &alarm["line"],
+            &alarm["column"],
+            &alarm["code"]
+        ),
+        (&json!("alarm"), &json!(3), &json!(9), &json!("E303"))
+    );
+    assert!(
+        alarm["message"]
+            .as_str()
+            .unwrap()
+            .contains("not on the circle"),
+        "{alarm}"
+    );
+    assert!(alarm["help"].is_string(), "{alarm}");
+    assert_eq!(stderr(&o), e303_rendering("arc.nc"));
+
+    // `check` renders the same alarm and reports it in the summary.
+    let o = vcnc_in(dir.path(), &["check", "arc.nc"]);
+    assert_eq!(code(&o), 1);
+    assert_eq!(stderr(&o), e303_rendering("arc.nc"));
+    let out = stdout(&o);
+    assert!(
+        out.contains("\nresult     alarm E303 at line 3, column 9\n"),
+        "{out}"
+    );
+
+    // csv: the alarm row carries code and column; gcode: the flattened
+    // program stops with a comment and M2.
+    let o = vcnc_in(dir.path(), &["run", "arc.nc", "--format", "csv"]);
+    assert_eq!(code(&o), 1);
+    let text = stdout(&o);
+    let last = text.lines().last().unwrap();
+    assert!(
+        last.starts_with("alarm,3,,") && last.contains(",E303,9,"),
+        "{last}"
+    );
+    let o = vcnc_in(dir.path(), &["run", "arc.nc", "--format", "gcode"]);
+    assert_eq!(code(&o), 1);
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(
+        lines[lines.len() - 2].starts_with("(ALARM E303 line 3"),
+        "{text}"
+    );
+    assert_eq!(lines.last(), Some(&"M2"));
+}
+
+#[test]
+fn an_alarm_in_a_called_program_names_its_file() {
+    let dir = TempDir::new("sub-alarm");
+    dir.write("main.nc", "G90 G00 X1.\nM98 P10\nM30\n");
+    let sub = dir.write("O0010.nc", "G00 Y2.\n  G01 X5000. F100\nM99\n");
+    let o = vcnc_in(dir.path(), &["run", "main.nc"]);
+    assert_eq!(code(&o), 1);
+    let events = jsonl(&o);
+    let alarm = events.last().unwrap();
+    assert_eq!(
+        (
+            &alarm["type"],
+            &alarm["line"],
+            &alarm["column"],
+            &alarm["code"]
+        ),
+        (&json!("alarm"), &json!(2), &json!(7), &json!("E501"))
+    );
+    // `file` is the path the program was found at (here relative to the
+    // working directory, like the main program's).
+    let file = alarm["file"]
+        .as_str()
+        .expect("the alarm names the called program's file");
+    assert_eq!(
+        dir.path().join(file).canonicalize().unwrap(),
+        sub.canonicalize().unwrap(),
+        "{file}"
+    );
+    let err = stderr(&o);
+    assert!(err.starts_with("error[E501]: alarm: over-travel"), "{err}");
+    assert!(err.contains(&format!(" --> {file}:2:7\n")), "{err}");
+    assert!(err.contains("2 |   G01 X5000. F100\n"), "{err}");
+    assert!(err.contains("  |       ^^^^^^ E501\n"), "{err}");
+}
+
+// ---------------------------------------------------------------------------
+// Usage errors: exit 2, a message on stderr, nothing on stdout
+// ---------------------------------------------------------------------------
+
+fn assert_usage_error(o: &Output, needle: &str) {
+    assert_eq!(code(o), 2, "stdout: {}\nstderr: {}", stdout(o), stderr(o));
+    let err = stderr(o);
+    assert!(
+        err.starts_with("error: ") && err.contains(needle),
+        "stderr: {err}"
+    );
+}
+
+#[test]
+fn unknown_dialect_is_a_usage_error() {
+    let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "heidenhain"]);
+    assert_usage_error(
+        &o,
+        "unknown dialect \"heidenhain\": use one of syntec, fanuc",
+    );
+    assert_eq!(stdout(&o), "");
+}
+
+#[test]
+fn missing_file_is_a_usage_error() {
+    let o = vcnc(&["check", "examples/no_such_program.nc"]);
+    assert_usage_error(&o, "examples/no_such_program.nc");
+    assert_eq!(stdout(&o), "");
+    let o = vcnc(&["run", "examples/no_such_program.nc"]);
+    assert_usage_error(&o, "examples/no_such_program.nc");
+    assert_eq!(stdout(&o), "");
+    let o = vcnc(&["run", "examples"]);
+    assert_usage_error(&o, "examples is a directory");
+}
+
+/// A usage error must not leave a partial result on stdout: a CSV header or
+/// the flattened program's preamble with exit 2 looks like an empty result to
+/// a pipeline.
+#[test]
+fn usage_errors_print_nothing_on_stdout_in_any_format() {
+    for format in ["jsonl", "csv", "gcode"] {
+        let o = vcnc(&["run", "examples/no_such_program.nc", "--format", format]);
+        assert_usage_error(&o, "examples/no_such_program.nc");
+        assert_eq!(stdout(&o), "", "--format {format}");
+    }
+}
+
+#[test]
+fn bad_machine_file_is_a_usage_error() {
+    let dir = TempDir::new("machine");
+    let bad = dir.write("bad.toml", "name = \"bad\"\naxes = []\n");
+    let o = vcnc(&[
+        "check",
+        "examples/bracket.nc",
+        "--machine",
+        bad.to_str().unwrap(),
+    ]);
+    assert_usage_error(&o, "machine file");
+    assert!(stderr(&o).contains("1 to 6 axes"), "{}", stderr(&o));
+    let typo = dir.write("typo.toml", "name = 1\n");
+    let o = vcnc(&[
+        "run",
+        "examples/bracket.nc",
+        "--machine",
+        typo.to_str().unwrap(),
+    ]);
+    assert_usage_error(&o, "machine file");
+    let missing = dir.path().join("missing.toml");
+    let o = vcnc(&[
+        "check",
+        "examples/bracket.nc",
+        "--machine",
+        missing.to_str().unwrap(),
+    ]);
+    assert_usage_error(&o, "cannot read machine file");
+}
+
+#[test]
+fn a_valid_machine_file_is_used() {
+    // The README's machine format: a small machine whose X travel ends at 50.
+    let dir = TempDir::new("small-machine");
+    let machine = dir.write(
+        "small.toml",
+        "name = \"small mill\"\n\
+         [[axes]]\nletter = \"x\"\nmin_mm = -20.0\nmax_mm = 50.0\nrapid_mm_per_min = 10000.0\nmax_feed_mm_per_min = 5000.0\n\
+         [[axes]]\nletter = \"y\"\nmin_mm = -20.0\nmax_mm = 50.0\nrapid_mm_per_min = 10000.0\nmax_feed_mm_per_min = 5000.0\n\
+         [[axes]]\nletter = \"z\"\nmin_mm = -20.0\nmax_mm = 60.0\nrapid_mm_per_min = 10000.0\nmax_feed_mm_per_min = 5000.0\n\
+         [reference]\np1 = { x = 0.0, y = 0.0, z = 0.0 }\n\
+         [tools.1]\nd_mm = 5.0\n",
+    );
+    let o = vcnc(&[
+        "check",
+        "examples/bracket.nc",
+        "--machine",
+        machine.to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), 1, "{}", stdout(&o));
+    let out = stdout(&o);
+    assert!(
+        out.starts_with("program    examples/bracket.nc (syntec dialect, small mill)\n"),
+        "{out}"
+    );
+    // N90 G01 X50. is on the limit; N100's arc to X60. leaves it.
+    assert!(
+        out.contains("\nresult     alarm E501 at line 13, column 10\n"),
+        "{out}"
+    );
+}
+
+#[test]
+fn unknown_subcommand_and_bad_arguments_are_usage_errors() {
+    let o = vcnc(&["frobnicate", "examples/bracket.nc"]);
+    assert_eq!(code(&o), 2);
+    assert!(
+        stderr(&o).contains("unrecognized subcommand 'frobnicate'"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(stdout(&o), "");
+    let o = vcnc(&["run", "examples/bracket.nc", "--format", "xml"]);
+    assert_eq!(code(&o), 2);
+    assert!(stderr(&o).contains("invalid value 'xml'"), "{}", stderr(&o));
+    let o = vcnc(&["check"]);
+    assert_eq!(code(&o), 2);
+    let o = vcnc(&[]);
+    assert_eq!(code(&o), 2);
+}
+
+// ---------------------------------------------------------------------------
+// Options
+// ---------------------------------------------------------------------------
+
+#[test]
+fn program_dir_finds_called_programs() {
+    let dir = TempDir::new("program-dir");
+    dir.write("main.nc", "G90 G00 X1.\nM98 P10\nG00 X3.\nM30\n");
+    let sub = dir.write("subs/O0010.nc", "G00 Y2.\nM99\n");
+    let subs = dir.path().join("subs");
+
+    let o = vcnc_in(
+        dir.path(),
+        &["run", "main.nc", "--program-dir", subs.to_str().unwrap()],
+    );
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    let file = sub.display().to_string();
+    assert_eq!(
+        jsonl(&o),
+        vec![
+            json!({"type": "rapid", "line": 1, "to": {"x": 1.0, "y": 0.0, "z": 0.0}}),
+            json!({"type": "rapid", "line": 1, "file": file, "to": {"x": 1.0, "y": 2.0, "z": 0.0}}),
+            json!({"type": "rapid", "line": 3, "to": {"x": 3.0, "y": 2.0, "z": 0.0}}),
+            json!({"type": "end", "line": 4, "code": "M30"}),
+        ]
+    );
+
+    // Without --program-dir the program's own directory is searched: no O0010.
+    let o = vcnc_in(dir.path(), &["run", "main.nc"]);
+    assert_eq!(code(&o), 1);
+    let events = jsonl(&o);
+    let alarm = events.last().unwrap();
+    assert_eq!(
+        (&alarm["code"], &alarm["line"], &alarm["column"]),
+        (&json!("E401"), &json!(2), &json!(5))
+    );
+    assert!(
+        stderr(&o).starts_with("error[E401]: alarm: program O0010 not found"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn optional_stop_switch() {
+    let dir = TempDir::new("optional-stop");
+    dir.write("p.nc", "G00 X1.\nM01\nG00 X2.\nM00\nM30\n");
+    let stops = |args: &[&str]| -> Vec<Value> {
+        let o = vcnc_in(dir.path(), args);
+        assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+        let events = jsonl(&o);
+        assert_eq!(
+            events.last(),
+            Some(&json!({"type": "end", "line": 5, "code": "M30"}))
+        );
+        events.into_iter().filter(|e| e["type"] == "stop").collect()
+    };
+    assert_eq!(
+        stops(&["run", "p.nc"]),
+        vec![json!({"type": "stop", "line": 4, "code": "M00"})]
+    );
+    assert_eq!(
+        stops(&["run", "p.nc", "--optional-stop"]),
+        vec![
+            json!({"type": "stop", "line": 2, "code": "M01"}),
+            json!({"type": "stop", "line": 4, "code": "M00"}),
+        ]
+    );
+}
+
+#[test]
+fn block_delete_switch() {
+    let dir = TempDir::new("block-delete");
+    dir.write("p.nc", "G00 X1.\n/G00 X5.\n/2 G00 Y5.\nG00 X2.\nM30\n");
+    let xs = |args: &[&str]| -> Vec<Value> {
+        let o = vcnc_in(dir.path(), args);
+        assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+        jsonl(&o)
+            .into_iter()
+            .filter(|e| e["type"] == "rapid")
+            .map(|e| e["to"].clone())
+            .collect()
+    };
+    let to = |x: f64, y: f64| json!({"x": x, "y": y, "z": 0.0});
+    assert_eq!(
+        xs(&["run", "p.nc"]),
+        vec![to(1.0, 0.0), to(5.0, 0.0), to(5.0, 5.0), to(2.0, 5.0)]
+    );
+    assert_eq!(
+        xs(&["run", "p.nc", "--block-delete"]),
+        vec![to(1.0, 0.0), to(2.0, 0.0)]
+    );
+}
