@@ -45,15 +45,6 @@ struct Setup {
 }
 
 fn setup(c: &Common) -> Result<Setup, String> {
-    let machine = match &c.machine {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-            Machine::from_toml(&text)
-                .map_err(|e| format!("machine file {}: {e}", path.display()))?
-        }
-        None => Machine::default_mill(),
-    };
     let dialect = Dialect::by_name(&c.dialect).ok_or_else(|| {
         format!(
             "unknown dialect {:?}: use one of {}",
@@ -61,6 +52,15 @@ fn setup(c: &Common) -> Result<Setup, String> {
             Dialect::NAMES.join(", ")
         )
     })?;
+    let machine = match &c.machine {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
+            Machine::from_toml(&text)
+                .map_err(|e| format!("machine file {}: {e}", path.display()))?
+        }
+        None => Machine::default_for(&dialect),
+    };
     let options = vcnc_interp::Options {
         block_delete: c.block_delete,
         optional_stop: c.optional_stop,
@@ -74,7 +74,8 @@ fn setup(c: &Common) -> Result<Setup, String> {
 }
 
 /// Runs the program of `c` into `sink`.
-fn execute<S: Sink>(c: &Common, s: &mut Setup, sink: &mut S) -> Result<Outcome, String> {
+/// Returns how the run ended and whether it ended in diameter programming.
+fn execute<S: Sink>(c: &Common, s: &mut Setup, sink: &mut S) -> Result<(Outcome, bool), String> {
     let main = s.main.take().ok_or("the program was already run")?;
     let dir = c
         .program_dir
@@ -82,39 +83,50 @@ fn execute<S: Sink>(c: &Common, s: &mut Setup, sink: &mut S) -> Result<Outcome, 
         .unwrap_or_else(|| files::parent_dir(&c.file));
     let mut store = files::DirStore::new(dir);
     let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
-    Ok(interp.run(main, &mut store, sink))
+    let outcome = interp.run(main, &mut store, sink);
+    Ok((outcome, interp.state().modal.diameter))
 }
 
 fn check(c: &Common) -> Result<ExitCode, String> {
     let mut s = setup(c)?;
     let mut summary = Summary::new(&s.machine);
-    let outcome = execute(c, &mut s, &mut summary)?;
+    let (outcome, diameter) = execute(c, &mut s, &mut summary)?;
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, &c.file));
     }
     let mut out = std::io::stdout().lock();
-    render::summary(&mut out, c, &s.dialect, &s.machine, &summary, &outcome)
-        .map_err(|e| e.to_string())?;
+    let diameter_axis = s.dialect.diameter_axis.filter(|_| diameter);
+    render::summary(
+        &mut out,
+        c,
+        &s.dialect,
+        &s.machine,
+        &summary,
+        &outcome,
+        diameter_axis,
+    )
+    .map_err(|e| e.to_string())?;
     Ok(exit_code(&outcome))
 }
 
 fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
     let mut s = setup(c)?;
-    let out = BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
+    // The JSON-lines sink buffers itself; the others go through a BufWriter.
+    let out = std::io::stdout().lock();
     let (outcome, written) = match format {
         Format::Jsonl => {
             let mut sink = JsonlSink::new(out, &s.machine);
-            let o = execute(c, &mut s, &mut sink)?;
+            let (o, _) = execute(c, &mut s, &mut sink)?;
             (o, sink.finish().map(|_| ()))
         }
         Format::Csv => {
-            let mut sink = CsvSink::new(out, &s.machine);
-            let o = execute(c, &mut s, &mut sink)?;
+            let mut sink = CsvSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            let (o, _) = execute(c, &mut s, &mut sink)?;
             (o, sink.finish().map(|_| ()))
         }
         Format::Gcode => {
-            let mut sink = GcodeSink::new(out, &s.machine);
-            let o = execute(c, &mut s, &mut sink)?;
+            let mut sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            let (o, _) = execute(c, &mut s, &mut sink)?;
             (o, sink.finish().map(|_| ()))
         }
     };

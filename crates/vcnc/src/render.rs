@@ -95,6 +95,7 @@ pub fn summary(
     machine: &Machine,
     s: &Summary,
     outcome: &Outcome,
+    diameter_axis: Option<u8>,
 ) -> io::Result<()> {
     writeln!(
         out,
@@ -132,7 +133,18 @@ pub fn summary(
                 .axis_letters()
                 .iter()
                 .enumerate()
-                .map(|(i, l)| format!("{} {:.3} .. {:.3}", char::from(*l), lo.get(i), hi.get(i)))
+                .map(|(i, l)| {
+                    if diameter_axis == Some(*l) {
+                        format!(
+                            "{} diameter {:.3} .. {:.3}",
+                            char::from(*l),
+                            2.0 * lo.get(i),
+                            2.0 * hi.get(i)
+                        )
+                    } else {
+                        format!("{} {:.3} .. {:.3}", char::from(*l), lo.get(i), hi.get(i))
+                    }
+                })
                 .collect();
             writeln!(out, "extents    {} (machine mm)", parts.join("   "))?;
         }

@@ -5,7 +5,7 @@
 
 use divan::{Bencher, counter::ItemsCount};
 use std::fmt::Write;
-use vcnc_interp::{Dialect, Interpreter, Machine, NullSink, Options};
+use vcnc_interp::{Dialect, Interpreter, Machine, NullSink, Options, Outcome};
 
 fn main() {
     divan::main();
@@ -43,6 +43,61 @@ fn interpret_to_null_sink(bencher: Bencher, blocks: usize) {
     let program = surfacing(blocks);
     let machine = Machine::default_mill();
     let dialect = Dialect::fanuc();
+    let check =
+        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut NullSink);
+    assert_eq!(
+        check,
+        Outcome::Ended("M02"),
+        "the benchmark program must run to its end"
+    );
+    bencher.counter(ItemsCount::new(blocks)).bench(|| {
+        let mut sink = NullSink;
+        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut sink)
+    });
+}
+
+/// A turning program of `blocks` blocks: roughing passes in diameters with
+/// U/W increments and arcs, the shape of `tools/bench/gen_turning.py`.
+fn turning(blocks: usize) -> String {
+    let mut s = String::with_capacity(blocks * 24);
+    s.push_str("G23\nG90 G94\nG00 X120 Z5\n");
+    let mut n = 3;
+    let mut pass = 0usize;
+    while n < blocks - 1 {
+        let d = 118.0 - (pass % 50) as f64 * 2.0;
+        let lines = [
+            format!("G00 X{d:.3} Z2.000"),
+            "G01 Z-80.000 F200".to_string(),
+            "G02 U4.000 W-2.000 R2.000".to_string(),
+            "G01 U2.000".to_string(),
+            "G00 Z2.000".to_string(),
+        ];
+        for line in lines {
+            s.push_str(&line);
+            s.push('\n');
+            n += 1;
+            if n >= blocks - 1 {
+                break;
+            }
+        }
+        pass += 1;
+    }
+    s.push_str("M30\n");
+    s
+}
+
+#[divan::bench(args = [100_000])]
+fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
+    let program = turning(blocks);
+    let dialect = Dialect::lathe();
+    let machine = Machine::default_for(&dialect);
+    let check =
+        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut NullSink);
+    assert_eq!(
+        check,
+        Outcome::Ended("M30"),
+        "the benchmark program must run to its end"
+    );
     bencher.counter(ItemsCount::new(blocks)).bench(|| {
         let mut sink = NullSink;
         Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut sink)

@@ -60,6 +60,16 @@ pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>)
     diag
 }
 
+/// E201 for a code the dialect's document lists but vcnc does not run.
+pub fn unsupported_g(span: Span, why: &str) -> Diagnostic {
+    d(
+        Code::E201,
+        span,
+        why.to_string(),
+        "see docs/dialects.md for what vcnc runs in this dialect",
+    )
+}
+
 /// E202: unknown M code.
 pub fn unknown_m(span: Span, value: f64, dialect: &str) -> Diagnostic {
     d(
@@ -80,6 +90,16 @@ pub fn word_not_allowed(span: Span, l: u8) -> Diagnostic {
     )
 }
 
+/// E203 for an extended address (`CR=`, `IX`) nothing in the block uses.
+pub fn extended_not_allowed(span: Span, name: &str) -> Diagnostic {
+    d(
+        Code::E203,
+        span,
+        format!("{name} is not used by any command in this block"),
+        "CR= and D belong to G02/G03, IX and IZ to G05",
+    )
+}
+
 /// E203 for a multi-character address the dialect does not have.
 pub fn address_not_in_dialect(span: Span, dialect: &str) -> Diagnostic {
     d(
@@ -87,6 +107,72 @@ pub fn address_not_in_dialect(span: Span, dialect: &str) -> Diagnostic {
         span,
         format!("this address does not exist in the {dialect} dialect"),
         "check --dialect",
+    )
+}
+
+/// E204 for an extended address written twice.
+pub fn duplicate_extended(span: Span, name: &str) -> Diagnostic {
+    d(
+        Code::E204,
+        span,
+        format!("{name} appears twice in this block"),
+        "keep one of them",
+    )
+}
+
+/// E204: an axis written both absolute and incremental (`X10 U5`).
+pub fn absolute_and_incremental(span: Span, abs: u8, inc: u8) -> Diagnostic {
+    d(
+        Code::E204,
+        span,
+        format!(
+            "{} and {} both address the {} axis in this block",
+            letter(abs),
+            letter(inc),
+            letter(abs)
+        ),
+        "write either the absolute or the incremental word",
+    )
+}
+
+/// E209: a code that must stand alone shares its block.
+pub fn not_alone(span: Span, code: Span) -> Diagnostic {
+    let _ = code;
+    d(
+        Code::E209,
+        span,
+        "this word shares a block with a code that must stand alone in its block".into(),
+        "move it to a block of its own (the lathe document: G08/G09, G20, G22/G23, G24, G30, G74 occupy a line alone)",
+    )
+}
+
+/// E313: G05 through three points on one line.
+pub fn three_points_on_a_line(span: Span) -> Diagnostic {
+    d(
+        Code::E313,
+        span,
+        "G05: start, middle point (IX IZ) and end point lie on one line, so no arc passes through them".into(),
+        "check IX/IZ, or use G01 for a straight move",
+    )
+}
+
+/// E314: a turning cycle's parameters contradict each other.
+pub fn cycle_parameters(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E314,
+        span,
+        format!("cycle parameters do not fit: {what}"),
+        "check the cycle's words against the document",
+    )
+}
+
+/// E409: G24 with no G20 to return to.
+pub fn return_without_call(span: Span) -> Diagnostic {
+    d(
+        Code::E409,
+        span,
+        "G24 with no G20 subroutine call to return to".into(),
+        "call the subroutine with G20 L…",
     )
 }
 
@@ -317,14 +403,16 @@ pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
     )
 }
 
-/// E406: subprogram without M99.
-pub fn sub_without_m99(span: Span) -> Diagnostic {
-    d(
+/// E406: subprogram without its return (M99, or G24 after a lathe G20).
+pub fn sub_without_return(span: Span, code: &str) -> Diagnostic {
+    let mut diag = d(
         Code::E406,
         span,
-        "subprogram ended without M99".into(),
-        "end every subprogram with M99",
-    )
+        format!("subprogram ended without {code}"),
+        "",
+    );
+    diag.help = format!("end the subprogram with {code}");
+    diag
 }
 
 /// E408: called program unreadable.

@@ -18,15 +18,26 @@
 //! the sweep, is checked against the travel limits.
 
 use crate::alarms;
-use crate::events::{ArcDir, Event, Plane, Pos};
+use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::sink::Sink;
 use crate::words::Words;
 use std::f64::consts::{FRAC_PI_2, TAU};
-use vcnc_syntax::{Diagnostic, Span};
+use vcnc_syntax::{Addr, Diagnostic, Span};
 
 /// Below this a length is zero, mm.
 const ZERO_MM: f64 = 1e-9;
+
+/// The radius an arc block gives.
+#[derive(Debug, Clone, Copy)]
+struct Radius {
+    /// Signed radius, mm (negative: more than 180°).
+    mm: f64,
+    /// The word that gave it.
+    span: Span,
+    /// A chord longer than 2R is cut as a straight line instead of alarming.
+    line_if_short: bool,
+}
 
 /// A resolved arc in its plane: first/second axis coordinates.
 struct Geometry {
@@ -47,29 +58,108 @@ impl Interpreter<'_> {
         sink: &mut S,
     ) -> Result<(), Diagnostic> {
         let plane = self.state.modal.plane;
-        let [la, lb, _] = plane.letters();
         let [oa, ob] = center_letters(plane);
         let has_center = w.get(oa).is_some() || w.get(ob).is_some();
-        let radius_word = w.get(b'R');
+        let radius = self.radius_word(w);
         let (to, named) = self.target(w, self.state.modal.incremental);
-        if named == 0 && !has_center && radius_word.is_none() {
+        if named == 0 && !has_center && radius.is_none() {
             return Ok(());
         }
-        let (Some(ia), Some(ib)) = (self.machine.axis_of(la), self.machine.axis_of(lb)) else {
-            return Err(alarms::arc_without_center(cmd, plane.as_str()));
-        };
+        let (ia, ib) = self.plane_axes(cmd)?;
         let feed = self.feed(cmd)?;
         let from = self.state.pos;
         let s = (from.get(ia), from.get(ib));
         let e = (to.get(ia), to.get(ib));
-        let center = match radius_word {
-            Some(r) => self.center_from_radius(s, e, self.length_mm(&r), cw, (r.span, cmd))?,
+        let center = match radius {
+            Some(r) => match self.center_from_radius(s, e, r, cw, cmd)? {
+                Some(c) => c,
+                // The lathe document: a chord longer than 2R is cut straight.
+                None => return self.straight_instead(from, to, feed, w, cmd, sink),
+            },
             None if has_center => {
                 let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
                 (s.0 + off(oa), s.1 + off(ob))
             }
             None => return Err(alarms::arc_without_center(cmd, plane.as_str())),
         };
+        self.emit_arc(from, to, center, cw, feed, w, cmd, sink)
+    }
+
+    /// The machine axes of the active plane's first and second axis.
+    fn plane_axes(&self, cmd: Span) -> Result<(usize, usize), Diagnostic> {
+        let plane = self.state.modal.plane;
+        let [la, lb, _] = plane.letters();
+        match (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+            (Some(ia), Some(ib)) => Ok((ia, ib)),
+            _ => Err(alarms::arc_without_center(cmd, plane.as_str())),
+        }
+    }
+
+    /// The arc's radius word: R (signed), or on the lathe `CR=` (a radius)
+    /// or D (a diameter), with whether a too-long chord becomes a line.
+    fn radius_word(&self, w: &Words<'_>) -> Option<Radius> {
+        if let Some(r) = w.get(b'R') {
+            let line_if_short = self.dialect.long_chord_is_line;
+            return Some(Radius {
+                mm: self.length_mm(&r),
+                span: r.span,
+                line_if_short,
+            });
+        }
+        if let Some(cr) = w.get_ext(Addr::CR) {
+            return Some(Radius {
+                mm: self.length_mm(&cr),
+                span: cr.span,
+                line_if_short: false,
+            });
+        }
+        w.get(b'D').map(|d| Radius {
+            mm: self.length_mm(&d) / 2.0,
+            span: d.span,
+            line_if_short: false,
+        })
+    }
+
+    /// A chord too long for R on the lathe: a straight feed to the end.
+    #[allow(clippy::too_many_arguments)]
+    fn straight_instead<S: Sink>(
+        &mut self,
+        from: Pos,
+        to: Pos,
+        feed: Feed,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        self.check_segment(from, to, w, cmd)?;
+        let exact_stop = self.exact_stop(w);
+        self.emit(sink, |loc| Event::Feed {
+            loc,
+            to,
+            feed,
+            exact_stop,
+        });
+        self.state.pos = to;
+        Ok(())
+    }
+
+    /// Checks an arc with a known centre and sends it.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_arc<S: Sink>(
+        &mut self,
+        from: Pos,
+        to: Pos,
+        center: (f64, f64),
+        cw: bool,
+        feed: Feed,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        let plane = self.state.modal.plane;
+        let (ia, ib) = self.plane_axes(cmd)?;
+        let s = (from.get(ia), from.get(ib));
+        let e = (to.get(ia), to.get(ib));
         let geo = self.geometry(s, e, center, cw, cmd)?;
         self.check_arc(&geo, from, to, (ia, ib), w, cmd)?;
         let mut c = from;
@@ -90,15 +180,66 @@ impl Interpreter<'_> {
         Ok(())
     }
 
+    /// Lathe G05: the arc from here through the middle point (IX, IZ) to
+    /// the end point; its direction is the turn the three points make.
+    pub(crate) fn three_point_arc<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        let (to, named) = self.target(w, self.state.modal.incremental);
+        let mid_words = [(Addr::IX, b'X'), (Addr::IZ, b'Z')];
+        if named == 0 && mid_words.iter().all(|(a, _)| w.get_ext(*a).is_none()) {
+            return Ok(());
+        }
+        let (ia, ib) = self.plane_axes(cmd)?;
+        let feed = self.feed(cmd)?;
+        let from = self.state.pos;
+        let mut mid = from;
+        for (addr, letter) in mid_words {
+            let (Some(word), Some(i)) = (w.get_ext(addr), self.machine.axis_of(letter)) else {
+                continue;
+            };
+            let v = self.axis_value(i, &word);
+            mid.set(
+                i,
+                if self.state.modal.incremental {
+                    from.get(i) + v
+                } else {
+                    v + self.state.origin.get(i)
+                },
+            );
+        }
+        let (s, m, e) = (
+            (from.get(ia), from.get(ib)),
+            (mid.get(ia), mid.get(ib)),
+            (to.get(ia), to.get(ib)),
+        );
+        let d = 2.0 * (s.0 * (m.1 - e.1) + m.0 * (e.1 - s.1) + e.0 * (s.1 - m.1));
+        if d.abs() < ZERO_MM {
+            return Err(alarms::three_points_on_a_line(cmd));
+        }
+        let sq = |p: (f64, f64)| p.0 * p.0 + p.1 * p.1;
+        let center = (
+            (sq(s) * (m.1 - e.1) + sq(m) * (e.1 - s.1) + sq(e) * (s.1 - m.1)) / d,
+            (sq(s) * (e.0 - m.0) + sq(m) * (s.0 - e.0) + sq(e) * (m.0 - s.0)) / d,
+        );
+        // Turning left (positive cross product) from S→M to M→E is counter-clockwise.
+        let cross = (m.0 - s.0) * (e.1 - m.1) - (m.1 - s.1) * (e.0 - m.0);
+        self.emit_arc(from, to, center, cross < 0.0, feed, w, cmd, sink)
+    }
+
     /// Centre of an R arc; negative R takes the arc over 180°.
     fn center_from_radius(
         &self,
         s: (f64, f64),
         e: (f64, f64),
-        r: f64,
+        radius: Radius,
         cw: bool,
-        (span, cmd): (Span, Span),
-    ) -> Result<(f64, f64), Diagnostic> {
+        cmd: Span,
+    ) -> Result<Option<(f64, f64)>, Diagnostic> {
+        let (r, span) = (radius.mm, radius.span);
         let (dx, dy) = (e.0 - s.0, e.1 - s.1);
         let chord = dx.hypot(dy);
         if r.abs() < ZERO_MM {
@@ -110,16 +251,19 @@ impl Interpreter<'_> {
         let half = chord / 2.0;
         let h2 = r * r - half * half;
         if h2 < 0.0 && half - r.abs() > self.machine.params.arc_tolerance_mm {
+            if radius.line_if_short {
+                return Ok(None);
+            }
             return Err(alarms::radius_too_small(span, r.abs(), chord));
         }
         let h = h2.max(0.0).sqrt();
         // Left normal of the chord; G03 with R > 0 has its centre on the left.
         let (nx, ny) = (-dy / chord, dx / chord);
         let side = if cw { -1.0 } else { 1.0 } * r.signum();
-        Ok((
+        Ok(Some((
             s.0 + dx / 2.0 + side * h * nx,
             s.1 + dy / 2.0 + side * h * ny,
-        ))
+        )))
     }
 
     /// Radius, sweep and the on-circle check (E303, E304).
@@ -199,7 +343,9 @@ fn swept_box(
         lo.set(i, from.get(i).min(to.get(i)));
         hi.set(i, from.get(i).max(to.get(i)));
     }
-    for k in 0..4 {
+    // Unit vectors of 0°, 90°, 180°, 270°, exact (no sin/cos rounding).
+    const EXTREMES: [(f64, f64); 4] = [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+    for (k, (cos, sin)) in (0u8..).zip(EXTREMES.iter()) {
         let phi = f64::from(k) * FRAC_PI_2;
         let passed = if sweep >= 0.0 {
             (phi - start_angle).rem_euclid(TAU) <= sweep
@@ -207,7 +353,7 @@ fn swept_box(
             (start_angle - phi).rem_euclid(TAU) <= -sweep
         };
         if passed {
-            let (a, b) = (center.0 + radius * phi.cos(), center.1 + radius * phi.sin());
+            let (a, b) = (center.0 + radius * cos, center.1 + radius * sin);
             lo.set(ia, lo.get(ia).min(a));
             hi.set(ia, hi.get(ia).max(a));
             lo.set(ib, lo.get(ib).min(b));

@@ -75,6 +75,7 @@ impl Interpreter<'_> {
             ret: next,
             runs_left: runs,
             started: seq.is_some(),
+            returns_with: "M99",
         });
         Ok(Step::Jump(start))
     }
@@ -113,6 +114,104 @@ impl Interpreter<'_> {
                 .ok_or_else(|| alarms::sequence_not_found(span, n))?,
             None => frame.ret,
         };
+        Ok(Step::Jump(to))
+    }
+}
+
+/// The lathe's program flow (seed 003): G20 L calls the blocks from `N L`
+/// as a subroutine until G24; G25 L jumps to `N L`; G26 L Q repeats the
+/// blocks from `N L` up to the G26 block so that they run Q times in all
+/// ("the number of cycles depends on the value of Q"). Like M98/M99, every
+/// call and jump counts against `limits.max_jumps`.
+impl Interpreter<'_> {
+    /// The `N` number of an L word, found in the current program.
+    fn label(&mut self, w: &Words<'_>, cmd: Span) -> Result<Cursor, Diagnostic> {
+        let l = w
+            .get(b'L')
+            .ok_or_else(|| alarms::needs_axes(cmd, "this code (L sequence number)"))?;
+        let n = whole(&l, b'L', 1.0, 99_999_999.0, "L is a sequence number")?;
+        let lex = self.dialect.lex;
+        let frame = self.flow().frame();
+        self.flow()
+            .find_sequence(frame.source, frame.start, n, &lex)
+            .ok_or_else(|| alarms::sequence_not_found(l.span, n))
+    }
+
+    /// G20 L: call `N L` of this program until G24.
+    pub(crate) fn sub_call(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        next: Cursor,
+    ) -> Result<Step, Diagnostic> {
+        let start = self.label(w, cmd)?;
+        let depth = self.flow().frames.len() as u64;
+        if depth > u64::from(self.machine.limits.max_call_depth) {
+            return Err(alarms::nesting_too_deep(
+                cmd,
+                self.machine.limits.max_call_depth,
+            ));
+        }
+        self.count_jump(cmd)?;
+        let source = self.flow().frame().source;
+        self.flow().frames.push(Frame {
+            source,
+            start,
+            ret: next,
+            runs_left: 1,
+            started: true,
+            returns_with: "G24",
+        });
+        Ok(Step::Jump(start))
+    }
+
+    /// G24: back after the G20 that called.
+    pub(crate) fn sub_return(&mut self, cmd: Span) -> Result<Step, Diagnostic> {
+        if self.flow().frames.len() < 2 {
+            return Err(alarms::return_without_call(cmd));
+        }
+        self.count_jump(cmd)?;
+        let frame = self.flow().frames.pop().map(|f| f.ret).unwrap_or_default();
+        Ok(Step::Jump(frame))
+    }
+
+    /// G25 L: continue at `N L`.
+    pub(crate) fn jump(&mut self, w: &Words<'_>, cmd: Span) -> Result<Step, Diagnostic> {
+        let to = self.label(w, cmd)?;
+        self.count_jump(cmd)?;
+        Ok(Step::Jump(to))
+    }
+
+    /// G26 L Q: back to `N L` until the body has run Q times.
+    pub(crate) fn loop_back(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        here: Cursor,
+    ) -> Result<Step, Diagnostic> {
+        let q = w
+            .get(b'Q')
+            .ok_or_else(|| alarms::needs_axes(cmd, "G26 (Q repeats)"))?;
+        let runs = whole(
+            &q,
+            b'Q',
+            1.0,
+            99_999_999.0,
+            "Q is how many times the loop body runs",
+        )?;
+        let to = self.label(w, cmd)?;
+        let key = (self.flow().frame().source, here.offset, here.col);
+        let left = self.flow().loops.get(&key).copied().unwrap_or(runs - 1);
+        if left == 0 {
+            self.flow().loops.remove(&key);
+            return Ok(Step::Next);
+        }
+        self.count_jump(cmd)?;
+        let loops = &mut self.flow().loops;
+        if loops.len() >= 4096 && !loops.contains_key(&key) {
+            loops.clear();
+        }
+        loops.insert(key, left - 1);
         Ok(Step::Jump(to))
     }
 }

@@ -8,7 +8,7 @@
 
 use crate::alarms;
 use crate::events::Pos;
-use crate::interpreter::Interpreter;
+use crate::interpreter::{AxisWord, Interpreter};
 use crate::machine::DecimalInput;
 use crate::words::Words;
 use vcnc_syntax::{Diagnostic, Word};
@@ -27,7 +27,9 @@ impl Interpreter<'_> {
     }
 
     fn whole_units(&self, w: &Word) -> bool {
-        w.point || self.machine.params.decimal_input == DecimalInput::Calculator
+        w.point
+            || self.dialect.whole_unit_integers
+            || self.machine.params.decimal_input == DecimalInput::Calculator
     }
 
     /// A length word in mm.
@@ -41,16 +43,39 @@ impl Interpreter<'_> {
         if inch { v * MM_PER_INCH } else { v }
     }
 
-    /// The value of an axis word: mm for linear axes, degrees for rotary.
-    pub(crate) fn axis_value(&self, letter: u8, w: &Word) -> f64 {
-        if matches!(letter, b'A' | b'B' | b'C') {
+    /// An X-direction length that follows diameter programming (lathe G23
+    /// halves it): axis words, and the cycles' X depths.
+    pub(crate) fn x_length_mm(&self, w: &Word) -> f64 {
+        let v = self.length_mm(w);
+        if self.state.modal.diameter {
+            v / 2.0
+        } else {
+            v
+        }
+    }
+
+    /// The value of an axis word: mm (a radius for a diameter axis), or
+    /// degrees for a rotary axis.
+    #[inline]
+    pub(crate) fn axis_mm(&self, a: &AxisWord, w: &Word) -> f64 {
+        if a.rotary {
             if self.whole_units(w) {
                 w.value
             } else {
                 w.value * 0.001
             }
+        } else if a.diameter {
+            self.x_length_mm(w)
         } else {
             self.length_mm(w)
+        }
+    }
+
+    /// The value of the axis word of machine axis `i`.
+    pub(crate) fn axis_value(&self, i: usize, w: &Word) -> f64 {
+        match self.axis_words.get(i) {
+            Some(a) => self.axis_mm(a, w),
+            None => self.length_mm(w),
         }
     }
 
@@ -64,22 +89,28 @@ impl Interpreter<'_> {
     }
 
     /// Target of the block's axis words in machine coordinates, absolute or
-    /// incremental from the current position; axes not named stay put.
-    /// The mask says which axes were named.
+    /// incremental from the current position (an incremental word such as U
+    /// always counts from here); axes not named stay put. The mask says
+    /// which axes were named.
     pub(crate) fn target(&self, w: &Words<'_>, incremental: bool) -> (Pos, u32) {
         let mut to = self.state.pos;
         let mut named = 0;
-        for (i, axis) in self.machine.axes.iter().enumerate() {
-            if let Some(word) = w.get(axis.letter) {
-                let v = self.axis_value(axis.letter, &word);
-                let machine = if incremental {
-                    self.state.pos.get(i) + v
-                } else {
-                    v + self.state.origin.get(i)
-                };
-                to.set(i, machine);
-                named |= 1 << i;
-            }
+        for (i, a) in self.axis_words.iter().enumerate() {
+            let (word, inc) = match w.get(a.letter) {
+                Some(word) => (word, incremental),
+                None => match a.inc.and_then(|l| w.get(l)) {
+                    Some(word) => (word, true),
+                    None => continue,
+                },
+            };
+            let v = self.axis_mm(a, &word);
+            let machine = if inc {
+                self.state.pos.get(i) + v
+            } else {
+                v + self.state.origin.get(i)
+            };
+            to.set(i, machine);
+            named |= 1 << i;
         }
         (to, named)
     }

@@ -20,10 +20,7 @@ impl Interpreter<'_> {
             .axes
             .iter()
             .enumerate()
-            .filter_map(|(i, a)| {
-                w.get(a.letter)
-                    .map(|word| (i, self.axis_value(a.letter, &word)))
-            })
+            .filter_map(|(i, a)| w.get(a.letter).map(|word| (i, self.axis_value(i, &word))))
             .collect();
         words.into_iter()
     }

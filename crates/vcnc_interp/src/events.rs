@@ -228,6 +228,15 @@ pub enum Event {
         /// New mode.
         mode: PathMode,
     },
+    /// High-speed high-precision mode (Syntec G05 P…), for the planner.
+    HighSpeed {
+        /// Source.
+        loc: Loc,
+        /// On (P1–P5, P10000) or off (P0).
+        on: bool,
+        /// The P parameter set.
+        p: u32,
+    },
     /// Program stop (M00, M01).
     Stop {
         /// Source.

@@ -14,20 +14,26 @@
 //! anything.
 
 use crate::alarms;
-use crate::dialect::{GOp, Group, MGroup, MOp, bit};
+use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, bit};
 use crate::events::{Event, PathMode, Plane, SpindleDir};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use crate::sink::Sink;
 use crate::state::Motion;
 use crate::words::{ALWAYS, Words};
-use vcnc_syntax::{Cursor, Diagnostic, Span};
+use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
-    /// Axis words, F, N and at most a motion code: the common block of a
-    /// CAM program. Every such letter is always allowed.
+    /// Axis and arc words, F, N and at most a motion code: the common block
+    /// of a CAM program, which does nothing but move.
     pub(crate) fn is_plain_motion(&self, axis_mask: u32) -> bool {
-        !self.has_codes && self.present() & !(axis_mask | bit(b'F') | bit(b'N')) == 0
+        !self.has_codes && self.present() & !(axis_mask | PLAIN_EXTRA) == 0
+    }
+
+    /// Whether the block carries words beyond axes, F and N (arc words),
+    /// which then have to be checked against the motion.
+    fn has_arc_words(&self, axis_mask: u32) -> bool {
+        self.ext_present != 0 || self.present() & !(axis_mask | bit(b'F') | bit(b'N')) != 0
     }
 }
 
@@ -40,6 +46,10 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         if let Some(motion) = w.group(Group::Motion) {
             self.apply_modal(motion.def.op);
+        }
+        if w.has_arc_words(self.axis_mask) {
+            let (allowed, ext) = self.allowed_letters(w);
+            w.check_used(allowed, ext)?;
         }
         self.feed_word(w)?;
         self.modal_motion(w, sink)
@@ -57,7 +67,8 @@ impl Interpreter<'_> {
         for at in w.modal.iter().flatten() {
             self.apply_modal(at.def.op);
         }
-        w.check_used(self.allowed_letters(w))?;
+        let (allowed, ext) = self.allowed_letters(w);
+        w.check_used(allowed, ext)?;
         if self.state.modal.path != path_before {
             let mode = self.state.modal.path;
             self.emit(sink, |loc| Event::PathMode { loc, mode });
@@ -90,6 +101,10 @@ impl Interpreter<'_> {
                 GOp::ArcCw => m.motion = Motion::ArcCw,
                 GOp::ArcCcw => m.motion = Motion::ArcCcw,
                 GOp::Thread => m.motion = Motion::Thread,
+                GOp::ThreadInch => m.motion = Motion::ThreadInch,
+                GOp::ThreePointArc => m.motion = Motion::ThreePoint,
+                GOp::RadiusMode => m.diameter = false,
+                GOp::DiameterMode => m.diameter = true,
                 GOp::PlaneXy => m.plane = Plane::Xy,
                 GOp::PlaneZx => m.plane = Plane::Zx,
                 GOp::PlaneYz => m.plane = Plane::Yz,
@@ -117,30 +132,38 @@ impl Interpreter<'_> {
         }
     }
 
-    /// Letters this block may carry, given its codes and the modal motion.
-    fn allowed_letters(&self, w: &Words<'_>) -> u32 {
+    /// Letters and extended addresses this block may carry, given its
+    /// codes and the modal motion.
+    fn allowed_letters(&self, w: &Words<'_>) -> (u32, u8) {
         let mut allowed = ALWAYS | w.code_letters();
-        match w.axis_user {
-            Some(user) if user.def.op == GOp::Dwell => {}
+        let mut ext = 0u8;
+        match w.axis_user.map(|u| u.def.axes) {
+            Some(AxisWords::Refuse) => {}
             Some(_) => allowed |= self.axis_mask,
             None => {
                 allowed |= self.axis_mask;
-                if matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw) {
-                    allowed |= bit(b'R')
-                        | match self.state.modal.plane {
-                            Plane::Xy => bit(b'I') | bit(b'J'),
-                            Plane::Zx => bit(b'I') | bit(b'K'),
-                            Plane::Yz => bit(b'J') | bit(b'K'),
-                        };
+                match self.state.modal.motion {
+                    Motion::ArcCw | Motion::ArcCcw => {
+                        allowed |= bit(b'R')
+                            | self.dialect.arc_letters
+                            | plane_offsets(self.state.modal.plane);
+                        ext |= ext_bit(Addr::CR);
+                    }
+                    Motion::ThreePoint => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
+                    _ => {}
                 }
             }
         }
-        allowed
+        (allowed, ext)
     }
 
-    /// Step 2a: F (a thread lead under G33, kept apart from the feed).
+    /// Step 2a: F — a feed, a thread lead under G32/G33, or a code's own
+    /// value when the code reads F (lathe G04 F seconds, G31 F percent).
     fn feed_word(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let Some(f) = w.get(b'F') else { return Ok(()) };
+        if w.code_letters() & bit(b'F') != 0 {
+            return Ok(());
+        }
         if f.value < 0.0 {
             return Err(alarms::value_out_of_range(
                 f.span,
@@ -149,15 +172,19 @@ impl Interpreter<'_> {
                 "a feed is not negative",
             ));
         }
-        if self.state.modal.motion == Motion::Thread && w.axis_user.is_none() {
-            self.state.thread_lead_mm = Some(f.value * self.unit_mm());
-        } else {
-            self.state.feed = f.value;
+        match self.state.modal.motion {
+            Motion::Thread if w.axis_user.is_none() => {
+                self.state.thread_lead_mm = Some(f.value * self.unit_mm())
+            }
+            Motion::ThreadInch if w.axis_user.is_none() => {
+                self.state.thread_lead_mm = Some(f.value * crate::convert::MM_PER_INCH);
+            }
+            _ => self.state.feed = f.value,
         }
         Ok(())
     }
 
-    /// Steps 2b–3: T selects, M06 changes.
+    /// Step 2b: T selects, M06 changes.
     fn tool_words<S: Sink>(&mut self, w: &Words<'_>, sink: &mut S) -> Result<(), Diagnostic> {
         if let Some(t) = w.get(b'T') {
             let n = crate::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
@@ -253,7 +280,7 @@ impl Interpreter<'_> {
     /// Step 8: stops, ends, calls and returns (already resolved).
     fn program_flow<S: Sink>(&mut self, w: &Words<'_>, flow: Option<Step>, sink: &mut S) -> Step {
         let Some(m) = w.m_of(MGroup::Flow) else {
-            return Step::Next;
+            return flow.unwrap_or(Step::Next);
         };
         match m.def.op {
             MOp::Stop => self.emit(sink, |loc| Event::Stop { loc, code: "M00" }),
@@ -278,6 +305,15 @@ impl Interpreter<'_> {
         next: Cursor,
         store: &mut dyn ProgramStore,
     ) -> Result<Option<Step>, Diagnostic> {
+        if let Some(g) = w.axis_user {
+            match g.def.op {
+                GOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
+                GOp::SubReturn => return self.sub_return(g.span).map(Some),
+                GOp::Jump => return self.jump(w, g.span).map(Some),
+                GOp::Loop => return self.loop_back(w, g.span, here).map(Some),
+                _ => {}
+            }
+        }
         let Some(m) = w.m_of(MGroup::Flow) else {
             return Ok(None);
         };
@@ -297,4 +333,22 @@ impl Interpreter<'_> {
         let loc = self.flow().loc.clone();
         sink.event(&make(loc));
     }
+}
+
+/// Letters a plain motion block may carry besides the axes.
+const PLAIN_EXTRA: u32 =
+    bit(b'F') | bit(b'N') | bit(b'R') | bit(b'I') | bit(b'J') | bit(b'K') | bit(b'D');
+
+/// The centre-offset letters of a plane.
+fn plane_offsets(plane: Plane) -> u32 {
+    match plane {
+        Plane::Xy => bit(b'I') | bit(b'J'),
+        Plane::Zx => bit(b'I') | bit(b'K'),
+        Plane::Yz => bit(b'J') | bit(b'K'),
+    }
+}
+
+/// The bit of an extended address in `Words::ext_present`.
+fn ext_bit(a: Addr) -> u8 {
+    a.extended_index().map_or(0, |i| 1 << i)
 }

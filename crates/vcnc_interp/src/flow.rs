@@ -66,6 +66,8 @@ pub(crate) struct Frame {
     /// Whether a block has executed in this run (an `O` header or `%` after
     /// that ends the program).
     pub started: bool,
+    /// The code that ends this level: `"M99"`, or `"G24"` for a lathe G20.
+    pub returns_with: &'static str,
 }
 
 pub(crate) struct Flow {
@@ -76,6 +78,8 @@ pub(crate) struct Flow {
     scratch: Block,
     /// Calls, returns to a sequence and repeats so far.
     pub jumps: u64,
+    /// Lathe G26 loops in progress: jumps left, by the G26 block's place.
+    pub loops: HashMap<(usize, u64, u32), u32>,
     /// Location of the block being executed.
     pub loc: Loc,
 }
@@ -95,11 +99,13 @@ impl Flow {
                 ret: Cursor::default(),
                 runs_left: 1,
                 started: false,
+                returns_with: "M99",
             }],
             programs: HashMap::new(),
             sequences: HashMap::new(),
             scratch: Block::default(),
             jumps: 0,
+            loops: HashMap::new(),
             loc: Loc::default(),
         }
     }
@@ -111,6 +117,7 @@ impl Flow {
             ret: Cursor::default(),
             runs_left: 1,
             started: false,
+            returns_with: "M99",
         })
     }
 

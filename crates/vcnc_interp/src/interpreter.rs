@@ -26,6 +26,38 @@ use vcnc_syntax::{
     lex_block,
 };
 
+/// How one machine axis is addressed in the dialect.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AxisWord {
+    /// Its letter (absolute under G90).
+    pub letter: u8,
+    /// Its always-incremental word (U for X on a lathe).
+    pub inc: Option<u8>,
+    /// Programmed in diameters under G23.
+    pub diameter: bool,
+    /// A rotary axis (degrees).
+    pub rotary: bool,
+}
+
+impl AxisWord {
+    fn of(letter: u8, dialect: &Dialect) -> AxisWord {
+        AxisWord {
+            letter,
+            inc: dialect
+                .incremental_words
+                .iter()
+                .find(|(_, a)| *a == letter)
+                .map(|(w, _)| *w),
+            diameter: dialect.diameter_axis == Some(letter),
+            rotary: matches!(letter, b'A' | b'B' | b'C'),
+        }
+    }
+
+    fn mask(&self) -> u32 {
+        crate::dialect::bit(self.letter) | self.inc.map_or(0, crate::dialect::bit)
+    }
+}
+
 /// Operator switches.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Options {
@@ -61,7 +93,10 @@ pub struct Interpreter<'a> {
     pub(crate) opts: Options,
     pub(crate) state: State,
     pub(crate) flow: Flow,
+    /// Letters that address axes (axis letters and incremental words).
     pub(crate) axis_mask: u32,
+    /// How each machine axis is written, in axis order.
+    pub(crate) axis_words: Vec<AxisWord>,
     executed: u64,
     /// Events of the block being executed, sent when it succeeds.
     pending: crate::sink::VecSink,
@@ -70,13 +105,19 @@ pub struct Interpreter<'a> {
 impl<'a> Interpreter<'a> {
     /// An interpreter at power-on state.
     pub fn new(machine: &'a Machine, dialect: &'a Dialect, opts: Options) -> Interpreter<'a> {
+        let axis_words: Vec<AxisWord> = machine
+            .axes
+            .iter()
+            .map(|a| AxisWord::of(a.letter, dialect))
+            .collect();
         Interpreter {
             machine,
             dialect,
             opts,
-            state: State::power_on(machine),
+            state: State::power_on(machine, dialect),
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
-            axis_mask: machine.axis_letter_mask(),
+            axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask()),
+            axis_words,
             executed: 0,
             pending: crate::sink::VecSink::default(),
         }
@@ -258,7 +299,18 @@ impl<'a> Interpreter<'a> {
             ));
         }
         let mut words = Words::new(block);
-        words.fill(self.dialect, self.machine.params.same_group_in_block)?;
+        words.fill(
+            self.dialect,
+            self.machine.params.same_group_in_block,
+            self.axis_mask,
+        )?;
+        for a in self.axis_words.iter().filter(|a| a.inc.is_some()) {
+            if let (Some(_), Some(inc)) = (words.get(a.letter), a.inc.and_then(|l| words.get(l))) {
+                return Err(alarms::absolute_and_incremental(
+                    inc.span, a.letter, inc.addr.0,
+                ));
+            }
+        }
         if words.is_plain_motion(self.axis_mask) {
             // Hot path: only axis words, F and a motion code. Every check
             // happens before the one event, so only modal and F need saving.
@@ -329,7 +381,8 @@ impl<'a> Interpreter<'a> {
     /// End of the main program (an `end` event) or of a subprogram (E406).
     fn finish_program<S: Sink>(&mut self, span: Span, sink: &mut S) -> Result<Step, Diagnostic> {
         if self.flow().frames.len() > 1 {
-            return Err(alarms::sub_without_m99(span));
+            let code = self.flow().frame().returns_with;
+            return Err(alarms::sub_without_return(span, code));
         }
         let loc = self.flow().loc.clone();
         sink.event(&Event::End { loc, code: "EOF" });

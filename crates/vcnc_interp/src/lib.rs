@@ -23,6 +23,7 @@ pub mod arc;
 mod calls;
 mod convert;
 mod coords;
+mod cycles;
 pub mod dialect;
 pub mod events;
 mod execute;
@@ -33,6 +34,7 @@ mod motion;
 mod refs;
 mod sink;
 pub mod state;
+mod turning;
 mod words;
 
 pub use dialect::Dialect;

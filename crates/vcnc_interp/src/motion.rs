@@ -31,6 +31,7 @@ impl Interpreter<'_> {
             .map_or(w.first, |a| a.span);
         match motion {
             Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw, sink),
+            Motion::ThreePoint => self.three_point_arc(w, cmd, sink),
             _ if !w.any(self.axis_mask) => Ok(()),
             Motion::Rapid => {
                 let (to, _) = self.target(w, self.state.modal.incremental);
@@ -50,7 +51,7 @@ impl Interpreter<'_> {
                 self.state.pos = to;
                 Ok(())
             }
-            Motion::Thread => self.thread(w, cmd, sink),
+            Motion::Thread | Motion::ThreadInch => self.thread(w, cmd, sink),
         }
     }
 
@@ -61,7 +62,7 @@ impl Interpreter<'_> {
 
     /// The current feed, or E301 when it is zero.
     pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
-        let f = self.state.feed * self.unit_mm();
+        let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
         if f <= 0.0 {
             return Err(alarms::zero_feed(cmd));
         }
@@ -83,7 +84,8 @@ impl Interpreter<'_> {
         self.check_segment(self.state.pos, to, w, cmd)?;
         let exact_stop = self.exact_stop(w);
         if self.machine.params.g00_mode == 1 {
-            for corner in self.dog_leg(self.state.pos, to) {
+            let (corners, count) = self.dog_leg(self.state.pos, to);
+            for &corner in &corners[..count] {
                 self.emit(sink, |loc| Event::Rapid {
                     loc,
                     to: corner,
@@ -109,19 +111,25 @@ impl Interpreter<'_> {
     ///     │      ╱                 after X arrives only Y moves on.
     ///     └──╱─────▶ X
     /// ```
-    fn dog_leg(&self, from: Pos, to: Pos) -> Vec<Pos> {
-        let n = self.machine.axes.len();
+    fn dog_leg(&self, from: Pos, to: Pos) -> ([Pos; MAX_AXES], usize) {
+        let n = self.machine.axes.len().min(MAX_AXES);
         let mut times = [0.0f64; MAX_AXES];
-        for (i, axis) in self.machine.axes.iter().enumerate() {
+        for (i, axis) in self.machine.axes.iter().enumerate().take(n) {
             times[i] = (to.get(i) - from.get(i)).abs() / axis.rapid_mm_per_min;
         }
-        let mut order: Vec<f64> = times[..n].iter().copied().filter(|t| *t > 0.0).collect();
-        order.sort_by(f64::total_cmp);
-        order.dedup();
-        let mut corners = Vec::with_capacity(order.len().max(1));
-        for t in order {
+        // Distinct arrival times, in order; no allocation on this path.
+        let mut order = times;
+        order[..n].sort_by(f64::total_cmp);
+        let mut corners = [to; MAX_AXES];
+        let mut count = 0;
+        let mut last = 0.0;
+        for &t in &order[..n] {
+            if t <= last {
+                continue;
+            }
+            last = t;
             let mut p = from;
-            for (i, axis) in self.machine.axes.iter().enumerate() {
+            for (i, axis) in self.machine.axes.iter().enumerate().take(n) {
                 let d = to.get(i) - from.get(i);
                 let moved = (t * axis.rapid_mm_per_min).min(d.abs());
                 p.set(
@@ -133,12 +141,10 @@ impl Interpreter<'_> {
                     },
                 );
             }
-            corners.push(p);
+            corners[count] = p;
+            count += 1;
         }
-        if corners.is_empty() {
-            corners.push(to);
-        }
-        corners
+        (corners, count.max(1))
     }
 
     /// G33: a straight move whose feed is locked to the spindle.

@@ -45,6 +45,23 @@ impl Interpreter<'_> {
             GOp::RefFrom => self.return_from_reference(w, cmd, sink),
             GOp::MachineCoords => self.machine_move(w, cmd, sink),
             GOp::Skip => self.skip(w, cmd, sink),
+            GOp::DwellSeconds => self.dwell_seconds(w, sink),
+            GOp::HighSpeed => self.high_speed(w, cmd, sink),
+            GOp::FeedUp => self.feed_step(1, cmd),
+            GOp::FeedDown => self.feed_step(-1, cmd),
+            GOp::OverrideCancel => {
+                self.set_magnification(100.0);
+                Ok(())
+            }
+            GOp::OverrideSet => self.magnification(w, cmd),
+            GOp::RefXThenZ => self.reference_x_then_z(w, cmd, sink),
+            GOp::ProgramZero => self.program_zero(w, cmd, sink),
+            GOp::StartPoint => {
+                let to = self.state.start_pos;
+                self.rapid_to(to, w, cmd, sink)
+            }
+            GOp::CylinderCycle => self.cylinder_cycle(w, cmd, sink),
+            GOp::ThreadCycle => self.thread_cycle(w, cmd, sink),
             _ => Ok(()),
         }
     }
@@ -74,6 +91,34 @@ impl Interpreter<'_> {
             (None, None) => 0.0,
         };
         self.emit(sink, |loc| Event::Dwell { loc, seconds });
+        Ok(())
+    }
+
+    /// Syntec G05 P10000 / P1–P5 (on) and P0 (off), manual 1.2.6: recorded
+    /// for the planner; the path itself is unchanged here.
+    fn high_speed<S: Sink>(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_axes(cmd, "G05 (P0, P1-P5 or P10000)"))?;
+        let n = whole(&p, b'P', 0.0, 10_000.0, "G05 P is 0, 1-5 or 10000")?;
+        if !matches!(n, 0..=5 | 10_000) {
+            return Err(alarms::value_out_of_range(
+                p.span,
+                b'P',
+                p.value,
+                "G05 P is 0, 1-5 or 10000",
+            ));
+        }
+        self.emit(sink, |loc| Event::HighSpeed {
+            loc,
+            on: n != 0,
+            p: n,
+        });
         Ok(())
     }
 
@@ -151,7 +196,7 @@ impl Interpreter<'_> {
             };
             let mid = self.state.intermediate[i]
                 .ok_or_else(|| alarms::g29_without_g28(cmd, axis.letter))?;
-            let v = self.axis_value(axis.letter, &word);
+            let v = self.axis_value(i, &word);
             let prog = if self.state.modal.incremental {
                 mid + v
             } else {
@@ -195,7 +240,7 @@ impl Interpreter<'_> {
         let mut named = 0;
         for (i, axis) in self.machine.axes.iter().enumerate() {
             if let Some(word) = w.get(axis.letter) {
-                to.set(i, self.axis_value(axis.letter, &word));
+                to.set(i, self.axis_value(i, &word));
                 named |= 1 << i;
             }
         }

@@ -12,6 +12,7 @@
 //! value so that a block updates a copy and commits it only when the whole
 //! block has succeeded.
 
+use crate::dialect::Dialect;
 use crate::events::{PathMode, Plane, Pos, SpindleDir};
 use crate::machine::{Machine, WORK_SYSTEMS};
 
@@ -34,6 +35,8 @@ pub struct Modal {
     pub wcs: usize,
     /// Group 15.
     pub path: PathMode,
+    /// Lathe G23 (diameter programming) when true, G22 when false.
+    pub diameter: bool,
 }
 
 /// The modal motion (group 01).
@@ -47,22 +50,28 @@ pub enum Motion {
     ArcCw,
     /// G03.
     ArcCcw,
-    /// G33.
+    /// G33 (lead in program units).
     Thread,
+    /// Lathe G32 (lead in inches).
+    ThreadInch,
+    /// Lathe G05 (arc through a middle point).
+    ThreePoint,
 }
 
-impl Default for Modal {
-    /// Power-on state (Fanuc 0i defaults; Syntec manual 1.2.12 for G17).
-    fn default() -> Modal {
+impl Modal {
+    /// Power-on state: Fanuc 0i defaults (Syntec manual 1.2.12 for G17),
+    /// with the plane and diameter mode of the dialect.
+    pub fn power_on(dialect: &Dialect) -> Modal {
         Modal {
             motion: Motion::Rapid,
-            plane: Plane::Xy,
+            plane: dialect.plane,
             incremental: false,
             per_rev: false,
             inch: false,
             css: false,
             wcs: 0,
             path: PathMode::Cutting,
+            diameter: dialect.diameter_at_power_on,
         }
     }
 }
@@ -107,18 +116,26 @@ pub struct State {
     pub thread_lead_mm: Option<f64>,
     /// Where the last G31 stopped, machine coordinates.
     pub skip_pos: Option<Pos>,
+    /// Where the program started (lathe G76 returns there).
+    pub start_pos: Pos,
+    /// Lathe G08/G09 steps of ±10 % feed.
+    pub feed_steps: i32,
+    /// Lathe G31 F: feed magnification in percent (G30 resets to 100).
+    pub magnification_pct: f64,
+    /// `(1 + 0.1·feed_steps) · magnification_pct / 100`, kept current.
+    pub feed_factor: f64,
 }
 
 impl State {
     /// Power-on state of `machine`.
-    pub fn power_on(machine: &Machine) -> State {
+    pub fn power_on(machine: &Machine, dialect: &Dialect) -> State {
         let offsets = Offsets {
             work: machine.work_offsets,
             local: Pos::default(),
             shift: Pos::default(),
         };
         let mut s = State {
-            modal: Modal::default(),
+            modal: Modal::power_on(dialect),
             pos: machine.start,
             offsets,
             origin: Pos::default(),
@@ -131,6 +148,10 @@ impl State {
             intermediate: [None; crate::events::MAX_AXES],
             thread_lead_mm: None,
             skip_pos: None,
+            start_pos: machine.start,
+            feed_steps: 0,
+            magnification_pct: 100.0,
+            feed_factor: 1.0,
         };
         s.refresh_origin();
         s

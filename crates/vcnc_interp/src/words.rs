@@ -7,9 +7,11 @@
 //! machine untouched. Nothing is allocated: the table is a few fixed arrays.
 
 use crate::alarms;
-use crate::dialect::{Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit};
+use crate::dialect::{
+    AxisWords, Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit,
+};
 use crate::machine::SameGroup;
-use vcnc_syntax::{Block, Diagnostic, Span, Word};
+use vcnc_syntax::{Addr, Block, Diagnostic, Span, Word};
 
 /// Most one-shot (group 00) codes in one block.
 const MAX_ONCE: usize = 4;
@@ -31,6 +33,10 @@ pub struct Words<'b> {
     /// Index + 1 of each letter's word in the block, 0 when absent.
     letters: [u8; 26],
     present: u32,
+    /// Index + 1 of each extended address (`CR=`, `IX`, `IZ`), 0 when absent.
+    ext: [u8; 4],
+    /// Extended addresses present (bit = [`Addr::extended_index`]).
+    pub ext_present: u8,
     /// Modal-group codes, by [`Group::slot`].
     pub modal: [Option<At<GDef>>; MODAL_GROUPS],
     once: [Option<At<GDef>>; MAX_ONCE],
@@ -54,6 +60,8 @@ impl<'b> Words<'b> {
             block,
             letters: [0; 26],
             present: 0,
+            ext: [0; 4],
+            ext_present: 0,
             modal: [None; MODAL_GROUPS],
             once: [None; MAX_ONCE],
             axis_user: None,
@@ -65,17 +73,73 @@ impl<'b> Words<'b> {
 
     /// Collects and checks the block's words.
     #[inline]
-    pub fn fill(&mut self, dialect: &Dialect, same_group: SameGroup) -> Result<(), Diagnostic> {
+    pub fn fill(
+        &mut self,
+        dialect: &Dialect,
+        same_group: SameGroup,
+        axis_mask: u32,
+    ) -> Result<(), Diagnostic> {
         let block = self.block;
         for (k, word) in block.words().iter().enumerate() {
             match word.addr.as_letter() {
                 Some(b'G') => self.add_g(word, dialect, same_group)?,
                 Some(b'M') => self.add_m(word, dialect)?,
                 Some(l) => self.add_letter(l, k, word)?,
-                None => return Err(alarms::address_not_in_dialect(word.span, dialect.name)),
+                None => self.add_extended(k, word, dialect)?,
             }
         }
+        if self.has_codes {
+            self.check_alone(axis_mask)?;
+        }
         Ok(())
+    }
+
+    fn add_extended(&mut self, k: usize, word: &Word, dialect: &Dialect) -> Result<(), Diagnostic> {
+        let i = word
+            .addr
+            .extended_index()
+            .ok_or_else(|| alarms::address_not_in_dialect(word.span, dialect.name))?;
+        if self.ext_present & (1 << i) != 0 {
+            return Err(alarms::duplicate_extended(word.span, &word.addr.name()));
+        }
+        self.ext_present |= 1 << i;
+        self.ext[i] = u8::try_from(k + 1).unwrap_or(0);
+        Ok(())
+    }
+
+    /// E209 when a code that must stand alone shares its block.
+    fn check_alone(&self, axis_mask: u32) -> Result<(), Diagnostic> {
+        let Some(code) = self
+            .once
+            .iter()
+            .chain(self.modal.iter())
+            .flatten()
+            .find(|a| a.def.alone)
+        else {
+            return Ok(());
+        };
+        let axes = if code.def.axes == AxisWords::Claim {
+            axis_mask
+        } else {
+            0
+        };
+        let own = code.def.letters | bit(b'N') | axes;
+        let stray = self.block.words().iter().find(|word| {
+            word.span != code.span && word.addr.as_letter().is_none_or(|l| own & bit(l) == 0)
+        });
+        match stray {
+            Some(word) => Err(alarms::not_alone(word.span, code.span)),
+            None => Ok(()),
+        }
+    }
+
+    /// The word of an extended address, if present.
+    pub fn get_ext(&self, addr: Addr) -> Option<Word> {
+        let k = *self.ext.get(addr.extended_index()?)?;
+        self.block
+            .words()
+            .get(usize::from(k).checked_sub(1)?)
+            .copied()
     }
 
     fn add_g(
@@ -84,14 +148,18 @@ impl<'b> Words<'b> {
         dialect: &Dialect,
         same_group: SameGroup,
     ) -> Result<(), Diagnostic> {
-        let def = dialect.g(word.value).ok_or_else(|| {
-            alarms::unknown_g(
-                word.span,
-                word.value,
-                dialect.name,
-                dialect.g_elsewhere(word.value),
-            )
-        })?;
+        let def =
+            dialect
+                .g(word.value)
+                .ok_or_else(|| match dialect.unsupported_reason(word.value) {
+                    Some(why) => alarms::unsupported_g(word.span, why),
+                    None => alarms::unknown_g(
+                        word.span,
+                        word.value,
+                        dialect.name,
+                        dialect.g_elsewhere(word.value),
+                    ),
+                })?;
         let at = At {
             def,
             span: word.span,
@@ -105,7 +173,7 @@ impl<'b> Words<'b> {
                 self.modal[slot] = Some(at);
             }
             None => {
-                if def.takes_axes {
+                if def.takes_axes() {
                     if self.axis_user.is_some() {
                         return Err(alarms::axis_conflict(word.span));
                     }
@@ -159,7 +227,21 @@ impl<'b> Words<'b> {
     }
 
     /// Rejects any letter outside `allowed` (bit mask), pointing at the first.
-    pub fn check_used(&self, allowed: u32) -> Result<(), Diagnostic> {
+    pub fn check_used(&self, allowed: u32, allowed_ext: u8) -> Result<(), Diagnostic> {
+        let stray_ext = self.ext_present & !allowed_ext;
+        if stray_ext != 0 {
+            let word = (0..4usize)
+                .filter(|i| stray_ext & (1 << i) != 0)
+                .filter_map(|i| {
+                    self.block
+                        .words()
+                        .get(usize::from(self.ext[i]).checked_sub(1)?)
+                        .copied()
+                })
+                .min_by_key(|w| w.span.start)
+                .unwrap_or_default();
+            return Err(alarms::extended_not_allowed(word.span, &word.addr.name()));
+        }
         let stray = self.present & !allowed;
         if stray == 0 {
             return Ok(());

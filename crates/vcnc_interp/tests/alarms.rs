@@ -103,6 +103,7 @@ fn loc_of(e: &Event) -> Option<&Loc> {
         | Event::Spindle { loc, .. }
         | Event::Coolant { loc, .. }
         | Event::PathMode { loc, .. }
+        | Event::HighSpeed { loc, .. }
         | Event::Stop { loc, .. }
         | Event::End { loc, .. } => Some(loc),
         Event::Alarm(_) => None,

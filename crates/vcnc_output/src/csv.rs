@@ -131,6 +131,7 @@ impl<W: Write> Sink for CsvSink<W> {
             Event::Spindle { loc, .. } => ("spindle", Some(loc)),
             Event::Coolant { loc, .. } => ("coolant", Some(loc)),
             Event::PathMode { loc, .. } => ("path_mode", Some(loc)),
+            Event::HighSpeed { loc, .. } => ("high_speed", Some(loc)),
             Event::Stop { loc, .. } => ("stop", Some(loc)),
             Event::End { loc, .. } => ("end", Some(loc)),
             Event::Alarm(_) => ("alarm", None),
@@ -177,6 +178,7 @@ impl<W: Write> Sink for CsvSink<W> {
             }
             Event::Coolant { on, .. } => self.set("on", on.to_string()),
             Event::PathMode { mode, .. } => self.set("mode", path_mode(*mode).into()),
+            Event::HighSpeed { on, .. } => self.set("on", on.to_string()),
             Event::Stop { code, .. } | Event::End { code, .. } => self.set("code", (*code).into()),
             Event::Alarm(d) => {
                 self.set("line", d.line.to_string());

@@ -142,6 +142,12 @@ impl<W: Write> GcodeSink<W> {
                 format!("(path mode {})", crate::jsonl::path_mode(*mode))
             }
             Event::Stop { code, .. } => (if *code == "M01" { "M1" } else { "M0" }).into(),
+            Event::HighSpeed { on, p, .. } => {
+                format!(
+                    "(G05 P{p}: high-speed mode {})",
+                    if *on { "on" } else { "off" }
+                )
+            }
             Event::End { code, .. } => (if *code == "M30" { "M30" } else { "M2" }).into(),
             Event::Alarm(d) => format!(
                 "(ALARM {} line {}: {})\nM2",

@@ -30,7 +30,7 @@ impl<W: Write> JsonlSink<W> {
         JsonlSink {
             out,
             axes,
-            buf: Vec::with_capacity(512),
+            buf: Vec::with_capacity(FLUSH_BYTES + 1024),
             error: None,
         }
     }
@@ -40,21 +40,28 @@ impl<W: Write> JsonlSink<W> {
         if let Some(e) = self.error.take() {
             return Err(e);
         }
+        self.out.write_all(&self.buf)?;
         self.out.flush()?;
         Ok(self.out)
     }
 }
+
+/// Events are formatted straight into one buffer that goes to the writer
+/// when it holds this much: no second copy through a `BufWriter`.
+const FLUSH_BYTES: usize = 64 * 1024;
 
 impl<W: Write> Sink for JsonlSink<W> {
     fn event(&mut self, event: &Event) {
         if self.error.is_some() {
             return;
         }
-        self.buf.clear();
         write_event(&mut self.buf, &self.axes, event);
         self.buf.push(b'\n');
-        if let Err(e) = self.out.write_all(&self.buf) {
-            self.error = Some(e);
+        if self.buf.len() >= FLUSH_BYTES {
+            if let Err(e) = self.out.write_all(&self.buf) {
+                self.error = Some(e);
+            }
+            self.buf.clear();
         }
     }
 }
@@ -145,6 +152,11 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
         Event::PathMode { loc, mode } => {
             j.head("path_mode", loc);
             j.str("mode", path_mode(*mode));
+        }
+        Event::HighSpeed { loc, on, p } => {
+            j.head("high_speed", loc);
+            j.boolean("on", *on);
+            j.int("p", u64::from(*p));
         }
         Event::Stop { loc, code } => {
             j.head("stop", loc);

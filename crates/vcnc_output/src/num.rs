@@ -14,7 +14,7 @@ pub fn round6(v: f64) -> f64 {
 /// never in exponent notation (ryu would print 1e-6). Larger values go
 /// through ryu.
 pub fn push_f64(out: &mut Vec<u8>, v: f64) {
-    let scaled = (v * 1e6).round();
+    let scaled = round_half_away(v * 1e6);
     if scaled.abs() < 1e15 {
         // |scaled| < 1e15 fits an i64 exactly.
         #[allow(clippy::cast_possible_truncation)]
@@ -59,6 +59,26 @@ impl TrailingZerosDecimal for u64 {
     }
 }
 
+/// `x.round()` without a libm call on the hot path: truncate, then step
+/// away from zero when the dropped fraction is at least a half.
+#[inline]
+fn round_half_away(x: f64) -> f64 {
+    if x.is_nan() || x.abs() >= 4.5e15 {
+        return x.round();
+    }
+    // |x| < 2^52: the truncating cast is exact and in range.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_precision_loss)]
+    let t = x as i64 as f64;
+    let frac = x - t;
+    if frac >= 0.5 {
+        t + 1.0
+    } else if frac <= -0.5 {
+        t - 1.0
+    } else {
+        t
+    }
+}
+
 /// Appends an integer.
 pub fn push_u64(out: &mut Vec<u8>, v: u64) {
     let mut buf = itoa::Buffer::new();
@@ -98,6 +118,24 @@ mod tests {
         out.push(b' ');
         push_f64(&mut out, 2000.0);
         assert_eq!(String::from_utf8(out).unwrap(), "12.345 0.0 2000.0");
+    }
+
+    #[test]
+    fn rounding_matches_the_standard_library() {
+        for x in [
+            0.5,
+            -0.5,
+            1.5,
+            2.4999999999999996,
+            -7.5,
+            1e15,
+            -3e16,
+            0.49999999999999994,
+            f64::NAN,
+        ] {
+            let (a, b) = (round_half_away(x), x.round());
+            assert!(a == b || (a.is_nan() && b.is_nan()), "{x}: {a} vs {b}");
+        }
     }
 
     #[test]

@@ -19,6 +19,28 @@ pub const MAX_WORDS: usize = 48;
 pub struct Addr(pub u8);
 
 impl Addr {
+    /// `CR=`: arc radius (lathe dialect).
+    pub const CR: Addr = Addr(128);
+    /// `IX`: X of an arc's middle point (lathe G05).
+    pub const IX: Addr = Addr(129);
+    /// `IZ`: Z of an arc's middle point (lathe G05).
+    pub const IZ: Addr = Addr(130);
+
+    /// Index 0..4 of an extended address, for per-block tables.
+    pub fn extended_index(self) -> Option<usize> {
+        self.0.checked_sub(128).map(usize::from).filter(|i| *i < 4)
+    }
+
+    /// How the address is written, for messages.
+    pub fn name(self) -> String {
+        match self {
+            Addr::CR => "CR=".into(),
+            Addr::IX => "IX".into(),
+            Addr::IZ => "IZ".into(),
+            Addr(l) => char::from(l).to_string(),
+        }
+    }
+
     /// The address of an uppercase letter.
     pub const fn letter(l: u8) -> Addr {
         Addr(l)

@@ -30,6 +30,7 @@ pub enum Code {
     E206,
     E207,
     E208,
+    E209,
     E301,
     E302,
     E303,
@@ -42,6 +43,8 @@ pub enum Code {
     E310,
     E311,
     E312,
+    E313,
+    E314,
     E401,
     E402,
     E403,
@@ -49,6 +52,7 @@ pub enum Code {
     E405,
     E406,
     E408,
+    E409,
     E501,
     E502,
     E503,
@@ -76,6 +80,7 @@ impl Code {
             E206 => "E206",
             E207 => "E207",
             E208 => "E208",
+            E209 => "E209",
             E301 => "E301",
             E302 => "E302",
             E303 => "E303",
@@ -88,6 +93,8 @@ impl Code {
             E310 => "E310",
             E311 => "E311",
             E312 => "E312",
+            E313 => "E313",
+            E314 => "E314",
             E401 => "E401",
             E402 => "E402",
             E403 => "E403",
@@ -95,6 +102,7 @@ impl Code {
             E405 => "E405",
             E406 => "E406",
             E408 => "E408",
+            E409 => "E409",
             E501 => "E501",
             E502 => "E502",
             E503 => "E503",
@@ -188,6 +196,18 @@ pub fn missing_value(span: Span, letter: char) -> Diagnostic {
         format!("address {letter} has no value"),
         "write a number right after the letter, e.g. G01 or X10.0",
     )
+}
+
+/// E203: an address that only another dialect has.
+pub fn foreign_address(span: Span, text: &str, dialect: &str) -> Diagnostic {
+    let mut d = Diagnostic::new(
+        Code::E203,
+        span,
+        format!("{text} is not an address of this dialect"),
+        "",
+    );
+    d.help = format!("{text} belongs to the {dialect} dialect: run with --dialect {dialect}");
+    d
 }
 
 /// E105: a `(` comment that the line does not close.

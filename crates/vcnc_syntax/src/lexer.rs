@@ -30,6 +30,9 @@ pub struct LexRules {
     /// Multi-character addresses, tried before single letters, longest
     /// first, matched case-insensitively: (`"CR="`, its [`Addr`]).
     pub extended: &'static [(&'static str, Addr)],
+    /// Addresses of other dialects, with the dialect that has them, so that
+    /// `CR=10` under the mill dialects says where `CR=` belongs.
+    pub foreign: &'static [(&'static str, &'static str)],
 }
 
 const FULLWIDTH_SEMICOLON: &[u8] = "；".as_bytes();
@@ -115,7 +118,10 @@ fn lex_word(
     let (addr, value_at) = address(line, at, rules);
     let n = match parse_number(line, value_at) {
         Ok(n) => n,
-        Err(e) => return Err(number_error(line, at, value_at, e)),
+        Err(e) => {
+            return Err(foreign_address(line, at, rules)
+                .unwrap_or_else(|| number_error(line, at, value_at, e)));
+        }
     };
     let word = Word {
         addr,
@@ -127,6 +133,17 @@ fn lex_word(
         return Err(diag::too_many_words(word.span, MAX_WORDS));
     }
     Ok(n.end)
+}
+
+/// An address of another dialect at `at`, as a diagnostic.
+#[cold]
+fn foreign_address(line: &[u8], at: usize, rules: &LexRules) -> Option<Diagnostic> {
+    rules.foreign.iter().find_map(|(text, dialect)| {
+        let t = text.as_bytes();
+        let here = line.get(at..at + t.len())?;
+        here.eq_ignore_ascii_case(t)
+            .then(|| diag::foreign_address(Span::new(at, at + t.len()), text, dialect))
+    })
 }
 
 #[cold]
@@ -186,6 +203,7 @@ mod tests {
         slash_comments: true,
         fullwidth_semicolon: true,
         extended: &[],
+        foreign: &[("CR=", "lathe")],
     };
 
     fn blocks(src: &str) -> Result<Vec<String>, Code> {
@@ -245,5 +263,6 @@ mod tests {
         assert_eq!(blocks("G01 (open"), Err(Code::E105));
         assert_eq!(blocks("X12345678901234567890"), Err(Code::E103));
         assert_eq!(blocks("G01 X1 % "), Err(Code::E101));
+        assert_eq!(blocks("G02 X1 CR=5"), Err(Code::E203));
     }
 }

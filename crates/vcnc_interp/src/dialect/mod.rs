@@ -5,9 +5,15 @@
 //! tables indexed by the code × 10 (`G59.1` → 591), so the interpreter asks
 //! "what is G20 here?" with one array index and never branches on the
 //! dialect's name. Syntec and Fanuc share every row except the unit codes
-//! (G70/G71 against G20/G21); the lathe and EIA profiles will be further row
-//! sets over the same operations.
+//! (G70/G71 against G20/G21) (`mill.rs`); the lathe profile of seed 003
+//! (`lathe.rs`) gives many of the same numbers other operations (G20 is a
+//! subroutine call, G05 a three-point arc, G53 cancels the work offset) and
+//! adds word rules: U/W incremental axes, X in diameters, `CR=`, `IX`/`IZ`.
 
+mod lathe;
+mod mill;
+
+use crate::events::Plane;
 use vcnc_syntax::LexRules;
 
 /// Modal groups (Fanuc numbering in the comments). `NonModal` is group 00.
@@ -31,10 +37,12 @@ pub enum Group {
     Wcs,
     /// 15: path control.
     Path,
+    /// Lathe G22/G23: radius or diameter programming.
+    DiameterMode,
 }
 
 /// Number of modal groups other than `NonModal`.
-pub const MODAL_GROUPS: usize = 8;
+pub const MODAL_GROUPS: usize = 9;
 
 impl Group {
     /// Slot of a modal group in per-block tables (`None` for group 00).
@@ -49,6 +57,7 @@ impl Group {
             Group::SpindleMode => Some(5),
             Group::Wcs => Some(6),
             Group::Path => Some(7),
+            Group::DiameterMode => Some(8),
         }
     }
 }
@@ -88,6 +97,38 @@ pub enum GOp {
     PerRev,
     SurfaceSpeed,
     SpindleRpm,
+    HighSpeed,
+    // Lathe (seed 003).
+    ThreadInch,
+    DwellSeconds,
+    ThreePointArc,
+    FeedUp,
+    FeedDown,
+    SubCall,
+    SubReturn,
+    Jump,
+    Loop,
+    RadiusMode,
+    DiameterMode,
+    OverrideCancel,
+    OverrideSet,
+    RefXThenZ,
+    ProgramZero,
+    StartPoint,
+    CylinderCycle,
+    ThreadCycle,
+}
+
+/// What a one-shot code does with the block's axis words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisWords {
+    /// Nothing: they go to the modal motion.
+    Free,
+    /// They are the code's arguments (G28 X0, G92 X10).
+    Claim,
+    /// The code takes the block; axis words are not allowed except those in
+    /// its `letters` (G04 X2.5).
+    Refuse,
 }
 
 /// What an M code does.
@@ -134,8 +175,61 @@ pub struct GDef {
     pub group: Group,
     /// Letters (bit 0 = 'A') the code reads besides the axes it moves.
     pub letters: u32,
-    /// Whether the code takes the block's axis words for itself.
-    pub takes_axes: bool,
+    /// What it does with the axis words.
+    pub axes: AxisWords,
+    /// Whether it must stand alone in its block (lathe G20, G24, G08 …).
+    pub alone: bool,
+}
+
+impl GDef {
+    /// Whether the code takes the block's axis words (claims or refuses them).
+    pub fn takes_axes(&self) -> bool {
+        self.axes != AxisWords::Free
+    }
+}
+
+/// One G-code row of a dialect table.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GRow {
+    code: u16,
+    def: GDef,
+}
+
+/// A row: G `code` (× 10) is `op` in `group`, reads no extra letters.
+pub(crate) const fn g(code: u16, op: GOp, group: Group) -> GRow {
+    GRow {
+        code,
+        def: GDef {
+            op,
+            group,
+            letters: 0,
+            axes: AxisWords::Free,
+            alone: false,
+        },
+    }
+}
+
+impl GRow {
+    /// Also reads the letters of `mask`.
+    pub(crate) const fn reads(mut self, mask: u32) -> GRow {
+        self.def.letters |= mask;
+        self
+    }
+    /// The axis words are its arguments.
+    pub(crate) const fn claims_axes(mut self) -> GRow {
+        self.def.axes = AxisWords::Claim;
+        self
+    }
+    /// Takes the block; no axis words except its letters.
+    pub(crate) const fn refuses_axes(mut self) -> GRow {
+        self.def.axes = AxisWords::Refuse;
+        self
+    }
+    /// Must stand alone in its block.
+    pub(crate) const fn alone(mut self) -> GRow {
+        self.def.alone = true;
+        self
+    }
 }
 
 /// One M-code row.
@@ -149,14 +243,16 @@ pub struct MDef {
     pub letters: u32,
 }
 
+/// `WorkSystem` index of "no work offset" (lathe G53/G500).
+#[allow(clippy::cast_possible_truncation)] // WORK_SYSTEMS is 15
+pub const WORK_NONE: u8 = crate::machine::WORK_SYSTEMS as u8;
+
 /// Bit of a letter in a letter mask.
 pub const fn bit(l: u8) -> u32 {
     1 << (l - b'A')
 }
 
-const NONE: u32 = 0;
-
-/// A dialect profile.
+/// A dialect profile: code tables plus the word rules that differ.
 pub struct Dialect {
     /// Name as given to `--dialect`.
     pub name: &'static str,
@@ -164,6 +260,27 @@ pub struct Dialect {
     pub lex: LexRules,
     g: Vec<Option<GDef>>,
     m: Vec<Option<MDef>>,
+    /// Incremental words of axes: (word, axis), e.g. (U, X) on a lathe.
+    pub incremental_words: &'static [(u8, u8)],
+    /// The axis programmed in diameters under G23 (X on a lathe).
+    pub diameter_axis: Option<u8>,
+    /// Whether diameter programming is on at power-on.
+    pub diameter_at_power_on: bool,
+    /// Integers are whole units (`X75` = 75 mm), not least increments.
+    pub whole_unit_integers: bool,
+    /// Plane at power-on (G17 on a mill, the ZX plane on a lathe).
+    pub plane: Plane,
+    /// An R arc whose chord is longer than 2R is cut as a straight line
+    /// (the lathe document) instead of alarming E302 (Fanuc).
+    pub long_chord_is_line: bool,
+    /// Letters an arc reads besides the plane's centre offsets and R (the
+    /// lathe's D diameter).
+    pub arc_letters: u32,
+    /// The embedded machine used when no `--machine` is given.
+    pub default_machine: &'static str,
+    /// Codes the dialect's document lists that vcnc does not run, and why
+    /// (E201 quotes it).
+    pub unsupported: &'static [(u16, &'static str)],
 }
 
 impl std::fmt::Debug for Dialect {
@@ -179,141 +296,61 @@ const G_SLOTS: usize = 10_000;
 /// Largest M code + 1.
 const M_SLOTS: usize = 1_000;
 
-type GRow = (u16, GOp, Group, u32, bool);
-
-/// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
-const MILL_G: &[GRow] = &[
-    (0, GOp::Rapid, Group::Motion, NONE, false),
-    (10, GOp::Linear, Group::Motion, NONE, false),
-    (20, GOp::ArcCw, Group::Motion, NONE, false),
-    (30, GOp::ArcCcw, Group::Motion, NONE, false),
-    (40, GOp::Dwell, Group::NonModal, bit(b'P') | bit(b'X'), true),
-    (90, GOp::ExactStopOnce, Group::NonModal, NONE, false),
-    (
-        100,
-        GOp::SetData,
-        Group::NonModal,
-        bit(b'L') | bit(b'P'),
-        true,
-    ),
-    (170, GOp::PlaneXy, Group::Plane, NONE, false),
-    (180, GOp::PlaneZx, Group::Plane, NONE, false),
-    (190, GOp::PlaneYz, Group::Plane, NONE, false),
-    (280, GOp::RefReturn, Group::NonModal, NONE, true),
-    (290, GOp::RefFrom, Group::NonModal, NONE, true),
-    (300, GOp::RefReturnN, Group::NonModal, bit(b'P'), true),
-    (310, GOp::Skip, Group::NonModal, NONE, true),
-    (330, GOp::Thread, Group::Motion, NONE, false),
-    (520, GOp::LocalSystem, Group::NonModal, NONE, true),
-    (530, GOp::MachineCoords, Group::NonModal, NONE, true),
-    (540, GOp::WorkSystem(0), Group::Wcs, NONE, false),
-    (550, GOp::WorkSystem(1), Group::Wcs, NONE, false),
-    (560, GOp::WorkSystem(2), Group::Wcs, NONE, false),
-    (570, GOp::WorkSystem(3), Group::Wcs, NONE, false),
-    (580, GOp::WorkSystem(4), Group::Wcs, NONE, false),
-    (590, GOp::WorkSystem(5), Group::Wcs, NONE, false),
-    (591, GOp::WorkSystem(6), Group::Wcs, NONE, false),
-    (592, GOp::WorkSystem(7), Group::Wcs, NONE, false),
-    (593, GOp::WorkSystem(8), Group::Wcs, NONE, false),
-    (594, GOp::WorkSystem(9), Group::Wcs, NONE, false),
-    (595, GOp::WorkSystem(10), Group::Wcs, NONE, false),
-    (596, GOp::WorkSystem(11), Group::Wcs, NONE, false),
-    (597, GOp::WorkSystem(12), Group::Wcs, NONE, false),
-    (598, GOp::WorkSystem(13), Group::Wcs, NONE, false),
-    (599, GOp::WorkSystem(14), Group::Wcs, NONE, false),
-    (610, GOp::PathExact, Group::Path, NONE, false),
-    (620, GOp::PathSurface, Group::Path, NONE, false),
-    (630, GOp::PathTapping, Group::Path, NONE, false),
-    (640, GOp::PathCutting, Group::Path, NONE, false),
-    (900, GOp::Absolute, Group::Distance, NONE, false),
-    (910, GOp::Incremental, Group::Distance, NONE, false),
-    (920, GOp::PresetOrClamp, Group::NonModal, NONE, true),
-    (940, GOp::PerMinute, Group::FeedMode, NONE, false),
-    (950, GOp::PerRev, Group::FeedMode, NONE, false),
-    (960, GOp::SurfaceSpeed, Group::SpindleMode, NONE, false),
-    (970, GOp::SpindleRpm, Group::SpindleMode, NONE, false),
-];
-
-/// Syntec 900M: inch/metric are G70/G71 (manual 1.1, 1.2.29).
-const SYNTEC_UNITS: &[GRow] = &[
-    (700, GOp::Inch, Group::Units, NONE, false),
-    (710, GOp::Metric, Group::Units, NONE, false),
-];
-
-/// Fanuc 0i: inch/metric are G20/G21.
-const FANUC_UNITS: &[GRow] = &[
-    (200, GOp::Inch, Group::Units, NONE, false),
-    (210, GOp::Metric, Group::Units, NONE, false),
-];
-
 type MRow = (u16, MOp, MGroup, u32);
-
-/// The M-code table of manual chapter 2 (same in both mill dialects).
-const MILL_M: &[MRow] = &[
-    (0, MOp::Stop, MGroup::Flow, NONE),
-    (1, MOp::OptionalStop, MGroup::Flow, NONE),
-    (2, MOp::End, MGroup::Flow, NONE),
-    (3, MOp::SpindleCw, MGroup::Spindle, NONE),
-    (4, MOp::SpindleCcw, MGroup::Spindle, NONE),
-    (5, MOp::SpindleStop, MGroup::Spindle, NONE),
-    (6, MOp::ToolChange, MGroup::Tool, NONE),
-    (8, MOp::CoolantOn, MGroup::Coolant, NONE),
-    (9, MOp::CoolantOff, MGroup::Coolant, NONE),
-    (19, MOp::SpindleOrient, MGroup::Spindle, NONE),
-    (30, MOp::EndRewind, MGroup::Flow, NONE),
-    (
-        98,
-        MOp::Call,
-        MGroup::Flow,
-        bit(b'P') | bit(b'H') | bit(b'L'),
-    ),
-    (99, MOp::Return, MGroup::Flow, bit(b'P')),
-];
-
-const MILL_LEX: LexRules = LexRules {
-    slash_comments: true,
-    fullwidth_semicolon: true,
-    extended: &[],
-};
 
 impl Dialect {
     /// Looks a dialect up by its `--dialect` name.
     pub fn by_name(name: &str) -> Option<Dialect> {
         match name {
-            "syntec" => Some(Dialect::syntec()),
-            "fanuc" => Some(Dialect::fanuc()),
+            "syntec" => Some(mill::syntec()),
+            "fanuc" => Some(mill::fanuc()),
+            "lathe" => Some(lathe::lathe()),
             _ => None,
         }
     }
 
     /// Names accepted by [`by_name`](Self::by_name).
-    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc"];
+    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc", "lathe"];
 
     /// Syntec 900M mill (the default).
     pub fn syntec() -> Dialect {
-        Dialect::build("syntec", MILL_LEX, &[MILL_G, SYNTEC_UNITS], MILL_M)
+        mill::syntec()
     }
 
     /// Fanuc 0i mill.
     pub fn fanuc() -> Dialect {
-        Dialect::build("fanuc", MILL_LEX, &[MILL_G, FANUC_UNITS], MILL_M)
+        mill::fanuc()
     }
 
-    fn build(name: &'static str, lex: LexRules, g_rows: &[&[GRow]], m_rows: &[MRow]) -> Dialect {
+    /// The lathe controller of seed 003.
+    pub fn lathe() -> Dialect {
+        lathe::lathe()
+    }
+
+    /// Fills the code tables from rows; the rest of the profile is set by the
+    /// caller with struct update syntax.
+    pub(crate) fn tables(
+        g_rows: &[&[GRow]],
+        m_rows: &[MRow],
+    ) -> (Vec<Option<GDef>>, Vec<Option<MDef>>) {
         let mut g = vec![None; G_SLOTS];
-        for &(code, op, group, letters, takes_axes) in g_rows.iter().flat_map(|r| r.iter()) {
-            g[usize::from(code)] = Some(GDef {
-                op,
-                group,
-                letters,
-                takes_axes,
-            });
+        for row in g_rows.iter().flat_map(|r| r.iter()) {
+            g[usize::from(row.code)] = Some(row.def);
         }
         let mut m = vec![None; M_SLOTS];
         for &(code, op, group, letters) in m_rows {
             m[usize::from(code)] = Some(MDef { op, group, letters });
         }
-        Dialect { name, lex, g, m }
+        (g, m)
+    }
+
+    /// Why G `value` is listed but not run here, if it is.
+    pub fn unsupported_reason(&self, value: f64) -> Option<&'static str> {
+        let tenths = (value * 10.0).round();
+        self.unsupported
+            .iter()
+            .find(|(c, _)| f64::from(*c) == tenths)
+            .map(|(_, why)| *why)
     }
 
     /// The G code whose value is `value` (`59.1`), if this dialect has it.
@@ -341,10 +378,11 @@ impl Dialect {
 
     /// Another dialect that knows G `value`, for a hint.
     pub fn g_elsewhere(&self, value: f64) -> Option<&'static str> {
-        Dialect::NAMES
-            .iter()
-            .copied()
-            .find(|n| *n != self.name && Dialect::by_name(n).and_then(|d| d.g(value)).is_some())
+        Dialect::NAMES.iter().copied().find(|n| {
+            *n != self.name
+                && Dialect::by_name(n)
+                    .is_some_and(|d| d.g(value).is_some() || d.unsupported_reason(value).is_some())
+        })
     }
 }
 
@@ -364,5 +402,18 @@ mod tests {
         assert_eq!(s.g(59.15), None);
         assert_eq!(s.g(-1.0), None);
         assert_eq!(s.g_elsewhere(20.0), Some("fanuc"));
+    }
+
+    #[test]
+    fn the_lathe_gives_the_same_numbers_other_meanings() {
+        let l = Dialect::lathe();
+        let s = Dialect::syntec();
+        assert_eq!(l.g(20.0).map(|d| d.op), Some(GOp::SubCall));
+        assert_eq!(l.g(5.0).map(|d| d.op), Some(GOp::ThreePointArc));
+        assert_eq!(l.g(53.0).map(|d| d.op), Some(GOp::WorkSystem(WORK_NONE)));
+        assert_eq!(s.g(53.0).map(|d| d.op), Some(GOp::MachineCoords));
+        assert_eq!(l.g(16.0), None);
+        assert_eq!(l.g_elsewhere(16.0), Some("syntec"));
+        assert!(l.unsupported_reason(7.0).is_some());
     }
 }

@@ -1,0 +1,117 @@
+//! The lathe dialect of seed 003 (`003_62526af55394feba.txt`), a profile of
+//! the same engine: its own rows for the same operations where the codes
+//! mean what they mean on a mill, new operations where they do not, and word
+//! rules for X in diameters, U/W increments, `CR=`, `D`, `IX`/`IZ`.
+//!
+//! Decisions the document leaves open are in `docs/dialects.md` (lathe).
+
+use super::{Dialect, GOp, GRow, Group, WORK_NONE, bit, g, mill::MILL_M};
+use crate::events::Plane;
+use vcnc_syntax::{Addr, LexRules};
+
+/// The embedded 2-axis lathe.
+pub const DEFAULT_LATHE_TOML: &str = include_str!("../default_lathe.toml");
+
+const LATHE_G: &[GRow] = &[
+    g(0, GOp::Rapid, Group::Motion),
+    g(10, GOp::Linear, Group::Motion),
+    g(20, GOp::ArcCw, Group::Motion),
+    g(30, GOp::ArcCcw, Group::Motion),
+    g(40, GOp::DwellSeconds, Group::NonModal)
+        .reads(bit(b'F') | bit(b'K'))
+        .refuses_axes(),
+    g(50, GOp::ThreePointArc, Group::Motion),
+    g(80, GOp::FeedUp, Group::NonModal).refuses_axes().alone(),
+    g(90, GOp::FeedDown, Group::NonModal).refuses_axes().alone(),
+    g(200, GOp::SubCall, Group::NonModal)
+        .reads(bit(b'L'))
+        .refuses_axes()
+        .alone(),
+    g(220, GOp::RadiusMode, Group::DiameterMode).alone(),
+    g(2200, GOp::RadiusMode, Group::DiameterMode).alone(),
+    g(230, GOp::DiameterMode, Group::DiameterMode).alone(),
+    g(2300, GOp::DiameterMode, Group::DiameterMode).alone(),
+    g(240, GOp::SubReturn, Group::NonModal)
+        .refuses_axes()
+        .alone(),
+    g(250, GOp::Jump, Group::NonModal)
+        .reads(bit(b'L'))
+        .refuses_axes(),
+    g(260, GOp::Loop, Group::NonModal)
+        .reads(bit(b'L') | bit(b'Q'))
+        .refuses_axes(),
+    g(300, GOp::OverrideCancel, Group::NonModal)
+        .refuses_axes()
+        .alone(),
+    g(310, GOp::OverrideSet, Group::NonModal)
+        .reads(bit(b'F'))
+        .refuses_axes(),
+    g(320, GOp::ThreadInch, Group::Motion),
+    g(330, GOp::Thread, Group::Motion),
+    g(530, GOp::WorkSystem(WORK_NONE), Group::Wcs),
+    g(5000, GOp::WorkSystem(WORK_NONE), Group::Wcs),
+    g(540, GOp::WorkSystem(0), Group::Wcs),
+    g(550, GOp::WorkSystem(1), Group::Wcs),
+    g(560, GOp::WorkSystem(2), Group::Wcs),
+    g(570, GOp::WorkSystem(3), Group::Wcs),
+    g(580, GOp::WorkSystem(4), Group::Wcs),
+    g(590, GOp::WorkSystem(5), Group::Wcs),
+    g(600, GOp::PathExact, Group::Path),
+    g(640, GOp::PathCutting, Group::Path),
+    g(700, GOp::Inch, Group::Units),
+    g(710, GOp::Metric, Group::Units),
+    g(740, GOp::RefXThenZ, Group::NonModal)
+        .claims_axes()
+        .alone(),
+    g(750, GOp::ProgramZero, Group::NonModal).claims_axes(),
+    g(760, GOp::StartPoint, Group::NonModal).refuses_axes(),
+    g(810, GOp::CylinderCycle, Group::NonModal)
+        .reads(bit(b'R') | bit(b'I') | bit(b'K'))
+        .claims_axes(),
+    g(3310, GOp::ThreadCycle, Group::NonModal)
+        .reads(bit(b'I') | bit(b'K') | bit(b'R') | bit(b'P'))
+        .claims_axes(),
+    g(900, GOp::Absolute, Group::Distance),
+    g(910, GOp::Incremental, Group::Distance),
+    g(920, GOp::PresetOrClamp, Group::NonModal).claims_axes(),
+    g(940, GOp::PerMinute, Group::FeedMode),
+    g(950, GOp::PerRev, Group::FeedMode),
+];
+
+const LATHE_LEX: LexRules = LexRules {
+    slash_comments: true,
+    fullwidth_semicolon: true,
+    extended: &[
+        ("CR=", Addr::CR),
+        ("IX", Addr::IX),
+        ("IZ", Addr::IZ),
+        ("D=", Addr(b'D')),
+    ],
+    foreign: &[],
+};
+
+/// Listed by the document without a format to run.
+const UNSPECIFIED: &[(u16, &str)] = &[(
+    70,
+    "G07 (Z-spline interpolation) is listed by the lathe document without any format or parameters",
+)];
+
+/// The lathe dialect.
+pub(super) fn lathe() -> Dialect {
+    let (g, m) = Dialect::tables(&[LATHE_G], MILL_M);
+    Dialect {
+        name: "lathe",
+        lex: LATHE_LEX,
+        g,
+        m,
+        incremental_words: &[(b'U', b'X'), (b'W', b'Z')],
+        diameter_axis: Some(b'X'),
+        diameter_at_power_on: true,
+        whole_unit_integers: true,
+        plane: Plane::Zx,
+        long_chord_is_line: true,
+        arc_letters: bit(b'D'),
+        default_machine: DEFAULT_LATHE_TOML,
+        unsupported: UNSPECIFIED,
+    }
+}

@@ -1,0 +1,176 @@
+//! The Syntec 900M and Fanuc 0i mill dialects: the G-code list of the Syntec
+//! manual (section 1.1) as far as vcnc runs it, and the M-code table of its
+//! chapter 2. The two differ only in the inch/metric codes.
+
+use super::{Dialect, GOp, GRow, Group, MGroup, MOp, MRow, bit, g};
+use crate::events::Plane;
+use crate::machine::DEFAULT_MILL_TOML;
+use vcnc_syntax::LexRules;
+
+/// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
+const MILL_G: &[GRow] = &[
+    g(0, GOp::Rapid, Group::Motion),
+    g(10, GOp::Linear, Group::Motion),
+    g(20, GOp::ArcCw, Group::Motion),
+    g(30, GOp::ArcCcw, Group::Motion),
+    g(40, GOp::Dwell, Group::NonModal)
+        .reads(bit(b'P') | bit(b'X'))
+        .refuses_axes(),
+    g(50, GOp::HighSpeed, Group::NonModal)
+        .reads(bit(b'P'))
+        .refuses_axes(),
+    g(90, GOp::ExactStopOnce, Group::NonModal),
+    g(100, GOp::SetData, Group::NonModal)
+        .reads(bit(b'L') | bit(b'P'))
+        .claims_axes(),
+    g(170, GOp::PlaneXy, Group::Plane),
+    g(180, GOp::PlaneZx, Group::Plane),
+    g(190, GOp::PlaneYz, Group::Plane),
+    g(280, GOp::RefReturn, Group::NonModal).claims_axes(),
+    g(290, GOp::RefFrom, Group::NonModal).claims_axes(),
+    g(300, GOp::RefReturnN, Group::NonModal)
+        .reads(bit(b'P'))
+        .claims_axes(),
+    g(310, GOp::Skip, Group::NonModal).claims_axes(),
+    g(330, GOp::Thread, Group::Motion),
+    g(520, GOp::LocalSystem, Group::NonModal).claims_axes(),
+    g(530, GOp::MachineCoords, Group::NonModal).claims_axes(),
+    g(540, GOp::WorkSystem(0), Group::Wcs),
+    g(550, GOp::WorkSystem(1), Group::Wcs),
+    g(560, GOp::WorkSystem(2), Group::Wcs),
+    g(570, GOp::WorkSystem(3), Group::Wcs),
+    g(580, GOp::WorkSystem(4), Group::Wcs),
+    g(590, GOp::WorkSystem(5), Group::Wcs),
+    g(591, GOp::WorkSystem(6), Group::Wcs),
+    g(592, GOp::WorkSystem(7), Group::Wcs),
+    g(593, GOp::WorkSystem(8), Group::Wcs),
+    g(594, GOp::WorkSystem(9), Group::Wcs),
+    g(595, GOp::WorkSystem(10), Group::Wcs),
+    g(596, GOp::WorkSystem(11), Group::Wcs),
+    g(597, GOp::WorkSystem(12), Group::Wcs),
+    g(598, GOp::WorkSystem(13), Group::Wcs),
+    g(599, GOp::WorkSystem(14), Group::Wcs),
+    g(610, GOp::PathExact, Group::Path),
+    g(620, GOp::PathSurface, Group::Path),
+    g(630, GOp::PathTapping, Group::Path),
+    g(640, GOp::PathCutting, Group::Path),
+    g(900, GOp::Absolute, Group::Distance),
+    g(910, GOp::Incremental, Group::Distance),
+    g(920, GOp::PresetOrClamp, Group::NonModal).claims_axes(),
+    g(940, GOp::PerMinute, Group::FeedMode),
+    g(950, GOp::PerRev, Group::FeedMode),
+    g(960, GOp::SurfaceSpeed, Group::SpindleMode),
+    g(970, GOp::SpindleRpm, Group::SpindleMode),
+];
+
+/// Syntec 900M: inch/metric are G70/G71 (manual 1.1, 1.2.29).
+const SYNTEC_UNITS: &[GRow] = &[
+    g(700, GOp::Inch, Group::Units),
+    g(710, GOp::Metric, Group::Units),
+];
+
+/// Fanuc 0i: inch/metric are G20/G21.
+const FANUC_UNITS: &[GRow] = &[
+    g(200, GOp::Inch, Group::Units),
+    g(210, GOp::Metric, Group::Units),
+];
+
+/// The M-code table of manual chapter 2 (also the lathe's).
+pub(super) const MILL_M: &[MRow] = &[
+    (0, MOp::Stop, MGroup::Flow, 0),
+    (1, MOp::OptionalStop, MGroup::Flow, 0),
+    (2, MOp::End, MGroup::Flow, 0),
+    (3, MOp::SpindleCw, MGroup::Spindle, 0),
+    (4, MOp::SpindleCcw, MGroup::Spindle, 0),
+    (5, MOp::SpindleStop, MGroup::Spindle, 0),
+    (6, MOp::ToolChange, MGroup::Tool, 0),
+    (8, MOp::CoolantOn, MGroup::Coolant, 0),
+    (9, MOp::CoolantOff, MGroup::Coolant, 0),
+    (19, MOp::SpindleOrient, MGroup::Spindle, 0),
+    (30, MOp::EndRewind, MGroup::Flow, 0),
+    (
+        98,
+        MOp::Call,
+        MGroup::Flow,
+        bit(b'P') | bit(b'H') | bit(b'L'),
+    ),
+    (99, MOp::Return, MGroup::Flow, bit(b'P')),
+];
+
+const MILL_LEX: LexRules = LexRules {
+    slash_comments: true,
+    fullwidth_semicolon: true,
+    extended: &[],
+    foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+};
+
+/// Codes of the Syntec G-code list (manual 1.1) that later work will run.
+const SYNTEC_LATER: &[(u16, &str)] = &[
+    (51, "G05.1 path smoothing is not implemented yet"),
+    (62, "G06.2 NURBS interpolation is not implemented yet"),
+    (150, "G15 polar coordinates are not implemented yet"),
+    (160, "G16 polar coordinates are not implemented yet"),
+    (400, "G40 cutter compensation is not implemented yet"),
+    (410, "G41 cutter compensation is not implemented yet"),
+    (420, "G42 cutter compensation is not implemented yet"),
+    (430, "G43 tool length compensation is not implemented yet"),
+    (440, "G44 tool length compensation is not implemented yet"),
+    (490, "G49 tool length compensation is not implemented yet"),
+    (500, "G50 scaling is not implemented yet"),
+    (501, "G50.1 mirror image is not implemented yet"),
+    (510, "G51 scaling is not implemented yet"),
+    (511, "G51.1 mirror image is not implemented yet"),
+    (650, "G65 macro call is not implemented yet"),
+    (660, "G66 macro modal call is not implemented yet"),
+    (670, "G67 macro modal call is not implemented yet"),
+    (680, "G68 coordinate rotation is not implemented yet"),
+    (690, "G69 coordinate rotation is not implemented yet"),
+    (730, "canned cycles (G73) are not implemented yet"),
+    (740, "canned cycles (G74) are not implemented yet"),
+    (760, "canned cycles (G76) are not implemented yet"),
+    (800, "canned cycles (G80) are not implemented yet"),
+    (810, "canned cycles (G81) are not implemented yet"),
+    (820, "canned cycles (G82) are not implemented yet"),
+    (830, "canned cycles (G83) are not implemented yet"),
+    (840, "canned cycles (G84) are not implemented yet"),
+    (850, "canned cycles (G85) are not implemented yet"),
+    (860, "canned cycles (G86) are not implemented yet"),
+    (870, "canned cycles (G87) are not implemented yet"),
+    (880, "canned cycles (G88) are not implemented yet"),
+    (890, "canned cycles (G89) are not implemented yet"),
+    (980, "canned cycles (G98) are not implemented yet"),
+    (990, "canned cycles (G99) are not implemented yet"),
+    (1340, "hole patterns (G134) are not implemented yet"),
+    (1350, "hole patterns (G135) are not implemented yet"),
+    (1360, "hole patterns (G136) are not implemented yet"),
+    (1371, "hole patterns (G137.1) are not implemented yet"),
+];
+
+fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
+    let (g, m) = Dialect::tables(&[MILL_G, units], MILL_M);
+    Dialect {
+        name,
+        lex: MILL_LEX,
+        g,
+        m,
+        incremental_words: &[],
+        diameter_axis: None,
+        diameter_at_power_on: false,
+        whole_unit_integers: false,
+        plane: Plane::Xy,
+        long_chord_is_line: false,
+        arc_letters: 0,
+        default_machine: DEFAULT_MILL_TOML,
+        unsupported: SYNTEC_LATER,
+    }
+}
+
+/// Syntec 900M mill.
+pub(super) fn syntec() -> Dialect {
+    mill("syntec", SYNTEC_UNITS)
+}
+
+/// Fanuc 0i mill.
+pub(super) fn fanuc() -> Dialect {
+    mill("fanuc", FANUC_UNITS)
+}
