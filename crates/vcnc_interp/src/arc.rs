@@ -74,7 +74,7 @@ impl Interpreter<'_> {
             Some(r) => match self.center_from_radius(s, e, r, cw, cmd)? {
                 Some(c) => c,
                 // The lathe document: a chord longer than 2R is cut straight.
-                None => return self.straight_instead(from, to, feed, w, cmd, sink),
+                None => return self.feed_to(to, feed, w, cmd, sink),
             },
             None if has_center => {
                 let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
@@ -118,29 +118,6 @@ impl Interpreter<'_> {
             span: d.span,
             line_if_short: false,
         })
-    }
-
-    /// A chord too long for R on the lathe: a straight feed to the end.
-    #[allow(clippy::too_many_arguments)]
-    fn straight_instead<S: Sink>(
-        &mut self,
-        from: Pos,
-        to: Pos,
-        feed: Feed,
-        w: &Words<'_>,
-        cmd: Span,
-        sink: &mut S,
-    ) -> Result<(), Diagnostic> {
-        self.check_segment(from, to, w, cmd)?;
-        let exact_stop = self.exact_stop(w);
-        self.emit(sink, |loc| Event::Feed {
-            loc,
-            to,
-            feed,
-            exact_stop,
-        });
-        self.state.pos = to;
-        Ok(())
     }
 
     /// Checks an arc with a known centre and sends it.
@@ -286,12 +263,7 @@ impl Interpreter<'_> {
         let a0 = (s.1 - c.1).atan2(s.0 - c.0);
         let a1 = (e.1 - c.1).atan2(e.0 - c.0);
         let full = (s.0 - e.0).hypot(s.1 - e.1) < ZERO_MM;
-        let ccw_sweep = if full { TAU } else { (a1 - a0).rem_euclid(TAU) };
-        let sweep = if cw {
-            -(if full { TAU } else { TAU - ccw_sweep })
-        } else {
-            ccw_sweep
-        };
+        let sweep = signed_sweep(a0, a1, full, cw);
         Ok(Geometry {
             center: c,
             radius: r_start,
@@ -380,11 +352,7 @@ pub fn arc_bounds(
     let a0 = (s.1 - c.1).atan2(s.0 - c.0);
     let a1 = (e.1 - c.1).atan2(e.0 - c.0);
     let full = (s.0 - e.0).hypot(s.1 - e.1) < ZERO_MM;
-    let ccw = if full { TAU } else { (a1 - a0).rem_euclid(TAU) };
-    let sweep = match dir {
-        ArcDir::Ccw => ccw,
-        ArcDir::Cw => -(if full { TAU } else { TAU - ccw }),
-    };
+    let sweep = signed_sweep(a0, a1, full, dir == ArcDir::Cw);
     swept_box(from, to, c, axes, a0, sweep, radius, n_axes)
 }
 
@@ -394,5 +362,18 @@ fn center_letters(plane: Plane) -> [u8; 2] {
         Plane::Xy => [b'I', b'J'],
         Plane::Zx => [b'K', b'I'],
         Plane::Yz => [b'J', b'K'],
+    }
+}
+
+/// The signed sweep from angle `a0` to `a1`: positive counter-clockwise,
+/// a whole turn when start and end coincide (`full`).
+fn signed_sweep(a0: f64, a1: f64, full: bool, cw: bool) -> f64 {
+    let ccw = if full { TAU } else { (a1 - a0).rem_euclid(TAU) };
+    if !cw {
+        ccw
+    } else if full {
+        -TAU
+    } else {
+        ccw - TAU
     }
 }

@@ -70,6 +70,20 @@ pub(crate) struct Frame {
     pub returns_with: &'static str,
 }
 
+impl Frame {
+    /// The main program's level.
+    fn main() -> Frame {
+        Frame {
+            source: 0,
+            start: Cursor::default(),
+            ret: Cursor::default(),
+            runs_left: 1,
+            started: false,
+            returns_with: "M99",
+        }
+    }
+}
+
 pub(crate) struct Flow {
     pub sources: Vec<Option<Source>>,
     pub frames: Vec<Frame>,
@@ -93,14 +107,7 @@ impl Flow {
         };
         Flow {
             sources: vec![Some(main)],
-            frames: vec![Frame {
-                source: 0,
-                start: Cursor::default(),
-                ret: Cursor::default(),
-                runs_left: 1,
-                started: false,
-                returns_with: "M99",
-            }],
+            frames: vec![Frame::main()],
             programs: HashMap::new(),
             sequences: HashMap::new(),
             scratch: Block::default(),
@@ -111,14 +118,7 @@ impl Flow {
     }
 
     pub fn frame(&self) -> Frame {
-        self.frames.last().copied().unwrap_or(Frame {
-            source: 0,
-            start: Cursor::default(),
-            ret: Cursor::default(),
-            runs_left: 1,
-            started: false,
-            returns_with: "M99",
-        })
+        self.frames.last().copied().unwrap_or_else(Frame::main)
     }
 
     pub fn frame_mut(&mut self) -> Option<&mut Frame> {

@@ -40,19 +40,31 @@ impl Interpreter<'_> {
             Motion::Linear => {
                 let feed = self.feed(cmd)?;
                 let (to, _) = self.target(w, self.state.modal.incremental);
-                self.check_segment(self.state.pos, to, w, cmd)?;
-                let exact_stop = self.exact_stop(w);
-                self.emit(sink, |loc| Event::Feed {
-                    loc,
-                    to,
-                    feed,
-                    exact_stop,
-                });
-                self.state.pos = to;
-                Ok(())
+                self.feed_to(to, feed, w, cmd, sink)
             }
             Motion::Thread | Motion::ThreadInch => self.thread(w, cmd, sink),
         }
+    }
+
+    /// A straight cutting move to `to`.
+    pub(crate) fn feed_to<S: Sink>(
+        &mut self,
+        to: Pos,
+        feed: Feed,
+        w: &Words<'_>,
+        cmd: Span,
+        sink: &mut S,
+    ) -> Result<(), Diagnostic> {
+        self.check_segment(self.state.pos, to, w, cmd)?;
+        let exact_stop = self.exact_stop(w);
+        self.emit(sink, |loc| Event::Feed {
+            loc,
+            to,
+            feed,
+            exact_stop,
+        });
+        self.state.pos = to;
+        Ok(())
     }
 
     /// Whether G09 is in the block.

@@ -159,25 +159,15 @@ impl Interpreter<'_> {
                 end.set(i, reference.get(i));
             }
         }
-        self.check_segment(self.state.pos, mid, w, cmd)?;
-        self.check_segment(mid, end, w, cmd)?;
-        let exact_stop = self.exact_stop(w);
         for i in 0..self.machine.axes.len() {
             if named & (1 << i) != 0 {
                 self.state.intermediate[i] = Some(mid.get(i) - self.state.origin.get(i));
             }
         }
-        self.emit(sink, |loc| Event::Rapid {
-            loc,
-            to: mid,
-            exact_stop,
-        });
-        self.emit(sink, |loc| Event::Rapid {
-            loc,
-            to: end,
-            exact_stop,
-        });
-        self.state.pos = end;
+        // Both legs move like G00 (dog-legs with parameter 411 = 1); the
+        // block is all or nothing, so a second leg that alarms drops the first.
+        self.rapid_to(mid, w, cmd, sink)?;
+        self.rapid_to(end, w, cmd, sink)?;
         Ok(())
     }
 
@@ -209,20 +199,8 @@ impl Interpreter<'_> {
             return Err(alarms::needs_axes(cmd, "G29"));
         }
         let mid = self.with_program_coords(self.state.pos, named, &self.state.intermediate);
-        self.check_segment(self.state.pos, mid, w, cmd)?;
-        self.check_segment(mid, target, w, cmd)?;
-        let exact_stop = self.exact_stop(w);
-        self.emit(sink, |loc| Event::Rapid {
-            loc,
-            to: mid,
-            exact_stop,
-        });
-        self.emit(sink, |loc| Event::Rapid {
-            loc,
-            to: target,
-            exact_stop,
-        });
-        self.state.pos = target;
+        self.rapid_to(mid, w, cmd, sink)?;
+        self.rapid_to(target, w, cmd, sink)?;
         Ok(())
     }
 
