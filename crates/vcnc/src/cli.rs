@@ -38,10 +38,10 @@ pub enum Command {
 pub struct Common {
     /// The main program.
     pub file: PathBuf,
-    /// Dialect: syntec (Syntec 900M mill) or fanuc (Fanuc 0i mill).
+    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill) or lathe (the seed lathe controller).
     #[arg(long, default_value = "syntec")]
     pub dialect: String,
-    /// Machine file (TOML); default: the built-in 3-axis mill.
+    /// Machine file (TOML); default: the built-in 3-axis mill, or the 2-axis lathe under --dialect lathe.
     #[arg(long)]
     pub machine: Option<PathBuf>,
     /// Where called programs (M98 P10 → O0010 or O0010.nc) are looked up; default: the program's directory.

@@ -58,7 +58,7 @@ fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
     let machine = match &a.machine {
         Some(m) => Machine::from_toml(&std::fs::read_to_string(m).expect("machine file"))
             .expect("valid machine"),
-        None => Machine::default_mill(),
+        None => Machine::default_for(&Dialect::by_name(&a.dialect).expect("dialect")),
     };
     let dialect = Dialect::by_name(&a.dialect).expect("dialect");
     let mut sink = VecSink::default();
@@ -183,6 +183,12 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
 fn manual_examples_match_their_hand_worked_traces() {
     let n = check_folder("manual", "syntec", 1e-6);
     assert!(n >= 30, "only {n} manual fixtures found");
+}
+
+#[test]
+fn lathe_document_examples_match_their_hand_worked_traces() {
+    let n = check_folder("lathe", "lathe", 1e-6);
+    assert!(n >= 60, "only {n} lathe fixtures found");
 }
 
 #[test]

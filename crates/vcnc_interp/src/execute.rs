@@ -15,7 +15,7 @@
 
 use crate::alarms;
 use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, bit};
-use crate::events::{Event, PathMode, Plane, SpindleDir};
+use crate::events::{Event, PathMode, Plane, Pos, SpindleDir};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use crate::sink::Sink;
@@ -119,6 +119,14 @@ impl Interpreter<'_> {
                 GOp::WorkSystem(n) => {
                     wcs_changed |= m.wcs != usize::from(n);
                     m.wcs = usize::from(n);
+                }
+                GOp::CancelOffsets => {
+                    // Lathe G53/G500: no work system, no G92 shift, no local
+                    // offset — machine coordinates are program coordinates.
+                    m.wcs = usize::from(crate::dialect::WORK_NONE);
+                    self.state.offsets.shift = Pos::default();
+                    self.state.offsets.local = Pos::default();
+                    wcs_changed = true;
                 }
                 GOp::PathExact => m.path = PathMode::ExactStop,
                 GOp::PathSurface => m.path = PathMode::Surface,

@@ -5,7 +5,7 @@
 //!
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
-use super::{Dialect, GOp, GRow, Group, WORK_NONE, bit, g, mill::MILL_M};
+use super::{Dialect, GOp, GRow, Group, bit, g, mill::MILL_M};
 use crate::events::Plane;
 use vcnc_syntax::{Addr, LexRules};
 
@@ -48,8 +48,8 @@ const LATHE_G: &[GRow] = &[
         .refuses_axes(),
     g(320, GOp::ThreadInch, Group::Motion),
     g(330, GOp::Thread, Group::Motion),
-    g(530, GOp::WorkSystem(WORK_NONE), Group::Wcs),
-    g(5000, GOp::WorkSystem(WORK_NONE), Group::Wcs),
+    g(530, GOp::CancelOffsets, Group::Wcs),
+    g(5000, GOp::CancelOffsets, Group::Wcs),
     g(540, GOp::WorkSystem(0), Group::Wcs),
     g(550, GOp::WorkSystem(1), Group::Wcs),
     g(560, GOp::WorkSystem(2), Group::Wcs),

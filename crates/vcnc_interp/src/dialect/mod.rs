@@ -99,6 +99,7 @@ pub enum GOp {
     SpindleRpm,
     HighSpeed,
     // Lathe (seed 003).
+    CancelOffsets,
     ThreadInch,
     DwellSeconds,
     ThreePointArc,
@@ -410,7 +411,7 @@ mod tests {
         let s = Dialect::syntec();
         assert_eq!(l.g(20.0).map(|d| d.op), Some(GOp::SubCall));
         assert_eq!(l.g(5.0).map(|d| d.op), Some(GOp::ThreePointArc));
-        assert_eq!(l.g(53.0).map(|d| d.op), Some(GOp::WorkSystem(WORK_NONE)));
+        assert_eq!(l.g(53.0).map(|d| d.op), Some(GOp::CancelOffsets));
         assert_eq!(s.g(53.0).map(|d| d.op), Some(GOp::MachineCoords));
         assert_eq!(l.g(16.0), None);
         assert_eq!(l.g_elsewhere(16.0), Some("syntec"));
