@@ -607,3 +607,28 @@ fn block_delete_switch() {
         vec![to(1.0, 0.0), to(2.0, 0.0)]
     );
 }
+
+/// Regression: `vcnc check` on a lathe program that speaks in diameters
+/// reports X extents as diameters (events carry radii).
+#[test]
+fn check_reports_lathe_diameters() {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-lathe-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("turn.nc");
+    std::fs::write(&file, "G00 X40 Z5\nG01 Z-20 F100\nG00 X60\nM30\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["check", "--dialect", "lathe"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains("(lathe dialect, generic 2-axis lathe)"),
+        "{stdout}"
+    );
+    // Power-on at diameter 200; the program goes down to diameter 40.
+    assert!(stdout.contains("X diameter 40.000 .. 200.000"), "{stdout}");
+    assert!(stdout.contains("Z -20.000 .. 250.000"), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}
