@@ -763,7 +763,7 @@ fn an_alarm_leaves_modal_state_position_and_offsets_as_before_the_block() {
 /// but a line of exactly 64 KiB (65536 bytes of short blocks) alarms too:
 /// the limit is off by one (the newline must fit in the buffer).
 #[test]
-fn bug_e106_a_line_of_exactly_64_kib_is_not_longer_than_64_kib() {
+fn regression_e106_a_line_of_exactly_64_kib_is_not_longer_than_64_kib() {
     let line = "X1.;".repeat(65_536 / 4);
     assert_eq!(line.len(), 65_536);
     let r = run(&format!("G00 X2.\n{line}\nM30\n"));
@@ -773,14 +773,14 @@ fn bug_e106_a_line_of_exactly_64_kib_is_not_longer_than_64_kib() {
 /// docs/alarms.md: E304's column is "the G02/G03 word, else the first word",
 /// also for R0. The interpreter points at the R word.
 #[test]
-fn bug_e304_r0_points_at_the_arc_word() {
+fn regression_e304_r0_points_at_the_arc_word() {
     check("G00 X1.\nN2 G02 X2. R0 F100\n", Code::E304, 2, 4);
 }
 
 /// docs/alarms.md: E310's column is "the G96 word or the S word". With M03 in
 /// the block the interpreter points at the M03.
 #[test]
-fn bug_e310_with_m03_in_the_block_points_at_g96() {
+fn regression_e310_with_m03_in_the_block_points_at_g96() {
     check("T9 M06\nN2 G96 S100 M03\n", Code::E310, 2, 4);
 }
 
@@ -789,7 +789,7 @@ fn bug_e310_with_m03_in_the_block_points_at_g96() {
 /// (rather than by the end of the file) the interpreter points at that `%`
 /// or `O` line instead.
 #[test]
-fn bug_e406_at_percent_or_next_header_points_at_the_last_block() {
+fn regression_e406_at_percent_or_next_header_points_at_the_last_block() {
     let r = run("N1 M98 P2\nN2 M30\nO0002\nN3 G00 X1.\n  N4 G00 Y1.\n%\n");
     assert_last_alarm(&r, Code::E406, 5, 3);
     let r = run("N1 M98 P2\nN2 M30\nO0002\nN3 G00 X1.\n  N4 G00 Y1.\nO0003\nM99\n");
@@ -802,7 +802,7 @@ fn bug_e406_at_percent_or_next_header_points_at_the_last_block() {
 /// an M98/M99 alarm in a block that also moves leaves that motion behind and
 /// the position changed.
 #[test]
-fn bug_flow_alarms_in_a_moving_block_move_nothing() {
+fn regression_flow_alarms_in_a_moving_block_move_nothing() {
     let main = |block: &str| format!("O0001\nG90 G00 X1.\n{block}\nM30\n");
     // A call to O0002 whose block moves and calls or returns once too often.
     let nested =
@@ -839,7 +839,7 @@ fn bug_flow_alarms_in_a_moving_block_move_nothing() {
 /// program opens but a read fails, the alarm has column 0 (not 1-based) and
 /// does not point at the M98's P word.
 #[test]
-fn bug_e408_read_error_points_at_the_p_word() {
+fn regression_e408_read_error_points_at_the_p_word() {
     let r = run_with(
         &Machine::default_mill(),
         "syntec",
