@@ -12,9 +12,8 @@
 //!   before the alarming line).
 //!
 //! Expected columns are counted by hand from the program text in the test.
-//! Tests named `bug_…` pin down behaviour that disagrees with the documents
-//! (see the comment on each); they are regression tests and fail until the
-//! interpreter is fixed.
+//! Tests named `regression_…` guard bugs these tests found (see the comment
+//! on each): behaviour that once disagreed with the documents.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
