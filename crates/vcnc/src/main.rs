@@ -59,7 +59,7 @@ fn setup(c: &Common) -> Result<Setup, String> {
             Machine::from_toml(&text)
                 .map_err(|e| format!("machine file {}: {e}", path.display()))?
         }
-        None => Machine::default_for(&dialect),
+        None => dialect.machine(),
     };
     let options = vcnc_interp::Options {
         block_delete: c.block_delete,

@@ -58,7 +58,7 @@ fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
     let machine = match &a.machine {
         Some(m) => Machine::from_toml(&std::fs::read_to_string(m).expect("machine file"))
             .expect("valid machine"),
-        None => Machine::default_for(&Dialect::by_name(&a.dialect).expect("dialect")),
+        None => Dialect::by_name(&a.dialect).expect("dialect").machine(),
     };
     let dialect = Dialect::by_name(&a.dialect).expect("dialect");
     let mut sink = VecSink::default();

@@ -90,7 +90,7 @@ fn turning(blocks: usize) -> String {
 fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
     let program = turning(blocks);
     let dialect = Dialect::lathe();
-    let machine = Machine::default_for(&dialect);
+    let machine = dialect.machine();
     let check =
         Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut NullSink);
     assert_eq!(

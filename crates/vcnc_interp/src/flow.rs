@@ -144,7 +144,7 @@ impl Flow {
         &mut self,
         number: u32,
         lex: &LexRules,
-        store: &mut dyn super::ProgramStore,
+        store: &mut dyn ProgramStore,
     ) -> Result<Option<(usize, Cursor)>, io::Error> {
         let current = self.frame().source;
         for src in [current, 0] {

@@ -132,7 +132,7 @@ impl<'a> Interpreter<'a> {
     pub fn run_str<S: Sink>(&mut self, program: &str, sink: &mut S) -> Outcome {
         self.run(
             Box::new(MemSource(program.as_bytes().to_vec())),
-            &mut crate::NoPrograms,
+            &mut crate::flow::NoPrograms,
             sink,
         )
     }

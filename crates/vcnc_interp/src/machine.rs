@@ -216,15 +216,6 @@ impl Machine {
         }
     }
 
-    /// The embedded machine a dialect runs on by default.
-    pub fn default_for(dialect: &crate::Dialect) -> Machine {
-        match Machine::from_toml(dialect.default_machine) {
-            Ok(m) => m,
-            // Each embedded file is checked by a unit test; this cannot happen.
-            Err(e) => unreachable!("embedded machine of {} is invalid: {e}", dialect.name),
-        }
-    }
-
     /// Parses and validates a machine file.
     pub fn from_toml(text: &str) -> Result<Machine, MachineError> {
         let file: File = toml::from_str(text).map_err(|e| MachineError(e.to_string()))?;
@@ -424,14 +415,6 @@ mod tests {
         assert_eq!(m.axes.len(), 3);
         assert_eq!(m.axis_of(b'Z'), Some(2));
         assert_eq!(m.reference[1].unwrap().get(0), 200.0);
-    }
-
-    #[test]
-    fn every_dialects_machine_is_valid() {
-        for name in crate::Dialect::NAMES {
-            let d = crate::Dialect::by_name(name).unwrap();
-            assert!(Machine::from_toml(d.default_machine).is_ok(), "{name}");
-        }
     }
 
     #[test]

@@ -345,6 +345,15 @@ impl Dialect {
         (g, m)
     }
 
+    /// The embedded machine this dialect runs on by default.
+    pub fn machine(&self) -> crate::machine::Machine {
+        match crate::machine::Machine::from_toml(self.default_machine) {
+            Ok(m) => m,
+            // Each embedded file is checked by a unit test; this cannot happen.
+            Err(e) => unreachable!("embedded machine of {} is invalid: {e}", self.name),
+        }
+    }
+
     /// Why G `value` is listed but not run here, if it is.
     pub fn unsupported_reason(&self, value: f64) -> Option<&'static str> {
         let tenths = (value * 10.0).round();
@@ -403,6 +412,17 @@ mod tests {
         assert_eq!(s.g(59.15), None);
         assert_eq!(s.g(-1.0), None);
         assert_eq!(s.g_elsewhere(20.0), Some("fanuc"));
+    }
+
+    #[test]
+    fn every_dialects_machine_is_valid() {
+        for name in Dialect::NAMES {
+            let d = Dialect::by_name(name).unwrap();
+            assert!(
+                crate::machine::Machine::from_toml(d.default_machine).is_ok(),
+                "{name}"
+            );
+        }
     }
 
     #[test]
