@@ -5,7 +5,9 @@
 
 use divan::{Bencher, counter::ItemsCount};
 use std::fmt::Write;
-use vcnc_interp::{Dialect, Interpreter, Machine, NullSink, Options, Outcome};
+use std::sync::Arc;
+use vcnc_interp::{Dialect, Interpreter, Machine, NoPrograms, NullSink, Options, Outcome};
+use vcnc_syntax::MemSource;
 
 fn main() {
     divan::main();
@@ -50,9 +52,15 @@ fn interpret_to_null_sink(bencher: Bencher, blocks: usize) {
         Outcome::Ended("M02"),
         "the benchmark program must run to its end"
     );
+    // Shared, so an iteration does not copy the program.
+    let text: Arc<[u8]> = program.into_bytes().into();
     bencher.counter(ItemsCount::new(blocks)).bench(|| {
         let mut sink = NullSink;
-        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut sink)
+        Interpreter::new(&machine, &dialect, Options::default()).run(
+            Box::new(MemSource(text.clone())),
+            &mut NoPrograms,
+            &mut sink,
+        )
     });
 }
 
@@ -98,8 +106,14 @@ fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
         Outcome::Ended("M30"),
         "the benchmark program must run to its end"
     );
+    // Shared, so an iteration does not copy the program.
+    let text: Arc<[u8]> = program.into_bytes().into();
     bencher.counter(ItemsCount::new(blocks)).bench(|| {
         let mut sink = NullSink;
-        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut sink)
+        Interpreter::new(&machine, &dialect, Options::default()).run(
+            Box::new(MemSource(text.clone())),
+            &mut NoPrograms,
+            &mut sink,
+        )
     });
 }
