@@ -30,9 +30,6 @@ pub struct At<T> {
 #[derive(Debug)]
 pub struct Words<'b> {
     block: &'b Block,
-    /// Index + 1 of each letter's word in the block, 0 when absent.
-    letters: [u8; 26],
-    present: u32,
     /// Index + 1 of each extended address (`CR=`, `IX`, `IZ`), 0 when absent.
     ext: [u8; 4],
     /// Extended addresses present (bit = [`Addr::extended_index`]).
@@ -58,8 +55,6 @@ impl<'b> Words<'b> {
     pub fn new(block: &'b Block) -> Words<'b> {
         Words {
             block,
-            letters: [0; 26],
-            present: 0,
             ext: [0; 4],
             ext_present: 0,
             modal: [None; MODAL_GROUPS],
@@ -71,7 +66,9 @@ impl<'b> Words<'b> {
         }
     }
 
-    /// Collects and checks the block's words.
+    /// Collects and checks the block's words. The lexer has already
+    /// indexed the letters; only codes, extended addresses and repeated
+    /// letters need a pass over the words.
     #[inline]
     pub fn fill(
         &mut self,
@@ -80,11 +77,21 @@ impl<'b> Words<'b> {
         axis_mask: u32,
     ) -> Result<(), Diagnostic> {
         let block = self.block;
+        if block.is_plain() {
+            return Ok(());
+        }
+        let mut seen = 0u32;
         for (k, word) in block.words().iter().enumerate() {
             match word.addr.as_letter() {
                 Some(b'G') => self.add_g(word, dialect, same_group)?,
                 Some(b'M') => self.add_m(word, dialect)?,
-                Some(l) => self.add_letter(l, k, word)?,
+                Some(l) => {
+                    let bit = 1 << (l - b'A');
+                    if seen & bit != 0 {
+                        return Err(alarms::duplicate_word(word.span, l));
+                    }
+                    seen |= bit;
+                }
                 None => self.add_extended(k, word, dialect)?,
             }
         }
@@ -214,18 +221,6 @@ impl<'b> Words<'b> {
         Ok(())
     }
 
-    #[inline]
-    fn add_letter(&mut self, l: u8, k: usize, word: &Word) -> Result<(), Diagnostic> {
-        let i = usize::from(l - b'A');
-        if self.present & (1 << i) != 0 {
-            return Err(alarms::duplicate_word(word.span, l));
-        }
-        self.present |= 1 << i;
-        // A block holds at most MAX_WORDS (48) words, so k + 1 fits a u8.
-        self.letters[i] = u8::try_from(k + 1).unwrap_or(0);
-        Ok(())
-    }
-
     /// Rejects any letter outside `allowed` (bit mask), pointing at the first.
     pub fn check_used(&self, allowed: u32, allowed_ext: u8) -> Result<(), Diagnostic> {
         let stray_ext = self.ext_present & !allowed_ext;
@@ -242,7 +237,7 @@ impl<'b> Words<'b> {
                 .unwrap_or_default();
             return Err(alarms::extended_not_allowed(word.span, &word.addr.name()));
         }
-        let stray = self.present & !allowed;
+        let stray = self.block.present() & !allowed;
         if stray == 0 {
             return Ok(());
         }
@@ -257,21 +252,17 @@ impl<'b> Words<'b> {
     /// The word of letter `l`, if present.
     #[inline]
     pub fn get(&self, l: u8) -> Option<Word> {
-        let k = *self.letters.get(usize::from(l.wrapping_sub(b'A')))?;
-        self.block
-            .words()
-            .get(usize::from(k).checked_sub(1)?)
-            .copied()
+        self.block.letter(l)
     }
 
     /// Letters present (bit 0 = 'A').
     pub fn present(&self) -> u32 {
-        self.present
+        self.block.present()
     }
 
     /// Whether any letter of `mask` is present.
     pub fn any(&self, mask: u32) -> bool {
-        self.present & mask != 0
+        self.block.present() & mask != 0
     }
 
     /// The one-shot code `op`, if written.

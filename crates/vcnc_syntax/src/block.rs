@@ -73,6 +73,13 @@ pub struct Word {
 pub struct Block {
     words: [Word; MAX_WORDS],
     len: usize,
+    /// Index + 1 of the first word of each letter other than G and M.
+    letters: [u8; 26],
+    /// Letters present, other than G and M (bit 0 = 'A').
+    present: u32,
+    /// G, M and extended-address words, and repeated letters, counted: a
+    /// block without any is plain axis words the interpreter need not sort.
+    special: u8,
     /// Bytes of the block within its line (without the terminator).
     pub span: Span,
     /// The block began with `/` (block delete); the digit after it, 1 if none.
@@ -86,6 +93,9 @@ impl Default for Block {
         Block {
             words: [Word::default(); MAX_WORDS],
             len: 0,
+            letters: [0; 26],
+            present: 0,
+            special: 0,
             span: Span::default(),
             deleted: None,
             percent: false,
@@ -104,19 +114,46 @@ impl Block {
     }
     pub(crate) fn clear(&mut self) {
         self.len = 0;
+        self.letters = [0; 26];
+        self.present = 0;
+        self.special = 0;
         self.deleted = None;
         self.percent = false;
     }
     /// Appends a word; `false` when the block is full.
     pub(crate) fn push(&mut self, w: Word) -> bool {
-        match self.words.get_mut(self.len) {
-            Some(slot) => {
-                *slot = w;
-                self.len += 1;
-                true
+        let Some(slot) = self.words.get_mut(self.len) else {
+            return false;
+        };
+        *slot = w;
+        self.len += 1;
+        match w.addr.letter_index() {
+            Some(i) if w.addr.0 != b'G' && w.addr.0 != b'M' && self.present & (1 << i) == 0 => {
+                self.present |= 1 << i;
+                // len ≤ MAX_WORDS (48), so it fits a u8.
+                self.letters[i] = u8::try_from(self.len).unwrap_or(0);
             }
-            None => false,
+            _ => self.special = self.special.saturating_add(1),
         }
+        true
+    }
+
+    /// The first word of `letter` (not G or M), if any.
+    #[inline]
+    pub fn letter(&self, letter: u8) -> Option<Word> {
+        let k = *self.letters.get(usize::from(letter.wrapping_sub(b'A')))?;
+        self.words().get(usize::from(k).checked_sub(1)?).copied()
+    }
+
+    /// Letters present other than G and M (bit 0 = 'A').
+    pub fn present(&self) -> u32 {
+        self.present
+    }
+
+    /// Whether the block holds only single letters other than G and M (no
+    /// code, no extended address, no letter twice).
+    pub fn is_plain(&self) -> bool {
+        self.special == 0
     }
     /// The first word's span, or the block's start when it has none.
     pub fn first_span(&self) -> Span {
