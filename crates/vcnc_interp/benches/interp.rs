@@ -42,24 +42,39 @@ fn surfacing(blocks: usize) -> String {
 
 #[divan::bench(args = [100_000])]
 fn interpret_to_null_sink(bencher: Bencher, blocks: usize) {
-    let program = surfacing(blocks);
-    let machine = Machine::default_mill();
     let dialect = Dialect::fanuc();
+    bench_program(
+        bencher,
+        blocks,
+        surfacing(blocks),
+        &Machine::default_mill(),
+        &dialect,
+        "M02",
+    );
+}
+
+/// Checks that `program` runs to `end`, then measures it into a null sink.
+fn bench_program(
+    bencher: Bencher,
+    blocks: usize,
+    program: String,
+    machine: &Machine,
+    dialect: &Dialect,
+    end: &str,
+) {
     let check =
-        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut NullSink);
-    assert_eq!(
-        check,
-        Outcome::Ended("M02"),
-        "the benchmark program must run to its end"
+        Interpreter::new(machine, dialect, Options::default()).run_str(&program, &mut NullSink);
+    assert!(
+        matches!(check, Outcome::Ended(code) if code == end),
+        "the benchmark program must run to its end: {check:?}"
     );
     // Shared, so an iteration does not copy the program.
     let text: Arc<[u8]> = program.into_bytes().into();
     bencher.counter(ItemsCount::new(blocks)).bench(|| {
-        let mut sink = NullSink;
-        Interpreter::new(&machine, &dialect, Options::default()).run(
+        Interpreter::new(machine, dialect, Options::default()).run(
             Box::new(MemSource(text.clone())),
             &mut NoPrograms,
-            &mut sink,
+            &mut NullSink,
         )
     });
 }
@@ -96,24 +111,13 @@ fn turning(blocks: usize) -> String {
 
 #[divan::bench(args = [100_000])]
 fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
-    let program = turning(blocks);
     let dialect = Dialect::lathe();
-    let machine = dialect.machine();
-    let check =
-        Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut NullSink);
-    assert_eq!(
-        check,
-        Outcome::Ended("M30"),
-        "the benchmark program must run to its end"
+    bench_program(
+        bencher,
+        blocks,
+        turning(blocks),
+        &dialect.machine(),
+        &dialect,
+        "M30",
     );
-    // Shared, so an iteration does not copy the program.
-    let text: Arc<[u8]> = program.into_bytes().into();
-    bencher.counter(ItemsCount::new(blocks)).bench(|| {
-        let mut sink = NullSink;
-        Interpreter::new(&machine, &dialect, Options::default()).run(
-            Box::new(MemSource(text.clone())),
-            &mut NoPrograms,
-            &mut sink,
-        )
-    });
 }
