@@ -36,6 +36,7 @@ pub struct LexRules {
 }
 
 const FULLWIDTH_SEMICOLON: &[u8] = "；".as_bytes();
+const BOM: &[u8] = "\u{FEFF}".as_bytes();
 
 /// Lexes the block that starts at `start` in `line` into `out`.
 ///
@@ -85,6 +86,8 @@ pub fn lex_block(
             0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
                 return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
             }
+            // A byte-order mark (editors put one at the start of a file).
+            0xEF if line[i..].starts_with(BOM) => i += BOM.len(),
             _ => return Err(illegal_at(line, i)),
         }
         first = first && matches!(b, b' ' | b'\t' | b'\r' | b'(' | 0x0c);
@@ -241,6 +244,7 @@ mod tests {
             vec!["G90 G0 X5500 Y4000", ""]
         );
         assert_eq!(blocks("X 1 0 . 5").unwrap(), vec!["X10.5."]);
+        assert_eq!(blocks("\u{FEFF}G0 X1").unwrap(), vec!["G0 X1"]);
     }
 
     #[test]
