@@ -9,19 +9,32 @@ use vcnc_interp::{Dialect, Machine, Outcome};
 use vcnc_output::Summary;
 use vcnc_syntax::Diagnostic;
 
-/// The source line of a diagnostic, read back from its file.
-fn source_line(d: &Diagnostic, main: &Path) -> Option<String> {
+/// The source line of a diagnostic, read back from its file, as raw bytes.
+fn source_line(d: &Diagnostic, main: &Path) -> Option<Vec<u8>> {
     let path = d.file.as_deref().map_or(main, Path::new);
     let mut f = std::fs::File::open(path).ok()?;
     f.seek(SeekFrom::Start(d.line_offset)).ok()?;
     let mut buf = vec![0; 4096];
     let n = f.read(&mut buf).ok()?;
     buf.truncate(n);
-    let end = buf.iter().position(|b| *b == b'\n').unwrap_or(buf.len());
-    let line = String::from_utf8_lossy(&buf[..end])
-        .trim_end_matches('\r')
-        .to_string();
-    Some(line)
+    let mut end = buf.iter().position(|b| *b == b'\n').unwrap_or(buf.len());
+    if end > 0 && buf[end - 1] == b'\r' {
+        end -= 1;
+    }
+    buf.truncate(end);
+    Some(buf)
+}
+
+/// A byte offset of the raw line as an offset into its lossy UTF-8 text
+/// (GBK or Latin-1 comments are not UTF-8), on a character boundary.
+fn lossy_offset(raw: &[u8], text: &str, byte: usize) -> usize {
+    let mut at = String::from_utf8_lossy(&raw[..byte.min(raw.len())])
+        .len()
+        .min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
 }
 
 /// An alarm with its source line and a caret, like rustc.
@@ -34,10 +47,10 @@ pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
         Renderer::plain()
     };
     let text = match source_line(d, main) {
-        Some(line) => {
-            let len = line.len();
-            let start = (d.span.start as usize).min(len);
-            let end = (d.span.end as usize).clamp(start, len);
+        Some(raw) => {
+            let line = String::from_utf8_lossy(&raw).into_owned();
+            let start = lossy_offset(&raw, &line, d.span.start as usize);
+            let end = lossy_offset(&raw, &line, d.span.end as usize).max(start);
             let report = [Level::ERROR
                 .primary_title(title)
                 .id(d.code.as_str())

@@ -632,3 +632,49 @@ fn check_reports_lathe_diameters() {
     assert!(stdout.contains("Z -20.000 .. 250.000"), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Regression: an alarm on a line that is not UTF-8 (a GBK comment, common
+/// in Syntec programs) used to panic while rendering; the printed column
+/// and the JSON column now agree.
+#[test]
+fn an_alarm_on_a_gbk_line_is_rendered_without_panic() {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-gbk-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("gbk.nc");
+    // "(中文注释) G01 X1." in GBK; the G01 has no feed: E301 at the G01.
+    std::fs::write(&file, b"(\xd6\xd0\xce\xc4\xd7\xa2\xca\xcd) G01 X1.\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["run"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error[E301]"), "{stderr}");
+    // Each of the 8 GBK bytes that do not form UTF-8 shows as one U+FFFD:
+    // '(' + 8 + ')' + ' ' puts the G at column 11.
+    assert!(stdout.contains("\"column\":11"), "{stdout}");
+    assert!(stderr.contains(":1:11"), "{stderr}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Regression: feed per revolution with the spindle stopped used to be
+/// flattened as `F0`, which LinuxCNC rejects; it stays G95.
+#[test]
+fn feed_per_rev_with_the_spindle_stopped_stays_g95_in_the_flattened_program() {
+    let dir = std::env::temp_dir().join(format!("vcnc-cli-g95-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("g95.nc");
+    std::fs::write(&file, "G95 G01 X10. F0.1\nS1000 M03\nX20.\nM30\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["run", "--format", "gcode"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("G1 X10 Y0 Z0 G95 F0.1\n"), "{stdout}");
+    // 0.1 mm/rev at 1000 rpm is 100 mm/min.
+    assert!(stdout.contains("G1 X20 Y0 Z0 G94 F100\n"), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}

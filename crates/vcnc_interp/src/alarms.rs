@@ -42,6 +42,18 @@ pub fn value_out_of_range(span: Span, l: u8, value: f64, allowed: &str) -> Diagn
     )
 }
 
+/// E109 for lathe G08/G09 steps leaving 10 %–200 %.
+pub fn feed_steps_out_of_range(span: Span, pct: i32) -> Diagnostic {
+    d(
+        Code::E109,
+        span,
+        format!(
+            "this feed step would make the feed {pct} % of F; G08/G09 stay within 10 % to 200 %"
+        ),
+        "remove a G08 or G09, or cancel with G30 and program F again",
+    )
+}
+
 /// E201: unknown G code.
 pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>) -> Diagnostic {
     let help = match elsewhere {
@@ -350,6 +362,16 @@ pub fn needs_axes(span: Span, what: &str) -> Diagnostic {
         span,
         format!("{what} needs axis words"),
         "name the axes it applies to, e.g. X0 Y0",
+    )
+}
+
+/// E312: a code without a (non-axis) word it needs.
+pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
+    d(
+        Code::E312,
+        span,
+        format!("{code} needs {words}"),
+        "add the missing word to the block",
     )
 }
 

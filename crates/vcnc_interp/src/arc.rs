@@ -227,7 +227,7 @@ impl Interpreter<'_> {
         }
         let half = chord / 2.0;
         let h2 = r * r - half * half;
-        if h2 < 0.0 && half - r.abs() > self.machine.params.arc_tolerance_mm {
+        if h2 < 0.0 && chord - 2.0 * r.abs() > self.machine.params.arc_tolerance_mm {
             if radius.line_if_short {
                 return Ok(None);
             }

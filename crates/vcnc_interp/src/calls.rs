@@ -41,7 +41,11 @@ impl Interpreter<'_> {
             None => 1,
         };
         if program.is_none() && seq.is_none() {
-            return Err(alarms::program_not_found(m, 0));
+            return Err(alarms::needs_word(
+                m,
+                "M98",
+                "P (a program number) or H (a sequence number)",
+            ));
         }
         let depth = self.flow().frames.len() as u64;
         if depth > u64::from(self.machine.limits.max_call_depth) {
@@ -98,11 +102,16 @@ impl Interpreter<'_> {
                     .ok_or_else(|| alarms::sequence_not_found(span, n))?,
                 None => frame.start,
             };
+            if let Some(f) = flow.frame_mut().filter(|_| target.is_none()) {
+                // Run again: a `%` or O header at the start is skipped again.
+                f.started = false;
+            }
             return Ok(Step::Jump(to));
         }
         if frame.runs_left > 1 && target.is_none() {
             if let Some(f) = flow.frame_mut() {
                 f.runs_left -= 1;
+                f.started = false;
             }
             return Ok(Step::Jump(frame.start));
         }
@@ -126,9 +135,9 @@ impl Interpreter<'_> {
 impl Interpreter<'_> {
     /// The `N` number of an L word, found in the current program.
     fn label(&mut self, w: &Words<'_>, cmd: Span) -> Result<Cursor, Diagnostic> {
-        let l = w
-            .get(b'L')
-            .ok_or_else(|| alarms::needs_axes(cmd, "this code (L sequence number)"))?;
+        let l = w.get(b'L').ok_or_else(|| {
+            alarms::needs_word(cmd, "this code", "L (the sequence number to go to)")
+        })?;
         let n = whole(&l, b'L', 1.0, 99_999_999.0, "L is a sequence number")?;
         let lex = self.dialect.lex;
         let frame = self.flow().frame();
@@ -189,9 +198,9 @@ impl Interpreter<'_> {
         cmd: Span,
         here: Cursor,
     ) -> Result<Step, Diagnostic> {
-        let q = w
-            .get(b'Q')
-            .ok_or_else(|| alarms::needs_axes(cmd, "G26 (Q repeats)"))?;
+        let q = w.get(b'Q').ok_or_else(|| {
+            alarms::needs_word(cmd, "G26", "Q (how many times the loop body runs)")
+        })?;
         let runs = whole(
             &q,
             b'Q',

@@ -29,7 +29,7 @@ impl Interpreter<'_> {
     pub(crate) fn set_work_offset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let l = w
             .get(b'L')
-            .ok_or_else(|| alarms::needs_axes(cmd, "G10 (L2 P…)"))?;
+            .ok_or_else(|| alarms::needs_word(cmd, "G10", "L2 and P (the work offset number)"))?;
         whole(&l, b'L', 2.0, 2.0, "G10 L2 sets work offsets")?;
         let p = w
             .get(b'P')
@@ -58,15 +58,7 @@ impl Interpreter<'_> {
             if !values.is_empty() {
                 return Err(alarms::g92_axes_and_s(s.span));
             }
-            if s.value < 0.0 {
-                return Err(alarms::value_out_of_range(
-                    s.span,
-                    b'S',
-                    s.value,
-                    "a spindle clamp is not negative",
-                ));
-            }
-            self.state.max_rpm = Some(s.value);
+            // The clamp itself was set with the spindle words (execute.rs).
             return Ok(());
         }
         if values.is_empty() {

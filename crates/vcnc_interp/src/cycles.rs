@@ -35,6 +35,10 @@ use crate::sink::Sink;
 use crate::words::Words;
 use vcnc_syntax::{Diagnostic, Span};
 
+/// Most rough passes a G81 may make: a real depth of cut is never that
+/// small, and the block's events are held until it completes.
+const MAX_PASSES: f64 = 10_000.0;
+
 /// A point in the lathe plane: (X radius, Z), machine coordinates.
 type Xz = (f64, f64);
 
@@ -97,6 +101,12 @@ impl Interpreter<'_> {
         let taper = end.0 - profile_x;
         let rough = depth - allowance;
         let passes = (rough.abs() / step.abs() - 1e-9).ceil().max(0.0);
+        if passes > MAX_PASSES {
+            return Err(alarms::cycle_parameters(
+                i.span,
+                "I is so small that the cut needs more than 10,000 passes",
+            ));
+        }
         let mut moves: Vec<(bool, Xz)> = Vec::new();
         let mut k_pass = 1.0;
         while k_pass <= passes {

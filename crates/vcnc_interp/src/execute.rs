@@ -147,6 +147,7 @@ impl Interpreter<'_> {
         let mut ext = 0u8;
         match w.axis_user.map(|u| u.def.axes) {
             Some(AxisWords::Refuse) => {}
+            Some(AxisWords::ClaimAbsolute) => allowed |= self.machine.axis_letter_mask(),
             Some(_) => allowed |= self.axis_mask,
             None => {
                 allowed |= self.axis_mask;
@@ -212,8 +213,7 @@ impl Interpreter<'_> {
     /// Steps 2c and 4: S, G96/G97 and the spindle M codes, one event at most.
     fn spindle_words<S: Sink>(&mut self, w: &Words<'_>, sink: &mut S) -> Result<(), Diagnostic> {
         let clamp_block = w.axis_user.is_some_and(|a| a.def.op == GOp::PresetOrClamp);
-        let s_word = w.get(b'S').filter(|_| !clamp_block);
-        if let Some(s) = s_word {
+        if let Some(s) = w.get(b'S') {
             if s.value < 0.0 {
                 return Err(alarms::value_out_of_range(
                     s.span,
@@ -222,7 +222,18 @@ impl Interpreter<'_> {
                     "a spindle speed is not negative",
                 ));
             }
-            self.state.s_value = s.value;
+            if clamp_block {
+                // G92 S: the highest speed G96 may ask for.
+                self.state.max_rpm = Some(s.value);
+            } else {
+                self.state.s_value = s.value;
+            }
+        }
+        let s_word = w.get(b'S').filter(|_| !clamp_block);
+        let mode = w.group(Group::SpindleMode);
+        if mode.is_some_and(|m| m.def.op == GOp::SpindleRpm) && s_word.is_none() {
+            // G97 alone keeps the speed the spindle turns at (Fanuc).
+            self.state.s_value = self.state.rpm;
         }
         let m = w.m_of(MGroup::Spindle);
         let dir = match m.map(|a| a.def.op) {
@@ -233,14 +244,15 @@ impl Interpreter<'_> {
             _ => self.state.spindle,
         };
         let turning = matches!(dir, SpindleDir::Cw | SpindleDir::Ccw);
-        let changed =
-            m.is_some() || (turning && (s_word.is_some() || w.group(Group::SpindleMode).is_some()));
+        // Under G96 the speed follows the tool's diameter, the clamp and the units.
+        let css_input = self.state.modal.css
+            && (w.m_of(MGroup::Tool).is_some() || clamp_block || w.group(Group::Units).is_some());
+        let changed = m.is_some() || (turning && (s_word.is_some() || mode.is_some() || css_input));
         if !changed {
             return Ok(());
         }
         // An alarm about the speed points at what set it: G96, S, else the M code.
-        let why = w
-            .group(Group::SpindleMode)
+        let why = mode
             .map(|a| a.span)
             .or(s_word.map(|s| s.span))
             .or(m.map(|a| a.span));
@@ -249,7 +261,15 @@ impl Interpreter<'_> {
         } else {
             (0.0, None)
         };
+        if turning
+            && m.is_none()
+            && (rpm - self.state.rpm).abs() < 1e-9
+            && self.state.spindle == dir
+        {
+            return Ok(());
+        }
         self.state.spindle = dir;
+        self.state.rpm = rpm;
         self.emit(sink, |loc| Event::Spindle {
             loc,
             dir,
@@ -318,7 +338,16 @@ impl Interpreter<'_> {
                 GOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
                 GOp::SubReturn => return self.sub_return(g.span).map(Some),
                 GOp::Jump => return self.jump(w, g.span).map(Some),
-                GOp::Loop => return self.loop_back(w, g.span, here).map(Some),
+                // A finished loop continues after its block, but the label
+                // search may have moved the reader: re-read from `next`.
+                GOp::Loop => {
+                    let step = self.loop_back(w, g.span, here)?;
+                    return Ok(Some(if matches!(step, Step::Next) {
+                        Step::Jump(next)
+                    } else {
+                        step
+                    }));
+                }
                 _ => {}
             }
         }

@@ -87,7 +87,8 @@ impl Frame {
 pub(crate) struct Flow {
     pub sources: Vec<Option<Source>>,
     pub frames: Vec<Frame>,
-    programs: HashMap<(usize, u32), Cursor>,
+    /// Where program headers are, and where they are not (`None`).
+    programs: HashMap<(usize, u32), Option<Cursor>>,
     sequences: HashMap<(usize, u64, u32, u32), Cursor>,
     scratch: Block,
     /// Calls, returns to a sequence and repeats so far.
@@ -196,7 +197,7 @@ impl Flow {
 
     fn program_in(&mut self, src: usize, number: u32, lex: &LexRules) -> Option<Cursor> {
         if let Some(c) = self.programs.get(&(src, number)) {
-            return Some(*c);
+            return *c;
         }
         let found = self.scan(
             src,
@@ -204,9 +205,9 @@ impl Flow {
             lex,
             |b| first_value(b, b'O') == Some(number),
             false,
-        )?;
+        );
         bounded_insert(&mut self.programs, (src, number), found);
-        Some(found)
+        found
     }
 
     /// Finds `N seq` in the program of `src` that starts at `start`.
@@ -244,6 +245,7 @@ impl Flow {
         source.reader.seek(Cursor { col: 0, ..from });
         let mut col = from.col as usize;
         let mut result = None;
+        let mut seen_block = false;
         'lines: loop {
             let line = match source.reader.next_line() {
                 Ok(Some(l)) => l,
@@ -274,9 +276,13 @@ impl Flow {
                     });
                     break 'lines;
                 }
-                if within_program && (block.percent || first_value(&block, b'O').is_some()) {
+                let boundary = block.percent || first_value(&block, b'O').is_some();
+                if within_program && boundary && seen_block {
                     break 'lines;
                 }
+                // A `%` or O header before the program's first block is its
+                // start, not its end.
+                seen_block |= !boundary && !block.is_empty();
             }
         }
         self.scratch = block;
@@ -284,7 +290,7 @@ impl Flow {
     }
 }
 
-fn bounded_insert<K: std::hash::Hash + Eq>(map: &mut HashMap<K, Cursor>, key: K, value: Cursor) {
+fn bounded_insert<K: std::hash::Hash + Eq, V>(map: &mut HashMap<K, V>, key: K, value: V) {
     if map.len() >= CACHE_LIMIT {
         map.clear();
     }

@@ -349,7 +349,9 @@ impl<'a> Interpreter<'a> {
             return Err(alarms::word_not_allowed(w.span, w.addr.0));
         }
         if !started {
-            if let Some(f) = self.flow().frame_mut().filter(|_| !block.percent) {
+            // The tape start `%` and the program's own O header come before
+            // its first block: restarts and searches begin after them.
+            if let Some(f) = self.flow().frame_mut() {
                 f.start = next;
             }
             return Ok(Step::Next);
@@ -365,8 +367,10 @@ impl<'a> Interpreter<'a> {
         sink: &mut S,
     ) -> Result<Option<&'static str>, Diagnostic> {
         let span = last.map_or(Span::new(0, 1), |(_, _, s)| s);
-        if let Some((_, line, _)) = last {
-            self.flow.loc.line = line.number;
+        match last {
+            Some((_, line, _)) => self.flow.loc.line = line.number,
+            // An empty program ends on its (empty) first line.
+            None => self.flow.loc.line = self.flow.loc.line.max(1),
         }
         match self.finish_program(span, sink) {
             Ok(Step::End(code)) => Ok(Some(code)),

@@ -169,6 +169,7 @@ impl Interpreter<'_> {
         let lead_mm = self
             .state
             .thread_lead_mm
+            .filter(|l| *l > 0.0)
             .ok_or_else(|| alarms::thread_without_lead(cmd))?;
         let (to, _) = self.target(w, self.state.modal.incremental);
         self.check_segment(self.state.pos, to, w, cmd)?;
@@ -259,7 +260,12 @@ impl Interpreter<'_> {
                 None
             };
             if let Some(v) = bad {
-                let span = w.get(axis.letter).map_or(cmd, |word| word.span);
+                let inc = self
+                    .axis_words
+                    .get(i)
+                    .and_then(|a| a.inc)
+                    .and_then(|l| w.get(l));
+                let span = w.get(axis.letter).or(inc).map_or(cmd, |word| word.span);
                 return Err(alarms::over_travel(
                     span,
                     axis.letter,

@@ -90,6 +90,16 @@ impl Interpreter<'_> {
             (None, Some(x)) => self.seconds(&x),
             (None, None) => 0.0,
         };
+        // Manual 1.2.5: 0.001 to 9999.999 s (0 is the exact-stop check).
+        if seconds > 9_999.999 {
+            let word = w.get(b'X').or(w.get(b'P')).unwrap_or_default();
+            return Err(alarms::value_out_of_range(
+                word.span,
+                word.addr.0,
+                word.value,
+                "a dwell is at most 9999.999 s",
+            ));
+        }
         self.emit(sink, |loc| Event::Dwell { loc, seconds });
         Ok(())
     }
@@ -104,7 +114,7 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let p = w
             .get(b'P')
-            .ok_or_else(|| alarms::needs_axes(cmd, "G05 (P0, P1-P5 or P10000)"))?;
+            .ok_or_else(|| alarms::needs_word(cmd, "G05", "P (0 off, 1-5 or 10000 on)"))?;
         let n = whole(&p, b'P', 0.0, 10_000.0, "G05 P is 0, 1-5 or 10000")?;
         if !matches!(n, 0..=5 | 10_000) {
             return Err(alarms::value_out_of_range(

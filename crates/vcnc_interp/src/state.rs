@@ -106,6 +106,8 @@ pub struct State {
     pub max_rpm: Option<f64>,
     /// Spindle direction.
     pub spindle: SpindleDir,
+    /// Speed the spindle turns at (last `spindle` event), rpm.
+    pub rpm: f64,
     /// Last T word.
     pub tool_selected: Option<u32>,
     /// Tool in the spindle.
@@ -143,6 +145,7 @@ impl State {
             s_value: 0.0,
             max_rpm: None,
             spindle: SpindleDir::Stop,
+            rpm: 0.0,
             tool_selected: None,
             tool_active: None,
             intermediate: [None; crate::events::MAX_AXES],

@@ -30,7 +30,7 @@ impl Interpreter<'_> {
             (Some(_), Some(k)) => return Err(alarms::word_not_allowed(k.span, b'K')),
             (Some(f), None) => f,
             (None, Some(k)) => k,
-            (None, None) => return Err(alarms::needs_axes(w.first, "G04 (F or K seconds)")),
+            (None, None) => return Err(alarms::needs_word(w.first, "G04", "F or K (seconds)")),
         };
         let seconds = word.value;
         if !(DWELL_MIN_S..=DWELL_MAX_S).contains(&seconds) {
@@ -49,13 +49,8 @@ impl Interpreter<'_> {
     pub(crate) fn feed_step(&mut self, step: i32, cmd: Span) -> Result<(), Diagnostic> {
         let steps = self.state.feed_steps + step;
         if !(-9..=10).contains(&steps) {
-            let pct = f64::from(100 + 10 * steps);
-            return Err(alarms::value_out_of_range(
-                cmd,
-                b'G',
-                pct,
-                "the feed steps of G08/G09 stay within 10 %..200 %",
-            ));
+            let pct = 100 + 10 * steps;
+            return Err(alarms::feed_steps_out_of_range(cmd, pct));
         }
         self.state.feed_steps = steps;
         self.refresh_feed_factor();
@@ -64,9 +59,9 @@ impl Interpreter<'_> {
 
     /// G31 F: feed magnification in percent.
     pub(crate) fn magnification(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let f = w
-            .get(b'F')
-            .ok_or_else(|| alarms::needs_axes(cmd, "G31 (F percent)"))?;
+        let f = w.get(b'F').ok_or_else(|| {
+            alarms::needs_word(cmd, "G31", "F (the feed magnification in percent)")
+        })?;
         if !(f.value > 0.0 && f.value <= 200.0) {
             return Err(alarms::value_out_of_range(
                 f.span,

@@ -125,7 +125,7 @@ impl<'b> Words<'b> {
         else {
             return Ok(());
         };
-        let axes = if code.def.axes == AxisWords::Claim {
+        let axes = if matches!(code.def.axes, AxisWords::Claim | AxisWords::ClaimAbsolute) {
             axis_mask
         } else {
             0

@@ -20,6 +20,7 @@ pub struct GcodeSink<W: Write> {
     pos: Pos,
     plane: Plane,
     feed: Option<f64>,
+    per_rev: bool,
     rpm: f64,
     error: Option<io::Error>,
 }
@@ -38,6 +39,7 @@ impl<W: Write> GcodeSink<W> {
             pos: machine.start,
             plane: Plane::Xy,
             feed: None,
+            per_rev: false,
             rpm: 0.0,
             error,
         }
@@ -60,16 +62,27 @@ impl<W: Write> GcodeSink<W> {
         s
     }
 
+    /// The F word (and a feed-mode switch) a move needs. Feed per rev
+    /// becomes feed per minute at the speed in force; with the spindle
+    /// stopped it stays G95 (LinuxCNC then waits for the spindle, as the
+    /// controller would; grbl has no G95).
     fn feed_word(&mut self, f: Feed) -> String {
-        let per_min = match f {
-            Feed::PerMin(v) => v,
-            Feed::PerRev(v) => v * self.rpm,
+        let (value, per_rev) = match f {
+            Feed::PerMin(v) => (v, false),
+            Feed::PerRev(v) if self.rpm > 0.0 => (v * self.rpm, false),
+            Feed::PerRev(v) => (v, true),
         };
-        if self.feed == Some(per_min) {
+        let mode = if per_rev != self.per_rev {
+            if per_rev { " G95" } else { " G94" }
+        } else {
+            ""
+        };
+        if mode.is_empty() && self.feed == Some(value) {
             return String::new();
         }
-        self.feed = Some(per_min);
-        format!(" F{}", fmt(per_min))
+        self.per_rev = per_rev;
+        self.feed = Some(value);
+        format!("{mode} F{}", fmt(value))
     }
 
     fn arc(&mut self, to: &Pos, center: &Pos, plane: Plane, dir: ArcDir, feed: Feed) -> String {

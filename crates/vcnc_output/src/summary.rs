@@ -91,18 +91,28 @@ impl Summary {
     }
 
     /// Cut time at `feed` over `len_mm`, capped by the slowest axis limit.
-    fn cut_time(&mut self, len_mm: f64, feed: Feed) -> f64 {
+    fn cut_time(&mut self, len_mm: f64, feed: Feed, cap: f64) -> f64 {
         let per_min = match feed {
             Feed::PerMin(f) => f,
             Feed::PerRev(f) => f * self.rpm,
         };
-        let cap = self.max_feeds.iter().copied().fold(f64::INFINITY, f64::min);
         let per_min = per_min.min(cap);
         if per_min <= 0.0 {
             self.untimed_moves += 1;
             return 0.0;
         }
         len_mm / per_min * 60.0
+    }
+
+    /// The fastest path feed a straight move to `to` allows: each moving
+    /// axis stays within its own maximum feed.
+    fn line_cap(&self, to: &Pos, len_mm: f64) -> f64 {
+        (0..self.letters.len())
+            .filter_map(|i| {
+                let d = (to.get(i) - self.pos.get(i)).abs();
+                (d > 1e-12).then(|| self.max_feeds[i] * len_mm / d)
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     fn arc_len(&self, to: &Pos, center: &Pos, plane: Plane, cw: bool) -> (f64, (usize, usize)) {
@@ -147,14 +157,16 @@ impl Sink for Summary {
             Event::Feed { to, feed, .. } | Event::Skip { to, feed, .. } => {
                 let d = self.distance(to);
                 self.cut_mm += d;
-                self.cycle_time_s += self.cut_time(d, *feed);
+                let cap = self.line_cap(to, d);
+                self.cycle_time_s += self.cut_time(d, *feed, cap);
                 self.line_box(to);
                 self.pos = *to;
             }
             Event::Thread { to, lead_mm, .. } => {
                 let d = self.distance(to);
                 self.cut_mm += d;
-                self.cycle_time_s += self.cut_time(d, Feed::PerRev(*lead_mm));
+                let cap = self.line_cap(to, d);
+                self.cycle_time_s += self.cut_time(d, Feed::PerRev(*lead_mm), cap);
                 self.line_box(to);
                 self.pos = *to;
             }
@@ -169,7 +181,9 @@ impl Sink for Summary {
                 let cw = *dir == vcnc_interp::ArcDir::Cw;
                 let (len, axes) = self.arc_len(to, center, *plane, cw);
                 self.cut_mm += len;
-                self.cycle_time_s += self.cut_time(len, *feed);
+                // Round the arc every plane axis reaches the full path speed.
+                let cap = self.max_feeds[axes.0].min(self.max_feeds[axes.1]);
+                self.cycle_time_s += self.cut_time(len, *feed, cap);
                 let (lo, hi) = arc_bounds(self.pos, *to, *center, axes, *dir, self.letters.len());
                 self.extend(lo, hi);
                 self.pos = *to;
@@ -185,5 +199,38 @@ impl Sink for Summary {
             }
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vcnc_interp::Loc;
+
+    /// Regression: a cut was capped by the slowest maximum feed of all axes
+    /// (Z, 8000 mm/min), not of the axes that move.
+    #[test]
+    fn a_cut_is_capped_only_by_the_axes_that_move() {
+        let m = Machine::default_mill();
+        let mut s = Summary::new(&m);
+        let mut to = m.start;
+        to.set(0, 900.0);
+        s.event(&Event::Feed {
+            loc: Loc::default(),
+            to,
+            feed: Feed::PerMin(9000.0),
+            exact_stop: false,
+        });
+        assert!((s.cycle_time_s - 6.0).abs() < 1e-9, "{}", s.cycle_time_s);
+        // Along Z the cap is Z's own 8000 mm/min: 80 mm takes 0.6 s.
+        let mut down = to;
+        down.set(2, -80.0);
+        s.event(&Event::Feed {
+            loc: Loc::default(),
+            to: down,
+            feed: Feed::PerMin(9000.0),
+            exact_stop: false,
+        });
+        assert!((s.cycle_time_s - 6.6).abs() < 1e-9, "{}", s.cycle_time_s);
     }
 }

@@ -31,15 +31,12 @@ pub fn clamp_u32(v: usize) -> u32 {
 
 /// The 1-based character column of byte offset `byte` in `line`.
 ///
-/// Invalid UTF-8 counts one column per byte, so a stray byte still gets a
-/// column that points at it.
+/// Bytes that are not UTF-8 (a GBK or Latin-1 comment) count as the
+/// replacement characters a lossy decoding shows, so the column matches
+/// what the CLI prints.
 pub fn column_of(line: &[u8], byte: u32) -> u32 {
     let end = (byte as usize).min(line.len());
-    let prefix = &line[..end];
-    let chars = match std::str::from_utf8(prefix) {
-        Ok(s) => s.chars().count(),
-        Err(_) => prefix.iter().filter(|b| (**b & 0xC0) != 0x80).count(),
-    };
+    let chars = String::from_utf8_lossy(&line[..end]).chars().count();
     clamp_u32(chars).saturating_add(1)
 }
 

@@ -73,7 +73,7 @@ const LATHE_G: &[GRow] = &[
         .claims_axes(),
     g(900, GOp::Absolute, Group::Distance),
     g(910, GOp::Incremental, Group::Distance),
-    g(920, GOp::PresetOrClamp, Group::NonModal).claims_axes(),
+    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
     g(940, GOp::PerMinute, Group::FeedMode),
     g(950, GOp::PerRev, Group::FeedMode),
 ];

@@ -22,7 +22,7 @@ const MILL_G: &[GRow] = &[
     g(90, GOp::ExactStopOnce, Group::NonModal),
     g(100, GOp::SetData, Group::NonModal)
         .reads(bit(b'L') | bit(b'P'))
-        .claims_axes(),
+        .claims_absolute_axes(),
     g(170, GOp::PlaneXy, Group::Plane),
     g(180, GOp::PlaneZx, Group::Plane),
     g(190, GOp::PlaneYz, Group::Plane),
@@ -33,8 +33,8 @@ const MILL_G: &[GRow] = &[
         .claims_axes(),
     g(310, GOp::Skip, Group::NonModal).claims_axes(),
     g(330, GOp::Thread, Group::Motion),
-    g(520, GOp::LocalSystem, Group::NonModal).claims_axes(),
-    g(530, GOp::MachineCoords, Group::NonModal).claims_axes(),
+    g(520, GOp::LocalSystem, Group::NonModal).claims_absolute_axes(),
+    g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
     g(540, GOp::WorkSystem(0), Group::Wcs),
     g(550, GOp::WorkSystem(1), Group::Wcs),
     g(560, GOp::WorkSystem(2), Group::Wcs),
@@ -56,7 +56,7 @@ const MILL_G: &[GRow] = &[
     g(640, GOp::PathCutting, Group::Path),
     g(900, GOp::Absolute, Group::Distance),
     g(910, GOp::Incremental, Group::Distance),
-    g(920, GOp::PresetOrClamp, Group::NonModal).claims_axes(),
+    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
     g(940, GOp::PerMinute, Group::FeedMode),
     g(950, GOp::PerRev, Group::FeedMode),
     g(960, GOp::SurfaceSpeed, Group::SpindleMode),

@@ -125,8 +125,11 @@ pub enum GOp {
 pub enum AxisWords {
     /// Nothing: they go to the modal motion.
     Free,
-    /// They are the code's arguments (G28 X0, G92 X10).
+    /// They are the code's arguments (G28 X0, G74 X Z), incremental words too.
     Claim,
+    /// They are absolute coordinates for the code (G92, G52, G10, G53):
+    /// the dialect's incremental words (U, W) are not allowed.
+    ClaimAbsolute,
     /// The code takes the block; axis words are not allowed except those in
     /// its `letters` (G04 X2.5).
     Refuse,
@@ -219,6 +222,11 @@ impl GRow {
     /// The axis words are its arguments.
     pub(crate) const fn claims_axes(mut self) -> GRow {
         self.def.axes = AxisWords::Claim;
+        self
+    }
+    /// The axis words are absolute coordinates for it.
+    pub(crate) const fn claims_absolute_axes(mut self) -> GRow {
+        self.def.axes = AxisWords::ClaimAbsolute;
         self
     }
     /// Takes the block; no axis words except its letters.
