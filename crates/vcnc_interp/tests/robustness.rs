@@ -199,7 +199,9 @@ fn run_bounded(
 fn line_columns(program: &[u8]) -> Vec<usize> {
     program
         .split(|b| *b == b'\n')
-        .map(|l| l.iter().filter(|b| (**b & 0xC0) != 0x80).count())
+        // Columns count the characters of the lossy UTF-8 decoding, as the
+        // CLI prints the line (one U+FFFD per byte sequence that is not UTF-8).
+        .map(|l| String::from_utf8_lossy(l).chars().count())
         .collect()
 }
 
