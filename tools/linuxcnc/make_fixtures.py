@@ -13,8 +13,10 @@ the fixture folder, this script
      own tool table and a fresh empty parameter (.var) file so that nothing
      persists between runs;
   3. converts the canonical calls to vcnc's event contract (docs/events.md)
-     in MACHINE coordinates: machine = program position + G5x offset + G92
-     offset, tracking SET_G5X_OFFSET and SET_G92_OFFSET;
+     in MACHINE coordinates and mm: machine = program position + G5x offset
+     + G92 offset, tracking SET_G5X_OFFSET and SET_G92_OFFSET; after
+     USE_LENGTH_UNITS(CANON_UNITS_INCHES) every length rs274 prints (points,
+     centres, offsets, feeds) is in inches and is multiplied by 25.4;
   4. writes NNN.nc, NNN.ngc and NNN.expected.jsonl into the fixture folder.
 
 An rs274 error, an unknown canonical call or a program without PROGRAM_END is
@@ -32,6 +34,18 @@ Mapping (verified on small programs, see tests/fixtures/linuxcnc/README.md):
       (an I/J/K full circle is rotation +-1 with end = start)
   DWELL(seconds)                        -> dwell
   PROGRAM_END()                         -> end, code "M02"
+  (G28 has no call of its own: its two legs are two STRAIGHT_TRAVERSEs.)
+
+Units: rs274 prints lengths in the units in force when it prints them and
+re-sends nothing on a unit change (the offsets it printed in mm stay valid as
+lengths; the converter keeps everything in mm). Two checks keep inch exact:
+  * an end point or offset printed in inches must be a multiple of
+    0.0005 in, so that 25.4 x the 4-decimal print is the exact mm value (the
+    generator keeps inch segments on that grid); only arc centres are exempt
+    (rs274 computes R-arc centres, rounded to 0.0001 in = 0.00127 mm);
+  * a cutting move must be in the units its F was set in: rs274 does not
+    re-send the feed on G20/G21, and LinuxCNC (keeps the physical feed) and
+    vcnc (keeps F's number) differ there, so such a program is rejected.
 
 Usage: make_fixtures.py [--programs DIR] [--fixtures DIR] [--rs274 PATH] [-j N]
 """
@@ -75,6 +89,7 @@ IGNORED = {
 
 AXES = ("x", "y", "z")
 Q = Decimal("0.0001")
+MM_PER = {"CANON_UNITS_MM": Decimal(1), "CANON_UNITS_INCHES": Decimal("25.4")}
 
 
 class ConvertError(Exception):
@@ -103,12 +118,25 @@ def convert(canon_text, name="?"):
     # also vcnc's default machine start.
     pos = {a: Decimal(0) for a in AXES}    # machine
     plane = "CANON_PLANE_XY"
-    feed = None
+    unit = MM_PER["CANON_UNITS_MM"]    # mm per printed length unit
+    feed = None                        # mm/min
+    feed_unit = unit                   # the units F was set in
     events = []
     ended = False
+    where = [name]
 
     def machine(prog):
         return {a: prog[a] + g5x[a] + g92[a] for a in AXES}
+
+    def mm(s, exact=True):
+        """A printed length -> Decimal mm; `exact`: refuse an inch value
+        whose 4-decimal print cannot be the exact length."""
+        v = num(s) * unit
+        if exact and v != v.quantize(Q):
+            raise ConvertError("%s: %s in is not a multiple of 0.0005 in: its "
+                               "4-decimal print is not exact in mm"
+                               % (where[0], s.strip()))
+        return v
 
     for raw in canon_text.splitlines():
         if not raw.strip():
@@ -119,40 +147,47 @@ def convert(canon_text, name="?"):
         _, nword, call, args_s = m.groups()
         args = [a.strip() for a in args_s.split(",")] if args_s.strip() else []
         line = None if nword == "....." else int(nword)
+        where[0] = "%s:%s" % (name, line)
         if ended:
             continue   # ON_RESET etc. after PROGRAM_END
         if call == "USE_LENGTH_UNITS":
-            if args != ["CANON_UNITS_MM"]:
-                raise ConvertError("%s: units %r, expected mm" % (name, args))
+            if len(args) != 1 or args[0] not in MM_PER:
+                raise ConvertError("%s: units %r" % (name, args))
+            unit = MM_PER[args[0]]
         elif call == "SET_XY_ROTATION":
             if num(args[0]) != 0:
                 raise ConvertError("%s: XY rotation %s" % (name, args[0]))
         elif call == "SET_G5X_OFFSET":
             # (index, x, y, z, a, b, c)
-            g5x = dict(zip(AXES, map(num, args[1:4])))
+            g5x = dict(zip(AXES, map(mm, args[1:4])))
         elif call == "SET_G92_OFFSET":
-            g92 = dict(zip(AXES, map(num, args[0:3])))
+            g92 = dict(zip(AXES, map(mm, args[0:3])))
         elif call == "SET_FEED_RATE":
-            feed = num(args[0])
+            feed = mm(args[0], exact=False)   # rates: quantized on output
+            feed_unit = unit
         elif call == "SELECT_PLANE":
             if args[0] not in PLANES:
                 raise ConvertError("%s: plane %r" % (name, args[0]))
             plane = args[0]
         elif call in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
-            to = machine(dict(zip(AXES, map(num, args[0:3]))))
+            to = machine(dict(zip(AXES, map(mm, args[0:3]))))
             ev = {"type": "rapid" if call == "STRAIGHT_TRAVERSE" else "feed",
                   "line": line, "to": point(to)}
             if call == "STRAIGHT_FEED":
                 if not feed:
                     raise ConvertError("%s:%s feed move with no feed" % (name, line))
+                if feed_unit != unit:
+                    raise ConvertError("%s:%s feed set before a unit change"
+                                       % (name, line))
                 ev["feed"] = out_num(feed)
             events.append(ev)
             pos = to
         elif call == "ARC_FEED":
             pname, fa, sa, na = PLANES[plane]
-            first_end, second_end, first_c, second_c = map(num, args[0:4])
+            first_end, second_end = mm(args[0]), mm(args[1])
+            first_c, second_c = mm(args[2], False), mm(args[3], False)
             rotation = int(args[4])
-            normal_end = num(args[5])
+            normal_end = mm(args[5])
             prog_end = {fa: first_end, sa: second_end, na: normal_end}
             to = machine(prog_end)
             off = {a: g5x[a] + g92[a] for a in AXES}
@@ -161,6 +196,9 @@ def convert(canon_text, name="?"):
                 raise ConvertError("%s:%s arc rotation %d" % (name, line, rotation))
             if not feed:
                 raise ConvertError("%s:%s arc with no feed" % (name, line))
+            if feed_unit != unit:
+                raise ConvertError("%s:%s feed set before a unit change"
+                                   % (name, line))
             events.append({"type": "arc", "line": line, "to": point(to),
                            "center": point(center), "plane": pname,
                            "dir": "ccw" if rotation > 0 else "cw",
