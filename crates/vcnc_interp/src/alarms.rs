@@ -377,12 +377,16 @@ pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
 
 /// E401: program not found.
 pub fn program_not_found(span: Span, number: u32) -> Diagnostic {
-    d(
+    let mut diag = d(
         Code::E401,
         span,
         format!("program O{number:04} not found"),
-        "add it to this file after the main program, or put O{number:04}.nc in the --program-dir",
-    )
+        "",
+    );
+    diag.help = format!(
+        "add it to this file after the main program, or put O{number:04}.nc in the --program-dir"
+    );
+    diag
 }
 
 /// E402: sequence number not found.

@@ -57,18 +57,19 @@ impl Interpreter<'_> {
         self.count_jump(m)?;
         let lex = self.dialect.lex;
         let caller = self.flow().frame();
-        let (source, mut start) = match program {
+        let (source, program_start) = match program {
             Some((n, span)) => match self.flow().find_program(n, &lex, store) {
                 Ok(Some(found)) => found,
                 Ok(None) => return Err(alarms::program_not_found(span, n)),
                 Err(e) => return Err(alarms::program_unreadable(span, n, &e)),
             },
-            None => (caller.source, caller.start),
+            None => (caller.source, caller.program),
         };
+        let mut start = program_start;
         if let Some((n, span)) = seq {
             start = self
                 .flow()
-                .find_sequence(source, start, n, &lex)
+                .find_sequence(source, program_start, n, &lex)
                 .ok_or_else(|| alarms::sequence_not_found(span, n))?;
         }
         let _ = here;
@@ -76,6 +77,8 @@ impl Interpreter<'_> {
         flow.frames.push(Frame {
             source,
             start,
+            program: program_start,
+            last: None,
             ret: next,
             runs_left: runs,
             started: seq.is_some(),
@@ -98,7 +101,7 @@ impl Interpreter<'_> {
             // A main program: start again, or jump to N n.
             let to = match target {
                 Some((n, span)) => flow
-                    .find_sequence(frame.source, frame.start, n, &lex)
+                    .find_sequence(frame.source, frame.program, n, &lex)
                     .ok_or_else(|| alarms::sequence_not_found(span, n))?,
                 None => frame.start,
             };
@@ -119,7 +122,7 @@ impl Interpreter<'_> {
         let caller = flow.frame();
         let to = match target {
             Some((n, span)) => flow
-                .find_sequence(caller.source, caller.start, n, &lex)
+                .find_sequence(caller.source, caller.program, n, &lex)
                 .ok_or_else(|| alarms::sequence_not_found(span, n))?,
             None => frame.ret,
         };
@@ -142,7 +145,7 @@ impl Interpreter<'_> {
         let lex = self.dialect.lex;
         let frame = self.flow().frame();
         self.flow()
-            .find_sequence(frame.source, frame.start, n, &lex)
+            .find_sequence(frame.source, frame.program, n, &lex)
             .ok_or_else(|| alarms::sequence_not_found(l.span, n))
     }
 
@@ -162,10 +165,12 @@ impl Interpreter<'_> {
             ));
         }
         self.count_jump(cmd)?;
-        let source = self.flow().frame().source;
+        let caller = self.flow().frame();
         self.flow().frames.push(Frame {
-            source,
+            source: caller.source,
             start,
+            program: caller.program,
+            last: None,
             ret: next,
             runs_left: 1,
             started: true,

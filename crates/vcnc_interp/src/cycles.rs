@@ -210,14 +210,21 @@ impl Interpreter<'_> {
         // "each depth of cut into R ÷ p and rounded": rounded to 0.001 in
         // program units, the last pass takes what is left.
         let step_prog = ((r.value / f64::from(passes)) * 1000.0).round() / 1000.0;
+        if step_prog <= 0.0 {
+            return Err(alarms::cycle_parameters(
+                p.span,
+                "the depth per pass R/P rounds to 0: use fewer passes",
+            ));
+        }
         let scale = self.x_length_mm(&r) / r.value;
         let total = self.x_length_mm(&r);
         let mut moves: Vec<(bool, Xz)> = Vec::new();
         for n in 1..=passes + 1 {
+            // Rounding up can reach the full depth early: never cut deeper.
             let depth = if n >= passes {
                 total
             } else {
-                f64::from(n) * step_prog * scale
+                (f64::from(n) * step_prog * scale).min(total)
             };
             let x = start.0 - depth;
             let tail_x = x + taper + tail;

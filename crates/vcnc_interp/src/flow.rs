@@ -59,6 +59,11 @@ pub(crate) struct Frame {
     pub source: usize,
     /// Where the program (or the called sequence) starts; repeats go here.
     pub start: Cursor,
+    /// Where the program itself starts: N searches (M99 P, M98 H, lathe
+    /// G20/G25/G26 L) begin here even when it was entered at a label.
+    pub program: Cursor,
+    /// The last block this level executed (for alarms at its end).
+    pub last: Option<(vcnc_syntax::Line, vcnc_syntax::Span)>,
     /// Where the caller continues.
     pub ret: Cursor,
     /// Runs left, this one included (M98 L).
@@ -76,6 +81,8 @@ impl Frame {
         Frame {
             source: 0,
             start: Cursor::default(),
+            program: Cursor::default(),
+            last: None,
             ret: Cursor::default(),
             runs_left: 1,
             started: false,

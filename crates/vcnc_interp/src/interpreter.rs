@@ -166,14 +166,11 @@ impl<'a> Interpreter<'a> {
     ) -> Result<&'static str, Diagnostic> {
         let mut block = Block::default();
         let lex = self.dialect.lex;
-        // The source, line and first word of the last executed block, for
-        // an alarm at the end of a program.
-        let mut last: Option<(usize, Line, Span)> = None;
         let mut col = 0usize;
         loop {
             let src = self.flow.frames.last().map_or(0, |f| f.source);
             let Some(line) = self.next_line(src)? else {
-                match self.end_of_program(last, sink)? {
+                match self.end_of_program(sink)? {
                     Some(code) => return Ok(code),
                     None => continue,
                 }
@@ -202,11 +199,16 @@ impl<'a> Interpreter<'a> {
                     col: clamp_u32(i),
                     ..here
                 };
+                let depth = self.flow.frames.len();
                 let step = self
                     .block(&block, here, next, store, sink)
                     .map_err(|d| self.locate(d, src, &line))?;
                 if !matches!(step, Step::ProgramEnd) {
-                    last = Some((src, line, block.first_span()));
+                    // Remembered by the level that ran it (a call's caller,
+                    // not a return's callee), for alarms at its end.
+                    if let Some(f) = self.flow.frames.get_mut(depth.wrapping_sub(1)) {
+                        f.last = Some((line, block.first_span()));
+                    }
                 }
                 match step {
                     Step::Next => {}
@@ -216,7 +218,7 @@ impl<'a> Interpreter<'a> {
                         break;
                     }
                     Step::End(code) => return Ok(code),
-                    Step::ProgramEnd => match self.end_of_program(last, sink)? {
+                    Step::ProgramEnd => match self.end_of_program(sink)? {
                         Some(code) => return Ok(code),
                         None => break,
                     },
@@ -353,6 +355,7 @@ impl<'a> Interpreter<'a> {
             // its first block: restarts and searches begin after them.
             if let Some(f) = self.flow().frame_mut() {
                 f.start = next;
+                f.program = next;
             }
             return Ok(Step::Next);
         }
@@ -360,23 +363,25 @@ impl<'a> Interpreter<'a> {
         Ok(Step::ProgramEnd)
     }
 
-    /// The current program ran out of blocks; `last` is its last block.
+    /// The current program ran out of blocks.
     fn end_of_program<S: Sink>(
         &mut self,
-        last: Option<(usize, Line, Span)>,
         sink: &mut S,
     ) -> Result<Option<&'static str>, Diagnostic> {
-        let span = last.map_or(Span::new(0, 1), |(_, _, s)| s);
+        let frame = self.flow.frame();
+        let last = frame.last;
+        let span = last.map_or(Span::new(0, 1), |(_, s)| s);
         match last {
-            Some((_, line, _)) => self.flow.loc.line = line.number,
+            Some((line, _)) => self.flow.loc.line = line.number,
             // An empty program ends on its (empty) first line.
             None => self.flow.loc.line = self.flow.loc.line.max(1),
         }
+        self.flow.loc.file = self.flow.source(frame.source).and_then(|s| s.name.clone());
         match self.finish_program(span, sink) {
             Ok(Step::End(code)) => Ok(Some(code)),
             Ok(_) => Ok(None),
             Err(d) => Err(match last {
-                Some((src, line, _)) => self.locate(d, src, &line),
+                Some((line, _)) => self.locate(d, frame.source, &line),
                 None => d,
             }),
         }

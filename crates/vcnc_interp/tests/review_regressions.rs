@@ -215,3 +215,80 @@ fn an_empty_program_ends_on_line_1() {
     assert_eq!(out, Outcome::Ended("EOF"));
     assert!(matches!(&ev[..], [Event::End { loc, .. }] if loc.line == 1));
 }
+
+// --- second review ---
+
+#[test]
+fn m99_p_searches_the_caller_from_its_program_start() {
+    // O0010 is entered at N20; O0011's M99 P10 must find N10, which comes
+    // before the entry point (docs: searches start at the program start).
+    let p = "G91 G01 F100\nM98 P10 H20\nM30\nO0010\nN10 Y1.\nM99\nN20 X1.\nM98 P11\nM99\nO0011\nZ1.\nM99 P10\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(
+        ends(&ev, 3),
+        vec![
+            vec![1.0, 0.0, 0.0],
+            vec![1.0, 0.0, 1.0],
+            vec![1.0, 1.0, 1.0]
+        ]
+    );
+}
+
+#[test]
+fn lathe_g20_inside_a_subroutine_finds_an_earlier_label() {
+    let p = "G00 X100 Z100\nG20 L10\nM30\nN5 G01 W-1 F100\nG24\nN10 G20 L5\nG01 W-2\nG24\n";
+    let (ev, out) = run(&Dialect::lathe(), p);
+    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(ends(&ev, 2).last().unwrap(), &vec![50.0, 97.0]);
+}
+
+#[test]
+fn e406_after_a_nested_return_points_at_the_callers_last_block() {
+    let p = "M98 P10\nM30\nO0010\nG91 G01 F100\nM98 P20\nO0020\nX1.\nM99\n";
+    let (_, out) = run(&Dialect::syntec(), p);
+    assert_eq!(alarm(&out), (Code::E406, 5, 1));
+}
+
+#[test]
+fn the_end_of_a_main_program_after_a_call_is_on_the_mains_last_block() {
+    let (ev, out) = run(
+        &Dialect::syntec(),
+        "G91 G01 F100\nM98 P10\n%\nO0010\nX1.\nY1.\nM99\n",
+    );
+    assert_eq!(out, Outcome::Ended("EOF"));
+    assert!(
+        matches!(ev.last(), Some(Event::End { loc, .. }) if loc.line == 2 && loc.file.is_none())
+    );
+}
+
+#[test]
+fn g331_never_cuts_deeper_than_the_thread() {
+    // R0.03 over 20 passes rounds to 0.002 per pass (diameter): passes 16-19
+    // would reach 0.032-0.038 without the clamp. Radius depth at most 0.015.
+    let (ev, out) = run(
+        &Dialect::lathe(),
+        "G0 X30 Z0\nG331 Z-10 X0 I2 K2 R0.03 P20\nM30\n",
+    );
+    assert_eq!(out, Outcome::Ended("M30"));
+    let deepest = ev
+        .iter()
+        .filter_map(|e| {
+            if let Event::Thread { to, .. } = e {
+                Some(to.get(0))
+            } else {
+                None
+            }
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!((deepest - 14.985).abs() < 1e-9, "{deepest}");
+}
+
+#[test]
+fn e401_help_names_the_file_to_add() {
+    let (_, out) = run(&Dialect::syntec(), "M98 P77\nM30\n");
+    match out {
+        Outcome::Alarm(d) => assert!(d.help.contains("O0077.nc"), "{}", d.help),
+        other => panic!("{other:?}"),
+    }
+}
