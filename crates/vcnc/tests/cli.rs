@@ -209,7 +209,7 @@ fn run_csv_has_a_header_and_one_row_per_event() {
     let header = lines.next().expect("header");
     assert_eq!(
         header,
-        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message"
+        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help"
     );
     let columns = header.split(',').count();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
@@ -674,6 +674,8 @@ fn feed_per_rev_with_the_spindle_stopped_stays_g95_in_the_flattened_program() {
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("G1 X10 Y0 Z0 G95 F0.1\n"), "{stdout}");
+    // Regression: the flattened program starts where the source machine does.
+    assert!(stdout.contains("G21 G90 G94 G17\nG0 X0 Y0 Z0 (power-on position)\n"), "{stdout}");
     // 0.1 mm/rev at 1000 rpm is 100 mm/min.
     assert!(stdout.contains("G1 X20 Y0 Z0 G94 F100\n"), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();

@@ -2,12 +2,17 @@
 //! plots. Columns that do not apply to an event are empty.
 //!
 //! Header: `type,line,file,<axes>,<center_axes>,plane,dir,feed,feed_per_rev,
-//! lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message`.
+//! lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,
+//! exact_stop,p,surface_m_per_min,help` (the last five added later, so they
+//! come after `message`: columns are only ever appended).
 
 use crate::jsonl::{path_mode, spindle_dir};
 use crate::num::push_f64;
 use std::io::{self, Write};
 use vcnc_interp::{ArcDir, Event, Feed, Machine, Pos, Sink};
+
+/// Columns appended after `message`.
+const EXTRA: [&str; 5] = ["triggered", "exact_stop", "p", "surface_m_per_min", "help"];
 
 const TAIL: [&str; 13] = [
     "plane",
@@ -47,6 +52,7 @@ impl<W: Write> CsvSink<W> {
         header.extend(letters.iter().map(|l| format!("center_{l}")));
         header.extend(TAIL.iter().map(|s| s.to_string()));
         header.push("message".into());
+        header.extend(EXTRA.iter().map(|s| s.to_string()));
         let error = writeln!(out, "{}", header.join(",")).err();
         let cols = header.len();
         CsvSink {
@@ -74,6 +80,9 @@ impl<W: Write> CsvSink<W> {
             "line" => 1,
             "file" => 2,
             "message" => base + TAIL.len(),
+            _ if EXTRA.contains(&col) => {
+                base + TAIL.len() + 1 + EXTRA.iter().position(|c| *c == col).unwrap_or(0)
+            }
             _ => TAIL.iter().position(|c| *c == col).map_or(0, |k| base + k),
         };
         self.row[i] = v;
@@ -107,7 +116,7 @@ impl<W: Write> CsvSink<W> {
 }
 
 fn quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
+    if s.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", s.replace('"', "\"\""))
     } else {
         s.to_string()
@@ -140,6 +149,29 @@ impl<W: Write> Sink for CsvSink<W> {
         if let Some(loc) = loc {
             self.set("line", loc.line.to_string());
             self.set("file", loc.file.as_deref().map(quote).unwrap_or_default());
+        }
+        match event {
+            Event::Rapid {
+                exact_stop: true, ..
+            }
+            | Event::Feed {
+                exact_stop: true, ..
+            }
+            | Event::Arc {
+                exact_stop: true, ..
+            } => {
+                self.set("exact_stop", "true".into());
+            }
+            Event::Skip { triggered, .. } => self.set("triggered", triggered.to_string()),
+            Event::HighSpeed { p, .. } => self.set("p", p.to_string()),
+            Event::Spindle {
+                surface_m_per_min: Some(v),
+                ..
+            } => {
+                let s = self.num(*v);
+                self.set("surface_m_per_min", s);
+            }
+            _ => {}
         }
         match event {
             Event::Rapid { to, .. } => self.pos(to, 0),
@@ -186,6 +218,7 @@ impl<W: Write> Sink for CsvSink<W> {
                 self.set("code", d.code.as_str().into());
                 self.set("column", d.column.to_string());
                 self.set("message", quote(&d.message));
+                self.set("help", quote(&d.help));
             }
         }
         if let Err(e) = writeln!(self.out, "{}", self.row.join(",")) {

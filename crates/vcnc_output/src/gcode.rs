@@ -27,13 +27,14 @@ pub struct GcodeSink<W: Write> {
 
 impl<W: Write> GcodeSink<W> {
     /// A sink writing the header and then one block per event.
-    pub fn new(mut out: W, machine: &Machine) -> GcodeSink<W> {
-        let header = format!(
-            "(flattened by vcnc for {}: absolute machine coordinates, mm)\nG21 G90 G94 G17\n",
-            machine.name.replace(['(', ')'], "")
-        );
-        let error = out.write_all(header.as_bytes()).err();
-        GcodeSink {
+    pub fn new(out: W, machine: &Machine) -> GcodeSink<W> {
+        // The name goes into a comment: no parentheses, no line breaks.
+        let name: String = machine
+            .name
+            .chars()
+            .filter(|c| !matches!(c, '(' | ')') && !c.is_control())
+            .collect();
+        let mut sink = GcodeSink {
             out,
             letters: machine.axes.iter().map(|a| char::from(a.letter)).collect(),
             pos: machine.start,
@@ -41,8 +42,16 @@ impl<W: Write> GcodeSink<W> {
             feed: None,
             per_rev: false,
             rpm: 0.0,
-            error,
-        }
+            error: None,
+        };
+        // The program starts where the source machine starts, so the first
+        // move (a cut, an arc) begins where the events say it does.
+        let header = format!(
+            "(flattened by vcnc for {name}: absolute machine coordinates, mm)\nG21 G90 G94 G17\nG0{} (power-on position)\n",
+            sink.axes(&machine.start)
+        );
+        sink.error = sink.out.write_all(header.as_bytes()).err();
+        sink
     }
 
     /// Flushes and returns the writer, or the first write error.

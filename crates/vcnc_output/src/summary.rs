@@ -115,29 +115,71 @@ impl Summary {
             .fold(f64::INFINITY, f64::min)
     }
 
-    fn arc_len(&self, to: &Pos, center: &Pos, plane: Plane, cw: bool) -> (f64, (usize, usize)) {
-        let idx = |l: u8| self.letters.iter().position(|x| *x == l).unwrap_or(0);
+    /// Length of an arc or helix, its plane axes, and the fastest path
+    /// feed its axes allow: each plane axis moves at the path speed times
+    /// `r·sweep/L` times |sin| or |cos| of the angle (its peak over the
+    /// sweep), the normal axis at `|h|/L` of it.
+    fn arc_len(
+        &self,
+        to: &Pos,
+        center: &Pos,
+        plane: Plane,
+        cw: bool,
+    ) -> (f64, (usize, usize), f64) {
+        use std::f64::consts::{FRAC_PI_2, PI, TAU};
+        let idx = |l: u8| self.letters.iter().position(|x| *x == l);
         let [a, b, n] = plane.letters();
-        let (ia, ib, inn) = (idx(a), idx(b), idx(n));
+        let (ia, ib) = (idx(a).unwrap_or(0), idx(b).unwrap_or(0));
         let (sa, sb) = (
             self.pos.get(ia) - center.get(ia),
             self.pos.get(ib) - center.get(ib),
         );
         let (ea, eb) = (to.get(ia) - center.get(ia), to.get(ib) - center.get(ib));
         let r = sa.hypot(sb);
-        let mut sweep = (eb.atan2(ea) - sb.atan2(sa)).rem_euclid(std::f64::consts::TAU);
+        let a0 = sb.atan2(sa);
+        let mut sweep = (eb.atan2(ea) - a0).rem_euclid(TAU);
         if cw {
-            sweep = (std::f64::consts::TAU - sweep) % std::f64::consts::TAU;
+            sweep = (TAU - sweep) % TAU;
         }
         if sweep < 1e-12 {
-            sweep = std::f64::consts::TAU;
+            sweep = TAU;
         }
-        let h = if self.letters.contains(&n) {
-            to.get(inn) - self.pos.get(inn)
-        } else {
-            0.0
+        let inn = idx(n);
+        let h = inn.map_or(0.0, |i| to.get(i) - self.pos.get(i));
+        let planar = r * sweep;
+        let len = planar.hypot(h);
+        // Angles along the sweep, in the arc's direction.
+        let passes = |phi: f64| {
+            let d = if cw {
+                (a0 - phi).rem_euclid(TAU)
+            } else {
+                (phi - a0).rem_euclid(TAU)
+            };
+            d <= sweep
         };
-        ((r * sweep).hypot(h), (ia, ib))
+        let a1 = if cw { a0 - sweep } else { a0 + sweep };
+        let peak_sin = if passes(FRAC_PI_2) || passes(3.0 * FRAC_PI_2) {
+            1.0
+        } else {
+            a0.sin().abs().max(a1.sin().abs())
+        };
+        let peak_cos = if passes(0.0) || passes(PI) {
+            1.0
+        } else {
+            a0.cos().abs().max(a1.cos().abs())
+        };
+        let feed_max = |i: usize| self.max_feeds.get(i).copied().unwrap_or(f64::INFINITY);
+        let share = if len > 0.0 { planar / len } else { 0.0 };
+        let mut cap = f64::INFINITY;
+        for (i, k) in [(ia, peak_sin), (ib, peak_cos)] {
+            if share * k > 1e-12 {
+                cap = cap.min(feed_max(i) / (share * k));
+            }
+        }
+        if let Some(i) = inn.filter(|_| h.abs() > 1e-12) {
+            cap = cap.min(feed_max(i) * len / h.abs());
+        }
+        (len, (ia, ib), cap)
     }
 }
 
@@ -179,10 +221,8 @@ impl Sink for Summary {
                 ..
             } => {
                 let cw = *dir == vcnc_interp::ArcDir::Cw;
-                let (len, axes) = self.arc_len(to, center, *plane, cw);
+                let (len, axes, cap) = self.arc_len(to, center, *plane, cw);
                 self.cut_mm += len;
-                // Round the arc every plane axis reaches the full path speed.
-                let cap = self.max_feeds[axes.0].min(self.max_feeds[axes.1]);
                 self.cycle_time_s += self.cut_time(len, *feed, cap);
                 let (lo, hi) = arc_bounds(self.pos, *to, *center, axes, *dir, self.letters.len());
                 self.extend(lo, hi);
@@ -232,5 +272,70 @@ mod tests {
             exact_stop: false,
         });
         assert!((s.cycle_time_s - 6.6).abs() < 1e-9, "{}", s.cycle_time_s);
+    }
+
+    /// Regression: a helix ignored its normal axis's limit, and a shallow
+    /// arc was capped by a plane axis that barely moves.
+    #[test]
+    fn arcs_are_capped_by_how_fast_each_axis_really_moves() {
+        let m = Machine::default_mill();
+        let arc = |s: &mut Summary, to: Pos, center: Pos, dir| {
+            s.event(&Event::Arc {
+                loc: Loc::default(),
+                to,
+                center,
+                plane: Plane::Xy,
+                dir,
+                feed: Feed::PerMin(10_000.0),
+                exact_stop: false,
+            });
+        };
+        // Helix: a full circle of radius 10 rising 100 mm: L = √((20π)² + 100²).
+        // Z may move 8000 mm/min, so the path feed is at most 8000·L/100.
+        let mut s = Summary::new(&m);
+        let (mut to, mut center) = (m.start, m.start);
+        to.set(2, 100.0);
+        center.set(0, 10.0);
+        arc(&mut s, to, center, vcnc_interp::ArcDir::Ccw);
+        let len = (20.0 * std::f64::consts::PI).hypot(100.0);
+        let expected = len / (8000.0 * len / 100.0) * 60.0;
+        assert!(
+            (s.cycle_time_s - expected).abs() < 1e-9,
+            "{} vs {expected}",
+            s.cycle_time_s
+        );
+        // A shallow clockwise arc over the top of a circle of radius 1000 on
+        // a machine whose Y may only go 1000 mm/min: Y moves by 0.05 mm while
+        // X moves 20, so the 10000 mm/min feed is not capped by Y's limit.
+        let text = vcnc_interp::machine::DEFAULT_MILL_TOML;
+        let y = text.find("letter = \"y\"").unwrap();
+        let slow_y = format!(
+            "{}{}",
+            &text[..y],
+            text[y..].replacen(
+                "max_feed_mm_per_min = 10000.0",
+                "max_feed_mm_per_min = 1000.0",
+                1
+            )
+        );
+        let m = Machine::from_toml(&slow_y).unwrap();
+        let mut s = Summary::new(&m);
+        let mut from = m.start;
+        from.set(0, -10.0);
+        from.set(1, 999.95);
+        s.pos = from;
+        let mut to = from;
+        to.set(0, 10.0);
+        let mut c = m.start;
+        c.set(2, 0.0);
+        arc(&mut s, to, c, vcnc_interp::ArcDir::Cw);
+        assert!(s.cut_mm < 21.0, "the short way over the top: {}", s.cut_mm);
+        let capped = s.cycle_time_s;
+        let length = s.cut_mm;
+        assert!(
+            (capped - length / 10_000.0 * 60.0).abs() < 1e-6,
+            "{capped} vs {}",
+            length / 10_000.0 * 60.0
+        );
     }
 }
