@@ -675,7 +675,10 @@ fn feed_per_rev_with_the_spindle_stopped_stays_g95_in_the_flattened_program() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("G1 X10 Y0 Z0 G95 F0.1\n"), "{stdout}");
     // Regression: the flattened program starts where the source machine does.
-    assert!(stdout.contains("G21 G90 G94 G17\nG0 X0 Y0 Z0 (power-on position)\n"), "{stdout}");
+    assert!(
+        stdout.contains("G21 G90 G94 G17\nG0 X0 Y0 Z0 (power-on position)\n"),
+        "{stdout}"
+    );
     // 0.1 mm/rev at 1000 rpm is 100 mm/min.
     assert!(stdout.contains("G1 X20 Y0 Z0 G94 F100\n"), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();

@@ -42,8 +42,9 @@ impl ProgramStore for NoPrograms {
     }
 }
 
-/// Most entries of each search cache before it is cleared.
-const CACHE_LIMIT: usize = 4096;
+/// Most entries of each search cache (about 3 MB at most); a program with
+/// more labels than that is still searched correctly, only more slowly.
+const CACHE_LIMIT: usize = 65_536;
 /// Most open sources; beyond that an unused one is closed.
 const MAX_SOURCES: usize = 64;
 
@@ -96,7 +97,11 @@ pub(crate) struct Flow {
     pub frames: Vec<Frame>,
     /// Where program headers are, and where they are not (`None`).
     programs: HashMap<(usize, u32), Option<Cursor>>,
+    /// Where the header scan of each source stopped (`None`: at its end).
+    program_scans: HashMap<usize, Option<Cursor>>,
     sequences: HashMap<(usize, u64, u32, u32), Cursor>,
+    /// Where the label scan of each program stopped (`None`: at its end).
+    label_scans: HashMap<(usize, u64, u32), Option<Cursor>>,
     scratch: Block,
     /// Calls, returns to a sequence and repeats so far.
     pub jumps: u64,
@@ -117,7 +122,9 @@ impl Flow {
             sources: vec![Some(main)],
             frames: vec![Frame::main()],
             programs: HashMap::new(),
+            program_scans: HashMap::new(),
             sequences: HashMap::new(),
+            label_scans: HashMap::new(),
             scratch: Block::default(),
             jumps: 0,
             loops: HashMap::new(),
@@ -193,7 +200,9 @@ impl Flow {
             let busy: Vec<usize> = self.frames.iter().map(|f| f.source).collect();
             if let Some(i) = (1..self.sources.len()).find(|i| !busy.contains(i)) {
                 self.programs.retain(|k, _| k.0 != i);
+                self.program_scans.remove(&i);
                 self.sequences.retain(|k, _| k.0 != i);
+                self.label_scans.retain(|k, _| k.0 != i);
                 self.sources[i] = Some(src);
                 return i;
             }
@@ -202,22 +211,45 @@ impl Flow {
         self.sources.len() - 1
     }
 
+    /// Where program `number` starts in source `src` (after its O header).
+    /// Every header the scan passes is remembered, and a later miss resumes
+    /// where the last scan stopped, so many programs cost one pass in all.
     fn program_in(&mut self, src: usize, number: u32, lex: &LexRules) -> Option<Cursor> {
         if let Some(c) = self.programs.get(&(src, number)) {
             return *c;
         }
-        let found = self.scan(
-            src,
-            Cursor::default(),
-            lex,
-            |b| first_value(b, b'O') == Some(number),
-            false,
-        );
-        bounded_insert(&mut self.programs, (src, number), found);
+        let resume = match self.program_scans.get(&src) {
+            Some(None) => return None,
+            Some(Some(c)) => *c,
+            None => Cursor::default(),
+        };
+        let mut programs = std::mem::take(&mut self.programs);
+        let mut found = None;
+        let mut complete = programs.len() < CACHE_LIMIT;
+        let end = self.walk(src, resume, lex, false, false, |block, _, after| {
+            let Some(n) = first_value(block, b'O') else {
+                return false;
+            };
+            if programs.len() < CACHE_LIMIT {
+                programs.entry((src, n)).or_insert(Some(after));
+            } else {
+                complete = false;
+            }
+            if n == number {
+                found = Some(after);
+            }
+            found.is_some()
+        });
+        self.programs = programs;
+        if complete {
+            bounded_insert(&mut self.program_scans, src, end);
+        }
         found
     }
 
-    /// Finds `N seq` in the program of `src` that starts at `start`.
+    /// Finds `N seq` in the program of `src` that starts at `start`: the
+    /// first such block from the start. Like [`program_in`](Self::program_in)
+    /// it remembers every label it passes and resumes where it stopped.
     pub fn find_sequence(
         &mut self,
         src: usize,
@@ -225,34 +257,66 @@ impl Flow {
         seq: u32,
         lex: &LexRules,
     ) -> Option<Cursor> {
-        let key = (src, start.offset, start.col, seq);
-        if let Some(c) = self.sequences.get(&key) {
+        let program = (src, start.offset, start.col);
+        if let Some(c) = self.sequences.get(&(src, start.offset, start.col, seq)) {
             return Some(*c);
         }
-        let found = self.scan(src, start, lex, |b| has_sequence(b, seq), true)?;
-        bounded_insert(&mut self.sequences, key, found);
-        Some(found)
+        let (resume, seen) = match self.label_scans.get(&program) {
+            Some(None) => return None,
+            Some(Some(c)) => (*c, true),
+            None => (start, false),
+        };
+        let mut sequences = std::mem::take(&mut self.sequences);
+        let mut found = None;
+        let mut complete = sequences.len() < CACHE_LIMIT;
+        let end = self.walk(src, resume, lex, true, seen, |block, at, _| {
+            for w in block
+                .words()
+                .iter()
+                .filter(|w| w.addr == Addr::letter(b'N') && !w.point)
+            {
+                let Some(n) = whole_u32(w.value) else {
+                    continue;
+                };
+                if sequences.len() < CACHE_LIMIT {
+                    sequences
+                        .entry((src, start.offset, start.col, n))
+                        .or_insert(at);
+                } else {
+                    complete = false;
+                }
+                if n == seq && found.is_none() {
+                    found = Some(at);
+                }
+            }
+            found.is_some()
+        });
+        self.sequences = sequences;
+        if complete {
+            bounded_insert(&mut self.label_scans, program, end);
+        }
+        found
     }
 
-    /// Scans blocks from `from` for one that `hit` accepts. With `to_hit`
-    /// the cursor of the hit block is returned, else the cursor after it.
-    /// With `within_program` the scan stops at the program's end (`%` or
-    /// another `O` header). Unreadable lines are skipped: a search is not a
-    /// syntax check.
-    fn scan(
+    /// Visits the blocks of `src` from `from` until `visit(block, at,
+    /// after)` says stop; returns where to resume (after that block), or
+    /// `None` when the text — with `within_program`, the program (`%` or
+    /// another O header after its first block) — ran out. Unreadable lines
+    /// are skipped: a search is not a syntax check.
+    fn walk(
         &mut self,
         src: usize,
         from: Cursor,
         lex: &LexRules,
-        hit: impl Fn(&Block) -> bool,
         within_program: bool,
+        mut seen_block: bool,
+        mut visit: impl FnMut(&Block, Cursor, Cursor) -> bool,
     ) -> Option<Cursor> {
         let mut block = std::mem::take(&mut self.scratch);
         let source = self.sources.get_mut(src).and_then(Option::as_mut)?;
         source.reader.seek(Cursor { col: 0, ..from });
         let mut col = from.col as usize;
-        let mut result = None;
-        let mut seen_block = false;
+        let mut resume = None;
         'lines: loop {
             let line = match source.reader.next_line() {
                 Ok(Some(l)) => l,
@@ -272,17 +336,10 @@ impl Flow {
                     line: line.number,
                     col: clamp_u32(start),
                 };
-                if hit(&block) {
-                    result = Some(if within_program {
-                        at
-                    } else {
-                        Cursor {
-                            col: clamp_u32(i),
-                            ..at
-                        }
-                    });
-                    break 'lines;
-                }
+                let after = Cursor {
+                    col: clamp_u32(i),
+                    ..at
+                };
                 let boundary = block.percent || first_value(&block, b'O').is_some();
                 if within_program && boundary && seen_block {
                     break 'lines;
@@ -290,11 +347,22 @@ impl Flow {
                 // A `%` or O header before the program's first block is its
                 // start, not its end.
                 seen_block |= !boundary && !block.is_empty();
+                if visit(&block, at, after) {
+                    resume = Some(after);
+                    break 'lines;
+                }
             }
         }
         self.scratch = block;
-        result
+        resume
     }
+}
+
+/// A whole, non-negative number that fits a `u32`.
+fn whole_u32(v: f64) -> Option<u32> {
+    // In range and whole, so the cast is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    (v >= 0.0 && v <= f64::from(u32::MAX) && v.fract() == 0.0).then(|| v as u32)
 }
 
 fn bounded_insert<K: std::hash::Hash + Eq, V>(map: &mut HashMap<K, V>, key: K, value: V) {
@@ -314,11 +382,4 @@ pub(crate) fn first_value(block: &Block, letter: u8) -> Option<u32> {
     // Whole (no point) and within u32, so the cast is exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     whole.then_some(w.value as u32)
-}
-
-fn has_sequence(block: &Block, seq: u32) -> bool {
-    block
-        .words()
-        .iter()
-        .any(|w| w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(seq))
 }

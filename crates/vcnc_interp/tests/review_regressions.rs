@@ -292,3 +292,21 @@ fn e401_help_names_the_file_to_add() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn labels_passed_by_one_search_are_found_by_the_next_and_duplicates_resolve_to_the_first() {
+    // The first search (H3) passes N1 and N2 and stops at N3; H1 and H2 are
+    // answered from what it saw; N2 appears twice and the first one (from
+    // the program start) is the one found.
+    let p = "G91 G01 F100\nM98 H3\nM98 H1\nM98 H2\nM30\nN1 X1.\nM99\nN2 Y1.\nM99\nN3 Z1.\nM99\nN2 Y5.\nM99\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(
+        ends(&ev, 3),
+        vec![
+            vec![0.0, 0.0, 1.0],
+            vec![0.0, 1.0, 1.0],
+            vec![1.0, 1.0, 1.0]
+        ]
+    );
+}
