@@ -362,7 +362,7 @@ impl Flow {
 fn whole_u32(v: f64) -> Option<u32> {
     // In range and whole, so the cast is exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    (v >= 0.0 && v <= f64::from(u32::MAX) && v.fract() == 0.0).then(|| v as u32)
+    (v >= 0.0 && v <= f64::from(u32::MAX) && v.fract() == 0.0).then_some(v as u32)
 }
 
 fn bounded_insert<K: std::hash::Hash + Eq, V>(map: &mut HashMap<K, V>, key: K, value: V) {

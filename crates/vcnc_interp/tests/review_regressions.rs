@@ -305,7 +305,7 @@ fn labels_passed_by_one_search_are_found_by_the_next_and_duplicates_resolve_to_t
         ends(&ev, 3),
         vec![
             vec![0.0, 0.0, 1.0],
-            vec![0.0, 1.0, 1.0],
+            vec![1.0, 0.0, 1.0],
             vec![1.0, 1.0, 1.0]
         ]
     );
