@@ -382,8 +382,10 @@ impl Machine {
                 "parameters.arc_tolerance_mm must be positive".into(),
             ));
         }
-        if self.limits.max_call_depth == 0 || self.limits.max_call_depth > 1000 {
-            return Err(MachineError("limits.max_call_depth is 1..1000".into()));
+        // Every level may hold an open program file (64 KiB each): 50
+        // levels keep memory bounded (Fanuc 0i allows 10).
+        if self.limits.max_call_depth == 0 || self.limits.max_call_depth > 50 {
+            return Err(MachineError("limits.max_call_depth is 1..50".into()));
         }
         Ok(())
     }

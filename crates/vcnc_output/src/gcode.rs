@@ -124,8 +124,22 @@ impl<W: Write> GcodeSink<W> {
 
     fn block(&mut self, event: &Event) -> Option<String> {
         Some(match event {
-            Event::Rapid { to, .. } => format!("G0{}", self.axes(to)),
-            Event::Feed { to, feed, .. } => format!("G1{}{}", self.axes(to), self.feed_word(*feed)),
+            Event::Rapid { to, exact_stop, .. } => {
+                format!("G0{}{}", self.axes(to), g09(*exact_stop))
+            }
+            Event::Feed {
+                to,
+                feed,
+                exact_stop,
+                ..
+            } => {
+                format!(
+                    "G1{}{}{}",
+                    self.axes(to),
+                    self.feed_word(*feed),
+                    g09(*exact_stop)
+                )
+            }
             Event::Arc {
                 to,
                 center,
@@ -179,6 +193,11 @@ impl<W: Write> GcodeSink<W> {
             ),
         })
     }
+}
+
+/// A comment for a G09 exact stop (plain G-code has no one-shot form).
+fn g09(exact_stop: bool) -> &'static str {
+    if exact_stop { " (G09 exact stop)" } else { "" }
 }
 
 /// Four decimals without trailing zeros: `5.5`, `-0.0125`, `10`.
