@@ -14,15 +14,13 @@ use vcnc_syntax::{Diagnostic, Span};
 
 impl Interpreter<'_> {
     /// `(axis index, value in mm)` of each named axis.
-    fn named_values(&self, w: &Words<'_>) -> impl Iterator<Item = (usize, f64)> + '_ {
-        let words: Vec<_> = self
-            .machine
+    fn named_values(&self, w: &Words<'_>) -> Vec<(usize, f64)> {
+        self.machine
             .axes
             .iter()
             .enumerate()
             .filter_map(|(i, a)| w.get(a.letter).map(|word| (i, self.axis_value(i, &word))))
-            .collect();
-        words.into_iter()
+            .collect()
     }
 
     /// G10 L2 Pn: sets work offset n (1 = G54 … 6 = G59).
@@ -38,7 +36,7 @@ impl Interpreter<'_> {
             return Err(alarms::bad_offset_number(p.span, p.value));
         }
         let n = whole(&p, b'P', 1.0, 6.0, "P is a work offset number")? as usize - 1;
-        let values: Vec<_> = self.named_values(w).collect();
+        let values = self.named_values(w);
         if values.is_empty() {
             return Err(alarms::needs_axes(cmd, "G10 L2"));
         }
@@ -53,7 +51,7 @@ impl Interpreter<'_> {
 
     /// G92: preset the current position (axes), or clamp the spindle (S).
     pub(crate) fn preset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let values: Vec<_> = self.named_values(w).collect();
+        let values = self.named_values(w);
         if let Some(s) = w.get(b'S') {
             if !values.is_empty() {
                 return Err(alarms::g92_axes_and_s(s.span));
@@ -77,7 +75,7 @@ impl Interpreter<'_> {
 
     /// G52: the local system's origin in the work system; zero cancels.
     pub(crate) fn local_system(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let values: Vec<_> = self.named_values(w).collect();
+        let values = self.named_values(w);
         if values.is_empty() {
             return Err(alarms::needs_axes(cmd, "G52"));
         }

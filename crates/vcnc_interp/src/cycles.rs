@@ -134,8 +134,10 @@ impl Interpreter<'_> {
         )
     }
 
-    /// Checks every move of a cycle, then sends them: `(cutting, point)`;
-    /// cutting moves use `cut`, the others are rapids.
+    /// Sends the moves of a cycle, `(cutting, point)`, each checked against
+    /// the travel limits first (the block's events are held until it
+    /// completes, so an alarm part-way drops them all); cutting moves use
+    /// `cut`, the others are rapids.
     fn run_moves<S: Sink>(
         &mut self,
         moves: &[(bool, Xz)],
@@ -145,14 +147,9 @@ impl Interpreter<'_> {
         cmd: Span,
         sink: &mut S,
     ) -> Result<(), Diagnostic> {
-        let mut from = self.state.pos;
-        for (_, p) in moves {
-            let to = self.at(axes, *p);
-            self.check_segment(from, to, w, cmd)?;
-            from = to;
-        }
         for (cutting, p) in moves {
             let to = self.at(axes, *p);
+            self.check_segment(self.state.pos, to, w, cmd)?;
             if to == self.state.pos {
                 // A cycle step that does not move (a tail of 0, a retract
                 // already at the safe X) makes no event.
