@@ -624,12 +624,9 @@ class MixedProgram(Program):
             self.last_linear = None
 
 
-def generate_ext(index, seed=DEFAULT_SEED):
-    """A second-batch program: the first batch's blocks, G28 and inch segments."""
-    rng = random.Random("%d:%d" % (seed, index))
-    p = MixedProgram(rng)
-    p.emit("G21 G17 G90 G94")
-    n_blocks = rng.randint(30, 80)
+def feature_weights(rng, p, extra=None):
+    """The block kinds and their weights, one of them doubled so that some
+    programs lean on one feature (draws from `rng` in a fixed order)."""
     weights = {
         p.linear: 30,
         p.arc: 30,
@@ -640,12 +637,21 @@ def generate_ext(index, seed=DEFAULT_SEED):
         p.move_g53: 3,
         p.toggle_distance: 5,
         p.select_plane: 4,
-        p.g28: 4,
     }
+    weights.update(extra or {})
     favourite = rng.choice(list(weights))
     weights[favourite] *= 2
     funcs = list(weights)
-    w = [weights[f] for f in funcs]
+    return funcs, [weights[f] for f in funcs]
+
+
+def generate_ext(index, seed=DEFAULT_SEED):
+    """A second-batch program: the first batch's blocks, G28 and inch segments."""
+    rng = random.Random("%d:%d" % (seed, index))
+    p = MixedProgram(rng)
+    p.emit("G21 G17 G90 G94")
+    n_blocks = rng.randint(30, 80)
+    funcs, w = feature_weights(rng, p, {p.g28: 4})
     # 1-3 inch segments, each at least a few blocks long
     segments = rng.choice([1, 1, 2, 2, 3])
     marks = sorted(rng.sample(range(3, n_blocks - 2), 2 * segments))
@@ -671,22 +677,7 @@ def generate(index, seed=DEFAULT_SEED):
     p = Program(rng)
     p.emit("G21 G17 G90 G94")
     n_blocks = rng.randint(20, 75)
-    # per-program emphasis so that some programs lean on one feature
-    weights = {
-        p.linear: 30,
-        p.arc: 30,
-        p.dwell: 3,
-        p.set_g10: 4,
-        p.preset_g92: 3,
-        p.select_wcs: 5,
-        p.move_g53: 3,
-        p.toggle_distance: 5,
-        p.select_plane: 4,
-    }
-    favourite = rng.choice(list(weights))
-    weights[favourite] *= 2
-    funcs = list(weights)
-    w = [weights[f] for f in funcs]
+    funcs, w = feature_weights(rng, p)
     while len(p.ngc) < n_blocks:
         rng.choices(funcs, w)[0]()
     p.emit("M2")
