@@ -11,10 +11,12 @@ the fixture folder, this script
      N<line number> (rs274 prints the N word of the block that made each
      canonical call; the fixture files themselves have no N words), with its
      own tool table and a fresh empty parameter (.var) file so that nothing
-     persists between runs;
+     persists between runs (rs274_events.run_rs274);
   3. converts the canonical calls to vcnc's event contract (docs/events.md)
-     in MACHINE coordinates and mm: machine = program position + G5x offset
-     + G92 offset, tracking SET_G5X_OFFSET and SET_G92_OFFSET; after
+     in MACHINE coordinates and mm with the converter shared by all LinuxCNC
+     fixture sets, rs274_events.py (here with inch segments allowed):
+     machine = program position + G5x offset + G92 offset, tracking
+     SET_G5X_OFFSET and SET_G92_OFFSET; after
      USE_LENGTH_UNITS(CANON_UNITS_INCHES) every length rs274 prints (points,
      centres, offsets, feeds) is in inches and is multiplied by 25.4;
   4. writes NNN.nc, NNN.ngc and NNN.expected.jsonl into the fixture folder.
@@ -34,7 +36,21 @@ Mapping (verified on small programs, see tests/fixtures/linuxcnc/README.md):
       (an I/J/K full circle is rotation +-1 with end = start)
   DWELL(seconds)                        -> dwell
   PROGRAM_END()                         -> end, code "M02"
+  SET_G5X_OFFSET / SET_G92_OFFSET       -> frame, when origin changes
   (G28 has no call of its own: its two legs are two STRAIGHT_TRAVERSEs.)
+
+Frames (the `frame` event of /work/notes/conventions.md): whenever origin =
+G5x offset + G92 offset (in mm, machine coordinates of program 0) differs
+from the last one reported, a {"type":"frame","line":L,"origin":{x,y,z}}
+with the line of the block that changed it goes before that block's first
+motion, or alone when the block does not move (it comes before the next
+block's events). The run starts with origin 0 reported, and the fresh
+parameter file makes LinuxCNC's power-on offsets 0 (checked), so the
+power-on G54 makes no frame. An offset call that leaves origin as it was
+(G54..G59 or G10 L2 with equal numbers) makes none either, nor does the G54
+re-selection LinuxCNC does at M2. No G43 and no rotation in this set, so a
+frame never has `tool_offset` or `linear`. Removing the frame lines from
+a trace gives the trace this script wrote before frames existed.
 
 Units: rs274 prints lengths in the units in force when it prints them and
 re-sends nothing on a unit change (the offsets it printed in mm stay valid as
@@ -51,15 +67,14 @@ Usage: make_fixtures.py [--programs DIR] [--fixtures DIR] [--rs274 PATH] [-j N]
 """
 
 import argparse
-import json
 import os
 import re
 import shutil
-import subprocess
 import sys
-import tempfile
 from concurrent.futures import ThreadPoolExecutor
-from decimal import Decimal
+
+import rs274_events as rv
+from rs274_events import ConvertError
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -68,158 +83,14 @@ DEFAULT_FIXTURES = os.path.join(REPO, "tests", "fixtures", "linuxcnc")
 
 TOOL_TABLE = "T1 P1 D10.000 Z+0.000 ;\nT2 P2 D6.000 Z+0.000 ;\n"
 
-# "   12 N34    STRAIGHT_FEED(1.0000, 2.0000, ...)"; the N column is "N....."
-# for calls not made by a numbered block, and has no trailing blank once the
-# number has 6 digits or more.
-CANON_RE = re.compile(r"^\s*(\d+)\s+N(\.\.\.\.\.|\d+)\s*([A-Z_0-9]+)\((.*)\)\s*$")
 
-PLANES = {
-    # canon plane -> (vcnc name, first axis, second axis, normal axis)
-    "CANON_PLANE_XY": ("xy", "x", "y", "z"),
-    "CANON_PLANE_XZ": ("zx", "z", "x", "y"),
-    "CANON_PLANE_YZ": ("yz", "y", "z", "x"),
-}
-
-# Calls that carry nothing for the event trace on this subset.
-IGNORED = {
-    "USE_LENGTH_UNITS", "SET_XY_ROTATION", "SET_FEED_REFERENCE", "ON_RESET",
-    "COMMENT", "SET_FEED_MODE", "STOP_SPINDLE_TURNING", "SET_SPINDLE_MODE",
-    "SELECT_PLANE", "SET_G5X_OFFSET", "SET_G92_OFFSET", "SET_FEED_RATE",
-}
-
-AXES = ("x", "y", "z")
-Q = Decimal("0.0001")
-MM_PER = {"CANON_UNITS_MM": Decimal(1), "CANON_UNITS_INCHES": Decimal("25.4")}
-
-
-class ConvertError(Exception):
-    pass
-
-
-def num(s):
-    return Decimal(s.strip())
-
-
-def out_num(d):
-    """Decimal -> float rounded to 4 decimals, never -0.0."""
-    f = float(d.quantize(Q))
-    return 0.0 if f == 0 else f
-
-
-def point(d):
-    return {a: out_num(d[a]) for a in AXES}
-
-
-def convert(canon_text, name="?"):
-    """rs274 canonical output -> list of event dicts (vcnc contract)."""
-    g5x = {a: Decimal(0) for a in AXES}
-    g92 = {a: Decimal(0) for a in AXES}
-    # rs274 starts at program (and machine) 0,0,0 with zero offsets, which is
-    # also vcnc's default machine start.
-    pos = {a: Decimal(0) for a in AXES}    # machine
-    plane = "CANON_PLANE_XY"
-    unit = MM_PER["CANON_UNITS_MM"]    # mm per printed length unit
-    feed = None                        # mm/min
-    feed_unit = unit                   # the units F was set in
-    events = []
-    ended = False
-    where = [name]
-
-    def machine(prog):
-        return {a: prog[a] + g5x[a] + g92[a] for a in AXES}
-
-    def mm(s, exact=True):
-        """A printed length -> Decimal mm; `exact`: refuse an inch value
-        whose 4-decimal print cannot be the exact length."""
-        v = num(s) * unit
-        if exact and v != v.quantize(Q):
-            raise ConvertError("%s: %s in is not a multiple of 0.0005 in: its "
-                               "4-decimal print is not exact in mm"
-                               % (where[0], s.strip()))
-        return v
-
-    for raw in canon_text.splitlines():
-        if not raw.strip():
-            continue
-        m = CANON_RE.match(raw)
-        if not m:
-            raise ConvertError("%s: cannot parse rs274 line %r" % (name, raw))
-        _, nword, call, args_s = m.groups()
-        args = [a.strip() for a in args_s.split(",")] if args_s.strip() else []
-        line = None if nword == "....." else int(nword)
-        where[0] = "%s:%s" % (name, line)
-        if ended:
-            continue   # ON_RESET etc. after PROGRAM_END
-        if call == "USE_LENGTH_UNITS":
-            if len(args) != 1 or args[0] not in MM_PER:
-                raise ConvertError("%s: units %r" % (name, args))
-            unit = MM_PER[args[0]]
-        elif call == "SET_XY_ROTATION":
-            if num(args[0]) != 0:
-                raise ConvertError("%s: XY rotation %s" % (name, args[0]))
-        elif call == "SET_G5X_OFFSET":
-            # (index, x, y, z, a, b, c)
-            g5x = dict(zip(AXES, map(mm, args[1:4])))
-        elif call == "SET_G92_OFFSET":
-            g92 = dict(zip(AXES, map(mm, args[0:3])))
-        elif call == "SET_FEED_RATE":
-            feed = mm(args[0], exact=False)   # rates: quantized on output
-            feed_unit = unit
-        elif call == "SELECT_PLANE":
-            if args[0] not in PLANES:
-                raise ConvertError("%s: plane %r" % (name, args[0]))
-            plane = args[0]
-        elif call in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
-            to = machine(dict(zip(AXES, map(mm, args[0:3]))))
-            ev = {"type": "rapid" if call == "STRAIGHT_TRAVERSE" else "feed",
-                  "line": line, "to": point(to)}
-            if call == "STRAIGHT_FEED":
-                if not feed:
-                    raise ConvertError("%s:%s feed move with no feed" % (name, line))
-                if feed_unit != unit:
-                    raise ConvertError("%s:%s feed set before a unit change"
-                                       % (name, line))
-                ev["feed"] = out_num(feed)
-            events.append(ev)
-            pos = to
-        elif call == "ARC_FEED":
-            pname, fa, sa, na = PLANES[plane]
-            first_end, second_end = mm(args[0]), mm(args[1])
-            first_c, second_c = mm(args[2], False), mm(args[3], False)
-            rotation = int(args[4])
-            normal_end = mm(args[5])
-            prog_end = {fa: first_end, sa: second_end, na: normal_end}
-            to = machine(prog_end)
-            off = {a: g5x[a] + g92[a] for a in AXES}
-            center = {fa: first_c + off[fa], sa: second_c + off[sa], na: pos[na]}
-            if rotation == 0 or abs(rotation) > 1:
-                raise ConvertError("%s:%s arc rotation %d" % (name, line, rotation))
-            if not feed:
-                raise ConvertError("%s:%s arc with no feed" % (name, line))
-            if feed_unit != unit:
-                raise ConvertError("%s:%s feed set before a unit change"
-                                   % (name, line))
-            events.append({"type": "arc", "line": line, "to": point(to),
-                           "center": point(center), "plane": pname,
-                           "dir": "ccw" if rotation > 0 else "cw",
-                           "feed": out_num(feed)})
-            pos = to
-        elif call == "DWELL":
-            events.append({"type": "dwell", "line": line,
-                           "seconds": out_num(num(args[0]))})
-        elif call == "PROGRAM_END":
-            events.append({"type": "end", "line": line, "code": "M02"})
-            ended = True
-        elif call in IGNORED:
-            pass
-        else:
-            raise ConvertError("%s: unexpected canonical call %s" % (name, raw))
-        if call in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "DWELL",
-                    "PROGRAM_END") and line is None:
-            raise ConvertError("%s: %s without a line number" % (name, call))
-    if not ended:
-        raise ConvertError("%s: no PROGRAM_END in rs274 output" % name)
-    return events
+def convert(canon_text, name, ngc_lines):
+    """rs274 canonical output of the program `ngc_lines` -> list of event
+    dicts (vcnc contract), frames included."""
+    end, cycles, m5 = rv.program_facts(ngc_lines)
+    if cycles or m5:
+        raise ConvertError("%s: canned cycles or M5 are not in this set" % name)
+    return rv.convert(canon_text, name, end, inch=True)
 
 
 def check_spellings(ngc_lines, nc_lines, name):
@@ -232,29 +103,6 @@ def check_spellings(ngc_lines, nc_lines, name):
         if re.fullmatch(r"G4 P[0-9.]+", a) and b == "G4 X" + a[4:]:
             continue
         raise ConvertError("%s:%d: spellings differ: %r vs %r" % (name, i, a, b))
-
-
-def run_rs274(rs274, ngc_lines, name):
-    with tempfile.TemporaryDirectory(prefix="vcnc_rs274_") as tmp:
-        prog = os.path.join(tmp, "prog.ngc")
-        with open(prog, "w") as f:
-            for i, text in enumerate(ngc_lines, 1):
-                f.write("N%d %s\n" % (i, text))
-        tbl = os.path.join(tmp, "tool.tbl")
-        with open(tbl, "w") as f:
-            f.write(TOOL_TABLE)
-        var = os.path.join(tmp, "params.var")
-        open(var, "w").close()
-        # HOME: rs274 writes ~/.tool.mmap; keep it in the scratch folder.
-        env = dict(os.environ, HOME=tmp)
-        r = subprocess.run([rs274, "-g", "-t", tbl, "-v", var, prog],
-                           stdin=subprocess.DEVNULL, capture_output=True,
-                           text=True, env=env, cwd=tmp)
-        err = r.stderr.replace("executing", "").strip()
-        if r.returncode != 0 or err:
-            raise ConvertError("%s: rs274 failed (exit %d): %s"
-                               % (name, r.returncode, err or r.stdout[-500:]))
-        return r.stdout
 
 
 def read_lines(path):
@@ -271,13 +119,11 @@ def process(stem, src_dir, fixtures, rs274, copy):
     ngc = read_lines(ngc_path)
     nc = read_lines(nc_path)
     check_spellings(ngc, nc, stem)
-    events = convert(run_rs274(rs274, ngc, stem), stem)
+    events = convert(rv.run_rs274(rs274, ngc, TOOL_TABLE, stem), stem, ngc)
     if copy:
         shutil.copyfile(ngc_path, os.path.join(fixtures, stem + ".ngc"))
         shutil.copyfile(nc_path, os.path.join(fixtures, stem + ".nc"))
-    with open(os.path.join(fixtures, stem + ".expected.jsonl"), "w") as f:
-        for ev in events:
-            f.write(json.dumps(ev, separators=(",", ":")) + "\n")
+    rv.write_jsonl(os.path.join(fixtures, stem + ".expected.jsonl"), events)
     return len(events)
 
 

@@ -95,7 +95,7 @@ fn check(c: &Common) -> Result<ExitCode, String> {
         eprint!("{}", render::diagnostic(d, &c.file));
     }
     let mut out = std::io::stdout().lock();
-    let diameter_axis = s.dialect.diameter_axis.filter(|_| diameter);
+    let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
     render::summary(
         &mut out,
         c,
@@ -113,21 +113,19 @@ fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
     let mut s = setup(c)?;
     // The JSON-lines sink buffers itself; the others go through a BufWriter.
     let out = std::io::stdout().lock();
+    // One monomorphic run per format: the sink is on the hot path.
     let (outcome, written) = match format {
         Format::Jsonl => {
-            let mut sink = JsonlSink::new(out, &s.machine);
-            let (o, _) = execute(c, &mut s, &mut sink)?;
-            (o, sink.finish().map(|_| ()))
+            let sink = JsonlSink::new(out, &s.machine);
+            stream(c, &mut s, sink)?
         }
         Format::Csv => {
-            let mut sink = CsvSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
-            let (o, _) = execute(c, &mut s, &mut sink)?;
-            (o, sink.finish().map(|_| ()))
+            let sink = CsvSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            stream(c, &mut s, sink)?
         }
         Format::Gcode => {
-            let mut sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
-            let (o, _) = execute(c, &mut s, &mut sink)?;
-            (o, sink.finish().map(|_| ()))
+            let sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            stream(c, &mut s, sink)?
         }
     };
     match written {
@@ -142,9 +140,20 @@ fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
     Ok(exit_code(&outcome))
 }
 
+/// Runs into `sink` and flushes it.
+fn stream<S: Sink>(
+    c: &Common,
+    s: &mut Setup,
+    mut sink: S,
+) -> Result<(Outcome, std::io::Result<()>), String> {
+    let (outcome, _) = execute(c, s, &mut sink)?;
+    Ok((outcome, sink.finish()))
+}
+
 fn exit_code(o: &Outcome) -> ExitCode {
     match o {
-        Outcome::Ended(_) => ExitCode::SUCCESS,
+        // Stopped: the reader of the output went away (`vcnc run | head`).
+        Outcome::Ended(_) | Outcome::Stopped => ExitCode::SUCCESS,
         Outcome::Alarm(_) => ExitCode::from(1),
     }
 }

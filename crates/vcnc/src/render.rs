@@ -118,7 +118,8 @@ pub fn summary(
         machine.name
     )?;
     match outcome {
-        Outcome::Ended(code) => writeln!(out, "result     ended by {code}")?,
+        Outcome::Ended(code) => writeln!(out, "result     ended by {}", code.as_str())?,
+        Outcome::Stopped => writeln!(out, "result     stopped (output closed)")?,
         Outcome::Alarm(d) => writeln!(
             out,
             "result     alarm {} at line {}, column {}",

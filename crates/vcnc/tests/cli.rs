@@ -209,7 +209,7 @@ fn run_csv_has_a_header_and_one_row_per_event() {
     let header = lines.next().expect("header");
     assert_eq!(
         header,
-        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help"
+        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help,linear,tool_offset_x,tool_offset_y,tool_offset_z"
     );
     let columns = header.split(',').count();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
@@ -682,4 +682,36 @@ fn feed_per_rev_with_the_spindle_stopped_stays_g95_in_the_flattened_program() {
     // 0.1 mm/rev at 1000 rpm is 100 mm/min.
     assert!(stdout.contains("G1 X20 Y0 Z0 G94 F100\n"), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `vcnc run big.nc | head -1`: when the reader goes away the run stops at
+/// once. The program here never ends by itself (a main program ending in
+/// M99 starts again) and would run until the jump limit alarms (exit 1);
+/// stopping because the output closed is a clean exit 0.
+#[test]
+fn run_stops_when_its_reader_goes_away() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let dir = std::env::temp_dir().join(format!("vcnc_head_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("forever.nc");
+    std::fs::write(&file, "G91 G01 X0.001 F1000.\nG01 X-0.001\nM99\n").unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["run", file.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("vcnc starts");
+    let mut out = BufReader::new(child.stdout.take().unwrap());
+    let mut first = String::new();
+    out.read_line(&mut first).unwrap();
+    assert!(first.starts_with("{\"type\":\"feed\""), "{first}");
+    drop(out);
+    let status = child.wait().unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(
+        status.code(),
+        Some(0),
+        "stopped early, not by the jump limit"
+    );
 }

@@ -5,7 +5,8 @@
 //! The expected traces were not produced by vcnc: the manual ones were worked
 //! out by hand from the Syntec 900M manual (see `tests/fixtures/manual/README.md`),
 //! the LinuxCNC ones converted from `rs274` output by
-//! `tools/linuxcnc/make_fixtures.py`. Numbers compare within a tolerance
+//! `tools/linuxcnc/make_fixtures.py` and `make_ext_fixtures.py` (through
+//! the shared converter `rs274_events.py`). Numbers compare within a tolerance
 //! (rs274 prints 4 decimals); alarm messages are not compared, their code,
 //! line and column are. A first line `(vcnc-args: …)` passes options:
 //! `--dialect D`, `--machine FILE`, `--optional-stop`, `--block-delete`.
@@ -195,4 +196,10 @@ fn lathe_document_examples_match_their_hand_worked_traces() {
 fn linuxcnc_programs_match_rs274() {
     let n = check_folder("linuxcnc", "fanuc", 1e-4);
     assert!(n >= 300, "only {n} LinuxCNC fixtures found");
+}
+
+#[test]
+fn linuxcnc_tool_length_programs_match_rs274() {
+    let n = check_folder("linuxcnc_tlo", "fanuc", 1e-4);
+    assert!(n >= 50, "only {n} LinuxCNC tool length fixtures found");
 }

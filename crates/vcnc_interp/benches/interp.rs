@@ -1,7 +1,8 @@
 //! Interpretation throughput: a generated 3-axis surfacing program (the shape
 //! of `tools/bench/gen_surfacing.py`) interpreted from memory into a sink
-//! that drops every event. Target (issue #2): ≥ 10 M blocks/s on the 2-core
-//! CI machine. Run with `cargo bench -p vcnc_interp`.
+//! that drops every event, plain and under rotation + scaling + tool length
+//! (issue #6: ≥ 3 M blocks/s), and a turning program under the seed lathe.
+//! Run with `cargo bench -p vcnc_interp`; figures in docs/performance.md.
 
 use divan::{Bencher, counter::ItemsCount};
 use std::fmt::Write;
@@ -65,7 +66,7 @@ fn bench_program(
     let check =
         Interpreter::new(machine, dialect, Options::default()).run_str(&program, &mut NullSink);
     assert!(
-        matches!(check, Outcome::Ended(code) if code == end),
+        matches!(check, Outcome::Ended(code) if code.as_str() == end),
         "the benchmark program must run to its end: {check:?}"
     );
     // Shared, so an iteration does not copy the program.
@@ -77,6 +78,25 @@ fn bench_program(
             &mut NullSink,
         )
     });
+}
+
+#[divan::bench(args = [100_000])]
+fn interpret_transformed_to_null_sink(bencher: Bencher, blocks: usize) {
+    let dialect = Dialect::fanuc();
+    // The same raster under G68 + G51 + G43 (tool 1 given a length).
+    let program = surfacing(blocks).replacen(
+        "G21 G17 G90 G94\n",
+        "G21 G17 G90 G94\nG10 L10 P1 R-50.\nG43 H1 Z20.\nG51 X0 Y0 Z0 P0.8\nG68 X10. Y-5. R30.\n",
+        1,
+    );
+    bench_program(
+        bencher,
+        blocks,
+        program,
+        &Machine::default_mill(),
+        &dialect,
+        "M02",
+    );
 }
 
 /// A turning program of `blocks` blocks: roughing passes in diameters with

@@ -483,3 +483,91 @@ pub fn bad_offset_number(span: Span, p: f64) -> Diagnostic {
         "use P1 (G54) to P6 (G59)",
     )
 }
+
+/// E503: an H, D or G10 P offset number beyond the machine's offset registers.
+pub fn bad_tool_offset_number(span: Span, l: u8, value: f64, max: u32) -> Diagnostic {
+    d(
+        Code::E503,
+        span,
+        format!(
+            "{}{value}: no such tool offset (this machine has offsets 0 to {max})",
+            letter(l)
+        ),
+        "use an offset number the machine has, or raise parameters.offset_registers in the machine file",
+    )
+}
+
+/// E210: G92 while a rotation, scaling or mirror is active.
+pub fn g92_under_transform(span: Span) -> Diagnostic {
+    d(
+        Code::E210,
+        span,
+        "G92 cannot set the position while a rotation, scaling or mirror image is active".into(),
+        "cancel G68/G51/G51.1 (G69, G50, G50.1) before G92, or use G52 or G54-G59",
+    )
+}
+
+/// E312: tool length compensation on a machine without a Z axis.
+pub fn tool_length_without_z(span: Span) -> Diagnostic {
+    d(
+        Code::E312,
+        span,
+        "tool length compensation needs a Z axis, and this machine has none".into(),
+        "remove G43/G44, or run on a machine file with a Z axis",
+    )
+}
+
+/// E315: an arc under different scale factors on its plane's axes.
+pub fn arc_uneven_scale(span: Span) -> Diagnostic {
+    d(
+        Code::E315,
+        span,
+        "this arc is scaled by different factors on its two axes and would become an ellipse"
+            .into(),
+        "scale the plane's axes by one factor (G51 P), or cancel scaling (G50) around the arc",
+    )
+}
+
+/// E315: an arc in another plane than the active rotation.
+pub fn arc_tilted(span: Span) -> Diagnostic {
+    d(
+        Code::E315,
+        span,
+        "this arc's plane is not the plane of the coordinate rotation, which would tilt it".into(),
+        "cut the arc in the rotation's plane, or cancel the rotation (G69) first",
+    )
+}
+
+/// E316: a scale factor of zero or beyond 999.999.
+pub fn bad_scale_factor(span: Span, l: u8, k: f64) -> Diagnostic {
+    d(
+        Code::E316,
+        span,
+        format!(
+            "scale factor {}{k} is out of range: it must be non-zero and at most 999.999",
+            letter(l)
+        ),
+        "write the factor with a decimal point (P0.5) or in 0.001 units (P500)",
+    )
+}
+
+/// E316: G51 with both P and I/J/K.
+pub fn scale_p_and_ijk(span: Span) -> Diagnostic {
+    d(
+        Code::E316,
+        span,
+        "G51 takes either P (one factor) or I/J/K (a factor per axis), not both".into(),
+        "remove P or remove I/J/K",
+    )
+}
+
+/// E316: transforms whose composition cannot be undone (never raised by a
+/// valid factor; a guard for the frame's inverse).
+pub fn singular_transform(span: Span) -> Diagnostic {
+    d(
+        Code::E316,
+        span,
+        "this transform flattens the program onto a line or a point".into(),
+        "use non-zero scale factors",
+    )
+}

@@ -13,14 +13,14 @@
 //! change behind. There is no I/O here: program text comes from
 //! [`TextSource`]s and called programs from a [`ProgramStore`].
 
+use crate::Sink;
 use crate::alarms;
+use crate::block::words::Words;
 use crate::dialect::Dialect;
-use crate::events::Event;
+use crate::events::{EndCode, Event};
 use crate::flow::{Flow, ProgramStore, first_value};
 use crate::machine::Machine;
-use crate::sink::Sink;
-use crate::state::State;
-use crate::words::Words;
+use crate::state::{State, Tables};
 use vcnc_syntax::{
     Block, Cursor, Diagnostic, Line, MemSource, ReadError, Span, TextSource, clamp_u32, column_of,
     lex_block,
@@ -48,7 +48,7 @@ impl AxisWord {
                 .iter()
                 .find(|(_, a)| *a == letter)
                 .map(|(w, _)| *w),
-            diameter: dialect.diameter_axis == Some(letter),
+            diameter: dialect.diameter.axis == Some(letter),
             rotary: matches!(letter, b'A' | b'B' | b'C'),
         }
     }
@@ -70,10 +70,12 @@ pub struct Options {
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
-    /// Normal end: `"M02"`, `"M30"` or `"EOF"`.
-    Ended(&'static str),
+    /// Normal end: M02, M30 or the end of the main program.
+    Ended(EndCode),
     /// Stopped by an alarm (also emitted as the last event).
     Alarm(Diagnostic),
+    /// The sink wanted no more events (its reader went away).
+    Stopped,
 }
 
 /// What the run loop does after a block.
@@ -81,7 +83,7 @@ pub(crate) enum Step {
     Next,
     /// Continue at this cursor of the (possibly new) current frame's source.
     Jump(Cursor),
-    End(&'static str),
+    End(EndCode),
     /// The program ran into `%` or another program's `O` header.
     ProgramEnd,
 }
@@ -92,14 +94,18 @@ pub struct Interpreter<'a> {
     pub(crate) dialect: &'a Dialect,
     pub(crate) opts: Options,
     pub(crate) state: State,
+    /// Work and tool offsets (journaled writes).
+    pub(crate) tables: Tables,
     pub(crate) flow: Flow,
     /// Letters that address axes (axis letters and incremental words).
     pub(crate) axis_mask: u32,
     /// How each machine axis is written, in axis order.
     pub(crate) axis_words: Vec<AxisWord>,
     executed: u64,
+    /// Moves committed so far (a block compares it to know if it moved).
+    pub(crate) moves: u64,
     /// Events of the block being executed, sent when it succeeds.
-    pending: crate::sink::VecSink,
+    pub(crate) pending: Vec<Event>,
 }
 
 impl<'a> Interpreter<'a> {
@@ -115,17 +121,25 @@ impl<'a> Interpreter<'a> {
             dialect,
             opts,
             state: State::power_on(machine, dialect),
+            tables: Tables::new(machine),
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
             axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask()),
             axis_words,
             executed: 0,
-            pending: crate::sink::VecSink::default(),
+            moves: 0,
+            pending: Vec::new(),
         }
     }
 
-    /// The state after the run (or at the alarm).
+    /// The state after the run (or at the alarm: as it was before the
+    /// block that alarmed).
     pub fn state(&self) -> &State {
         &self.state
+    }
+
+    /// The work and tool offset tables after the run.
+    pub fn tables(&self) -> &Tables {
+        &self.tables
     }
 
     /// Runs a program held in memory with no external programs.
@@ -147,7 +161,8 @@ impl<'a> Interpreter<'a> {
         self.flow = Flow::new(main);
         let result = self.run_loop(store, sink);
         match result {
-            Ok(code) => Outcome::Ended(code),
+            Ok(Some(code)) => Outcome::Ended(code),
+            Ok(None) => Outcome::Stopped,
             Err(d) => {
                 sink.event(&Event::Alarm(d.clone()));
                 Outcome::Alarm(d)
@@ -159,11 +174,13 @@ impl<'a> Interpreter<'a> {
         &mut self.flow
     }
 
+    /// Runs blocks until the program ends (`Some`) or the sink is done
+    /// (`None`).
     fn run_loop<S: Sink>(
         &mut self,
         store: &mut dyn ProgramStore,
         sink: &mut S,
-    ) -> Result<&'static str, Diagnostic> {
+    ) -> Result<Option<EndCode>, Diagnostic> {
         let mut block = Block::default();
         let lex = self.dialect.lex;
         let mut col = 0usize;
@@ -171,7 +188,7 @@ impl<'a> Interpreter<'a> {
             let src = self.flow.frames.last().map_or(0, |f| f.source);
             let Some(line) = self.next_line(src)? else {
                 match self.end_of_program(sink)? {
-                    Some(code) => return Ok(code),
+                    Some(code) => return Ok(Some(code)),
                     None => continue,
                 }
             };
@@ -203,6 +220,9 @@ impl<'a> Interpreter<'a> {
                 let step = self
                     .block(&block, here, next, store, sink)
                     .map_err(|d| self.locate(d, src, &line))?;
+                if sink.is_done() {
+                    return Ok(None);
+                }
                 if !matches!(step, Step::ProgramEnd) {
                     // Remembered by the level that ran it (a call's caller,
                     // not a return's callee), for alarms at its end.
@@ -217,9 +237,9 @@ impl<'a> Interpreter<'a> {
                         col = to.col as usize;
                         break;
                     }
-                    Step::End(code) => return Ok(code),
+                    Step::End(code) => return Ok(Some(code)),
                     Step::ProgramEnd => match self.end_of_program(sink)? {
-                        Some(code) => return Ok(code),
+                        Some(code) => return Ok(Some(code)),
                         None => break,
                     },
                 }
@@ -288,7 +308,7 @@ impl<'a> Interpreter<'a> {
         }
         if block.percent || first_value(block, b'O').is_some() {
             let started = self.flow.frames.last().is_some_and(|f| f.started);
-            return self.program_boundary(block, started, next, sink);
+            return self.program_boundary(block, started, next);
         }
         if let Some(f) = self.flow.frames.last_mut() {
             f.started = true;
@@ -313,39 +333,39 @@ impl<'a> Interpreter<'a> {
                 ));
             }
         }
-        if words.is_plain_motion(self.axis_mask) {
-            // Hot path: only axis words, F and a motion code. Every check
-            // happens before the one event, so only modal and F need saving.
-            let (modal, feed) = (self.state.modal, self.state.feed);
-            let result = self.execute_motion_only(&words, sink);
-            if result.is_err() {
-                self.state.modal = modal;
-                self.state.feed = feed;
-            }
-            return result.map(|()| Step::Next);
-        }
-        // Anything else is all or nothing: events wait in `pending` and the
-        // whole state is restored if the block alarms.
-        let saved = self.state.clone();
-        let mut pending = std::mem::take(&mut self.pending);
-        pending.0.clear();
-        let result = self.execute(&words, here, next, store, &mut pending);
+        // All or nothing: events wait in `pending`, the state is restored
+        // whole and the tables' writes are undone if the block alarms.
+        let saved = self.state;
+        let jumps = self.flow.jumps;
+        self.pending.clear();
+        let result = if words.is_plain_motion(self.axis_mask) {
+            // Only axis words, F and a motion code: nothing but a move.
+            self.execute_motion_only(&words).map(|()| Step::Next)
+        } else {
+            self.execute(&words, here, next, store)
+        };
         match &result {
-            Ok(_) => pending.0.iter().for_each(|e| sink.event(e)),
-            Err(_) => self.state = saved,
+            Ok(_) => {
+                self.tables.commit();
+                for e in &self.pending {
+                    sink.event(e);
+                }
+            }
+            Err(_) => {
+                self.state = saved;
+                self.flow.jumps = jumps;
+                self.tables.rollback();
+            }
         }
-        pending.0.clear();
-        self.pending = pending;
         result
     }
 
     /// `%` or an `O` header: the start of this program, or the end of it.
-    fn program_boundary<S: Sink>(
+    fn program_boundary(
         &mut self,
         block: &Block,
         started: bool,
         next: Cursor,
-        sink: &mut S,
     ) -> Result<Step, Diagnostic> {
         if let Some(w) = block.words().get(1) {
             return Err(alarms::word_not_allowed(w.span, w.addr.0));
@@ -359,15 +379,11 @@ impl<'a> Interpreter<'a> {
             }
             return Ok(Step::Next);
         }
-        let _ = sink;
         Ok(Step::ProgramEnd)
     }
 
     /// The current program ran out of blocks.
-    fn end_of_program<S: Sink>(
-        &mut self,
-        sink: &mut S,
-    ) -> Result<Option<&'static str>, Diagnostic> {
+    fn end_of_program<S: Sink>(&mut self, sink: &mut S) -> Result<Option<EndCode>, Diagnostic> {
         let frame = self.flow.frame();
         let last = frame.last;
         let span = last.map_or(Span::new(0, 1), |(_, s)| s);
@@ -394,18 +410,21 @@ impl<'a> Interpreter<'a> {
             return Err(alarms::sub_without_return(span, code));
         }
         let loc = self.flow().loc.clone();
-        sink.event(&Event::End { loc, code: "EOF" });
-        Ok(Step::End("EOF"))
+        sink.event(&Event::End {
+            loc,
+            code: EndCode::Eof,
+        });
+        Ok(Step::End(EndCode::Eof))
     }
 
     /// Counts a jump against the runaway limit.
     pub(crate) fn count_jump(&mut self, span: Span) -> Result<(), Diagnostic> {
         let max = self.machine.limits.max_jumps;
         let flow = self.flow();
-        flow.jumps += 1;
-        if flow.jumps > max {
+        if flow.jumps >= max {
             return Err(alarms::jump_limit(span, max));
         }
+        flow.jumps += 1;
         Ok(())
     }
 }

@@ -14,33 +14,24 @@
 //! let mut sink = VecSink::default();
 //! let out = Interpreter::new(&machine, &dialect, Options::default())
 //!     .run_str("G01 X10. F300;\nM30\n", &mut sink);
-//! assert_eq!(out, Outcome::Ended("M30"));
+//! assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
 //! assert_eq!(sink.0.len(), 2);
 //! ```
 
 pub mod alarms;
-pub mod arc;
-mod calls;
-mod convert;
-mod coords;
-mod cycles;
+mod block;
+mod codes;
 pub mod dialect;
-pub mod events;
-mod execute;
 mod flow;
 mod interpreter;
-pub mod machine;
 mod motion;
-mod refs;
-mod sink;
 pub mod state;
-mod turning;
-mod words;
 
 pub use dialect::Dialect;
-pub use events::{ArcDir, Event, Feed, Loc, MAX_AXES, PathMode, Plane, Pos, SpindleDir};
 pub use flow::{NoPrograms, ProgramStore};
 pub use interpreter::{Interpreter, Options, Outcome};
-pub use machine::Machine;
-pub use sink::{NullSink, Sink, VecSink};
-pub use state::State;
+pub use state::{State, Tables};
+pub use vcnc_core::{
+    ArcDir, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode, Plane,
+    Pos, Sink, SpindleDir, StopCode, VecSink, events, machine,
+};

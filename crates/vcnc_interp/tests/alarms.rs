@@ -21,8 +21,8 @@ use std::collections::HashMap;
 use std::io;
 use vcnc_interp::machine::DEFAULT_MILL_TOML;
 use vcnc_interp::{
-    Dialect, Event, Interpreter, Loc, Machine, NoPrograms, Options, Outcome, ProgramStore, State,
-    VecSink,
+    Dialect, EndCode, Event, Interpreter, Loc, Machine, NoPrograms, Options, Outcome, ProgramStore,
+    State, VecSink,
 };
 use vcnc_syntax::{Code, Diagnostic, MemSource, TextSource};
 
@@ -51,7 +51,7 @@ fn run_with(
     Run {
         events: sink.0,
         outcome,
-        state: interp.state().clone(),
+        state: *interp.state(),
     }
 }
 
@@ -91,22 +91,7 @@ fn is_motion(e: &Event) -> bool {
 }
 
 fn loc_of(e: &Event) -> Option<&Loc> {
-    match e {
-        Event::Rapid { loc, .. }
-        | Event::Feed { loc, .. }
-        | Event::Arc { loc, .. }
-        | Event::Thread { loc, .. }
-        | Event::Skip { loc, .. }
-        | Event::Dwell { loc, .. }
-        | Event::ToolChange { loc, .. }
-        | Event::Spindle { loc, .. }
-        | Event::Coolant { loc, .. }
-        | Event::PathMode { loc, .. }
-        | Event::HighSpeed { loc, .. }
-        | Event::Stop { loc, .. }
-        | Event::End { loc, .. } => Some(loc),
-        Event::Alarm(_) => None,
-    }
+    e.loc()
 }
 
 fn motions(events: &[Event]) -> Vec<&Event> {
@@ -171,11 +156,7 @@ fn assert_alarm(r: &Run, code: Code, line: u64, column: u32) -> Diagnostic {
 fn assert_same_state(after: &State, before: &State) {
     assert_eq!(after.modal, before.modal, "modal state after the alarm");
     assert_eq!(after.pos, before.pos, "position after the alarm");
-    assert_eq!(after.offsets, before.offsets, "offsets after the alarm");
-    assert_eq!(
-        after.origin, before.origin,
-        "program origin after the alarm"
-    );
+    assert_eq!(after, before, "the whole state after the alarm");
 }
 
 /// Runs `program` on `machine` and checks the alarm and that the machine is
@@ -425,7 +406,7 @@ fn e205_same_modal_group_with_the_alarm_parameter() {
         "{:?}",
         r.events
     );
-    assert_eq!(r.outcome, Outcome::Ended("EOF"));
+    assert_eq!(r.outcome, Outcome::Ended(EndCode::Eof));
 }
 
 #[test]
@@ -542,6 +523,68 @@ fn e312_code_without_the_axis_words_it_needs() {
 // ---------------------------------------------------------------------------
 // E4xx — program flow
 // ---------------------------------------------------------------------------
+
+#[test]
+fn e210_g92_under_a_rotation() {
+    check(
+        "G00 X10. Y0.\nG68 X0 Y0 R90.\n  G92 X0 Y0\nM30\n",
+        Code::E210,
+        3,
+        3,
+    );
+}
+
+#[test]
+fn e312_tool_length_on_a_machine_without_z() {
+    let lathe = Dialect::lathe().machine();
+    let r = run_with(
+        &lathe,
+        "lathe",
+        Options::default(),
+        b"G00 X10\n",
+        &mut NoPrograms,
+    );
+    assert!(matches!(r.outcome, Outcome::Ended(_)));
+    // The lathe has no G43; on a mill file without Z it alarms E312.
+    let xy = Machine::from_toml(
+        &DEFAULT_MILL_TOML
+            .replace("[[axes]]\nletter = \"z\"", "[[axes]]\nletter = \"a\"")
+            .replace("z = 0.0", "a = 0.0")
+            .replace("z = 100.0", "a = 100.0")
+            .replace("[tools.1]\nh_mm = 0.0", "[tools.1]\nh_mm = 10.0"),
+    )
+    .unwrap();
+    check_on(&xy, "G00 X1.\nG00 X2. G43 H1\nM30\n", Code::E312, 2, 9);
+}
+
+#[test]
+fn e315_arc_under_uneven_scaling_or_in_a_tilted_plane() {
+    check(
+        "G01 X10. Y0. F100.\nG51 X0 Y0 I2. J1.\n  G02 X-10. Y0. I-10.\nM30\n",
+        Code::E315,
+        3,
+        3,
+    );
+    check(
+        "G01 X10. Y0. F100.\nG68 X0 Y0 R30.\nG18\n  G02 X-10. Z0. I-10.\nM30\n",
+        Code::E315,
+        4,
+        3,
+    );
+}
+
+#[test]
+fn e316_scale_factor_zero_or_both_p_and_ijk() {
+    check("G00 X1.\nG51 X0 Y0 P0\nM30\n", Code::E316, 2, 11);
+    check("G00 X1.\nG51 X0 Y0 P2. I2.\nM30\n", Code::E316, 2, 15);
+}
+
+#[test]
+fn e503_tool_offset_beyond_the_registers() {
+    // The default mill has offsets H0–H200 (offset_registers = 200).
+    check("G00 X1.\nG43 H201 Z5.\nM30\n", Code::E503, 2, 5);
+    check("G00 X1.\nG10 L10 P201 R5.\nM30\n", Code::E503, 2, 9);
+}
 
 #[test]
 fn e401_program_not_found() {
@@ -766,7 +809,12 @@ fn regression_e106_a_line_of_exactly_64_kib_is_not_longer_than_64_kib() {
     let line = "X1.;".repeat(65_536 / 4);
     assert_eq!(line.len(), 65_536);
     let r = run(&format!("G00 X2.\n{line}\nM30\n"));
-    assert_eq!(r.outcome, Outcome::Ended("M30"), "{:?}", r.events.last());
+    assert_eq!(
+        r.outcome,
+        Outcome::Ended(EndCode::M30),
+        "{:?}",
+        r.events.last()
+    );
 }
 
 /// docs/alarms.md: E304's column is "the G02/G03 word, else the first word",

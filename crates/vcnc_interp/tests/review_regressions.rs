@@ -67,7 +67,7 @@ fn tape_format_main_returns_to_its_sequence_number() {
     // `%` first, no O number: M99 P20 in O0010 returns to N20 of the main.
     let p = "%\nG91 G01 F100\nM98 P10\nX5.\nN20 Y5.\nM30\nO0010\nX1.\nM99 P20\n%\n";
     let (ev, out) = run(&Dialect::syntec(), p);
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     assert_eq!(ends(&ev, 3), vec![vec![1.0, 0.0, 0.0], vec![1.0, 5.0, 0.0]]);
 }
 
@@ -97,7 +97,7 @@ fn repeats_of_a_tape_format_subprogram_file() {
         "G00 X0\nM98 P11 L2\nM30\n",
         &[(11, "%\nG91 G01 X1. F100\nG90\nM99\n%\n")],
     );
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     assert_eq!(ends(&ev, 1), vec![vec![0.0], vec![1.0], vec![2.0]]);
 }
 
@@ -109,7 +109,7 @@ fn m98_h_into_a_file_with_a_tape_mark_and_header() {
         "M98 P10 H50\nM30\n",
         &[(10, "%\nO0010\nG91 G01 X1. F100\nN50 Y1.\nM99\n%\n")],
     );
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     // Starts at N50 with the main program's modes (G00, G90): a rapid to Y1.
     assert_eq!(ends(&ev, 2), vec![vec![0.0, 1.0]]);
 }
@@ -118,7 +118,7 @@ fn m98_h_into_a_file_with_a_tape_mark_and_header() {
 fn lathe_g26_q1_runs_the_body_once() {
     let p = "G00 X100 Z100\nN10 G01 U-2 F100\nW-1\nW-1\nG26 L10 Q1\nG01 W-5\nM30\n";
     let (ev, out) = run(&Dialect::lathe(), p);
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     let last = ends(&ev, 2).pop().unwrap();
     assert_eq!(last, vec![49.0, 93.0]);
 }
@@ -200,7 +200,7 @@ fn a_chord_longer_than_2r_by_more_than_the_tolerance_alarms() {
     let (_, out) = run(&Dialect::syntec(), "G01 F100 X0 Y0\nG02 X10.015 R5.\nM30\n");
     assert_eq!(alarm(&out), (Code::E302, 2, 13));
     let (_, ok) = run(&Dialect::syntec(), "G01 F100 X0 Y0\nG02 X10.005 R5.\nM30\n");
-    assert_eq!(ok, Outcome::Ended("M30"));
+    assert_eq!(ok, Outcome::Ended(vcnc_interp::EndCode::M30));
 }
 
 #[test]
@@ -212,7 +212,7 @@ fn mill_dwell_is_at_most_9999_999_s() {
 #[test]
 fn an_empty_program_ends_on_line_1() {
     let (ev, out) = run(&Dialect::syntec(), "");
-    assert_eq!(out, Outcome::Ended("EOF"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::Eof));
     assert!(matches!(&ev[..], [Event::End { loc, .. }] if loc.line == 1));
 }
 
@@ -224,7 +224,7 @@ fn m99_p_searches_the_caller_from_its_program_start() {
     // before the entry point (docs: searches start at the program start).
     let p = "G91 G01 F100\nM98 P10 H20\nM30\nO0010\nN10 Y1.\nM99\nN20 X1.\nM98 P11\nM99\nO0011\nZ1.\nM99 P10\n";
     let (ev, out) = run(&Dialect::syntec(), p);
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     assert_eq!(
         ends(&ev, 3),
         vec![
@@ -239,7 +239,7 @@ fn m99_p_searches_the_caller_from_its_program_start() {
 fn lathe_g20_inside_a_subroutine_finds_an_earlier_label() {
     let p = "G00 X100 Z100\nG20 L10\nM30\nN5 G01 W-1 F100\nG24\nN10 G20 L5\nG01 W-2\nG24\n";
     let (ev, out) = run(&Dialect::lathe(), p);
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     assert_eq!(ends(&ev, 2).last().unwrap(), &vec![50.0, 97.0]);
 }
 
@@ -256,7 +256,7 @@ fn the_end_of_a_main_program_after_a_call_is_on_the_mains_last_block() {
         &Dialect::syntec(),
         "G91 G01 F100\nM98 P10\n%\nO0010\nX1.\nY1.\nM99\n",
     );
-    assert_eq!(out, Outcome::Ended("EOF"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::Eof));
     assert!(
         matches!(ev.last(), Some(Event::End { loc, .. }) if loc.line == 2 && loc.file.is_none())
     );
@@ -270,7 +270,7 @@ fn g331_never_cuts_deeper_than_the_thread() {
         &Dialect::lathe(),
         "G0 X30 Z0\nG331 Z-10 X0 I2 K2 R0.03 P20\nM30\n",
     );
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     let deepest = ev
         .iter()
         .filter_map(|e| {
@@ -300,7 +300,7 @@ fn labels_passed_by_one_search_are_found_by_the_next_and_duplicates_resolve_to_t
     // the program start) is the one found.
     let p = "G91 G01 F100\nM98 H3\nM98 H1\nM98 H2\nM30\nN1 X1.\nM99\nN2 Y1.\nM99\nN3 Z1.\nM99\nN2 Y5.\nM99\n";
     let (ev, out) = run(&Dialect::syntec(), p);
-    assert_eq!(out, Outcome::Ended("M30"));
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
     assert_eq!(
         ends(&ev, 3),
         vec![

@@ -415,7 +415,7 @@ fn lines_at_the_buffer_size() {
     well_formed(&SMALL, program.as_bytes(), &f).unwrap();
     assert_eq!(
         f.outcome,
-        Outcome::Ended("M30"),
+        Outcome::Ended(vcnc_interp::EndCode::M30),
         "the search skips the long line and finds N5"
     );
 }
@@ -427,9 +427,10 @@ fn lines_at_the_buffer_size() {
 const G_CODES: &[&str] = &[
     "G00", "G01", "G02", "G03", "G04", "G09", "G10", "G17", "G18", "G19", "G20", "G21", "G28",
     "G29", "G30", "G31", "G33", "G52", "G53", "G54", "G55", "G59.1", "G59.9", "G61", "G62", "G63",
-    "G64", "G70", "G71", "G90", "G91", "G92", "G94", "G95", "G96", "G97", "G0", "G1", "G2",
-    "G3", // known
-    "G12", "G41", "G43", "G80", "G999.9", "G-1", "G1.5", "G59.0", "G100000", // unknown
+    "G64", "G70", "G71", "G90", "G91", "G92", "G94", "G95", "G96", "G97", "G0", "G1", "G2", "G3",
+    "G15", "G16", "G40", "G43", "G44", "G49", "G50", "G51", "G50.1", "G51.1", "G67", "G68", "G69",
+    "G80", "G98", "G99", // known
+    "G12", "G41", "G999.9", "G-1", "G1.5", "G59.0", "G100000", // unknown
 ];
 
 const M_CODES: &[&str] = &[
@@ -586,6 +587,21 @@ const FLOW_BLOCKS: &[&str] = &[
     "G28 Z0",
     "G30 P2 X0",
     "G29 X1. Y1.",
+    "G43 H1 Z5.",
+    "G44 H2",
+    "G49",
+    "G10 L10 P1 R-5.",
+    "G10 L12 P3 R2.",
+    "G51 X0 Y0 P2.",
+    "G51 X1. Y1. I2. J0.5",
+    "G50",
+    "G51.1 X5.",
+    "G50.1",
+    "G68 X0 Y0 R30.",
+    "G69",
+    "G16",
+    "G15",
+    "G00 G17 G40 G49 G80 G90",
 ];
 
 fn plausible_block() -> impl Strategy<Value = String> {
@@ -712,7 +728,12 @@ fn run_arc(program: &str) -> Result<(Pos, Pos, Plane, ArcDir), TestCaseError> {
         &mut NoPrograms,
         &mut sink,
     );
-    prop_assert_eq!(&out, &Outcome::Ended("M30"), "program:\n{}", program);
+    prop_assert_eq!(
+        &out,
+        &Outcome::Ended(vcnc_interp::EndCode::M30),
+        "program:\n{}",
+        program
+    );
     let arcs: Vec<_> = sink
         .0
         .iter()

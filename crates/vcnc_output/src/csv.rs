@@ -3,16 +3,26 @@
 //!
 //! Header: `type,line,file,<axes>,<center_axes>,plane,dir,feed,feed_per_rev,
 //! lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,
-//! exact_stop,p,surface_m_per_min,help` (the last five added later, so they
-//! come after `message`: columns are only ever appended).
+//! exact_stop,p,surface_m_per_min,help,linear,<tool_offset_axes>` (those
+//! after `message` were added later: columns are only ever appended). A
+//! `frame` row has its origin in the axis columns, its linear part as nine
+//! space-separated numbers (rows x, y, z) in `linear` and the tool length
+//! offset in `tool_offset_<axis>`.
 
 use crate::jsonl::{path_mode, spindle_dir};
 use crate::num::push_f64;
 use std::io::{self, Write};
-use vcnc_interp::{ArcDir, Event, Feed, Machine, Pos, Sink};
+use vcnc_core::{ArcDir, Event, Feed, Machine, Pos, Sink};
 
-/// Columns appended after `message`.
-const EXTRA: [&str; 5] = ["triggered", "exact_stop", "p", "surface_m_per_min", "help"];
+/// Columns appended after `message` (then one `tool_offset_<axis>` per axis).
+const EXTRA: [&str; 6] = [
+    "triggered",
+    "exact_stop",
+    "p",
+    "surface_m_per_min",
+    "help",
+    "linear",
+];
 
 const TAIL: [&str; 13] = [
     "plane",
@@ -53,6 +63,7 @@ impl<W: Write> CsvSink<W> {
         header.extend(TAIL.iter().map(|s| s.to_string()));
         header.push("message".into());
         header.extend(EXTRA.iter().map(|s| s.to_string()));
+        header.extend(letters.iter().map(|l| format!("tool_offset_{l}")));
         let error = writeln!(out, "{}", header.join(",")).err();
         let cols = header.len();
         CsvSink {
@@ -64,13 +75,9 @@ impl<W: Write> CsvSink<W> {
         }
     }
 
-    /// Flushes and returns the writer, or the first write error.
-    pub fn finish(mut self) -> io::Result<W> {
-        if let Some(e) = self.error.take() {
-            return Err(e);
-        }
-        self.out.flush()?;
-        Ok(self.out)
+    /// The writer, after [`Sink::finish`].
+    pub fn into_inner(self) -> W {
+        self.out
     }
 
     fn set(&mut self, col: &str, v: String) {
@@ -129,22 +136,7 @@ impl<W: Write> Sink for CsvSink<W> {
             return;
         }
         self.row.iter_mut().for_each(String::clear);
-        let (kind, loc) = match event {
-            Event::Rapid { loc, .. } => ("rapid", Some(loc)),
-            Event::Feed { loc, .. } => ("feed", Some(loc)),
-            Event::Arc { loc, .. } => ("arc", Some(loc)),
-            Event::Thread { loc, .. } => ("thread", Some(loc)),
-            Event::Skip { loc, .. } => ("skip", Some(loc)),
-            Event::Dwell { loc, .. } => ("dwell", Some(loc)),
-            Event::ToolChange { loc, .. } => ("tool_change", Some(loc)),
-            Event::Spindle { loc, .. } => ("spindle", Some(loc)),
-            Event::Coolant { loc, .. } => ("coolant", Some(loc)),
-            Event::PathMode { loc, .. } => ("path_mode", Some(loc)),
-            Event::HighSpeed { loc, .. } => ("high_speed", Some(loc)),
-            Event::Stop { loc, .. } => ("stop", Some(loc)),
-            Event::End { loc, .. } => ("end", Some(loc)),
-            Event::Alarm(_) => ("alarm", None),
-        };
+        let (kind, loc) = (event.kind(), event.loc());
         self.set("type", kind.to_string());
         if let Some(loc) = loc {
             self.set("line", loc.line.to_string());
@@ -211,7 +203,19 @@ impl<W: Write> Sink for CsvSink<W> {
             Event::Coolant { on, .. } => self.set("on", on.to_string()),
             Event::PathMode { mode, .. } => self.set("mode", path_mode(*mode).into()),
             Event::HighSpeed { on, .. } => self.set("on", on.to_string()),
-            Event::Stop { code, .. } | Event::End { code, .. } => self.set("code", (*code).into()),
+            Event::Stop { code, .. } => self.set("code", code.as_str().into()),
+            Event::End { code, .. } => self.set("code", code.as_str().into()),
+            Event::Frame { frame, .. } => {
+                self.pos(&frame.origin, 0);
+                if let Some(m) = &frame.linear {
+                    let cells: Vec<String> = m.iter().flatten().map(|v| self.num(*v)).collect();
+                    self.set("linear", cells.join(" "));
+                }
+                if frame.tool_offset != Pos::default() {
+                    let offset = 3 + 2 * self.n_axes + TAIL.len() + 1 + EXTRA.len() - 3;
+                    self.pos(&frame.tool_offset, offset);
+                }
+            }
             Event::Alarm(d) => {
                 self.set("line", d.line.to_string());
                 self.set("file", d.file.as_deref().map(quote).unwrap_or_default());
@@ -220,9 +224,21 @@ impl<W: Write> Sink for CsvSink<W> {
                 self.set("message", quote(&d.message));
                 self.set("help", quote(&d.help));
             }
+            _ => {}
         }
         if let Err(e) = writeln!(self.out, "{}", self.row.join(",")) {
             self.error = Some(e);
         }
+    }
+
+    fn is_done(&self) -> bool {
+        self.error.is_some()
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()
     }
 }

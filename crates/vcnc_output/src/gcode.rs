@@ -11,7 +11,7 @@
 //! more than the original.
 
 use std::io::{self, Write};
-use vcnc_interp::{ArcDir, Event, Feed, Machine, Plane, Pos, Sink, SpindleDir};
+use vcnc_core::{ArcDir, EndCode, Event, Feed, Machine, Plane, Pos, Sink, SpindleDir, StopCode};
 
 /// Writes a flattened G-code program.
 pub struct GcodeSink<W: Write> {
@@ -54,13 +54,9 @@ impl<W: Write> GcodeSink<W> {
         sink
     }
 
-    /// Flushes and returns the writer, or the first write error.
-    pub fn finish(mut self) -> io::Result<W> {
-        if let Some(e) = self.error.take() {
-            return Err(e);
-        }
-        self.out.flush()?;
-        Ok(self.out)
+    /// The writer, after [`Sink::finish`].
+    pub fn into_inner(self) -> W {
+        self.out
     }
 
     fn axes(&self, to: &Pos) -> String {
@@ -177,20 +173,25 @@ impl<W: Write> GcodeSink<W> {
             Event::PathMode { mode, .. } => {
                 format!("(path mode {})", crate::jsonl::path_mode(*mode))
             }
-            Event::Stop { code, .. } => (if *code == "M01" { "M1" } else { "M0" }).into(),
+            Event::Stop { code, .. } => (if *code == StopCode::M01 { "M1" } else { "M0" }).into(),
             Event::HighSpeed { on, p, .. } => {
                 format!(
                     "(G05 P{p}: high-speed mode {})",
                     if *on { "on" } else { "off" }
                 )
             }
-            Event::End { code, .. } => (if *code == "M30" { "M30" } else { "M2" }).into(),
+            Event::End { code, .. } => (if *code == EndCode::M30 { "M30" } else { "M2" }).into(),
+            // Positions are machine coordinates already: the frame is a comment.
+            Event::Frame { frame, .. } => {
+                format!("(program origin at{})", self.axes(&frame.origin))
+            }
             Event::Alarm(d) => format!(
                 "(ALARM {} line {}: {})\nM2",
                 d.code.as_str(),
                 d.line,
                 d.message.replace(['(', ')'], "")
             ),
+            _ => return None,
         })
     }
 }
@@ -215,15 +216,19 @@ impl<W: Write> Sink for GcodeSink<W> {
         if let Some(Err(e)) = self.block(event).map(|text| writeln!(self.out, "{text}")) {
             self.error = Some(e);
         }
-        match event {
-            Event::Rapid { to, .. }
-            | Event::Feed { to, .. }
-            | Event::Arc { to, .. }
-            | Event::Thread { to, .. }
-            | Event::Skip { to, .. } => {
-                self.pos = *to;
-            }
-            _ => {}
+        if let Some(to) = event.motion_end() {
+            self.pos = to;
         }
+    }
+
+    fn is_done(&self) -> bool {
+        self.error.is_some()
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()
     }
 }

@@ -9,7 +9,7 @@
 
 use crate::num::{push_f64, push_json_str, push_u64};
 use std::io::{self, Write};
-use vcnc_interp::{ArcDir, Event, Feed, Loc, Machine, PathMode, Pos, Sink, SpindleDir};
+use vcnc_core::{ArcDir, Event, Feed, FrameInfo, Loc, Machine, PathMode, Pos, Sink, SpindleDir};
 
 /// Writes one JSON object per event.
 pub struct JsonlSink<W: Write> {
@@ -35,14 +35,9 @@ impl<W: Write> JsonlSink<W> {
         }
     }
 
-    /// Flushes and returns the writer, or the first write error.
-    pub fn finish(mut self) -> io::Result<W> {
-        if let Some(e) = self.error.take() {
-            return Err(e);
-        }
-        self.out.write_all(&self.buf)?;
-        self.out.flush()?;
-        Ok(self.out)
+    /// The writer, after [`Sink::finish`].
+    pub fn into_inner(self) -> W {
+        self.out
     }
 }
 
@@ -63,6 +58,21 @@ impl<W: Write> Sink for JsonlSink<W> {
             }
             self.buf.clear();
         }
+    }
+
+    /// A write failed (the reader went away): the run can stop.
+    fn is_done(&self) -> bool {
+        self.error.is_some()
+    }
+
+    /// Flushes, or returns the first write error.
+    fn finish(&mut self) -> io::Result<()> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.write_all(&self.buf)?;
+        self.buf.clear();
+        self.out.flush()
     }
 }
 
@@ -160,11 +170,15 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
         }
         Event::Stop { loc, code } => {
             j.head("stop", loc);
-            j.str("code", code);
+            j.str("code", code.as_str());
         }
         Event::End { loc, code } => {
             j.head("end", loc);
-            j.str("code", code);
+            j.str("code", code.as_str());
+        }
+        Event::Frame { loc, frame } => {
+            j.head("frame", loc);
+            j.frame(frame);
         }
         Event::Alarm(d) => {
             j.head(
@@ -181,6 +195,9 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
             j.key("help");
             push_json_str(j.out, &d.help);
         }
+        // The contract is additive: an event type this writer does not know
+        // yet still leaves as a valid object with its type and line.
+        other => j.head(other.kind(), other.loc().unwrap_or(&Loc::default())),
     }
     j.out.push(b'}');
 }
@@ -258,6 +275,30 @@ impl Obj<'_> {
     fn flag(&mut self, k: &str, v: bool) {
         if v {
             self.boolean(k, true);
+        }
+    }
+    fn frame(&mut self, f: &FrameInfo) {
+        self.pos("origin", &f.origin);
+        if let Some(m) = &f.linear {
+            self.key("linear");
+            self.out.push(b'[');
+            for (r, row) in m.iter().enumerate() {
+                if r > 0 {
+                    self.out.push(b',');
+                }
+                self.out.push(b'[');
+                for (c, v) in row.iter().enumerate() {
+                    if c > 0 {
+                        self.out.push(b',');
+                    }
+                    push_f64(self.out, *v);
+                }
+                self.out.push(b']');
+            }
+            self.out.push(b']');
+        }
+        if f.tool_offset != Pos::default() {
+            self.pos("tool_offset", &f.tool_offset);
         }
     }
     fn feed(&mut self, f: Feed) {

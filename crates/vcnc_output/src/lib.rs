@@ -4,7 +4,7 @@
 //!
 //! Writers take any `std::io::Write` and buffer nothing beyond what they are
 //! given; the first write error is kept and reported by `finish`, since a
-//! [`vcnc_interp::Sink`] cannot fail mid-run. Numbers are rounded to 1e-6 mm
+//! [`vcnc_core::Sink`] cannot fail mid-run; a writer whose reader went away says it is done, so the run stops early. Numbers are rounded to 1e-6 mm
 //! (a nanometre) so that floating-point noise never reaches the output.
 
 mod csv;

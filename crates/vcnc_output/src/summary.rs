@@ -7,8 +7,8 @@
 //! the spindle speed in force), plus dwells. Acceleration is the planner's
 //! business (a later crate); this is the distance/feed estimate.
 
-use vcnc_interp::arc::arc_bounds;
-use vcnc_interp::{Event, Feed, Machine, Plane, Pos, Sink};
+use vcnc_core::geometry::{ArcPath, PlaneAxes};
+use vcnc_core::{ArcDir, Event, Feed, Machine, Plane, Pos, Sink};
 
 /// Accumulates the summary of a run.
 #[derive(Debug, Clone)]
@@ -68,26 +68,41 @@ impl Summary {
     fn extend(&mut self, lo: Pos, hi: Pos) {
         let (mut a, mut b) = self.extents.unwrap_or((lo, hi));
         for i in 0..self.letters.len() {
-            a.set(i, a.get(i).min(lo.get(i)));
-            b.set(i, b.get(i).max(hi.get(i)));
+            a.0[i] = a.0[i].min(lo.0[i]);
+            b.0[i] = b.0[i].max(hi.0[i]);
         }
         self.extents = Some((a, b));
     }
 
+    /// A straight move to `to`: the box of a segment is the box of its ends,
+    /// and its start is already inside the extents (but for the first move).
     fn line_box(&mut self, to: &Pos) {
-        let (mut lo, mut hi) = (self.pos, self.pos);
-        for i in 0..self.letters.len() {
-            lo.set(i, lo.get(i).min(to.get(i)));
-            hi.set(i, hi.get(i).max(to.get(i)));
+        if self.extents.is_none() {
+            self.extents = Some((self.pos, self.pos));
         }
-        self.extend(lo, hi);
+        self.extend(*to, *to);
+    }
+
+    /// Length of the straight move to `to`, and the fastest path feed it
+    /// allows: each moving axis stays within its own maximum feed.
+    fn line(&self, to: &Pos) -> (f64, f64) {
+        let n = self.letters.len();
+        let mut d = [0.0f64; vcnc_core::MAX_AXES];
+        for (di, (t, p)) in d.iter_mut().zip(to.0.iter().zip(self.pos.0)).take(n) {
+            *di = (t - p).abs();
+        }
+        let len = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let cap = d
+            .iter()
+            .zip(&self.max_feeds)
+            .filter(|(di, _)| **di > 1e-12)
+            .map(|(di, max)| max * len / di)
+            .fold(f64::INFINITY, f64::min);
+        (len, cap)
     }
 
     fn distance(&self, to: &Pos) -> f64 {
-        (0..self.letters.len())
-            .map(|i| (to.get(i) - self.pos.get(i)).powi(2))
-            .sum::<f64>()
-            .sqrt()
+        self.line(to).0
     }
 
     /// Cut time at `feed` over `len_mm`, capped by the slowest axis limit.
@@ -104,82 +119,33 @@ impl Summary {
         len_mm / per_min * 60.0
     }
 
-    /// The fastest path feed a straight move to `to` allows: each moving
-    /// axis stays within its own maximum feed.
-    fn line_cap(&self, to: &Pos, len_mm: f64) -> f64 {
-        (0..self.letters.len())
-            .filter_map(|i| {
-                let d = (to.get(i) - self.pos.get(i)).abs();
-                (d > 1e-12).then(|| self.max_feeds[i] * len_mm / d)
-            })
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// Length of an arc or helix, its plane axes, and the fastest path
-    /// feed its axes allow: each plane axis moves at the path speed times
+    /// The arc from the current position, and the fastest path feed its
+    /// axes allow: each plane axis moves at the path speed times
     /// `r·sweep/L` times |sin| or |cos| of the angle (its peak over the
     /// sweep), the normal axis at `|h|/L` of it.
-    fn arc_len(
-        &self,
-        to: &Pos,
-        center: &Pos,
-        plane: Plane,
-        cw: bool,
-    ) -> (f64, (usize, usize), f64) {
-        use std::f64::consts::{FRAC_PI_2, PI, TAU};
+    fn arc_path(&self, to: &Pos, center: &Pos, plane: Plane, dir: ArcDir) -> (ArcPath, f64) {
         let idx = |l: u8| self.letters.iter().position(|x| *x == l);
         let [a, b, n] = plane.letters();
-        let (ia, ib) = (idx(a).unwrap_or(0), idx(b).unwrap_or(0));
-        let (sa, sb) = (
-            self.pos.get(ia) - center.get(ia),
-            self.pos.get(ib) - center.get(ib),
-        );
-        let (ea, eb) = (to.get(ia) - center.get(ia), to.get(ib) - center.get(ib));
-        let r = sa.hypot(sb);
-        let a0 = sb.atan2(sa);
-        let mut sweep = (eb.atan2(ea) - a0).rem_euclid(TAU);
-        if cw {
-            sweep = (TAU - sweep) % TAU;
-        }
-        if sweep < 1e-12 {
-            sweep = TAU;
-        }
-        let inn = idx(n);
-        let h = inn.map_or(0.0, |i| to.get(i) - self.pos.get(i));
-        let planar = r * sweep;
-        let len = planar.hypot(h);
-        // Angles along the sweep, in the arc's direction.
-        let passes = |phi: f64| {
-            let d = if cw {
-                (a0 - phi).rem_euclid(TAU)
-            } else {
-                (phi - a0).rem_euclid(TAU)
-            };
-            d <= sweep
+        let axes = PlaneAxes {
+            a: idx(a).unwrap_or(0),
+            b: idx(b).unwrap_or(0),
+            n: idx(n),
         };
-        let a1 = if cw { a0 - sweep } else { a0 + sweep };
-        let peak_sin = if passes(FRAC_PI_2) || passes(3.0 * FRAC_PI_2) {
-            1.0
-        } else {
-            a0.sin().abs().max(a1.sin().abs())
-        };
-        let peak_cos = if passes(0.0) || passes(PI) {
-            1.0
-        } else {
-            a0.cos().abs().max(a1.cos().abs())
-        };
+        let path = ArcPath::new(self.pos, *to, *center, axes, dir);
+        let (len, planar, h) = (path.length(), path.planar_length(), path.rise());
+        let (peak_sin, peak_cos) = path.peak_sin_cos();
         let feed_max = |i: usize| self.max_feeds.get(i).copied().unwrap_or(f64::INFINITY);
         let share = if len > 0.0 { planar / len } else { 0.0 };
         let mut cap = f64::INFINITY;
-        for (i, k) in [(ia, peak_sin), (ib, peak_cos)] {
+        for (i, k) in [(axes.a, peak_sin), (axes.b, peak_cos)] {
             if share * k > 1e-12 {
                 cap = cap.min(feed_max(i) / (share * k));
             }
         }
-        if let Some(i) = inn.filter(|_| h.abs() > 1e-12) {
+        if let Some(i) = axes.n.filter(|_| h.abs() > 1e-12) {
             cap = cap.min(feed_max(i) * len / h.abs());
         }
-        (len, (ia, ib), cap)
+        (path, cap)
     }
 }
 
@@ -197,17 +163,15 @@ impl Sink for Summary {
                 self.pos = *to;
             }
             Event::Feed { to, feed, .. } | Event::Skip { to, feed, .. } => {
-                let d = self.distance(to);
+                let (d, cap) = self.line(to);
                 self.cut_mm += d;
-                let cap = self.line_cap(to, d);
                 self.cycle_time_s += self.cut_time(d, *feed, cap);
                 self.line_box(to);
                 self.pos = *to;
             }
             Event::Thread { to, lead_mm, .. } => {
-                let d = self.distance(to);
+                let (d, cap) = self.line(to);
                 self.cut_mm += d;
-                let cap = self.line_cap(to, d);
                 self.cycle_time_s += self.cut_time(d, Feed::PerRev(*lead_mm), cap);
                 self.line_box(to);
                 self.pos = *to;
@@ -220,11 +184,11 @@ impl Sink for Summary {
                 feed,
                 ..
             } => {
-                let cw = *dir == vcnc_interp::ArcDir::Cw;
-                let (len, axes, cap) = self.arc_len(to, center, *plane, cw);
+                let (path, cap) = self.arc_path(to, center, *plane, *dir);
+                let len = path.length();
                 self.cut_mm += len;
                 self.cycle_time_s += self.cut_time(len, *feed, cap);
-                let (lo, hi) = arc_bounds(self.pos, *to, *center, axes, *dir, self.letters.len());
+                let (lo, hi) = path.bounds(self.letters.len());
                 self.extend(lo, hi);
                 self.pos = *to;
             }
@@ -245,7 +209,7 @@ impl Sink for Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vcnc_interp::Loc;
+    use vcnc_core::Loc;
 
     /// Regression: a cut was capped by the slowest maximum feed of all axes
     /// (Z, 8000 mm/min), not of the axes that move.
@@ -296,7 +260,7 @@ mod tests {
         let (mut to, mut center) = (m.start, m.start);
         to.set(2, 100.0);
         center.set(0, 10.0);
-        arc(&mut s, to, center, vcnc_interp::ArcDir::Ccw);
+        arc(&mut s, to, center, ArcDir::Ccw);
         let len = (20.0 * std::f64::consts::PI).hypot(100.0);
         let expected = len / (8000.0 * len / 100.0) * 60.0;
         assert!(
@@ -307,7 +271,7 @@ mod tests {
         // A shallow clockwise arc over the top of a circle of radius 1000 on
         // a machine whose Y may only go 1000 mm/min: Y moves by 0.05 mm while
         // X moves 20, so the 10000 mm/min feed is not capped by Y's limit.
-        let text = vcnc_interp::machine::DEFAULT_MILL_TOML;
+        let text = vcnc_core::machine::DEFAULT_MILL_TOML;
         let y = text.find("letter = \"y\"").unwrap();
         let slow_y = format!(
             "{}{}",
@@ -328,7 +292,7 @@ mod tests {
         to.set(0, 10.0);
         let mut c = m.start;
         c.set(2, 0.0);
-        arc(&mut s, to, c, vcnc_interp::ArcDir::Cw);
+        arc(&mut s, to, c, ArcDir::Cw);
         assert!(s.cut_mm < 21.0, "the short way over the top: {}", s.cut_mm);
         let capped = s.cycle_time_s;
         let length = s.cut_mm;

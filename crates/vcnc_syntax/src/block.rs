@@ -6,7 +6,7 @@
 //! (millimetres, least input increments, a count) is decided by the
 //! interpreter, which knows the word's role.
 
-use crate::span::Span;
+use vcnc_core::Span;
 
 /// Most words one block may hold (E107 beyond).
 pub const MAX_WORDS: usize = 48;

@@ -15,7 +15,7 @@
 use crate::block::{Addr, Block, MAX_WORDS, Word};
 use crate::diagnostics::{self as diag, Diagnostic};
 use crate::number::{NumberError, parse_number};
-use crate::span::Span;
+use vcnc_core::Span;
 
 /// Longest block the lexer accepts (E106 beyond).
 pub const MAX_BLOCK_BYTES: usize = 4096;

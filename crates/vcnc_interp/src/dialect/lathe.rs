@@ -5,12 +5,10 @@
 //!
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
-use super::{Dialect, GOp, GRow, Group, bit, g, mill::MILL_M};
+use super::{Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, bit, g, mill::MILL_M};
 use crate::events::Plane;
+use crate::machine::DEFAULT_LATHE_TOML;
 use vcnc_syntax::{Addr, LexRules};
-
-/// The embedded 2-axis lathe.
-pub const DEFAULT_LATHE_TOML: &str = include_str!("../default_lathe.toml");
 
 const LATHE_G: &[GRow] = &[
     g(0, GOp::Rapid, Group::Motion),
@@ -105,11 +103,13 @@ pub(super) fn lathe() -> Dialect {
         g,
         m,
         incremental_words: &[(b'U', b'X'), (b'W', b'Z')],
-        diameter_axis: Some(b'X'),
-        diameter_at_power_on: true,
-        whole_unit_integers: true,
+        diameter: Diameter {
+            axis: Some(b'X'),
+            at_power_on: true,
+        },
+        integers: IntegerWords::WholeUnits,
         plane: Plane::Zx,
-        long_chord_is_line: true,
+        long_chord: LongChord::Line,
         arc_letters: bit(b'D'),
         default_machine: DEFAULT_LATHE_TOML,
         unsupported: UNSPECIFIED,

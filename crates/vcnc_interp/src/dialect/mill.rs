@@ -2,7 +2,9 @@
 //! manual (section 1.1) as far as vcnc runs it, and the M-code table of its
 //! chapter 2. The two differ only in the inch/metric codes.
 
-use super::{Dialect, GOp, GRow, Group, MGroup, MOp, MRow, bit, g};
+use super::{
+    Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, MGroup, MOp, MRow, bit, g,
+};
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::LexRules;
@@ -21,8 +23,10 @@ const MILL_G: &[GRow] = &[
         .refuses_axes(),
     g(90, GOp::ExactStopOnce, Group::NonModal),
     g(100, GOp::SetData, Group::NonModal)
-        .reads(bit(b'L') | bit(b'P'))
+        .reads(bit(b'L') | bit(b'P') | bit(b'R'))
         .claims_absolute_axes(),
+    g(150, GOp::PolarOff, Group::Polar),
+    g(160, GOp::PolarOn, Group::Polar),
     g(170, GOp::PlaneXy, Group::Plane),
     g(180, GOp::PlaneZx, Group::Plane),
     g(190, GOp::PlaneYz, Group::Plane),
@@ -33,6 +37,16 @@ const MILL_G: &[GRow] = &[
         .claims_axes(),
     g(310, GOp::Skip, Group::NonModal).claims_axes(),
     g(330, GOp::Thread, Group::Motion),
+    g(400, GOp::CompCancel, Group::CutterComp),
+    g(430, GOp::ToolLengthPlus, Group::ToolLength).reads(bit(b'H')),
+    g(440, GOp::ToolLengthMinus, Group::ToolLength).reads(bit(b'H')),
+    g(490, GOp::ToolLengthCancel, Group::ToolLength),
+    g(500, GOp::ScaleOff, Group::Scaling),
+    g(501, GOp::MirrorOff, Group::Mirror).claims_absolute_axes(),
+    g(510, GOp::ScaleOn, Group::Scaling)
+        .reads(bit(b'P') | bit(b'I') | bit(b'J') | bit(b'K'))
+        .claims_absolute_axes(),
+    g(511, GOp::MirrorOn, Group::Mirror).claims_absolute_axes(),
     g(520, GOp::LocalSystem, Group::NonModal).claims_absolute_axes(),
     g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
     g(540, GOp::WorkSystem(0), Group::Wcs),
@@ -54,6 +68,12 @@ const MILL_G: &[GRow] = &[
     g(620, GOp::PathSurface, Group::Path),
     g(630, GOp::PathTapping, Group::Path),
     g(640, GOp::PathCutting, Group::Path),
+    g(670, GOp::MacroModalCancel, Group::MacroModal),
+    g(680, GOp::RotateOn, Group::Rotation)
+        .reads(bit(b'R'))
+        .claims_absolute_axes(),
+    g(690, GOp::RotateOff, Group::Rotation),
+    g(800, GOp::CycleCancel, Group::Cycle),
     g(900, GOp::Absolute, Group::Distance),
     g(910, GOp::Incremental, Group::Distance),
     g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
@@ -61,6 +81,8 @@ const MILL_G: &[GRow] = &[
     g(950, GOp::PerRev, Group::FeedMode),
     g(960, GOp::SurfaceSpeed, Group::SpindleMode),
     g(970, GOp::SpindleRpm, Group::SpindleMode),
+    g(980, GOp::ReturnInitial, Group::ReturnLevel),
+    g(990, GOp::ReturnR, Group::ReturnLevel),
 ];
 
 /// Syntec 900M: inch/metric are G70/G71 (manual 1.1, 1.2.29).
@@ -108,27 +130,13 @@ const MILL_LEX: LexRules = LexRules {
 const SYNTEC_LATER: &[(u16, &str)] = &[
     (51, "G05.1 path smoothing is not implemented yet"),
     (62, "G06.2 NURBS interpolation is not implemented yet"),
-    (150, "G15 polar coordinates are not implemented yet"),
-    (160, "G16 polar coordinates are not implemented yet"),
-    (400, "G40 cutter compensation is not implemented yet"),
     (410, "G41 cutter compensation is not implemented yet"),
     (420, "G42 cutter compensation is not implemented yet"),
-    (430, "G43 tool length compensation is not implemented yet"),
-    (440, "G44 tool length compensation is not implemented yet"),
-    (490, "G49 tool length compensation is not implemented yet"),
-    (500, "G50 scaling is not implemented yet"),
-    (501, "G50.1 mirror image is not implemented yet"),
-    (510, "G51 scaling is not implemented yet"),
-    (511, "G51.1 mirror image is not implemented yet"),
     (650, "G65 macro call is not implemented yet"),
     (660, "G66 macro modal call is not implemented yet"),
-    (670, "G67 macro modal call is not implemented yet"),
-    (680, "G68 coordinate rotation is not implemented yet"),
-    (690, "G69 coordinate rotation is not implemented yet"),
     (730, "canned cycles (G73) are not implemented yet"),
     (740, "canned cycles (G74) are not implemented yet"),
     (760, "canned cycles (G76) are not implemented yet"),
-    (800, "canned cycles (G80) are not implemented yet"),
     (810, "canned cycles (G81) are not implemented yet"),
     (820, "canned cycles (G82) are not implemented yet"),
     (830, "canned cycles (G83) are not implemented yet"),
@@ -138,8 +146,6 @@ const SYNTEC_LATER: &[(u16, &str)] = &[
     (870, "canned cycles (G87) are not implemented yet"),
     (880, "canned cycles (G88) are not implemented yet"),
     (890, "canned cycles (G89) are not implemented yet"),
-    (980, "canned cycles (G98) are not implemented yet"),
-    (990, "canned cycles (G99) are not implemented yet"),
     (1340, "hole patterns (G134) are not implemented yet"),
     (1350, "hole patterns (G135) are not implemented yet"),
     (1360, "hole patterns (G136) are not implemented yet"),
@@ -154,11 +160,13 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         g,
         m,
         incremental_words: &[],
-        diameter_axis: None,
-        diameter_at_power_on: false,
-        whole_unit_integers: false,
+        diameter: Diameter {
+            axis: None,
+            at_power_on: false,
+        },
+        integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,
-        long_chord_is_line: false,
+        long_chord: LongChord::Alarm,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: SYNTEC_LATER,

@@ -31,33 +31,44 @@ pub enum Group {
     FeedMode,
     /// 06: inch/metric.
     Units,
+    /// 07: cutter radius compensation.
+    CutterComp,
+    /// 08: tool length compensation.
+    ToolLength,
+    /// 09: canned cycles.
+    Cycle,
+    /// 10: canned-cycle return level.
+    ReturnLevel,
+    /// 11: scaling.
+    Scaling,
+    /// 12: modal macro call.
+    MacroModal,
     /// 13: constant surface speed.
     SpindleMode,
     /// 14: work coordinate system.
     Wcs,
     /// 15: path control.
     Path,
+    /// 16: coordinate rotation.
+    Rotation,
+    /// 17: polar coordinate input.
+    Polar,
+    /// 22: programmable mirror image.
+    Mirror,
     /// Lathe G22/G23: radius or diameter programming.
     DiameterMode,
 }
 
 /// Number of modal groups other than `NonModal`.
-pub const MODAL_GROUPS: usize = 9;
+pub const MODAL_GROUPS: usize = 18;
 
 impl Group {
     /// Slot of a modal group in per-block tables (`None` for group 00).
     pub fn slot(self) -> Option<usize> {
         match self {
             Group::NonModal => None,
-            Group::Motion => Some(0),
-            Group::Plane => Some(1),
-            Group::Distance => Some(2),
-            Group::FeedMode => Some(3),
-            Group::Units => Some(4),
-            Group::SpindleMode => Some(5),
-            Group::Wcs => Some(6),
-            Group::Path => Some(7),
-            Group::DiameterMode => Some(8),
+            // The discriminants of the modal groups are 1..=MODAL_GROUPS.
+            g => Some(g as usize - 1),
         }
     }
 }
@@ -118,6 +129,24 @@ pub enum GOp {
     StartPoint,
     CylinderCycle,
     ThreadCycle,
+    // Frames and tool length (Syntec 1.2.11, 1.2.19–1.2.21, 1.2.28).
+    ToolLengthPlus,
+    ToolLengthMinus,
+    ToolLengthCancel,
+    PolarOn,
+    PolarOff,
+    ScaleOn,
+    ScaleOff,
+    MirrorOn,
+    MirrorOff,
+    RotateOn,
+    RotateOff,
+    // Cancels of modes later work adds: nothing to cancel yet.
+    CompCancel,
+    CycleCancel,
+    MacroModalCancel,
+    ReturnInitial,
+    ReturnR,
 }
 
 /// What a one-shot code does with the block's axis words.
@@ -261,6 +290,33 @@ pub const fn bit(l: u8) -> u32 {
     1 << (l - b'A')
 }
 
+/// How a length word written without a decimal point is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegerWords {
+    /// In least input increments: `X5500` is 5.5 mm (Fanuc, Syntec).
+    LeastIncrement,
+    /// In whole units: `X75` is 75 mm (the seed lathe, grbl, LinuxCNC).
+    WholeUnits,
+}
+
+/// What an R arc does when its chord is longer than 2R.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LongChord {
+    /// Alarm E302 (Fanuc).
+    Alarm,
+    /// Cut a straight line instead (the seed lathe document).
+    Line,
+}
+
+/// Diameter programming: which axis, and whether it is on at power-on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Diameter {
+    /// The axis programmed in diameters under G23 (X on a lathe).
+    pub axis: Option<u8>,
+    /// Whether diameter programming is on at power-on.
+    pub at_power_on: bool,
+}
+
 /// A dialect profile: code tables plus the word rules that differ.
 pub struct Dialect {
     /// Name as given to `--dialect`.
@@ -271,17 +327,14 @@ pub struct Dialect {
     m: Vec<Option<MDef>>,
     /// Incremental words of axes: (word, axis), e.g. (U, X) on a lathe.
     pub incremental_words: &'static [(u8, u8)],
-    /// The axis programmed in diameters under G23 (X on a lathe).
-    pub diameter_axis: Option<u8>,
-    /// Whether diameter programming is on at power-on.
-    pub diameter_at_power_on: bool,
-    /// Integers are whole units (`X75` = 75 mm), not least increments.
-    pub whole_unit_integers: bool,
+    /// Diameter programming.
+    pub diameter: Diameter,
+    /// How integers in length words are read.
+    pub integers: IntegerWords,
     /// Plane at power-on (G17 on a mill, the ZX plane on a lathe).
     pub plane: Plane,
-    /// An R arc whose chord is longer than 2R is cut as a straight line
-    /// (the lathe document) instead of alarming E302 (Fanuc).
-    pub long_chord_is_line: bool,
+    /// What an R arc with a chord longer than 2R does.
+    pub long_chord: LongChord,
     /// Letters an arc reads besides the plane's centre offsets and R (the
     /// lathe's D diameter).
     pub arc_letters: u32,

@@ -1,0 +1,379 @@
+//! Canonical events: the interpreter's only output, and the public contract
+//! behind `vcnc run --format jsonl` (documented in `docs/events.md`).
+//!
+//! Events carry machine coordinates in mm ([`Pos`], indexed by the machine's
+//! axis order), feeds in mm/min or mm/rev, and the source location of the
+//! block that caused them. Sinks (`vcnc_output`, the planner, the plotter)
+//! consume them by reference through [`crate::Sink`]. The enum is
+//! `#[non_exhaustive]`: the contract is additive only, so a consumer must
+//! ignore event types it does not know.
+
+use crate::diagnostic::Diagnostic;
+use std::sync::Arc;
+
+/// Most axes a machine may have.
+pub const MAX_AXES: usize = 6;
+
+/// A position or vector in machine coordinates, mm (degrees for rotary
+/// axes), indexed like the machine's `axes`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pos(pub [f64; MAX_AXES]);
+
+impl Pos {
+    /// `self + other`, axis by axis.
+    pub fn plus(self, other: Pos) -> Pos {
+        let mut out = self;
+        for (o, b) in out.0.iter_mut().zip(other.0) {
+            *o += b;
+        }
+        out
+    }
+    /// `self - other`, axis by axis.
+    pub fn minus(self, other: Pos) -> Pos {
+        let mut out = self;
+        for (o, b) in out.0.iter_mut().zip(other.0) {
+            *o -= b;
+        }
+        out
+    }
+    /// The coordinate of axis `i` (0 when out of range).
+    pub fn get(&self, i: usize) -> f64 {
+        self.0.get(i).copied().unwrap_or(0.0)
+    }
+    /// Sets the coordinate of axis `i` (ignored when out of range).
+    pub fn set(&mut self, i: usize, v: f64) {
+        if let Some(slot) = self.0.get_mut(i) {
+            *slot = v;
+        }
+    }
+}
+
+/// Where an event comes from.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Loc {
+    /// 1-based source line.
+    pub line: u64,
+    /// The file, when not the main program.
+    pub file: Option<Arc<str>>,
+}
+
+/// Feed of a cutting move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Feed {
+    /// mm/min (G94).
+    PerMin(f64),
+    /// mm per spindle revolution (G95).
+    PerRev(f64),
+}
+
+/// The plane of an arc, named by its two axes in rotation order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    /// G17.
+    Xy,
+    /// G18.
+    Zx,
+    /// G19.
+    Yz,
+}
+
+impl Plane {
+    /// `"xy"`, `"zx"` or `"yz"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Plane::Xy => "xy",
+            Plane::Zx => "zx",
+            Plane::Yz => "yz",
+        }
+    }
+    /// The first, second and normal axis letters.
+    pub fn letters(self) -> [u8; 3] {
+        match self {
+            Plane::Xy => [b'X', b'Y', b'Z'],
+            Plane::Zx => [b'Z', b'X', b'Y'],
+            Plane::Yz => [b'Y', b'Z', b'X'],
+        }
+    }
+}
+
+/// Rotation sense of an arc, looking from the positive normal axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcDir {
+    /// G02.
+    Cw,
+    /// G03.
+    Ccw,
+}
+
+/// Spindle state in a `spindle` event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpindleDir {
+    /// M03.
+    Cw,
+    /// M04.
+    Ccw,
+    /// M05.
+    Stop,
+    /// M19: stopped at an orientation.
+    Orient,
+}
+
+/// Path control mode (group 15), for the planner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathMode {
+    /// G61.
+    ExactStop,
+    /// G62 (Syntec: curved-surface cutting).
+    Surface,
+    /// G63.
+    Tapping,
+    /// G64, the power-on mode.
+    Cutting,
+}
+
+/// What ended a program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EndCode {
+    /// M02.
+    M02,
+    /// M30.
+    M30,
+    /// The main program ran out of blocks (end of file, `%`, next `O`).
+    Eof,
+}
+
+impl EndCode {
+    /// `"M02"`, `"M30"` or `"EOF"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            EndCode::M02 => "M02",
+            EndCode::M30 => "M30",
+            EndCode::Eof => "EOF",
+        }
+    }
+}
+
+/// What stopped a program for the operator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopCode {
+    /// M00.
+    M00,
+    /// M01 with the optional-stop switch on.
+    M01,
+}
+
+impl StopCode {
+    /// `"M00"` or `"M01"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StopCode::M00 => "M00",
+            StopCode::M01 => "M01",
+        }
+    }
+}
+
+/// The program coordinate frame: `machine = linear · program + origin +
+/// tool_offset`, with `linear` acting on the X, Y and Z axes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameInfo {
+    /// Machine coordinates of the program zero (work offset, G52, G92 and
+    /// the transforms' own translation).
+    pub origin: Pos,
+    /// Rotation, scaling and mirror on X, Y, Z (rows and columns x, y, z);
+    /// `None` when the identity.
+    pub linear: Option<[[f64; 3]; 3]>,
+    /// Tool length offset (G43/G44), machine axes.
+    pub tool_offset: Pos,
+}
+
+/// One canonical event.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Event {
+    /// Positioning at rapid rate.
+    Rapid {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// G09 in the block.
+        exact_stop: bool,
+    },
+    /// Straight cutting move.
+    Feed {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// Feed.
+        feed: Feed,
+        /// G09 in the block.
+        exact_stop: bool,
+    },
+    /// Circular or helical move.
+    Arc {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// Centre; its normal-axis coordinate is the start's.
+        center: Pos,
+        /// Plane.
+        plane: Plane,
+        /// Direction.
+        dir: ArcDir,
+        /// Feed.
+        feed: Feed,
+        /// G09 in the block.
+        exact_stop: bool,
+    },
+    /// Thread cutting (G33), feed locked to the spindle.
+    Thread {
+        /// Source.
+        loc: Loc,
+        /// End point.
+        to: Pos,
+        /// Lead, mm per revolution.
+        lead_mm: f64,
+    },
+    /// Skip move (G31).
+    Skip {
+        /// Source.
+        loc: Loc,
+        /// Where the motion ended.
+        to: Pos,
+        /// Feed.
+        feed: Feed,
+        /// Whether the skip signal fired.
+        triggered: bool,
+    },
+    /// Dwell (G04).
+    Dwell {
+        /// Source.
+        loc: Loc,
+        /// Duration.
+        seconds: f64,
+    },
+    /// Tool change (M06).
+    ToolChange {
+        /// Source.
+        loc: Loc,
+        /// New tool.
+        tool: u32,
+    },
+    /// Spindle start, stop or speed change.
+    Spindle {
+        /// Source.
+        loc: Loc,
+        /// Direction.
+        dir: SpindleDir,
+        /// Speed, rev/min (0 when stopped).
+        rpm: f64,
+        /// Surface speed under G96.
+        surface_m_per_min: Option<f64>,
+    },
+    /// Coolant on/off.
+    Coolant {
+        /// Source.
+        loc: Loc,
+        /// On.
+        on: bool,
+    },
+    /// Path control mode change.
+    PathMode {
+        /// Source.
+        loc: Loc,
+        /// New mode.
+        mode: PathMode,
+    },
+    /// High-speed high-precision mode (Syntec G05 P…), for the planner.
+    HighSpeed {
+        /// Source.
+        loc: Loc,
+        /// On (P1–P5, P10000) or off (P0).
+        on: bool,
+        /// The P parameter set.
+        p: u32,
+    },
+    /// Program stop (M00, M01).
+    Stop {
+        /// Source.
+        loc: Loc,
+        /// Which stop.
+        code: StopCode,
+    },
+    /// Program end.
+    End {
+        /// Source.
+        loc: Loc,
+        /// What ended it.
+        code: EndCode,
+    },
+    /// The program coordinate frame changed (work offset, G52, G92, tool
+    /// length offset, rotation, scaling, mirror), so that a viewer can show
+    /// program coordinates. Emitted before the first motion that uses it.
+    Frame {
+        /// Source.
+        loc: Loc,
+        /// The new frame.
+        frame: FrameInfo,
+    },
+    /// An alarm; always the last event.
+    Alarm(Diagnostic),
+}
+
+impl Event {
+    /// The `type` of the event in the JSON-lines contract.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Event::Rapid { .. } => "rapid",
+            Event::Feed { .. } => "feed",
+            Event::Arc { .. } => "arc",
+            Event::Thread { .. } => "thread",
+            Event::Skip { .. } => "skip",
+            Event::Dwell { .. } => "dwell",
+            Event::ToolChange { .. } => "tool_change",
+            Event::Spindle { .. } => "spindle",
+            Event::Coolant { .. } => "coolant",
+            Event::PathMode { .. } => "path_mode",
+            Event::HighSpeed { .. } => "high_speed",
+            Event::Stop { .. } => "stop",
+            Event::End { .. } => "end",
+            Event::Frame { .. } => "frame",
+            Event::Alarm(_) => "alarm",
+        }
+    }
+
+    /// Where the event comes from (an alarm carries its own line and file).
+    pub fn loc(&self) -> Option<&Loc> {
+        match self {
+            Event::Rapid { loc, .. }
+            | Event::Feed { loc, .. }
+            | Event::Arc { loc, .. }
+            | Event::Thread { loc, .. }
+            | Event::Skip { loc, .. }
+            | Event::Dwell { loc, .. }
+            | Event::ToolChange { loc, .. }
+            | Event::Spindle { loc, .. }
+            | Event::Coolant { loc, .. }
+            | Event::PathMode { loc, .. }
+            | Event::HighSpeed { loc, .. }
+            | Event::Stop { loc, .. }
+            | Event::End { loc, .. }
+            | Event::Frame { loc, .. } => Some(loc),
+            Event::Alarm(_) => None,
+        }
+    }
+
+    /// The end point of a motion event.
+    pub fn motion_end(&self) -> Option<Pos> {
+        match self {
+            Event::Rapid { to, .. }
+            | Event::Feed { to, .. }
+            | Event::Arc { to, .. }
+            | Event::Thread { to, .. }
+            | Event::Skip { to, .. } => Some(*to),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,440 @@
+//! The machine model: axes and travel limits, rates, reference points, work
+//! offsets, tool table, parameters and runaway limits.
+//!
+//! It is read from TOML (`--machine FILE.toml`; the format is documented in
+//! `docs/machine.md` and by the embedded default, `default_mill.toml`) into a
+//! validated [`Machine`] with fixed-size, axis-indexed arrays so that the
+//! interpreter's hot path never looks anything up by name. Parsing text is
+//! the only thing done here; reading the file is the CLI's job. It lives in
+//! the contract crate because every consumer of events (summary, planner,
+//! plotter) needs the same axes, rates and limits as the interpreter.
+
+use crate::events::{MAX_AXES, Pos};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// The embedded default mill.
+pub const DEFAULT_MILL_TOML: &str = include_str!("default_mill.toml");
+
+/// The embedded 2-axis lathe of the seed-003 dialect.
+pub const DEFAULT_LATHE_TOML: &str = include_str!("default_lathe.toml");
+
+/// Number of work coordinate systems (G54–G59, G59.1–G59.9).
+pub const WORK_SYSTEMS: usize = 15;
+
+/// One axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// Uppercase letter.
+    pub letter: u8,
+    /// Travel limits, machine coordinates.
+    pub min_mm: f64,
+    /// Travel limits, machine coordinates.
+    pub max_mm: f64,
+    /// Rapid rate.
+    pub rapid_mm_per_min: f64,
+    /// Highest cutting feed.
+    pub max_feed_mm_per_min: f64,
+    /// Acceleration.
+    pub accel_mm_s2: f64,
+}
+
+/// How words without a decimal point are read (Fanuc parameter DPI).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DecimalInput {
+    /// `X5500` is 5500 least input increments = 5.5 mm.
+    Increment,
+    /// `X5500` is 5500 mm.
+    Calculator,
+}
+
+/// What to do with two G codes of one modal group in one block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SameGroup {
+    /// The last one written wins (Fanuc 0i).
+    LastWins,
+    /// Alarm E205.
+    Alarm,
+}
+
+/// Parameters named in the manuals.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Params {
+    /// Syntec 411: 0 = G00 interpolated, 1 = each axis at its own rapid rate.
+    pub g00_mode: u8,
+    /// Decimal point input.
+    pub decimal_input: DecimalInput,
+    /// Largest start/end radius difference of an arc.
+    pub arc_tolerance_mm: f64,
+    /// Same-group G codes in one block.
+    pub same_group_in_block: SameGroup,
+    /// Tool offset registers: H and D numbers 0 to this (offsets the tool
+    /// table does not list are zero).
+    pub offset_registers: u32,
+}
+
+impl Default for Params {
+    fn default() -> Params {
+        Params {
+            g00_mode: 0,
+            decimal_input: DecimalInput::Increment,
+            arc_tolerance_mm: 0.01,
+            same_group_in_block: SameGroup::LastWins,
+            offset_registers: 200,
+        }
+    }
+}
+
+/// Runaway-program limits.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Limits {
+    /// Deepest subprogram nesting (E403).
+    pub max_call_depth: u32,
+    /// Most jumps: M98 calls, M99 returns to a sequence, main-program repeats (E405).
+    pub max_jumps: u64,
+    /// Most blocks executed (E404).
+    pub max_executed_blocks: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            max_call_depth: 10,
+            max_jumps: 1_000_000,
+            max_executed_blocks: 100_000_000,
+        }
+    }
+}
+
+/// One tool of the tool table.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Tool {
+    /// Length geometry (H).
+    pub h_mm: f64,
+    /// Length wear (H).
+    pub h_wear_mm: f64,
+    /// Radius geometry (D).
+    pub d_mm: f64,
+    /// Radius wear (D).
+    pub d_wear_mm: f64,
+}
+
+/// Where the skip signal of G31 fires: when `axis` crosses `at_mm`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SkipTrigger {
+    /// Axis index.
+    pub axis: usize,
+    /// Machine coordinate.
+    pub at_mm: f64,
+}
+
+/// A validated machine.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Machine {
+    /// Display name.
+    pub name: String,
+    /// Axes in event order.
+    pub axes: Vec<Axis>,
+    letter_axis: [Option<u8>; 26],
+    /// Power-on position.
+    pub start: Pos,
+    /// Reference points 1–4.
+    pub reference: [Option<Pos>; 4],
+    /// Work offsets, G54 first.
+    pub work_offsets: [Pos; WORK_SYSTEMS],
+    /// Tool table.
+    pub tools: BTreeMap<u32, Tool>,
+    /// Parameters.
+    pub params: Params,
+    /// Runaway limits.
+    pub limits: Limits,
+    /// G31 skip triggers.
+    pub skip: Vec<SkipTrigger>,
+}
+
+/// Why a machine file was rejected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MachineError(pub String);
+
+impl std::fmt::Display for MachineError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for MachineError {}
+
+type AxisMap = BTreeMap<String, f64>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileAxis {
+    letter: String,
+    min_mm: f64,
+    max_mm: f64,
+    rapid_mm_per_min: f64,
+    max_feed_mm_per_min: f64,
+    #[serde(default = "default_accel")]
+    accel_mm_s2: f64,
+}
+
+fn default_accel() -> f64 {
+    1000.0
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileSkip {
+    axis: String,
+    at_mm: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    name: String,
+    axes: Vec<FileAxis>,
+    #[serde(default)]
+    start_mm: AxisMap,
+    #[serde(default)]
+    reference: BTreeMap<String, AxisMap>,
+    #[serde(default)]
+    work_offsets: BTreeMap<String, AxisMap>,
+    #[serde(default)]
+    tools: BTreeMap<String, Tool>,
+    #[serde(default)]
+    parameters: Params,
+    #[serde(default)]
+    limits: Limits,
+    #[serde(default)]
+    skip: Vec<FileSkip>,
+}
+
+impl Machine {
+    /// The embedded 3-axis mill.
+    pub fn default_mill() -> Machine {
+        match Machine::from_toml(DEFAULT_MILL_TOML) {
+            Ok(m) => m,
+            // The embedded file is checked by a unit test; this cannot happen.
+            Err(e) => unreachable!("embedded machine is invalid: {e}"),
+        }
+    }
+
+    /// Parses and validates a machine file.
+    pub fn from_toml(text: &str) -> Result<Machine, MachineError> {
+        let file: File = toml::from_str(text).map_err(|e| MachineError(e.to_string()))?;
+        Machine::from_file(file)
+    }
+
+    /// The axis index of an uppercase letter, if the machine has that axis.
+    pub fn axis_of(&self, letter: u8) -> Option<usize> {
+        let i = usize::from(letter.checked_sub(b'A')?);
+        self.letter_axis.get(i).copied().flatten().map(usize::from)
+    }
+
+    /// Bit mask (bit 0 = 'A') of the machine's axis letters.
+    pub fn axis_letter_mask(&self) -> u32 {
+        self.axes.iter().fold(0, |m, a| m | 1 << (a.letter - b'A'))
+    }
+
+    fn from_file(f: File) -> Result<Machine, MachineError> {
+        if f.axes.is_empty() || f.axes.len() > MAX_AXES {
+            return Err(MachineError(format!(
+                "a machine has 1 to {MAX_AXES} axes, this one has {}",
+                f.axes.len()
+            )));
+        }
+        let mut m = Machine {
+            name: f.name,
+            axes: Vec::new(),
+            letter_axis: [None; 26],
+            start: Pos::default(),
+            reference: [None; 4],
+            work_offsets: [Pos::default(); WORK_SYSTEMS],
+            tools: BTreeMap::new(),
+            params: f.parameters,
+            limits: f.limits,
+            skip: Vec::new(),
+        };
+        for (i, a) in f.axes.into_iter().enumerate() {
+            m.add_axis(i, a)?;
+        }
+        m.start = m.pos_of(&f.start_mm, "start_mm")?;
+        m.check_inside(&m.start, "start_mm")?;
+        for (key, map) in &f.reference {
+            let n = match key.as_str() {
+                "p1" => 0,
+                "p2" => 1,
+                "p3" => 2,
+                "p4" => 3,
+                _ => {
+                    return Err(MachineError(format!(
+                        "reference.{key}: use p1, p2, p3 or p4"
+                    )));
+                }
+            };
+            m.reference[n] = Some(m.pos_of(map, &format!("reference.{key}"))?);
+        }
+        for (key, map) in &f.work_offsets {
+            let n = work_system_index(key).ok_or_else(|| {
+                MachineError(format!("work_offsets.{key}: use G54..G59 or G59.1..G59.9"))
+            })?;
+            m.work_offsets[n] = m.pos_of(map, &format!("work_offsets.{key}"))?;
+        }
+        for (key, tool) in f.tools {
+            let n: u32 = key
+                .parse()
+                .map_err(|_| MachineError(format!("tools.{key}: a tool number is an integer")))?;
+            m.tools.insert(n, tool);
+        }
+        for s in f.skip {
+            let axis = m.letter_index(&s.axis, "skip.axis")?;
+            m.skip.push(SkipTrigger {
+                axis,
+                at_mm: s.at_mm,
+            });
+        }
+        m.check_params()?;
+        Ok(m)
+    }
+
+    fn add_axis(&mut self, i: usize, a: FileAxis) -> Result<(), MachineError> {
+        let letter = match a.letter.to_ascii_uppercase().as_bytes() {
+            [l @ (b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C')] => *l,
+            _ => {
+                return Err(MachineError(format!(
+                    "axes[{i}].letter: use one of x y z a b c, not {:?}",
+                    a.letter
+                )));
+            }
+        };
+        let slot = &mut self.letter_axis[usize::from(letter - b'A')];
+        if slot.is_some() {
+            return Err(MachineError(format!("axis {} is defined twice", a.letter)));
+        }
+        *slot = u8::try_from(i).ok();
+        let finite = [
+            a.min_mm,
+            a.max_mm,
+            a.rapid_mm_per_min,
+            a.max_feed_mm_per_min,
+            a.accel_mm_s2,
+        ];
+        if finite.iter().any(|v| !v.is_finite()) || a.min_mm > a.max_mm {
+            return Err(MachineError(format!(
+                "axis {}: limits must be finite with min_mm <= max_mm",
+                a.letter
+            )));
+        }
+        if a.rapid_mm_per_min <= 0.0 || a.max_feed_mm_per_min <= 0.0 || a.accel_mm_s2 <= 0.0 {
+            return Err(MachineError(format!(
+                "axis {}: rates and acceleration must be positive",
+                a.letter
+            )));
+        }
+        self.axes.push(Axis {
+            letter,
+            min_mm: a.min_mm,
+            max_mm: a.max_mm,
+            rapid_mm_per_min: a.rapid_mm_per_min,
+            max_feed_mm_per_min: a.max_feed_mm_per_min,
+            accel_mm_s2: a.accel_mm_s2,
+        });
+        Ok(())
+    }
+
+    fn letter_index(&self, key: &str, what: &str) -> Result<usize, MachineError> {
+        let up = key.to_ascii_uppercase();
+        match up.as_bytes() {
+            [l] => self.axis_of(*l),
+            _ => None,
+        }
+        .ok_or_else(|| MachineError(format!("{what}: the machine has no axis {key:?}")))
+    }
+
+    fn pos_of(&self, map: &AxisMap, what: &str) -> Result<Pos, MachineError> {
+        let mut p = Pos::default();
+        for (k, v) in map {
+            if !v.is_finite() {
+                return Err(MachineError(format!("{what}.{k} must be a finite number")));
+            }
+            p.set(self.letter_index(k, what)?, *v);
+        }
+        Ok(p)
+    }
+
+    fn check_inside(&self, p: &Pos, what: &str) -> Result<(), MachineError> {
+        for (i, a) in self.axes.iter().enumerate() {
+            let v = p.get(i);
+            if v < a.min_mm || v > a.max_mm {
+                return Err(MachineError(format!(
+                    "{what}: {} = {v} is outside the travel limits",
+                    char::from(a.letter)
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    fn check_params(&self) -> Result<(), MachineError> {
+        let p = &self.params;
+        if p.g00_mode > 1 {
+            return Err(MachineError("parameters.g00_mode is 0 or 1".into()));
+        }
+        if !(p.arc_tolerance_mm.is_finite() && p.arc_tolerance_mm > 0.0) {
+            return Err(MachineError(
+                "parameters.arc_tolerance_mm must be positive".into(),
+            ));
+        }
+        // Every level may hold an open program file (64 KiB each): 50
+        // levels keep memory bounded (Fanuc 0i allows 10).
+        if self.limits.max_call_depth == 0 || self.limits.max_call_depth > 50 {
+            return Err(MachineError("limits.max_call_depth is 1..50".into()));
+        }
+        Ok(())
+    }
+}
+
+/// `G54` → 0 … `G59` → 5, `G59.1` → 6 … `G59.9` → 14.
+pub fn work_system_index(name: &str) -> Option<usize> {
+    match name.to_ascii_uppercase().as_str() {
+        "G54" => Some(0),
+        "G55" => Some(1),
+        "G56" => Some(2),
+        "G57" => Some(3),
+        "G58" => Some(4),
+        "G59" => Some(5),
+        s => {
+            let d = s.strip_prefix("G59.")?.parse::<usize>().ok()?;
+            (1..=9).contains(&d).then_some(5 + d)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_embedded_machine_is_valid() {
+        let m = Machine::from_toml(DEFAULT_MILL_TOML).unwrap();
+        assert_eq!(m.axes.len(), 3);
+        assert_eq!(m.axis_of(b'Z'), Some(2));
+        assert_eq!(m.reference[1].unwrap().get(0), 200.0);
+    }
+
+    #[test]
+    fn bad_files_are_explained() {
+        let bad = DEFAULT_MILL_TOML.replace("letter = \"z\"", "letter = \"q\"");
+        assert!(Machine::from_toml(&bad).unwrap_err().0.contains("letter"));
+        let bad = DEFAULT_MILL_TOML.replace("G54 =", "G60 =");
+        assert!(Machine::from_toml(&bad).unwrap_err().0.contains("G60"));
+        assert_eq!(work_system_index("g59.9"), Some(14));
+        assert_eq!(work_system_index("G59.0"), None);
+    }
+}

@@ -1,0 +1,231 @@
+//! The "convert" phase: what a word's value means in mm, seconds or counts.
+//!
+//! A length or angle written without a decimal point is in least input
+//! increments (0.001 mm, 0.0001 inch, 0.001°) unless the machine reads
+//! numbers calculator-style; inch values become mm here, so nothing after
+//! this module knows the program's units. Integer words (P, L, H, T, N) must
+//! be whole and in range.
+
+use crate::alarms;
+use crate::block::words::Words;
+use crate::dialect::IntegerWords;
+use crate::events::Pos;
+use crate::interpreter::{AxisWord, Interpreter};
+use crate::machine::DecimalInput;
+use vcnc_syntax::{Diagnostic, Word};
+
+/// mm per inch.
+pub const MM_PER_INCH: f64 = 25.4;
+
+impl Interpreter<'_> {
+    /// Program units → mm factor.
+    pub(crate) fn unit_mm(&self) -> f64 {
+        if self.state.modal.inch {
+            MM_PER_INCH
+        } else {
+            1.0
+        }
+    }
+
+    fn whole_units(&self, w: &Word) -> bool {
+        w.point
+            || self.dialect.integers == IntegerWords::WholeUnits
+            || self.machine.params.decimal_input == DecimalInput::Calculator
+    }
+
+    /// A length word in mm.
+    pub(crate) fn length_mm(&self, w: &Word) -> f64 {
+        let inch = self.state.modal.inch;
+        let v = if self.whole_units(w) {
+            w.value
+        } else {
+            w.value * if inch { 0.0001 } else { 0.001 }
+        };
+        if inch { v * MM_PER_INCH } else { v }
+    }
+
+    /// An X-direction length that follows diameter programming (lathe G23
+    /// halves it): axis words, and the cycles' X depths.
+    pub(crate) fn x_length_mm(&self, w: &Word) -> f64 {
+        let v = self.length_mm(w);
+        if self.state.modal.diameter {
+            v / 2.0
+        } else {
+            v
+        }
+    }
+
+    /// The value of an axis word: mm (a radius for a diameter axis), or
+    /// degrees for a rotary axis.
+    #[inline]
+    pub(crate) fn axis_mm(&self, a: &AxisWord, w: &Word) -> f64 {
+        if a.rotary {
+            if self.whole_units(w) {
+                w.value
+            } else {
+                w.value * 0.001
+            }
+        } else if a.diameter {
+            self.x_length_mm(w)
+        } else {
+            self.length_mm(w)
+        }
+    }
+
+    /// The value of the axis word of machine axis `i`.
+    pub(crate) fn axis_value(&self, i: usize, w: &Word) -> f64 {
+        match self.axis_words.get(i) {
+            Some(a) => self.axis_mm(a, w),
+            None => self.length_mm(w),
+        }
+    }
+
+    /// A time word (G04 X): seconds with a point, milliseconds without.
+    pub(crate) fn seconds(&self, w: &Word) -> f64 {
+        if self.whole_units(w) {
+            w.value
+        } else {
+            w.value * 0.001
+        }
+    }
+
+    /// Target of the block's axis words in program coordinates, absolute
+    /// or incremental from the programmed point (an incremental word such
+    /// as U always counts from there); axes not named keep their program
+    /// coordinate. Under G16 the plane's first and second axis words are a
+    /// radius and an angle.
+    pub(crate) fn target(&mut self, w: &Words<'_>, incremental: bool) -> Goal {
+        let mut goal = Goal {
+            prog: self.state.prog,
+            named: 0,
+            delta: Pos::default(),
+            all_incremental: true,
+        };
+        for (i, a) in self.axis_words.iter().enumerate() {
+            let (word, inc) = match w.get(a.letter) {
+                Some(word) => (word, incremental),
+                None => match a.inc.and_then(|l| w.get(l)) {
+                    Some(word) => (word, true),
+                    None => continue,
+                },
+            };
+            let v = self.axis_mm(a, &word);
+            if inc {
+                goal.prog.set(i, self.state.prog.get(i) + v);
+                goal.delta.set(i, v);
+            } else {
+                goal.prog.set(i, v);
+                goal.all_incremental = false;
+            }
+            goal.named |= 1 << i;
+        }
+        if self.state.modal.polar {
+            let polar = self.polar_target(w, incremental, &mut goal.prog);
+            if polar != 0 {
+                goal.named |= polar;
+                goal.all_incremental = false;
+            }
+        }
+        goal
+    }
+
+    /// The target of a move to `goal`: an increment from where the tool is
+    /// when every named axis is incremental and the transforms changed
+    /// since the last absolute move (the tool is then not where the frame
+    /// puts the programmed point), else a program point.
+    pub(crate) fn to_target(&self, goal: &Goal) -> crate::motion::Target {
+        if goal.all_incremental && self.state.detached {
+            crate::motion::Target::Relative(goal.delta)
+        } else {
+            crate::motion::Target::Program(goal.prog)
+        }
+    }
+
+    /// G16: the plane's first axis word is a radius, the second an angle in
+    /// degrees (counter-clockwise), both about the program origin; under
+    /// G91 they add to the last radius and angle. Writes the cartesian
+    /// point into `to`, remembers the radius and angle, and returns the
+    /// axes it set.
+    fn polar_target(&mut self, w: &Words<'_>, incremental: bool, to: &mut Pos) -> u32 {
+        let [la, lb, _] = self.state.modal.plane.letters();
+        let (Some(ia), Some(ib)) = (self.machine.axis_of(la), self.machine.axis_of(lb)) else {
+            return 0;
+        };
+        let (r_word, a_word) = (w.get(la), w.get(lb));
+        if r_word.is_none() && a_word.is_none() {
+            return 0;
+        }
+        let (last_r, last_deg) = self.state.polar;
+        let r = r_word.map(|word| self.length_mm(&word));
+        let deg = a_word.map(|word| self.angle_deg(&word));
+        let (r, deg) = if incremental {
+            (last_r + r.unwrap_or(0.0), last_deg + deg.unwrap_or(0.0))
+        } else {
+            (r.unwrap_or(last_r), deg.unwrap_or(last_deg))
+        };
+        self.state.polar = (r, deg);
+        let (s, c) = deg.to_radians().sin_cos();
+        to.set(ia, r * c);
+        to.set(ib, r * s);
+        (1 << ia) | (1 << ib)
+    }
+
+    /// An angle word in degrees (0.001° without a decimal point), whatever
+    /// the length unit.
+    pub(crate) fn angle_deg(&self, w: &Word) -> f64 {
+        if self.whole_units(w) {
+            w.value
+        } else {
+            w.value * 0.001
+        }
+    }
+
+    /// The polar radius and angle that `to` has (after a G16 move).
+    pub(crate) fn polar_of(&self, to: Pos) -> (f64, f64) {
+        let [la, lb, _] = self.state.modal.plane.letters();
+        match (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+            (Some(ia), Some(ib)) => {
+                let (x, y) = (to.get(ia), to.get(ib));
+                (x.hypot(y), y.atan2(x).to_degrees())
+            }
+            _ => (0.0, 0.0),
+        }
+    }
+}
+
+/// Where a block's axis words point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Goal {
+    /// The new programmed point, program coordinates.
+    pub prog: Pos,
+    /// Axes named (bit i = machine axis i).
+    pub named: u32,
+    /// The increment of the incremental axes, program coordinates.
+    pub delta: Pos,
+    /// Every named axis is incremental (and no polar input).
+    pub all_incremental: bool,
+}
+
+/// A whole number word in `min..=max`.
+pub(crate) fn whole(
+    w: &Word,
+    letter: u8,
+    min: f64,
+    max: f64,
+    why: &str,
+) -> Result<u32, Diagnostic> {
+    if w.point {
+        return Err(alarms::no_decimal_point(w.span, letter, why));
+    }
+    if w.value < min || w.value > max {
+        return Err(alarms::value_out_of_range(
+            w.span,
+            letter,
+            w.value,
+            &format!("{letter_c} is {min}..{max}", letter_c = char::from(letter)),
+        ));
+    }
+    // In range and whole (no point), so the cast is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    Ok(w.value as u32)
+}

@@ -1,0 +1,402 @@
+//! The "execute" phase of one validated block, in a fixed order:
+//!
+//! ```text
+//!  1 modal G codes (units, distance, plane, feed mode, G96/G97, work system,
+//!    path mode, polar input, cycle return level)
+//!  2 F, S, T     3 M06     4 M03/M04/M05/M19     5 M08/M09
+//!  6 the frame: G43/G44/G49, G15/G16, G50, G69 (no axis words) and the
+//!    codes that take the axis words as arguments: G10, G92, G52, G51,
+//!    G51.1/G50.1, G68, G04
+//!  7 G28/G29/G30/G53/G31, or the modal motion, or the tool length move
+//!  8 M00/M01/M02/M30/M98/M99
+//! ```
+//!
+//! Modal codes come first so that `G96 S130 M03`, `G91 X10` and `G70 F10`
+//! read their words in the mode the same block selects (Fanuc behaviour);
+//! program flow comes last so that a block's motion happens before it ends
+//! or jumps. A block is all or nothing (see `interpreter.rs`), so a step may
+//! change the state before a later step alarms.
+
+use crate::alarms;
+use crate::block::words::{ALWAYS, Words};
+use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, bit};
+use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
+use crate::flow::ProgramStore;
+use crate::interpreter::{Interpreter, Step};
+use crate::state::Motion;
+use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
+
+impl Words<'_> {
+    /// Axis and arc words, F, N and at most a motion code: the common block
+    /// of a CAM program, which does nothing but move.
+    pub(crate) fn is_plain_motion(&self, axis_mask: u32) -> bool {
+        !self.has_codes && self.present() & !(axis_mask | PLAIN_EXTRA) == 0
+    }
+
+    /// Whether the block carries words beyond axes, F and N (arc words),
+    /// which then have to be checked against the motion.
+    fn has_arc_words(&self, axis_mask: u32) -> bool {
+        self.ext_present != 0 || self.present() & !(axis_mask | bit(b'F') | bit(b'N')) != 0
+    }
+}
+
+impl Interpreter<'_> {
+    /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
+    pub(crate) fn execute_motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if let Some(motion) = w.group(Group::Motion) {
+            self.apply_modal(motion.def.op);
+        }
+        if w.has_arc_words(self.axis_mask) {
+            let (allowed, ext) = self.allowed_letters(w);
+            w.check_used(allowed, ext)?;
+        }
+        self.feed_word(w)?;
+        self.modal_motion(w)
+    }
+
+    pub(crate) fn execute(
+        &mut self,
+        w: &Words<'_>,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let path_before = self.state.modal.path;
+        for at in w.modal_codes() {
+            self.apply_modal(at.def.op);
+        }
+        if w.group(Group::Wcs).is_some() {
+            self.state.refresh_origin(&self.tables);
+        }
+        let (allowed, ext) = self.allowed_letters(w);
+        w.check_used(allowed, ext)?;
+        if self.state.modal.path != path_before {
+            let mode = self.state.modal.path;
+            self.emit(|loc| Event::PathMode { loc, mode });
+        }
+        self.feed_word(w)?;
+        self.tool_words(w)?;
+        self.spindle_words(w)?;
+        if let Some(m) = w.m_of(MGroup::Coolant) {
+            let on = m.def.op == MOp::CoolantOn;
+            self.emit(|loc| Event::Coolant { loc, on });
+        }
+        let tool_moved = self.frame_codes(w)?;
+        let moves_before = self.moves;
+        match w.axis_user {
+            Some(user) => self.axis_code(user.def.op, user.span, w)?,
+            None => self.modal_motion(w)?,
+        }
+        if tool_moved && self.moves == moves_before {
+            self.tool_length_move(w)?;
+        }
+        // A frame changed without a move is reported with its block, before
+        // the block's stop or end.
+        self.report_frame();
+        // Calls and returns are resolved last: an unknown program or
+        // sequence alarms after the motion, which the alarm then drops.
+        let flow = self.prepare_flow(w, here, next, store)?;
+        self.program_flow(w, flow)
+    }
+
+    /// Step 1: one modal code written in the block.
+    fn apply_modal(&mut self, op: GOp) {
+        let m = &mut self.state.modal;
+        match op {
+            GOp::Rapid => m.motion = Motion::Rapid,
+            GOp::Linear => m.motion = Motion::Linear,
+            GOp::ArcCw => m.motion = Motion::ArcCw,
+            GOp::ArcCcw => m.motion = Motion::ArcCcw,
+            GOp::Thread => m.motion = Motion::Thread,
+            GOp::ThreadInch => m.motion = Motion::ThreadInch,
+            GOp::ThreePointArc => m.motion = Motion::ThreePoint,
+            GOp::RadiusMode => m.diameter = false,
+            GOp::DiameterMode => m.diameter = true,
+            GOp::PlaneXy => m.plane = Plane::Xy,
+            GOp::PlaneZx => m.plane = Plane::Zx,
+            GOp::PlaneYz => m.plane = Plane::Yz,
+            GOp::Absolute => m.incremental = false,
+            GOp::Incremental => m.incremental = true,
+            GOp::PerMinute => m.per_rev = false,
+            GOp::PerRev => m.per_rev = true,
+            GOp::Inch => m.inch = true,
+            GOp::Metric => m.inch = false,
+            GOp::SurfaceSpeed => m.css = true,
+            GOp::SpindleRpm => m.css = false,
+            GOp::WorkSystem(n) => m.wcs = usize::from(n),
+            GOp::CancelOffsets => {
+                // Lathe G53/G500: no work system, no G92 shift, no local
+                // offset — machine coordinates are program coordinates.
+                m.wcs = usize::from(crate::dialect::WORK_NONE);
+                self.tables.set_shift(crate::events::Pos::default());
+                self.tables.set_local(crate::events::Pos::default());
+            }
+            GOp::PathExact => m.path = PathMode::ExactStop,
+            GOp::PathSurface => m.path = PathMode::Surface,
+            GOp::PathTapping => m.path = PathMode::Tapping,
+            GOp::PathCutting => m.path = PathMode::Cutting,
+            GOp::ReturnInitial => m.return_r = false,
+            GOp::ReturnR => m.return_r = true,
+            _ => {}
+        }
+    }
+
+    /// Letters and extended addresses this block may carry, given its
+    /// codes and the modal motion.
+    fn allowed_letters(&self, w: &Words<'_>) -> (u32, u8) {
+        let mut allowed = ALWAYS | w.code_letters();
+        if self.state.modal.tool_length != crate::state::ToolLength::Off {
+            // Under G43/G44 an H word alone changes the offset.
+            allowed |= bit(b'H');
+        }
+        let mut ext = 0u8;
+        match w.axis_user.map(|u| u.def.axes) {
+            Some(AxisWords::Refuse) => {}
+            Some(AxisWords::ClaimAbsolute) => allowed |= self.machine.axis_letter_mask(),
+            Some(_) => allowed |= self.axis_mask,
+            None => {
+                allowed |= self.axis_mask;
+                match self.state.modal.motion {
+                    Motion::ArcCw | Motion::ArcCcw => {
+                        allowed |= bit(b'R')
+                            | self.dialect.arc_letters
+                            | plane_offsets(self.state.modal.plane);
+                        ext |= ext_bit(Addr::CR);
+                    }
+                    Motion::ThreePoint => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
+                    _ => {}
+                }
+            }
+        }
+        (allowed, ext)
+    }
+
+    /// Step 2a: F — a feed, a thread lead under G32/G33, or a code's own
+    /// value when the code reads F (lathe G04 F seconds, G31 F percent).
+    fn feed_word(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let Some(f) = w.get(b'F') else { return Ok(()) };
+        if w.code_letters() & bit(b'F') != 0 {
+            return Ok(());
+        }
+        if f.value < 0.0 {
+            return Err(alarms::value_out_of_range(
+                f.span,
+                b'F',
+                f.value,
+                "a feed is not negative",
+            ));
+        }
+        match self.state.modal.motion {
+            Motion::Thread if w.axis_user.is_none() => {
+                self.state.thread_lead_mm = Some(f.value * self.unit_mm())
+            }
+            Motion::ThreadInch if w.axis_user.is_none() => {
+                self.state.thread_lead_mm = Some(f.value * crate::block::convert::MM_PER_INCH);
+            }
+            _ => self.state.feed = f.value,
+        }
+        Ok(())
+    }
+
+    /// Step 2b: T selects, M06 changes.
+    fn tool_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if let Some(t) = w.get(b'T') {
+            let n =
+                crate::block::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
+            self.state.tool_selected = Some(n);
+        }
+        if let Some(m6) = w.m_of(MGroup::Tool) {
+            let tool = self
+                .state
+                .tool_selected
+                .ok_or_else(|| alarms::m06_without_tool(m6.span))?;
+            self.state.tool_active = Some(tool);
+            self.emit(|loc| Event::ToolChange { loc, tool });
+        }
+        Ok(())
+    }
+
+    /// Steps 2c and 4: S, G96/G97 and the spindle M codes, one event at most.
+    fn spindle_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let clamp_block = w.axis_user.is_some_and(|a| a.def.op == GOp::PresetOrClamp);
+        if let Some(s) = w.get(b'S') {
+            if s.value < 0.0 {
+                return Err(alarms::value_out_of_range(
+                    s.span,
+                    b'S',
+                    s.value,
+                    "a spindle speed is not negative",
+                ));
+            }
+            if clamp_block {
+                // G92 S: the highest speed G96 may ask for.
+                self.state.max_rpm = Some(s.value);
+            } else {
+                self.state.s_value = s.value;
+            }
+        }
+        let s_word = w.get(b'S').filter(|_| !clamp_block);
+        let mode = w.group(Group::SpindleMode);
+        if mode.is_some_and(|m| m.def.op == GOp::SpindleRpm) && s_word.is_none() {
+            // G97 alone keeps the speed the spindle turns at (Fanuc).
+            self.state.s_value = self.state.rpm;
+        }
+        let m = w.m_of(MGroup::Spindle);
+        let dir = match m.map(|a| a.def.op) {
+            Some(MOp::SpindleCw) => SpindleDir::Cw,
+            Some(MOp::SpindleCcw) => SpindleDir::Ccw,
+            Some(MOp::SpindleStop) => SpindleDir::Stop,
+            Some(MOp::SpindleOrient) => SpindleDir::Orient,
+            _ => self.state.spindle,
+        };
+        let turning = matches!(dir, SpindleDir::Cw | SpindleDir::Ccw);
+        // Under G96 the speed follows the tool's diameter, the clamp and the units.
+        let css_input = self.state.modal.css
+            && (w.m_of(MGroup::Tool).is_some() || clamp_block || w.group(Group::Units).is_some());
+        let changed = m.is_some() || (turning && (s_word.is_some() || mode.is_some() || css_input));
+        if !changed {
+            return Ok(());
+        }
+        // An alarm about the speed points at what set it: G96, S, else the M code.
+        let why = mode
+            .map(|a| a.span)
+            .or(s_word.map(|s| s.span))
+            .or(m.map(|a| a.span));
+        let (rpm, surface) = if turning {
+            self.spindle_rpm(why.unwrap_or(w.first))?
+        } else {
+            (0.0, None)
+        };
+        if turning
+            && m.is_none()
+            && (rpm - self.state.rpm).abs() < 1e-9
+            && self.state.spindle == dir
+        {
+            return Ok(());
+        }
+        self.state.spindle = dir;
+        self.state.rpm = rpm;
+        self.emit(|loc| Event::Spindle {
+            loc,
+            dir,
+            rpm,
+            surface_m_per_min: surface,
+        });
+        Ok(())
+    }
+
+    /// The speed the spindle turns at now: S rpm, or the surface speed over
+    /// the active tool's diameter under G96, clamped by G92 S.
+    pub(crate) fn spindle_rpm(&self, span: Span) -> Result<(f64, Option<f64>), Diagnostic> {
+        if !self.state.modal.css {
+            return Ok((self.state.s_value, None));
+        }
+        // S is m/min, or ft/min in inch mode.
+        let surface_m_per_min = if self.state.modal.inch {
+            self.state.s_value * 0.3048
+        } else {
+            self.state.s_value
+        };
+        let radius = self
+            .state
+            .tool_active
+            .map(|t| self.tables.tool(t))
+            .map(|t| t.d_mm + t.d_wear_mm);
+        let diameter_mm = radius
+            .filter(|r| *r > 0.0)
+            .map(|r| 2.0 * r)
+            .ok_or_else(|| alarms::css_without_diameter(span))?;
+        let rpm = 1000.0 * surface_m_per_min / (std::f64::consts::PI * diameter_mm);
+        let rpm = self.state.max_rpm.map_or(rpm, |max| rpm.min(max));
+        Ok((rpm, Some(surface_m_per_min)))
+    }
+
+    /// Step 8: stops, ends, calls and returns (already resolved).
+    fn program_flow(&mut self, w: &Words<'_>, flow: Option<Step>) -> Result<Step, Diagnostic> {
+        let Some(m) = w.m_of(MGroup::Flow) else {
+            return Ok(flow.unwrap_or(Step::Next));
+        };
+        match m.def.op {
+            MOp::Stop => self.emit(|loc| Event::Stop {
+                loc,
+                code: StopCode::M00,
+            }),
+            MOp::OptionalStop if self.opts.optional_stop => self.emit(|loc| Event::Stop {
+                loc,
+                code: StopCode::M01,
+            }),
+            MOp::End | MOp::EndRewind => {
+                let code = if m.def.op == MOp::End {
+                    EndCode::M02
+                } else {
+                    EndCode::M30
+                };
+                self.emit(|loc| Event::End { loc, code });
+                return Ok(Step::End(code));
+            }
+            _ => {}
+        }
+        Ok(flow.unwrap_or(Step::Next))
+    }
+
+    /// Resolves M98/M99 of the block into the jump it will make.
+    fn prepare_flow(
+        &mut self,
+        w: &Words<'_>,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Option<Step>, Diagnostic> {
+        if let Some(g) = w.axis_user {
+            match g.def.op {
+                GOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
+                GOp::SubReturn => return self.sub_return(g.span).map(Some),
+                GOp::Jump => return self.jump(w, g.span).map(Some),
+                // A finished loop continues after its block, but the label
+                // search may have moved the reader: re-read from `next`.
+                GOp::Loop => {
+                    let step = self.loop_back(w, g.span, here)?;
+                    return Ok(Some(if matches!(step, Step::Next) {
+                        Step::Jump(next)
+                    } else {
+                        step
+                    }));
+                }
+                _ => {}
+            }
+        }
+        let Some(m) = w.m_of(MGroup::Flow) else {
+            return Ok(None);
+        };
+        match m.def.op {
+            MOp::Call => self.call(w, m.span, here, next, store).map(Some),
+            MOp::Return => self.ret(w, m.span).map(Some),
+            _ => Ok(None),
+        }
+    }
+
+    /// Adds an event of the current block; it reaches the sink when the
+    /// block has succeeded.
+    pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
+        let loc = self.flow.loc.clone();
+        self.pending.push(make(loc));
+    }
+}
+
+/// Letters a plain motion block may carry besides the axes.
+const PLAIN_EXTRA: u32 =
+    bit(b'F') | bit(b'N') | bit(b'R') | bit(b'I') | bit(b'J') | bit(b'K') | bit(b'D');
+
+/// The centre-offset letters of a plane.
+fn plane_offsets(plane: Plane) -> u32 {
+    match plane {
+        Plane::Xy => bit(b'I') | bit(b'J'),
+        Plane::Zx => bit(b'I') | bit(b'K'),
+        Plane::Yz => bit(b'J') | bit(b'K'),
+    }
+}
+
+/// The bit of an extended address in `Words::ext_present`.
+fn ext_bit(a: Addr) -> u8 {
+    a.extended_index().map_or(0, |i| 1 << i)
+}

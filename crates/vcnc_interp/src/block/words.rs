@@ -1,0 +1,333 @@
+//! Validation of one block: from the lexer's word list to a table the
+//! executor reads by letter and by modal group.
+//!
+//! This is the "validate" phase: unknown codes, duplicate words, two codes of
+//! one group, two codes wanting the axis words, and words nothing uses are
+//! all rejected here, before anything is executed, so an alarm leaves the
+//! machine untouched. Nothing is allocated: the table is a few fixed arrays.
+
+use crate::alarms;
+use crate::dialect::{
+    AxisWords, Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit,
+};
+use crate::machine::SameGroup;
+use vcnc_syntax::{Addr, Block, Diagnostic, Span, Word};
+
+/// Most one-shot (group 00) codes in one block.
+const MAX_ONCE: usize = 4;
+
+/// Most modal codes of different groups in one block (a safe-start line
+/// such as `G00 G17 G21 G40 G49 G80 G90 G94 G98` has nine).
+const MAX_MODAL: usize = 12;
+
+/// A code with the span of the word that wrote it.
+#[derive(Debug, Clone, Copy)]
+pub struct At<T> {
+    /// The definition.
+    pub def: T,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// The validated words of one block; letters are indices into the block,
+/// so building the table copies nothing.
+#[derive(Debug)]
+pub struct Words<'b> {
+    block: &'b Block,
+    /// Index + 1 of each extended address (`CR=`, `IX`, `IZ`), 0 when absent.
+    ext: [u8; 4],
+    /// Extended addresses present (bit = [`Addr::extended_index`]).
+    pub ext_present: u8,
+    /// Modal-group codes in the order written (one per group).
+    modal: [Option<At<GDef>>; MAX_MODAL],
+    /// Index + 1 into `modal` of each group's code, by [`Group::slot`].
+    modal_slot: [u8; MODAL_GROUPS],
+    once: [Option<At<GDef>>; MAX_ONCE],
+    /// The group 00 code that takes the axis words, if any.
+    pub axis_user: Option<At<GDef>>,
+    /// M codes by group.
+    pub m: [Option<At<MDef>>; M_GROUPS],
+    /// The block's first word span (for alarms about the whole block).
+    pub first: Span,
+    /// Whether any G code other than a motion code, or any M code, is written
+    /// (lets the common "axis words only" block skip most steps).
+    pub has_codes: bool,
+}
+
+impl<'b> Words<'b> {
+    /// An empty table for `block`; [`fill`](Self::fill) validates it in place
+    /// (building in place spares copying the table out of a `Result`).
+    #[inline]
+    pub fn new(block: &'b Block) -> Words<'b> {
+        Words {
+            block,
+            ext: [0; 4],
+            ext_present: 0,
+            modal: [None; MAX_MODAL],
+            modal_slot: [0; MODAL_GROUPS],
+            once: [None; MAX_ONCE],
+            axis_user: None,
+            m: [None; M_GROUPS],
+            first: block.first_span(),
+            has_codes: false,
+        }
+    }
+
+    /// Collects and checks the block's words. The lexer has already
+    /// indexed the letters; only codes, extended addresses and repeated
+    /// letters need a pass over the words.
+    #[inline]
+    pub fn fill(
+        &mut self,
+        dialect: &Dialect,
+        same_group: SameGroup,
+        axis_mask: u32,
+    ) -> Result<(), Diagnostic> {
+        let block = self.block;
+        if block.is_plain() {
+            return Ok(());
+        }
+        let mut seen = 0u32;
+        for (k, word) in block.words().iter().enumerate() {
+            match word.addr.as_letter() {
+                Some(b'G') => self.add_g(word, dialect, same_group)?,
+                Some(b'M') => self.add_m(word, dialect)?,
+                Some(l) => {
+                    let bit = 1 << (l - b'A');
+                    if seen & bit != 0 {
+                        return Err(alarms::duplicate_word(word.span, l));
+                    }
+                    seen |= bit;
+                }
+                None => self.add_extended(k, word, dialect)?,
+            }
+        }
+        if self.has_codes {
+            self.check_alone(axis_mask)?;
+        }
+        Ok(())
+    }
+
+    fn add_extended(&mut self, k: usize, word: &Word, dialect: &Dialect) -> Result<(), Diagnostic> {
+        let i = word
+            .addr
+            .extended_index()
+            .ok_or_else(|| alarms::address_not_in_dialect(word.span, dialect.name))?;
+        if self.ext_present & (1 << i) != 0 {
+            return Err(alarms::duplicate_extended(word.span, &word.addr.name()));
+        }
+        self.ext_present |= 1 << i;
+        self.ext[i] = u8::try_from(k + 1).unwrap_or(0);
+        Ok(())
+    }
+
+    /// E209 when a code that must stand alone shares its block.
+    fn check_alone(&self, axis_mask: u32) -> Result<(), Diagnostic> {
+        let Some(code) = self
+            .once
+            .iter()
+            .chain(self.modal.iter())
+            .flatten()
+            .find(|a| a.def.alone)
+        else {
+            return Ok(());
+        };
+        let axes = if matches!(code.def.axes, AxisWords::Claim | AxisWords::ClaimAbsolute) {
+            axis_mask
+        } else {
+            0
+        };
+        let own = code.def.letters | bit(b'N') | axes;
+        let stray = self.block.words().iter().find(|word| {
+            word.span != code.span && word.addr.as_letter().is_none_or(|l| own & bit(l) == 0)
+        });
+        match stray {
+            Some(word) => Err(alarms::not_alone(word.span, code.span)),
+            None => Ok(()),
+        }
+    }
+
+    /// The word of an extended address, if present.
+    pub fn get_ext(&self, addr: Addr) -> Option<Word> {
+        let k = *self.ext.get(addr.extended_index()?)?;
+        self.block
+            .words()
+            .get(usize::from(k).checked_sub(1)?)
+            .copied()
+    }
+
+    fn add_g(
+        &mut self,
+        word: &Word,
+        dialect: &Dialect,
+        same_group: SameGroup,
+    ) -> Result<(), Diagnostic> {
+        let def =
+            dialect
+                .g(word.value)
+                .ok_or_else(|| match dialect.unsupported_reason(word.value) {
+                    Some(why) => alarms::unsupported_g(word.span, why),
+                    None => alarms::unknown_g(
+                        word.span,
+                        word.value,
+                        dialect.name,
+                        dialect.g_elsewhere(word.value),
+                    ),
+                })?;
+        let at = At {
+            def,
+            span: word.span,
+        };
+        self.has_codes |= def.group != Group::Motion;
+        if def.takes_axes() {
+            // G28 X0, G92 X0, G51 X0 P2., G68 X0 R90.: the code's own arguments.
+            if self.axis_user.is_some_and(|u| u.span != word.span) {
+                return Err(alarms::axis_conflict(word.span));
+            }
+            self.axis_user = Some(at);
+        }
+        match def.group.slot() {
+            Some(slot) => {
+                let k = self.modal_slot.get(slot).copied().unwrap_or(0);
+                if let Some(prev) = usize::from(k).checked_sub(1).and_then(|i| self.modal[i]) {
+                    if same_group == SameGroup::Alarm {
+                        return Err(alarms::same_group(word.span));
+                    }
+                    // Last wins: the replaced code no longer takes the axes.
+                    if prev.def.takes_axes() && self.axis_user.is_some_and(|u| u.span == prev.span)
+                    {
+                        self.axis_user = def.takes_axes().then_some(at);
+                    }
+                    self.modal[usize::from(k) - 1] = Some(at);
+                } else {
+                    let free = self.modal.iter().position(Option::is_none);
+                    let (Some(i), Some(slot_ref)) = (free, self.modal_slot.get_mut(slot)) else {
+                        return Err(alarms::same_group(word.span));
+                    };
+                    self.modal[i] = Some(at);
+                    *slot_ref = u8::try_from(i + 1).unwrap_or(0);
+                }
+            }
+            None => {
+                if self.has_once(def.op) {
+                    return Err(alarms::same_group(word.span));
+                }
+                match self.once.iter_mut().find(|s| s.is_none()) {
+                    Some(slot) => *slot = Some(at),
+                    None => return Err(alarms::same_group(word.span)),
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn add_m(&mut self, word: &Word, dialect: &Dialect) -> Result<(), Diagnostic> {
+        if word.point {
+            return Err(alarms::no_decimal_point(
+                word.span,
+                b'M',
+                "M codes are whole numbers",
+            ));
+        }
+        let def = dialect
+            .m(word.value)
+            .ok_or_else(|| alarms::unknown_m(word.span, word.value, dialect.name))?;
+        let slot = &mut self.m[def.group as usize];
+        if slot.is_some() {
+            return Err(alarms::same_m_group(word.span));
+        }
+        *slot = Some(At {
+            def,
+            span: word.span,
+        });
+        self.has_codes = true;
+        Ok(())
+    }
+
+    /// Rejects any letter outside `allowed` (bit mask), pointing at the first.
+    pub fn check_used(&self, allowed: u32, allowed_ext: u8) -> Result<(), Diagnostic> {
+        let stray_ext = self.ext_present & !allowed_ext;
+        if stray_ext != 0 {
+            let word = (0..4usize)
+                .filter(|i| stray_ext & (1 << i) != 0)
+                .filter_map(|i| {
+                    self.block
+                        .words()
+                        .get(usize::from(self.ext[i]).checked_sub(1)?)
+                        .copied()
+                })
+                .min_by_key(|w| w.span.start)
+                .unwrap_or_default();
+            return Err(alarms::extended_not_allowed(word.span, &word.addr.name()));
+        }
+        let stray = self.block.present() & !allowed;
+        if stray == 0 {
+            return Ok(());
+        }
+        let first = (0u8..26)
+            .filter(|i| stray & (1 << i) != 0)
+            .filter_map(|i| self.get(b'A' + i))
+            .min_by_key(|w| w.span.start)
+            .unwrap_or_default();
+        Err(alarms::word_not_allowed(first.span, first.addr.0))
+    }
+
+    /// The word of letter `l`, if present.
+    #[inline]
+    pub fn get(&self, l: u8) -> Option<Word> {
+        self.block.letter(l)
+    }
+
+    /// Letters present (bit 0 = 'A').
+    pub fn present(&self) -> u32 {
+        self.block.present()
+    }
+
+    /// Whether any letter of `mask` is present.
+    pub fn any(&self, mask: u32) -> bool {
+        self.block.present() & mask != 0
+    }
+
+    /// The one-shot code `op`, if written.
+    pub fn once(&self, op: GOp) -> Option<At<GDef>> {
+        self.once.iter().flatten().find(|a| a.def.op == op).copied()
+    }
+
+    fn has_once(&self, op: GOp) -> bool {
+        self.once(op).is_some()
+    }
+
+    /// The code written for modal `group`, if any.
+    #[inline]
+    pub fn group(&self, group: Group) -> Option<At<GDef>> {
+        let k = *self.modal_slot.get(group.slot()?)?;
+        self.modal
+            .get(usize::from(k).checked_sub(1)?)
+            .copied()
+            .flatten()
+    }
+
+    /// The modal codes of the block, in the order written.
+    pub fn modal_codes(&self) -> impl Iterator<Item = &At<GDef>> {
+        self.modal.iter().flatten()
+    }
+
+    /// The M code written for `group`, if any.
+    pub fn m_of(&self, group: MGroup) -> Option<At<MDef>> {
+        self.m[group as usize]
+    }
+
+    /// Letters read by the one-shot and M codes of this block.
+    pub fn code_letters(&self) -> u32 {
+        let g = self
+            .once
+            .iter()
+            .chain(self.modal.iter())
+            .flatten()
+            .fold(0, |m, a| m | a.def.letters);
+        self.m.iter().flatten().fold(g, |m, a| m | a.def.letters)
+    }
+}
+
+/// Letters every block may carry.
+pub const ALWAYS: u32 = bit(b'N') | bit(b'F') | bit(b'S') | bit(b'T');

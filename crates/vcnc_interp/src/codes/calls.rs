@@ -1,0 +1,239 @@
+//! M98 calls and M99 returns (Syntec manual chapter 2, item 11).
+//!
+//! - `M98 P p`: run program `O p` (same file, or the program store), then
+//!   continue after the M98. `H n` starts at `N n` of that program; with no
+//!   P, `H n` calls `N n` of the current program. `L k` runs it k times.
+//! - `M99`: return after the call (or run the next repetition). In a main
+//!   program it starts the program again.
+//! - `M99 P n`: return to `N n` of the calling program (in a main program:
+//!   jump to its `N n`).
+//!
+//! Every call, repetition and jump counts against `limits.max_jumps`, and
+//! nesting against `limits.max_call_depth`, so a runaway loop alarms.
+
+use crate::alarms;
+use crate::block::convert::whole;
+use crate::block::words::Words;
+use crate::flow::{Frame, ProgramStore};
+use crate::interpreter::{Interpreter, Step};
+use vcnc_syntax::{Cursor, Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// M98.
+    pub(crate) fn call(
+        &mut self,
+        w: &Words<'_>,
+        m: Span,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let program = w.get(b'P').map(|p| {
+            whole(&p, b'P', 0.0, 99_999_999.0, "P is a program number").map(|n| (n, p.span))
+        });
+        let program = program.transpose()?;
+        let seq = w.get(b'H').map(|h| {
+            whole(&h, b'H', 0.0, 99_999_999.0, "H is a sequence number").map(|n| (n, h.span))
+        });
+        let seq = seq.transpose()?;
+        let runs = match w.get(b'L') {
+            Some(l) => whole(&l, b'L', 1.0, 99_999_999.0, "L is a repeat count")?,
+            None => 1,
+        };
+        if program.is_none() && seq.is_none() {
+            return Err(alarms::needs_word(
+                m,
+                "M98",
+                "P (a program number) or H (a sequence number)",
+            ));
+        }
+        let depth = self.flow().frames.len() as u64;
+        if depth > u64::from(self.machine.limits.max_call_depth) {
+            return Err(alarms::nesting_too_deep(
+                m,
+                self.machine.limits.max_call_depth,
+            ));
+        }
+        let lex = self.dialect.lex;
+        let caller = self.flow().frame();
+        let (source, program_start) = match program {
+            Some((n, span)) => match self.flow().find_program(n, &lex, store) {
+                Ok(Some(found)) => found,
+                Ok(None) => return Err(alarms::program_not_found(span, n)),
+                Err(e) => return Err(alarms::program_unreadable(span, n, &e)),
+            },
+            None => (caller.source, caller.program),
+        };
+        let mut start = program_start;
+        if let Some((n, span)) = seq {
+            start = self
+                .flow()
+                .find_sequence(source, program_start, n, &lex)
+                .ok_or_else(|| alarms::sequence_not_found(span, n))?;
+        }
+        let _ = here;
+        // Every check has passed: only now does the flow change.
+        self.count_jump(m)?;
+        let flow = self.flow();
+        flow.frames.push(Frame {
+            source,
+            start,
+            program: program_start,
+            last: None,
+            ret: next,
+            runs_left: runs,
+            started: seq.is_some(),
+            returns_with: "M99",
+        });
+        Ok(Step::Jump(start))
+    }
+
+    /// M99.
+    pub(crate) fn ret(&mut self, w: &Words<'_>, m: Span) -> Result<Step, Diagnostic> {
+        let target = w.get(b'P').map(|p| {
+            whole(&p, b'P', 0.0, 99_999_999.0, "M99 P is a sequence number").map(|n| (n, p.span))
+        });
+        let target = target.transpose()?;
+        // The limit is checked (and the jump counted) before anything moves:
+        // an M99 that alarms leaves the flow as it was.
+        self.count_jump(m)?;
+        let lex = self.dialect.lex;
+        let flow = self.flow();
+        let frame = flow.frame();
+        if flow.frames.len() == 1 {
+            // A main program: start again, or jump to N n.
+            let to = match target {
+                Some((n, span)) => flow
+                    .find_sequence(frame.source, frame.program, n, &lex)
+                    .ok_or_else(|| alarms::sequence_not_found(span, n))?,
+                None => frame.start,
+            };
+            if let Some(f) = flow.frame_mut().filter(|_| target.is_none()) {
+                // Run again: a `%` or O header at the start is skipped again.
+                f.started = false;
+            }
+            return Ok(Step::Jump(to));
+        }
+        if frame.runs_left > 1 && target.is_none() {
+            if let Some(f) = flow.frame_mut() {
+                f.runs_left -= 1;
+                f.started = false;
+            }
+            return Ok(Step::Jump(frame.start));
+        }
+        let caller = flow
+            .frames
+            .len()
+            .checked_sub(2)
+            .and_then(|i| flow.frames.get(i).copied())
+            .unwrap_or(frame);
+        let to = match target {
+            Some((n, span)) => flow
+                .find_sequence(caller.source, caller.program, n, &lex)
+                .ok_or_else(|| alarms::sequence_not_found(span, n))?,
+            None => frame.ret,
+        };
+        flow.frames.pop();
+        Ok(Step::Jump(to))
+    }
+}
+
+/// The lathe's program flow (seed 003): G20 L calls the blocks from `N L`
+/// as a subroutine until G24; G25 L jumps to `N L`; G26 L Q repeats the
+/// blocks from `N L` up to the G26 block so that they run Q times in all
+/// ("the number of cycles depends on the value of Q"). Like M98/M99, every
+/// call and jump counts against `limits.max_jumps`.
+impl Interpreter<'_> {
+    /// The `N` number of an L word, found in the current program.
+    fn label(&mut self, w: &Words<'_>, cmd: Span) -> Result<Cursor, Diagnostic> {
+        let l = w.get(b'L').ok_or_else(|| {
+            alarms::needs_word(cmd, "this code", "L (the sequence number to go to)")
+        })?;
+        let n = whole(&l, b'L', 1.0, 99_999_999.0, "L is a sequence number")?;
+        let lex = self.dialect.lex;
+        let frame = self.flow().frame();
+        self.flow()
+            .find_sequence(frame.source, frame.program, n, &lex)
+            .ok_or_else(|| alarms::sequence_not_found(l.span, n))
+    }
+
+    /// G20 L: call `N L` of this program until G24.
+    pub(crate) fn sub_call(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        next: Cursor,
+    ) -> Result<Step, Diagnostic> {
+        let start = self.label(w, cmd)?;
+        let depth = self.flow().frames.len() as u64;
+        if depth > u64::from(self.machine.limits.max_call_depth) {
+            return Err(alarms::nesting_too_deep(
+                cmd,
+                self.machine.limits.max_call_depth,
+            ));
+        }
+        self.count_jump(cmd)?;
+        let caller = self.flow().frame();
+        self.flow().frames.push(Frame {
+            source: caller.source,
+            start,
+            program: caller.program,
+            last: None,
+            ret: next,
+            runs_left: 1,
+            started: true,
+            returns_with: "G24",
+        });
+        Ok(Step::Jump(start))
+    }
+
+    /// G24: back after the G20 that called.
+    pub(crate) fn sub_return(&mut self, cmd: Span) -> Result<Step, Diagnostic> {
+        if self.flow().frames.len() < 2 {
+            return Err(alarms::return_without_call(cmd));
+        }
+        self.count_jump(cmd)?;
+        let frame = self.flow().frames.pop().map(|f| f.ret).unwrap_or_default();
+        Ok(Step::Jump(frame))
+    }
+
+    /// G25 L: continue at `N L`.
+    pub(crate) fn jump(&mut self, w: &Words<'_>, cmd: Span) -> Result<Step, Diagnostic> {
+        let to = self.label(w, cmd)?;
+        self.count_jump(cmd)?;
+        Ok(Step::Jump(to))
+    }
+
+    /// G26 L Q: back to `N L` until the body has run Q times.
+    pub(crate) fn loop_back(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        here: Cursor,
+    ) -> Result<Step, Diagnostic> {
+        let q = w.get(b'Q').ok_or_else(|| {
+            alarms::needs_word(cmd, "G26", "Q (how many times the loop body runs)")
+        })?;
+        let runs = whole(
+            &q,
+            b'Q',
+            1.0,
+            99_999_999.0,
+            "Q is how many times the loop body runs",
+        )?;
+        let to = self.label(w, cmd)?;
+        let key = (self.flow().frame().source, here.offset, here.col);
+        let left = self.flow().loops.get(&key).copied().unwrap_or(runs - 1);
+        if left == 0 {
+            self.flow().loops.remove(&key);
+            return Ok(Step::Next);
+        }
+        self.count_jump(cmd)?;
+        let loops = &mut self.flow().loops;
+        if loops.len() >= 4096 && !loops.contains_key(&key) {
+            loops.clear();
+        }
+        loops.insert(key, left - 1);
+        Ok(Step::Jump(to))
+    }
+}

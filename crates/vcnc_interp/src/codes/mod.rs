@@ -1,0 +1,12 @@
+//! What the G and M codes do, one family per file. Each function takes the
+//! validated words of its block and either changes the state (offsets,
+//! transforms, tool length) or builds moves for the motion stage
+//! (`crate::motion`); none of them emits a motion event itself.
+
+pub(crate) mod calls;
+pub(crate) mod lathe_cycles;
+pub(crate) mod offsets;
+pub(crate) mod refs;
+pub(crate) mod tool_length;
+pub(crate) mod transforms;
+pub(crate) mod turning;

@@ -1,0 +1,170 @@
+//! Offsets that move the program origin or change the tool data without
+//! moving the machine: G10 (L2 work offsets, L10–L13 tool offsets), G92
+//! (shift, or S spindle clamp) and G52 (local system).
+//!
+//! G92 and G52 values are absolute program coordinates whatever G90/G91
+//! says (Fanuc 0i); G10 adds to the offset under G91 (Syntec 1.2.10). G92
+//! cancels the local system of the axes it names (Fanuc 0i, "local
+//! coordinate system"), so the preset position is what the axis then reads.
+//! G10 L10/L11 write an H length (geometry, wear), L12/L13 a D radius; the
+//! value in force for an active G43 is the one latched when H was given.
+
+use crate::alarms;
+use crate::block::convert::whole;
+use crate::block::words::Words;
+use crate::interpreter::Interpreter;
+use vcnc_syntax::{Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// `(axis index, value in mm)` of each named axis.
+    fn named_values(&self, w: &Words<'_>) -> Vec<(usize, f64)> {
+        self.machine
+            .axes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, a)| w.get(a.letter).map(|word| (i, self.axis_value(i, &word))))
+            .collect()
+    }
+
+    /// G10: L2 work offsets, L10–L13 tool offsets.
+    pub(crate) fn set_data(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let l = w.get(b'L').ok_or_else(|| {
+            alarms::needs_word(
+                cmd,
+                "G10",
+                "L (2 work offset, 10/11 H geometry/wear, 12/13 D geometry/wear) and P",
+            )
+        })?;
+        match whole(&l, b'L', 2.0, 13.0, "G10 L is 2, 10, 11, 12 or 13")? {
+            2 => self.set_work_offset(w, cmd),
+            n @ 10..=13 => self.set_tool_offset(w, cmd, n),
+            _ => Err(alarms::value_out_of_range(
+                l.span,
+                b'L',
+                l.value,
+                "G10 L is 2, 10, 11, 12 or 13",
+            )),
+        }
+    }
+
+    /// G10 L2 Pn: sets work offset n (1 = G54 … 6 = G59).
+    fn set_work_offset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        if let Some(r) = w.get(b'R') {
+            return Err(alarms::word_not_allowed(r.span, b'R'));
+        }
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
+        if p.point || !(1.0..=6.0).contains(&p.value) {
+            return Err(alarms::bad_offset_number(p.span, p.value));
+        }
+        let n = whole(&p, b'P', 1.0, 6.0, "P is a work offset number")? as usize - 1;
+        let values = self.named_values(w);
+        if values.is_empty() {
+            return Err(alarms::needs_axes(cmd, "G10 L2"));
+        }
+        let incremental = self.state.modal.incremental;
+        let mut offset = self.tables.work[n];
+        for (i, v) in values {
+            offset.set(i, if incremental { offset.get(i) + v } else { v });
+        }
+        self.tables.set_work(n, offset);
+        self.state.refresh_origin(&self.tables);
+        Ok(())
+    }
+
+    /// G10 L10–L13 P R: an H length or D radius, geometry or wear.
+    fn set_tool_offset(&mut self, w: &Words<'_>, cmd: Span, l: u32) -> Result<(), Diagnostic> {
+        if let Some(word) = self
+            .machine
+            .axes
+            .iter()
+            .filter_map(|a| w.get(a.letter))
+            .min_by_key(|word| word.span.start)
+        {
+            return Err(alarms::word_not_allowed(word.span, word.addr.0));
+        }
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "P (the offset number)"))?;
+        let n = self.offset_number(&p)?;
+        let r = w
+            .get(b'R')
+            .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "R (the offset value)"))?;
+        let value = self.length_mm(&r);
+        let incremental = self.state.modal.incremental;
+        let mut tool = self.tables.tool(n);
+        let slot = match l {
+            10 => &mut tool.h_mm,
+            11 => &mut tool.h_wear_mm,
+            12 => &mut tool.d_mm,
+            _ => &mut tool.d_wear_mm,
+        };
+        *slot = if incremental { *slot + value } else { value };
+        self.tables.set_tool(n, tool);
+        Ok(())
+    }
+
+    /// An H, D or G10 P offset number within the machine's offset registers.
+    pub(crate) fn offset_number(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
+        let max = self.machine.params.offset_registers;
+        if w.point || w.value < 0.0 || w.value > f64::from(max) {
+            return Err(alarms::bad_tool_offset_number(
+                w.span, w.addr.0, w.value, max,
+            ));
+        }
+        whole(w, w.addr.0, 0.0, f64::from(max), "an offset number")
+    }
+
+    /// G92: preset the current position (axes), or clamp the spindle (S).
+    pub(crate) fn preset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let values = self.named_values(w);
+        if let Some(s) = w.get(b'S') {
+            if !values.is_empty() {
+                return Err(alarms::g92_axes_and_s(s.span));
+            }
+            // The clamp itself was set with the spindle words (execute.rs).
+            return Ok(());
+        }
+        if values.is_empty() {
+            return Err(alarms::needs_axes(cmd, "G92"));
+        }
+        if self.state.frame.is_transformed() {
+            return Err(alarms::g92_under_transform(cmd));
+        }
+        let nominal = self.state.nominal;
+        let work = self
+            .tables
+            .work
+            .get(self.state.modal.wcs)
+            .copied()
+            .unwrap_or_default();
+        let (mut local, mut shift) = (self.tables.local, self.tables.shift);
+        for (i, v) in values {
+            local.set(i, 0.0);
+            shift.set(
+                i,
+                nominal.get(i) - work.get(i) - self.state.frame.tool.get(i) - v,
+            );
+        }
+        self.tables.set_local(local);
+        self.tables.set_shift(shift);
+        self.state.refresh_origin(&self.tables);
+        Ok(())
+    }
+
+    /// G52: the local system's origin in the work system; zero cancels.
+    pub(crate) fn local_system(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let values = self.named_values(w);
+        if values.is_empty() {
+            return Err(alarms::needs_axes(cmd, "G52"));
+        }
+        let mut local = self.tables.local;
+        for (i, v) in values {
+            local.set(i, v);
+        }
+        self.tables.set_local(local);
+        self.state.refresh_origin(&self.tables);
+        Ok(())
+    }
+}

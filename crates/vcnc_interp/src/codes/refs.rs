@@ -1,0 +1,214 @@
+//! One-shot (group 00) codes that take the block's axis words: G04 dwell,
+//! G05 high-speed mode, G28/G29/G30 reference returns, G53 machine-coordinate
+//! moves; and the dispatch of every code that takes the axis words.
+//!
+//! ```text
+//!   G28 X Y:  start ──rapid──▶ intermediate (program coords) ──rapid──▶ reference 1
+//!   G29 X Y:  here  ──rapid──▶ that intermediate ──rapid──▶ commanded point
+//! ```
+//!
+//! Only the named axes move, as in Fanuc 0i. The intermediate point is kept
+//! per axis in program coordinates and goes through the frame like any
+//! programmed point (so under G51.1 the mirror applies up to it, Syntec
+//! 1.2.21); the reference point is a machine position. G29 after a change
+//! of work system passes through the same program point in the new system.
+
+use crate::alarms;
+use crate::block::convert::whole;
+use crate::block::words::Words;
+use crate::dialect::GOp;
+use crate::events::Event;
+use crate::interpreter::Interpreter;
+use crate::motion::{MoveKind, Target};
+use vcnc_syntax::{Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// Steps 6 and 7: the code that takes the block's axis words.
+    pub(crate) fn axis_code(
+        &mut self,
+        op: GOp,
+        cmd: Span,
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        match op {
+            GOp::Dwell => self.dwell(w),
+            GOp::SetData => self.set_data(w, cmd),
+            GOp::PresetOrClamp => self.preset(w, cmd),
+            GOp::LocalSystem => self.local_system(w, cmd),
+            GOp::ScaleOn => self.scale_on(w, cmd),
+            GOp::MirrorOn => self.mirror(w, cmd, true),
+            GOp::MirrorOff => self.mirror(w, cmd, false),
+            GOp::RotateOn => self.rotate_on(w, cmd),
+            GOp::RefReturn => self.reference_return(w, cmd, 1),
+            GOp::RefReturnN => {
+                let n = match w.get(b'P') {
+                    Some(p) => whole(&p, b'P', 1.0, 4.0, "P is a reference point number")?,
+                    None => 2,
+                };
+                self.reference_return(w, cmd, n as usize)
+            }
+            GOp::RefFrom => self.return_from_reference(w, cmd),
+            GOp::MachineCoords => self.machine_move(w, cmd),
+            GOp::Skip => self.skip(w, cmd),
+            GOp::DwellSeconds => self.dwell_seconds(w),
+            GOp::HighSpeed => self.high_speed(w, cmd),
+            GOp::FeedUp => self.feed_step(1, cmd),
+            GOp::FeedDown => self.feed_step(-1, cmd),
+            GOp::OverrideCancel => {
+                self.set_magnification(100.0);
+                Ok(())
+            }
+            GOp::OverrideSet => self.magnification(w, cmd),
+            GOp::RefXThenZ => self.reference_x_then_z(w, cmd),
+            GOp::ProgramZero => self.program_zero(w, cmd),
+            GOp::StartPoint => {
+                let to = self.machine.start;
+                self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)
+            }
+            GOp::CylinderCycle => self.cylinder_cycle(w, cmd),
+            GOp::ThreadCycle => self.thread_cycle(w, cmd),
+            _ => Ok(()),
+        }
+    }
+
+    /// G04: P whole milliseconds, or X seconds (milliseconds without a point).
+    fn dwell(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let seconds = match (w.get(b'P'), w.get(b'X')) {
+            (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, b'X')),
+            (Some(p), None) => {
+                f64::from(whole(
+                    &p,
+                    b'P',
+                    0.0,
+                    99_999_999.0,
+                    "G04 P is whole milliseconds (use X for seconds)",
+                )?) / 1000.0
+            }
+            (None, Some(x)) if x.value < 0.0 => {
+                return Err(alarms::value_out_of_range(
+                    x.span,
+                    b'X',
+                    x.value,
+                    "a dwell is not negative",
+                ));
+            }
+            (None, Some(x)) => self.seconds(&x),
+            (None, None) => 0.0,
+        };
+        // Manual 1.2.5: 0.001 to 9999.999 s (0 is the exact-stop check).
+        if seconds > 9_999.999 {
+            let word = w.get(b'X').or(w.get(b'P')).unwrap_or_default();
+            return Err(alarms::value_out_of_range(
+                word.span,
+                word.addr.0,
+                word.value,
+                "a dwell is at most 9999.999 s",
+            ));
+        }
+        self.emit(|loc| Event::Dwell { loc, seconds });
+        Ok(())
+    }
+
+    /// Syntec G05 P10000 / P1–P5 (on) and P0 (off), manual 1.2.6: recorded
+    /// for the planner; the path itself is unchanged here.
+    fn high_speed(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G05", "P (0 off, 1-5 or 10000 on)"))?;
+        let n = whole(&p, b'P', 0.0, 10_000.0, "G05 P is 0, 1-5 or 10000")?;
+        if !matches!(n, 0..=5 | 10_000) {
+            return Err(alarms::value_out_of_range(
+                p.span,
+                b'P',
+                p.value,
+                "G05 P is 0, 1-5 or 10000",
+            ));
+        }
+        self.emit(|loc| Event::HighSpeed {
+            loc,
+            on: n != 0,
+            p: n,
+        });
+        Ok(())
+    }
+
+    /// G28 (n = 1) and G30 Pn.
+    fn reference_return(&mut self, w: &Words<'_>, cmd: Span, n: usize) -> Result<(), Diagnostic> {
+        let goal = self.target(w, self.state.modal.incremental);
+        let (mid, named) = (goal.prog, goal.named);
+        if named == 0 {
+            return Err(alarms::needs_axes(cmd, "a reference return"));
+        }
+        let reference = self.machine.reference.get(n - 1).copied().flatten();
+        let reference = reference
+            .ok_or_else(|| alarms::no_reference(w.get(b'P').map_or(cmd, |p| p.span), n))?;
+        for i in 0..self.machine.axes.len() {
+            if named & (1 << i) != 0 {
+                self.state.intermediate.set(i, mid.get(i));
+            }
+        }
+        // Axis indices are below MAX_AXES (6): the mask fits in a byte.
+        self.state.intermediate_axes |= (named & 0x3f) as u8;
+        // Both legs move like G00 (dog-legs with parameter 411 = 1); the
+        // block is all or nothing, so a second leg that alarms drops the first.
+        self.straight(MoveKind::Rapid, self.to_target(&goal), w, cmd)?;
+        let mut end = self.state.pos;
+        for i in 0..self.machine.axes.len() {
+            if named & (1 << i) != 0 {
+                end.set(i, reference.get(i));
+            }
+        }
+        self.straight(MoveKind::Rapid, Target::Machine(end), w, cmd)
+    }
+
+    /// G29: back through the intermediate point to the commanded point.
+    fn return_from_reference(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let mut named = 0u32;
+        let mut mid = self.state.prog;
+        let mut target = self.state.prog;
+        for (i, axis) in self.machine.axes.iter().enumerate() {
+            let Some(word) = w.get(axis.letter) else {
+                continue;
+            };
+            if self.state.intermediate_axes & (1 << i) == 0 {
+                return Err(alarms::g29_without_g28(cmd, axis.letter));
+            }
+            let m = self.state.intermediate.get(i);
+            let v = self.axis_value(i, &word);
+            mid.set(i, m);
+            target.set(
+                i,
+                if self.state.modal.incremental {
+                    m + v
+                } else {
+                    v
+                },
+            );
+            named |= 1 << i;
+        }
+        if named == 0 {
+            return Err(alarms::needs_axes(cmd, "G29"));
+        }
+        self.straight(MoveKind::Rapid, Target::Program(mid), w, cmd)?;
+        self.straight(MoveKind::Rapid, Target::Program(target), w, cmd)
+    }
+
+    /// G53: a rapid to machine coordinates (absolute only).
+    fn machine_move(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        if self.state.modal.incremental {
+            return Err(alarms::g53_incremental(cmd));
+        }
+        let mut to = self.state.pos;
+        let mut named = 0;
+        for (i, axis) in self.machine.axes.iter().enumerate() {
+            if let Some(word) = w.get(axis.letter) {
+                to.set(i, self.axis_value(i, &word));
+                named |= 1 << i;
+            }
+        }
+        if named == 0 {
+            return Err(alarms::needs_axes(cmd, "G53"));
+        }
+        self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)
+    }
+}

@@ -1,0 +1,253 @@
+//! G02/G03: circular and helical interpolation in G17/G18/G19, resolved in
+//! program coordinates before the arc is committed to the motion stage.
+//!
+//! ```text
+//!        second axis            centre from I/J/K: c = start + (I,J)
+//!            ▲   ● end          centre from R:     c = mid ± h·n̂,
+//!            │  ╱                 h = √(R² − (d/2)²), n̂ ⟂ chord,
+//!            │ ╱  c               + for G03 with R > 0 (arc ≤ 180°),
+//!            ●────────▶ first     sign flipped for G02 and for R < 0
+//!          start
+//! ```
+//!
+//! Planes are named by their axes in rotation order (XY, ZX, YZ) so that
+//! "counter-clockwise" always means looking from the positive normal axis.
+//! The end point must lie on the circle within `arc_tolerance_mm` (E303);
+//! a chord longer than 2R alarms (E302) unless within that tolerance, where
+//! the arc becomes a half circle. R wins over I/J/K when both are written
+//! (Fanuc 0i). I/J/K are offsets in program coordinates (never polar);
+//! the frame then maps the centre like any other point.
+
+use super::MoveKind;
+use crate::alarms;
+use crate::block::convert::Goal;
+use crate::block::words::Words;
+use crate::dialect::LongChord;
+use crate::events::{Plane, Pos};
+use crate::interpreter::Interpreter;
+use crate::motion::frame::plane_rows;
+use vcnc_core::geometry::ZERO_MM;
+use vcnc_syntax::{Addr, Diagnostic, Span};
+
+/// The radius an arc block gives.
+#[derive(Debug, Clone, Copy)]
+struct Radius {
+    /// Signed radius, mm (negative: more than 180°).
+    mm: f64,
+    /// The word that gave it.
+    span: Span,
+    /// A chord longer than 2R is cut as a straight line instead of alarming.
+    line_if_short: bool,
+}
+
+/// The program-coordinate indices of a plane's first and second axis.
+#[derive(Debug, Clone, Copy)]
+struct PlaneIdx {
+    a: usize,
+    b: usize,
+}
+
+impl Interpreter<'_> {
+    /// One G02/G03 block (a block with no arc words only sets the mode).
+    pub(crate) fn arc(&mut self, w: &Words<'_>, cmd: Span, cw: bool) -> Result<(), Diagnostic> {
+        let plane = self.state.modal.plane;
+        let [oa, ob] = center_letters(plane);
+        let has_center = w.get(oa).is_some() || w.get(ob).is_some();
+        let radius = self.radius_word(w);
+        let goal = self.target(w, self.state.modal.incremental);
+        let (to, named) = (goal.prog, goal.named);
+        if named == 0 && !has_center && radius.is_none() {
+            return Ok(());
+        }
+        let idx = self.plane_idx(plane, cmd)?;
+        let feed = self.feed(cmd)?;
+        let from = self.state.prog;
+        let s = (from.get(idx.a), from.get(idx.b));
+        let e = (to.get(idx.a), to.get(idx.b));
+        let center = match radius {
+            Some(r) => match self.center_from_radius(s, e, r, cw, cmd)? {
+                Some(c) => c,
+                // The lathe document: a chord longer than 2R is cut straight.
+                None => return self.straight(MoveKind::Feed(feed), self.to_target(&goal), w, cmd),
+            },
+            None if has_center => {
+                let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
+                (s.0 + off(oa), s.1 + off(ob))
+            }
+            None => return Err(alarms::arc_without_center(cmd, plane.as_str())),
+        };
+        self.commit_arc(goal, center, cw, w, cmd)
+    }
+
+    /// Program indices of a plane's axes (E305 if the machine lacks one).
+    fn plane_idx(&self, plane: Plane, cmd: Span) -> Result<PlaneIdx, Diagnostic> {
+        let axes = self.plane_axes(plane, cmd)?;
+        Ok(PlaneIdx {
+            a: axes.a,
+            b: axes.b,
+        })
+    }
+
+    /// The arc's radius word: R (signed), or on the lathe `CR=` (a radius)
+    /// or D (a diameter), with whether a too-long chord becomes a line.
+    fn radius_word(&self, w: &Words<'_>) -> Option<Radius> {
+        if let Some(r) = w.get(b'R') {
+            return Some(Radius {
+                mm: self.length_mm(&r),
+                span: r.span,
+                line_if_short: self.dialect.long_chord == LongChord::Line,
+            });
+        }
+        if let Some(cr) = w.get_ext(Addr::CR) {
+            return Some(Radius {
+                mm: self.length_mm(&cr),
+                span: cr.span,
+                line_if_short: false,
+            });
+        }
+        w.get(b'D').map(|d| Radius {
+            mm: self.length_mm(&d) / 2.0,
+            span: d.span,
+            line_if_short: false,
+        })
+    }
+
+    /// Checks an arc with a known centre (program coordinates) and commits it.
+    fn commit_arc(
+        &mut self,
+        goal: Goal,
+        center: (f64, f64),
+        cw: bool,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let plane = self.state.modal.plane;
+        let idx = self.plane_idx(plane, cmd)?;
+        let (from, to) = (self.state.prog, goal.prog);
+        let s = (from.get(idx.a), from.get(idx.b));
+        let e = (to.get(idx.a), to.get(idx.b));
+        self.check_on_circle(s, e, center, cmd)?;
+        let mut offset = Pos::default();
+        offset.set(idx.a, center.0 - s.0);
+        offset.set(idx.b, center.1 - s.1);
+        let feed = self.feed(cmd)?;
+        self.straight(
+            MoveKind::Arc {
+                offset,
+                plane,
+                cw,
+                feed,
+            },
+            self.to_target(&goal),
+            w,
+            cmd,
+        )
+    }
+
+    /// Lathe G05: the arc from here through the middle point (IX, IZ) to
+    /// the end point; its direction is the turn the three points make.
+    pub(crate) fn three_point_arc(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let goal = self.target(w, self.state.modal.incremental);
+        let (to, named) = (goal.prog, goal.named);
+        let mid_words = [(Addr::IX, b'X'), (Addr::IZ, b'Z')];
+        if named == 0 && mid_words.iter().all(|(a, _)| w.get_ext(*a).is_none()) {
+            return Ok(());
+        }
+        let idx = self.plane_idx(self.state.modal.plane, cmd)?;
+        self.feed(cmd)?;
+        let from = self.state.prog;
+        let mut mid = from;
+        for (addr, letter) in mid_words {
+            let (Some(word), Some(i)) = (w.get_ext(addr), self.machine.axis_of(letter)) else {
+                continue;
+            };
+            let v = self.axis_value(i, &word);
+            mid.set(
+                i,
+                if self.state.modal.incremental {
+                    from.get(i) + v
+                } else {
+                    v
+                },
+            );
+        }
+        let (s, m, e) = (
+            (from.get(idx.a), from.get(idx.b)),
+            (mid.get(idx.a), mid.get(idx.b)),
+            (to.get(idx.a), to.get(idx.b)),
+        );
+        let d = 2.0 * (s.0 * (m.1 - e.1) + m.0 * (e.1 - s.1) + e.0 * (s.1 - m.1));
+        if d.abs() < ZERO_MM {
+            return Err(alarms::three_points_on_a_line(cmd));
+        }
+        let sq = |p: (f64, f64)| p.0 * p.0 + p.1 * p.1;
+        let center = (
+            (sq(s) * (m.1 - e.1) + sq(m) * (e.1 - s.1) + sq(e) * (s.1 - m.1)) / d,
+            (sq(s) * (e.0 - m.0) + sq(m) * (s.0 - e.0) + sq(e) * (m.0 - s.0)) / d,
+        );
+        // Turning left (positive cross product) from S→M to M→E is counter-clockwise.
+        let cross = (m.0 - s.0) * (e.1 - m.1) - (m.1 - s.1) * (e.0 - m.0);
+        self.commit_arc(goal, center, cross < 0.0, w, cmd)
+    }
+
+    /// Centre of an R arc; negative R takes the arc over 180°.
+    fn center_from_radius(
+        &self,
+        s: (f64, f64),
+        e: (f64, f64),
+        radius: Radius,
+        cw: bool,
+        cmd: Span,
+    ) -> Result<Option<(f64, f64)>, Diagnostic> {
+        let (r, span) = (radius.mm, radius.span);
+        let (dx, dy) = (e.0 - s.0, e.1 - s.1);
+        let chord = dx.hypot(dy);
+        if r.abs() < ZERO_MM {
+            return Err(alarms::zero_radius(cmd));
+        }
+        if chord < ZERO_MM {
+            return Err(alarms::r_full_circle(span));
+        }
+        let half = chord / 2.0;
+        let h2 = r * r - half * half;
+        if h2 < 0.0 && chord - 2.0 * r.abs() > self.machine.params.arc_tolerance_mm {
+            if radius.line_if_short {
+                return Ok(None);
+            }
+            return Err(alarms::radius_too_small(span, r.abs(), chord));
+        }
+        let h = h2.max(0.0).sqrt();
+        // Left normal of the chord; G03 with R > 0 has its centre on the left.
+        let (nx, ny) = (-dy / chord, dx / chord);
+        let side = if cw { -1.0 } else { 1.0 } * r.signum();
+        Ok(Some((
+            s.0 + dx / 2.0 + side * h * nx,
+            s.1 + dy / 2.0 + side * h * ny,
+        )))
+    }
+
+    /// The on-circle checks (E303, E304).
+    fn check_on_circle(
+        &self,
+        s: (f64, f64),
+        e: (f64, f64),
+        c: (f64, f64),
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let r_start = (s.0 - c.0).hypot(s.1 - c.1);
+        let r_end = (e.0 - c.0).hypot(e.1 - c.1);
+        if r_start < ZERO_MM {
+            return Err(alarms::zero_radius(cmd));
+        }
+        if (r_start - r_end).abs() > self.machine.params.arc_tolerance_mm {
+            return Err(alarms::end_off_circle(cmd, r_start, r_end));
+        }
+        Ok(())
+    }
+}
+
+/// The centre-offset letters of a plane's first and second axis.
+fn center_letters(plane: Plane) -> [u8; 2] {
+    let (a, b) = plane_rows(plane);
+    [b"IJK"[a], b"IJK"[b]]
+}

@@ -1,0 +1,158 @@
+//! Straight motion: G00, G01, G33 threads and G31 skip as [`Move`]s, and
+//! the two machine-side details of a straight move the event stage needs:
+//! the dog-leg of a G00 under parameter 411 = 1 and where a skip fires.
+
+use super::{Move, MoveKind, Target};
+use crate::alarms;
+use crate::block::words::Words;
+use crate::dialect::{GOp, Group};
+use crate::events::{Feed, MAX_AXES, Pos};
+use crate::interpreter::Interpreter;
+use crate::machine::Machine;
+use crate::state::Motion;
+use vcnc_syntax::{Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// Step 7 without a one-shot code: the modal motion, if the block moves.
+    pub(crate) fn modal_motion(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let motion = self.state.modal.motion;
+        let cmd = w.group(Group::Motion).map_or(w.first, |a| a.span);
+        match motion {
+            Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
+            Motion::ThreePoint => self.three_point_arc(w, cmd),
+            _ if !w.any(self.axis_mask) => Ok(()),
+            Motion::Rapid => {
+                let goal = self.target(w, self.state.modal.incremental);
+                let to = self.to_target(&goal);
+                self.straight(MoveKind::Rapid, to, w, cmd)
+            }
+            Motion::Linear => {
+                let feed = self.feed(cmd)?;
+                let goal = self.target(w, self.state.modal.incremental);
+                let to = self.to_target(&goal);
+                self.straight(MoveKind::Feed(feed), to, w, cmd)
+            }
+            Motion::Thread | Motion::ThreadInch => {
+                let lead_mm = self
+                    .state
+                    .thread_lead_mm
+                    .filter(|l| *l > 0.0)
+                    .ok_or_else(|| alarms::thread_without_lead(cmd))?;
+                let goal = self.target(w, self.state.modal.incremental);
+                let to = self.to_target(&goal);
+                self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)
+            }
+        }
+    }
+
+    /// Commits a straight move of this block.
+    pub(crate) fn straight(
+        &mut self,
+        kind: MoveKind,
+        to: Target,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let mv = Move {
+            kind,
+            to,
+            exact_stop: self.exact_stop(w),
+            cmd,
+        };
+        self.commit(mv, w)
+    }
+
+    /// Whether G09 is in the block.
+    pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
+        w.once(GOp::ExactStopOnce).is_some()
+    }
+
+    /// The current feed, or E301 when it is zero.
+    pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
+        let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
+        if f <= 0.0 {
+            return Err(alarms::zero_feed(cmd));
+        }
+        Ok(if self.state.modal.per_rev {
+            Feed::PerRev(f)
+        } else {
+            Feed::PerMin(f)
+        })
+    }
+
+    /// G31: moves like G01 until the skip signal of the machine file fires.
+    pub(crate) fn skip(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let feed = self.feed(cmd)?;
+        let goal = self.target(w, self.state.modal.incremental);
+        if goal.named == 0 {
+            return Err(alarms::needs_axes(cmd, "G31"));
+        }
+        self.straight(MoveKind::Skip { feed }, self.to_target(&goal), w, cmd)
+    }
+}
+
+/// Corners of a rapid where each axis runs at its own rate: every axis
+/// starts together and stops when its own distance is covered.
+///
+/// ```text
+///   Y ▲        ┌── end         axis X (fast) and Y (slow) start together;
+///     │      ╱                 after X arrives only Y moves on.
+///     └──╱─────▶ X
+/// ```
+pub(crate) fn dog_leg(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AXES], usize) {
+    let n = machine.axes.len().min(MAX_AXES);
+    let mut times = [0.0f64; MAX_AXES];
+    for (i, axis) in machine.axes.iter().enumerate().take(n) {
+        times[i] = (to.get(i) - from.get(i)).abs() / axis.rapid_mm_per_min;
+    }
+    // Distinct arrival times, in order; no allocation on this path.
+    let mut order = times;
+    order[..n].sort_by(f64::total_cmp);
+    let mut corners = [to; MAX_AXES];
+    let mut count = 0;
+    let mut last = 0.0;
+    for &t in &order[..n] {
+        if t <= last {
+            continue;
+        }
+        last = t;
+        let mut p = from;
+        for (i, axis) in machine.axes.iter().enumerate().take(n) {
+            let d = to.get(i) - from.get(i);
+            let moved = (t * axis.rapid_mm_per_min).min(d.abs());
+            p.set(
+                i,
+                if t >= times[i] {
+                    to.get(i)
+                } else {
+                    from.get(i) + moved.copysign(d)
+                },
+            );
+        }
+        corners[count] = p;
+        count += 1;
+    }
+    (corners, count.max(1))
+}
+
+/// The earliest fraction of `from → to` at which a skip trigger fires.
+pub(crate) fn skip_fraction(machine: &Machine, from: Pos, to: Pos) -> Option<f64> {
+    machine
+        .skip
+        .iter()
+        .filter_map(|s| {
+            let (a, b) = (from.get(s.axis), to.get(s.axis));
+            let crosses = (a < s.at_mm && b >= s.at_mm) || (a > s.at_mm && b <= s.at_mm);
+            crosses.then(|| (s.at_mm - a) / (b - a))
+        })
+        .min_by(f64::total_cmp)
+}
+
+/// The point at fraction `t` of `a → b`.
+pub(crate) fn lerp(a: Pos, b: Pos, t: f64) -> Pos {
+    let mut p = a;
+    for (i, v) in p.0.iter_mut().enumerate() {
+        *v = a.0[i] + (b.0[i] - a.0[i]) * t;
+    }
+    p
+}

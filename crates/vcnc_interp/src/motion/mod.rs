@@ -1,0 +1,349 @@
+//! The motion stage: the one chokepoint every motion of every block passes
+//! through on its way out of the interpreter.
+//!
+//! ```text
+//!  codes (G00…G03, G28, cycles …)
+//!        │  Move { kind, target (program or machine point), command span }
+//!        ▼
+//!   commit ─▶ 1 frame      program → machine (offsets, G68/G51/G51.1, G43)
+//!             2 compensation  (G41/G42 — a slot for now: passes moves on)
+//!             3 travel     soft limits on the path the tool really follows
+//!             4 events     `frame` if it changed, then rapid/feed/arc/…
+//!                          (dog-legs of parameter 411, the G31 trigger)
+//! ```
+//!
+//! Each stage is its own module with a pure core ([`frame`], [`travel`]);
+//! this file only wires them in that fixed order and keeps `State::pos`
+//! (machine) and `State::prog` (program) in step. Arc geometry that the
+//! program describes (centre from R or I/J/K, three points) is resolved in
+//! program coordinates by [`arc`] before the move is committed.
+
+pub(crate) mod arc;
+pub(crate) mod frame;
+pub(crate) mod line;
+pub(crate) mod travel;
+
+use crate::alarms;
+use crate::block::words::Words;
+use crate::events::{ArcDir, Event, Feed, Plane, Pos};
+use crate::interpreter::Interpreter;
+use frame::ArcMap;
+use vcnc_core::geometry::{ArcPath, PlaneAxes};
+use vcnc_syntax::{Diagnostic, Span};
+
+/// Where a move ends.
+///
+/// Absolute and incremental moves differ once the frame has changed
+/// without a move (a new G51, G68 or G51.1): an absolute point goes where
+/// the frame puts it, an increment goes that far (transformed) from where
+/// the tool is, as Fanuc does — the reason the Syntec manual (1.2.21) warns
+/// that the absolute position and the machine part ways after a mirror is
+/// cancelled away from its axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Target {
+    /// An absolute program point: it goes through the frame.
+    Program(Pos),
+    /// An incremental move: the increment in program coordinates, added to
+    /// the programmed point and, through the frame, to the machine point.
+    Relative(Pos),
+    /// A machine point (G53, the reference points): no frame.
+    Machine(Pos),
+}
+
+/// What kind of path a move follows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum MoveKind {
+    /// G00: interpolated, or a dog-leg under parameter 411 = 1.
+    Rapid,
+    /// A rapid that is always one straight line (the lathe cycles' returns,
+    /// parallel to the cut they clear).
+    StraightRapid,
+    /// G01 (and cycle feeds).
+    Feed(Feed),
+    /// G02/G03: the centre as an offset from the start, program coordinates.
+    Arc {
+        offset: Pos,
+        plane: Plane,
+        cw: bool,
+        feed: Feed,
+    },
+    /// G33 and the lathe's threads.
+    Thread { lead_mm: f64 },
+    /// G31: a feed that stops where the skip signal fires.
+    Skip { feed: Feed },
+}
+
+/// One motion as the program asks for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Move {
+    pub kind: MoveKind,
+    pub to: Target,
+    /// G09 in the block.
+    pub exact_stop: bool,
+    /// The command word (motion G word, else the block's first word).
+    pub cmd: Span,
+}
+
+/// A motion in machine coordinates, after the frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct MachineMove {
+    pub kind: MachineKind,
+    pub from: Pos,
+    pub to: Pos,
+    pub exact_stop: bool,
+}
+
+/// The kind of a machine move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum MachineKind {
+    /// A rapid; `true` when it may dog-leg.
+    Rapid(bool),
+    Feed(Feed),
+    Arc {
+        /// Centre in the plane (first, second axis), machine coordinates.
+        center: (f64, f64),
+        plane: Plane,
+        dir: ArcDir,
+        feed: Feed,
+    },
+    Thread(f64),
+    Skip(Feed),
+}
+
+impl MachineMove {
+    /// The arc's path, if this move is an arc.
+    pub fn arc_path(&self, axes: PlaneAxes) -> Option<ArcPath> {
+        let MachineKind::Arc { center, dir, .. } = self.kind else {
+            return None;
+        };
+        let mut c = self.from;
+        c.set(axes.a, center.0);
+        c.set(axes.b, center.1);
+        Some(ArcPath::new(self.from, self.to, c, axes, dir))
+    }
+}
+
+impl Interpreter<'_> {
+    /// Sends one move of the block `w` through the stages. Nothing is
+    /// changed unless every stage accepts it.
+    pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        // 1 frame
+        let (prog_to, mm) = self.to_machine_move(&mv)?;
+        // 2 compensation: the slot of the next stage (G41/G42).
+        // 3 travel
+        let arc = match mm.kind {
+            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, mv.cmd)?),
+            _ => None,
+        };
+        if let Err(out) = travel::check(self.machine, &mm, arc.as_ref()) {
+            let span = self.axis_span(w, out.axis).unwrap_or(mv.cmd);
+            return Err(out.alarm(self.machine, span));
+        }
+        // 4 events
+        self.report_frame();
+        self.moves += 1;
+        match self.emit_motion(&mm) {
+            None => {
+                self.state.pos = mm.to;
+                self.state.nominal = mm.to;
+                self.state.prog = prog_to;
+                if !matches!(mv.to, Target::Relative(_)) {
+                    self.state.detached = false;
+                }
+            }
+            Some(stop) => {
+                // The skip signal stopped the move short.
+                self.state.pos = stop;
+                self.state.nominal = stop;
+                self.state.prog = self.state.frame.program_of(stop);
+                self.state.detached = false;
+            }
+        }
+        Ok(())
+    }
+
+    /// The word that positioned machine axis `i` in this block, if any.
+    fn axis_span(&self, w: &Words<'_>, i: usize) -> Option<Span> {
+        let a = self.axis_words.get(i)?;
+        w.get(a.letter)
+            .or_else(|| a.inc.and_then(|l| w.get(l)))
+            .map(|word| word.span)
+    }
+
+    /// Stage 1: the programmed end point, and the move in machine coordinates.
+    fn to_machine_move(&self, mv: &Move) -> Result<(Pos, MachineMove), Diagnostic> {
+        let frame = &self.state.frame;
+        let from = self.state.nominal;
+        let (prog_to, to) = match mv.to {
+            Target::Program(p) => (p, frame.machine_of(p)),
+            Target::Relative(delta) => (
+                self.state.prog.plus(delta),
+                from.plus(frame.vector_to_machine(delta)),
+            ),
+            Target::Machine(m) => (frame.program_of(m), m),
+        };
+        let kind = match mv.kind {
+            MoveKind::Rapid => MachineKind::Rapid(true),
+            MoveKind::StraightRapid => MachineKind::Rapid(false),
+            MoveKind::Feed(f) => MachineKind::Feed(f),
+            MoveKind::Thread { lead_mm } => MachineKind::Thread(lead_mm),
+            MoveKind::Skip { feed } => MachineKind::Skip(feed),
+            MoveKind::Arc {
+                offset,
+                plane,
+                cw,
+                feed,
+            } => {
+                let reversed = match frame.arc_map(plane) {
+                    ArcMap::Similar { reversed } => reversed,
+                    ArcMap::Uneven => return Err(alarms::arc_uneven_scale(mv.cmd)),
+                    ArcMap::Tilted => return Err(alarms::arc_tilted(mv.cmd)),
+                };
+                let axes = self.plane_axes(plane, mv.cmd)?;
+                let c = from.plus(frame.vector_to_machine(offset));
+                MachineKind::Arc {
+                    center: (c.get(axes.a), c.get(axes.b)),
+                    plane,
+                    dir: if cw != reversed {
+                        ArcDir::Cw
+                    } else {
+                        ArcDir::Ccw
+                    },
+                    feed,
+                }
+            }
+        };
+        let mm = MachineMove {
+            kind,
+            from,
+            to,
+            exact_stop: mv.exact_stop,
+        };
+        Ok((prog_to, mm))
+    }
+
+    /// The machine axes of a plane (E305 when the machine lacks one).
+    pub(crate) fn plane_axes(&self, plane: Plane, cmd: Span) -> Result<PlaneAxes, Diagnostic> {
+        let [la, lb, ln] = plane.letters();
+        match (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+            (Some(a), Some(b)) => Ok(PlaneAxes {
+                a,
+                b,
+                n: self.machine.axis_of(ln),
+            }),
+            _ => Err(alarms::arc_without_center(cmd, plane.as_str())),
+        }
+    }
+
+    /// Emits a `frame` event if the frame changed since the last one.
+    #[inline]
+    pub(crate) fn report_frame(&mut self) {
+        if self.state.frame_dirty {
+            self.report_changed_frame();
+        }
+    }
+
+    #[cold]
+    fn report_changed_frame(&mut self) {
+        self.state.frame_dirty = false;
+        let frame = self.state.frame_info();
+        let print = crate::state::fingerprint(&frame);
+        if print == self.state.reported {
+            return;
+        }
+        self.state.reported = print;
+        self.emit(|loc| Event::Frame { loc, frame });
+    }
+
+    /// Stage 4: the events of a machine move; returns where it stopped if
+    /// that is not its end (a G31 whose skip signal fired).
+    fn emit_motion(&mut self, m: &MachineMove) -> Option<Pos> {
+        let (exact_stop, to) = (m.exact_stop, m.to);
+        match m.kind {
+            MachineKind::Rapid(may_dog_leg) => {
+                if may_dog_leg && self.machine.params.g00_mode == 1 {
+                    let (corners, count) = line::dog_leg(self.machine, m.from, m.to);
+                    for &to in &corners[..count] {
+                        self.emit(|loc| Event::Rapid {
+                            loc,
+                            to,
+                            exact_stop,
+                        });
+                    }
+                } else {
+                    self.emit(|loc| Event::Rapid {
+                        loc,
+                        to,
+                        exact_stop,
+                    });
+                }
+                None
+            }
+            MachineKind::Feed(feed) => {
+                self.emit(|loc| Event::Feed {
+                    loc,
+                    to,
+                    feed,
+                    exact_stop,
+                });
+                None
+            }
+            MachineKind::Arc {
+                center: (ca, cb),
+                plane,
+                dir,
+                feed,
+            } => {
+                let [la, lb, _] = plane.letters();
+                let mut center = m.from;
+                if let (Some(a), Some(b)) = (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+                    center.set(a, ca);
+                    center.set(b, cb);
+                }
+                self.emit(|loc| Event::Arc {
+                    loc,
+                    to,
+                    center,
+                    plane,
+                    dir,
+                    feed,
+                    exact_stop,
+                });
+                None
+            }
+            MachineKind::Thread(lead_mm) => {
+                self.emit(|loc| Event::Thread { loc, to, lead_mm });
+                None
+            }
+            MachineKind::Skip(feed) => {
+                let hit = line::skip_fraction(self.machine, m.from, m.to);
+                let to = hit.map_or(m.to, |t| line::lerp(m.from, m.to, t));
+                let triggered = hit.is_some();
+                self.emit(|loc| Event::Skip {
+                    loc,
+                    to,
+                    feed,
+                    triggered,
+                });
+                self.state.skip_pos = Some(to);
+                hit.map(|_| to)
+            }
+        }
+    }
+}
+#[cfg(test)]
+mod size_probe {
+    #[test]
+    fn sizes() {
+        eprintln!(
+            "State {} Frame {} Move {} MachineMove {} Event {} Words {} Modal {}",
+            std::mem::size_of::<crate::state::State>(),
+            std::mem::size_of::<super::frame::Frame>(),
+            std::mem::size_of::<super::Move>(),
+            std::mem::size_of::<super::MachineMove>(),
+            std::mem::size_of::<crate::events::Event>(),
+            std::mem::size_of::<crate::block::words::Words<'static>>(),
+            std::mem::size_of::<crate::state::Modal>(),
+        );
+    }
+}

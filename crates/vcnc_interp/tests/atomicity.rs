@@ -1,0 +1,87 @@
+//! Block atomicity, one way for every block: a block that alarms leaves the
+//! state, the offset tables and the event stream exactly as the blocks
+//! before it left them. Checked on random programs made of blocks that
+//! change every kind of state (modal codes, F, thread lead, offsets, tool
+//! data, transforms, spindle, tool) and blocks that alarm in their middle,
+//! by comparing each run that alarms with a run of the lines before the
+//! alarm.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use proptest::prelude::*;
+use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, State, Tables, VecSink};
+
+/// Blocks that change state, and blocks that alarm after changing some.
+const BLOCKS: &[&str] = &[
+    "G00 X12. Y7.",
+    "G01 X-3. Y4. F300.",
+    "G91 G01 X2. Z-1. F250.",
+    "G90",
+    "G02 X10. Y0. R5. F200.",
+    "G92 X1. Y2.",
+    "G52 X5. Y-5.",
+    "G55 X1.",
+    "G54",
+    "G10 L2 P2 X3. Y4. Z5.",
+    "G10 L10 P1 R-12.5",
+    "G10 L12 P2 R3.",
+    "G43 H1 Z5.",
+    "G44 H2",
+    "G49",
+    "G51 X1. Y1. P2.",
+    "G50",
+    "G68 X0. Y0. R30.",
+    "G69",
+    "G51.1 X4.",
+    "G50.1",
+    "G16 X10. Y45.",
+    "G15",
+    "G21 G33 Z-1. F1.5",
+    "S1200 M03",
+    "M05",
+    "T2 M06",
+    "G04 X0.5",
+    "G61",
+    "G64",
+    // These alarm part-way: after their modal codes or F have been read.
+    "G91 G01 X5000. F7.",
+    "G33 Z-100000. F7.",
+    "G01 X1. F-1.",
+    "G43 H999 Z1.",
+    "G51 X0. P0.",
+    "G02 X1. Y1. I0. J0.05 F100.",
+    "G10 L10 P1 R5. G55 X99999.",
+    "G68 R45. G51 P2.",
+    "G92 X1. M98 P9999",
+];
+
+fn run(machine: &Machine, program: &str) -> (Vec<Event>, Outcome, State, Tables) {
+    let d = Dialect::fanuc();
+    let mut sink = VecSink::default();
+    let mut interp = Interpreter::new(machine, &d, Options::default());
+    let out = interp.run_str(program, &mut sink);
+    (sink.0, out, *interp.state(), interp.tables().clone())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn an_alarming_block_changes_nothing(picks in proptest::collection::vec(0..BLOCKS.len(), 1..25)) {
+        let machine = Machine::default_mill();
+        let lines: Vec<&str> = picks.iter().map(|&i| BLOCKS[i]).collect();
+        let program = lines.join("\n") + "\n";
+        let (events, outcome, state, tables) = run(&machine, &program);
+        let Outcome::Alarm(d) = outcome else {
+            return Ok(());
+        };
+        let before = usize::try_from(d.line).unwrap() - 1;
+        let prefix = lines[..before].join("\n") + "\n";
+        let (p_events, p_outcome, p_state, p_tables) = run(&machine, &prefix);
+        prop_assert!(matches!(p_outcome, Outcome::Ended(_)), "{:?}", p_outcome);
+        prop_assert_eq!(state, p_state, "state after the alarm in:\n{}", program);
+        prop_assert_eq!(tables, p_tables, "tables after the alarm in:\n{}", program);
+        // Same events, but for the alarm and the prefix's end of file.
+        prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
+    }
+}
