@@ -1,0 +1,3 @@
+%@MACRO
+// CALL-RUN-07B 子程序: M99 P200
+M99 P200;
