@@ -5,7 +5,7 @@ use crate::cli::Common;
 use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
 use std::io::{self, Read, Seek, SeekFrom, Write};
 use std::path::Path;
-use vcnc_interp::{Dialect, Machine, Outcome};
+use vcnc_interp::{Dialect, Machine, Outcome, Pos};
 use vcnc_output::Summary;
 use vcnc_syntax::Diagnostic;
 
@@ -142,27 +142,24 @@ pub fn summary(
     writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
     writeln!(out, "cutting    {:.3} mm", s.cut_mm)?;
     match s.extents {
-        Some((lo, hi)) => {
-            let parts: Vec<String> = s
-                .axis_letters()
-                .iter()
-                .enumerate()
-                .map(|(i, l)| {
-                    if diameter_axis == Some(*l) {
-                        format!(
-                            "{} diameter {:.3} .. {:.3}",
-                            char::from(*l),
-                            2.0 * lo.get(i),
-                            2.0 * hi.get(i)
-                        )
-                    } else {
-                        format!("{} {:.3} .. {:.3}", char::from(*l), lo.get(i), hi.get(i))
-                    }
-                })
-                .collect();
-            writeln!(out, "extents    {} (machine mm)", parts.join("   "))?;
-        }
+        Some(ext) => writeln!(
+            out,
+            "extents    {} (machine mm{})",
+            extents_text(s, ext, diameter_axis),
+            if s.contour_extents.is_some() {
+                ", tool centre"
+            } else {
+                ""
+            }
+        )?,
         None => writeln!(out, "extents    no motion")?,
+    }
+    if let Some(ext) = s.contour_extents {
+        writeln!(
+            out,
+            "contour    {} (programmed, where cutter compensation ran)",
+            extents_text(s, ext, diameter_axis)
+        )?;
     }
     let tools: Vec<String> = s.tools.iter().map(|t| format!("T{t}")).collect();
     writeln!(
@@ -180,4 +177,26 @@ pub fn summary(
         None => writeln!(out, "spindle    not started")?,
     }
     Ok(())
+}
+
+/// `X lo .. hi   Y lo .. hi …` (a diameter axis shown as a diameter).
+fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) -> String {
+    let parts: Vec<String> = s
+        .axis_letters()
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            if diameter_axis == Some(*l) {
+                format!(
+                    "{} diameter {:.3} .. {:.3}",
+                    char::from(*l),
+                    2.0 * lo.get(i),
+                    2.0 * hi.get(i)
+                )
+            } else {
+                format!("{} {:.3} .. {:.3}", char::from(*l), lo.get(i), hi.get(i))
+            }
+        })
+        .collect();
+    parts.join("   ")
 }

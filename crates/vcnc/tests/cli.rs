@@ -265,6 +265,48 @@ fn run_gcode_is_a_flat_program_ending_in_m30() {
     }
 }
 
+/// The flattened program carries the compensated tool-centre path, so a
+/// G41 program runs on grbl, which has no cutter compensation: run again,
+/// the flattened program moves exactly as the original did.
+#[test]
+fn run_gcode_flattens_cutter_compensation_and_transforms() {
+    let dir = TempDir::new("flatten-comp");
+    dir.write(
+        "comp.nc",
+        "G21 G17 G90 G00 X0 Y-20. Z5.\nS1000 M03\nG68 X0 Y0 R30.\nG41 D1 G01 X0 Y0 F500.\nX40.\nG03 X40. Y20. R10.\nG01 X-5.\nG40 Y-20.\nG69\nM30\n",
+    );
+    let original = vcnc_in(dir.path(), &["run", "comp.nc", "--dialect", "fanuc"]);
+    assert_eq!(code(&original), 0, "{}", stderr(&original));
+    let flat = vcnc_in(
+        dir.path(),
+        &["run", "comp.nc", "--dialect", "fanuc", "--format", "gcode"],
+    );
+    let text = stdout(&flat);
+    assert!(!text.contains("G41") && !text.contains("G68"), "{text}");
+    dir.write("flat.nc", &text);
+    let again = vcnc_in(dir.path(), &["run", "flat.nc", "--dialect", "fanuc"]);
+    assert_eq!(code(&again), 0, "{}", stderr(&again));
+    let ends = |o: &Output| -> Vec<Value> {
+        jsonl(o)
+            .into_iter()
+            .filter(|e| matches!(e["type"].as_str(), Some("feed" | "arc")))
+            .map(|e| json!([e["to"], e["center"]]))
+            .collect()
+    };
+    let (a, b) = (ends(&original), ends(&again));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        for (p, q) in x.as_array().unwrap().iter().zip(y.as_array().unwrap()) {
+            if let (Some(p), Some(q)) = (p.as_object(), q.as_object()) {
+                for k in ["x", "y", "z"] {
+                    let d = p[k].as_f64().unwrap() - q[k].as_f64().unwrap();
+                    assert!(d.abs() < 1e-4, "{x} vs {y}");
+                }
+            }
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------
 // Alarms
 // ---------------------------------------------------------------------------
@@ -673,14 +715,14 @@ fn feed_per_rev_with_the_spindle_stopped_stays_g95_in_the_flattened_program() {
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("G1 X10 Y0 Z0 G95 F0.1\n"), "{stdout}");
+    assert!(stdout.contains("G1 X10. Y0. Z0. G95 F0.1\n"), "{stdout}");
     // Regression: the flattened program starts where the source machine does.
     assert!(
-        stdout.contains("G21 G90 G94 G17\nG0 X0 Y0 Z0 (power-on position)\n"),
+        stdout.contains("G21 G90 G94 G17\nG0 X0. Y0. Z0. (power-on position)\n"),
         "{stdout}"
     );
     // 0.1 mm/rev at 1000 rpm is 100 mm/min.
-    assert!(stdout.contains("G1 X20 Y0 Z0 G94 F100\n"), "{stdout}");
+    assert!(stdout.contains("G1 X20. Y0. Z0. G94 F100\n"), "{stdout}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

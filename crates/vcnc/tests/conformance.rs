@@ -50,7 +50,11 @@ fn result_of(dir: &Path, path: &str, dialect: &str) -> String {
         }
         _ => format!(
             "not run: {}",
-            stderr.lines().next().unwrap_or("").trim_start_matches("error: ")
+            stderr
+                .lines()
+                .next()
+                .unwrap_or("")
+                .trim_start_matches("error: ")
         ),
     }
 }

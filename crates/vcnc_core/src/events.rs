@@ -309,6 +309,19 @@ pub enum Event {
         /// What ended it.
         code: EndCode,
     },
+    /// The programmed path of a block that cutter compensation offsets,
+    /// sent before the block's (compensated) motion events: from `from` to
+    /// `to`, straight or, with `arc`, about the arc's centre.
+    Contour {
+        /// Source.
+        loc: Loc,
+        /// The programmed start point, machine coordinates.
+        from: Pos,
+        /// The programmed end point, machine coordinates.
+        to: Pos,
+        /// Centre, plane and direction when the block is an arc.
+        arc: Option<(Pos, Plane, ArcDir)>,
+    },
     /// The program coordinate frame changed (work offset, G52, G92, tool
     /// length offset, rotation, scaling, mirror), so that a viewer can show
     /// program coordinates. Emitted before the first motion that uses it.
@@ -340,6 +353,7 @@ impl Event {
             Event::Stop { .. } => "stop",
             Event::End { .. } => "end",
             Event::Frame { .. } => "frame",
+            Event::Contour { .. } => "contour",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -360,7 +374,8 @@ impl Event {
             | Event::HighSpeed { loc, .. }
             | Event::Stop { loc, .. }
             | Event::End { loc, .. }
-            | Event::Frame { loc, .. } => Some(loc),
+            | Event::Frame { loc, .. }
+            | Event::Contour { loc, .. } => Some(loc),
             Event::Alarm(_) => None,
         }
     }

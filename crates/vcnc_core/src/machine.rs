@@ -74,6 +74,9 @@ pub struct Params {
     /// Tool offset registers: H and D numbers 0 to this (offsets the tool
     /// table does not list are zero).
     pub offset_registers: u32,
+    /// Most blocks in a row without motion in the plane while cutter
+    /// compensation holds a move (E319 beyond).
+    pub comp_lookahead_blocks: u32,
 }
 
 impl Default for Params {
@@ -84,6 +87,7 @@ impl Default for Params {
             arc_tolerance_mm: 0.01,
             same_group_in_block: SameGroup::LastWins,
             offset_registers: 200,
+            comp_lookahead_blocks: 5,
         }
     }
 }

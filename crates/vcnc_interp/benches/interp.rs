@@ -1,7 +1,8 @@
 //! Interpretation throughput: a generated 3-axis surfacing program (the shape
 //! of `tools/bench/gen_surfacing.py`) interpreted from memory into a sink
 //! that drops every event, plain and under rotation + scaling + tool length
-//! (issue #6: ≥ 3 M blocks/s), and a turning program under the seed lathe.
+//! (issue #6: ≥ 3 M blocks/s), a contour under cutter compensation
+//! (issue #7: ≥ 3 M blocks/s), and a turning program under the seed lathe.
 //! Run with `cargo bench -p vcnc_interp`; figures in docs/performance.md.
 
 use divan::{Bencher, counter::ItemsCount};
@@ -93,6 +94,36 @@ fn interpret_transformed_to_null_sink(bencher: Bencher, blocks: usize) {
         bencher,
         blocks,
         program,
+        &Machine::default_mill(),
+        &dialect,
+        "M02",
+    );
+}
+
+/// A closed wavy contour of `blocks` lines cut under G41 (issue #7:
+/// ≥ 3 M blocks/s): every block is held and released by the compensation.
+fn contour(blocks: usize) -> String {
+    let mut s = String::with_capacity(blocks * 24);
+    // Enter along the contour's tangent (a start-up across it would make
+    // an inside corner that consumes the first short segment).
+    s.push_str("G21 G17 G90 G94\nG0 X61. Y-10. Z5.\nG1 Z-1. F800.\nG41 D1 G1 X61. Y0\n");
+    let n = blocks.saturating_sub(6).max(8);
+    for k in 1..=n {
+        let a = std::f64::consts::TAU * (k % 720) as f64 / 720.0;
+        let r = 60.0 + (a * 6.0).sin();
+        let _ = writeln!(s, "X{:.3} Y{:.3}", r * a.cos(), r * a.sin());
+    }
+    s.push_str("G40\nG0 Z5.\nM2\n");
+    s
+}
+
+#[divan::bench(args = [100_000])]
+fn interpret_compensated_to_null_sink(bencher: Bencher, blocks: usize) {
+    let dialect = Dialect::fanuc();
+    bench_program(
+        bencher,
+        blocks,
+        contour(blocks),
         &Machine::default_mill(),
         &dialect,
         "M02",

@@ -571,3 +571,58 @@ pub fn singular_transform(span: Span) -> Diagnostic {
         "use non-zero scale factors",
     )
 }
+
+/// E317: an arc where compensation starts or ends (or G41/G42/G40 with G02/G03).
+pub fn comp_arc_startup(span: Span) -> Diagnostic {
+    d(
+        Code::E317,
+        span,
+        "cutter compensation starts and ends only on a straight move (G00 or G01), not on an arc"
+            .into(),
+        "add a G01 move to start or cancel compensation before or after the arc",
+    )
+}
+
+/// E318: an arc too small for the cutter on its centre's side.
+pub fn comp_arc_too_small(span: Span) -> Diagnostic {
+    d(
+        Code::E318,
+        span,
+        "over-cut: the tool is on the centre side of this arc and its radius is not larger than the tool's"
+            .into(),
+        "use a smaller tool (D), a larger arc, or compensate on the other side",
+    )
+}
+
+/// E318: a compensated path that would cut into the part.
+pub fn comp_overcut(span: Span) -> Diagnostic {
+    d(
+        Code::E318,
+        span,
+        "over-cut: with the tool's radius this block cannot be cut without cutting into the part (a groove or step narrower than the tool)"
+            .into(),
+        "use a smaller tool (D) or change the contour",
+    )
+}
+
+/// E319: too many blocks without motion in the compensation plane.
+pub fn comp_lookahead(span: Span, limit: u32) -> Diagnostic {
+    d(
+        Code::E319,
+        span,
+        format!(
+            "more than {limit} blocks in a row without motion in the compensation plane: the controller cannot see where the tool goes next"
+        ),
+        "move in the plane sooner, or cancel compensation (G40) before the blocks; parameters.comp_lookahead_blocks sets the limit",
+    )
+}
+
+/// E320: a code that must not change while cutter compensation is on.
+pub fn not_while_compensating(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E320,
+        span,
+        format!("{what} cannot change while cutter compensation (G41/G42) is on"),
+        "cancel compensation with G40 first, and start it again afterwards",
+    )
+}

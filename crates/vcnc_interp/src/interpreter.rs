@@ -104,6 +104,13 @@ pub struct Interpreter<'a> {
     executed: u64,
     /// Moves committed so far (a block compares it to know if it moved).
     pub(crate) moves: u64,
+    /// The cutter compensation stage, and its copy taken before a block
+    /// while it is engaged.
+    pub(crate) comp: crate::motion::comp::Comp,
+    comp_saved: crate::motion::comp::Comp,
+    /// The source and line of the block being executed (for alarms about
+    /// moves that compensation releases later).
+    pub(crate) cur_line: Option<(usize, Line)>,
     /// Events of the block being executed, sent when it succeeds.
     pub(crate) pending: Vec<Event>,
 }
@@ -127,6 +134,9 @@ impl<'a> Interpreter<'a> {
             axis_words,
             executed: 0,
             moves: 0,
+            comp: Default::default(),
+            comp_saved: Default::default(),
+            cur_line: None,
             pending: Vec::new(),
         }
     }
@@ -217,6 +227,7 @@ impl<'a> Interpreter<'a> {
                     ..here
                 };
                 let depth = self.flow.frames.len();
+                self.cur_line = Some((src, line));
                 let step = self
                     .block(&block, here, next, store, sink)
                     .map_err(|d| self.locate(d, src, &line))?;
@@ -278,7 +289,11 @@ impl<'a> Interpreter<'a> {
 
     /// Fills in line, column and file of a diagnostic raised in `line` of
     /// source `src` (cold path: the line is read again for the column).
-    fn locate(&mut self, mut d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
+    pub(crate) fn locate(&mut self, mut d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
+        if d.is_located() {
+            // Raised about an earlier block (a move compensation held).
+            return d;
+        }
         let text = self
             .flow
             .source(src)
@@ -337,6 +352,10 @@ impl<'a> Interpreter<'a> {
         // whole and the tables' writes are undone if the block alarms.
         let saved = self.state;
         let jumps = self.flow.jumps;
+        let comp_engaged = self.comp.engaged();
+        if comp_engaged {
+            self.comp_saved.clone_from(&self.comp);
+        }
         self.pending.clear();
         let result = if words.is_plain_motion(self.axis_mask) {
             // Only axis words, F and a motion code: nothing but a move.
@@ -355,6 +374,11 @@ impl<'a> Interpreter<'a> {
                 self.state = saved;
                 self.flow.jumps = jumps;
                 self.tables.rollback();
+                if comp_engaged {
+                    std::mem::swap(&mut self.comp, &mut self.comp_saved);
+                } else {
+                    self.comp = crate::motion::comp::Comp::default();
+                }
             }
         }
         result
@@ -408,6 +432,13 @@ impl<'a> Interpreter<'a> {
         if self.flow().frames.len() > 1 {
             let code = self.flow().frame().returns_with;
             return Err(alarms::sub_without_return(span, code));
+        }
+        // Compensation ends with the program: its last move leaves first.
+        self.pending.clear();
+        self.comp_finish()?;
+        self.report_frame();
+        for e in self.pending.drain(..) {
+            sink.event(&e);
         }
         let loc = self.flow().loc.clone();
         sink.event(&Event::End {

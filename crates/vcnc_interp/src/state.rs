@@ -32,6 +32,8 @@ pub struct Modal {
     pub per_rev: bool,
     /// Group 06: G70/G20 when true.
     pub inch: bool,
+    /// Group 07: G40/G41/G42.
+    pub comp: CompSide,
     /// Group 08: G43/G44/G49.
     pub tool_length: ToolLength,
     /// Group 10: canned cycles return to the R level (G99) when true, to the
@@ -68,6 +70,17 @@ pub enum Motion {
     ThreePoint,
 }
 
+/// Cutter radius compensation (group 07).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CompSide {
+    /// G40.
+    Off,
+    /// G41: the tool left of the path.
+    Left,
+    /// G42: the tool right of the path.
+    Right,
+}
+
 /// Tool length compensation (group 08).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ToolLength {
@@ -89,6 +102,7 @@ impl Modal {
             incremental: false,
             per_rev: false,
             inch: false,
+            comp: CompSide::Off,
             tool_length: ToolLength::Off,
             return_r: false,
             css: false,
@@ -126,6 +140,10 @@ pub struct State {
     pub(crate) frame_dirty: bool,
     /// H number of the tool length offset in force.
     pub(crate) h_number: u32,
+    /// D number of the cutter radius in force.
+    pub(crate) d_number: u32,
+    /// The cutter radius latched when D was given (negative swaps the side).
+    pub(crate) comp_d_mm: f64,
     /// Last polar radius and angle (G16), program units mm and degrees.
     pub(crate) polar: (f64, f64),
     /// Programmed F, in program units (converted when used).
@@ -176,6 +194,8 @@ impl State {
             }),
             frame_dirty: true,
             h_number: 0,
+            d_number: 0,
+            comp_d_mm: 0.0,
             polar: (0.0, 0.0),
             feed: 0.0,
             s_value: 0.0,
@@ -194,6 +214,8 @@ impl State {
         };
         s.frame.origin = machine.work_offsets[0];
         s.prog = s.frame.program_of(s.pos);
+        // Only a power-on frame other than the zero one needs reporting.
+        s.frame_dirty = fingerprint(&s.frame_info()) != s.reported;
         s
     }
 

@@ -205,6 +205,14 @@ impl<W: Write> Sink for CsvSink<W> {
             Event::HighSpeed { on, .. } => self.set("on", on.to_string()),
             Event::Stop { code, .. } => self.set("code", code.as_str().into()),
             Event::End { code, .. } => self.set("code", code.as_str().into()),
+            Event::Contour { to, arc, .. } => {
+                self.pos(to, 0);
+                if let Some((center, plane, dir)) = arc {
+                    self.pos(center, self.n_axes);
+                    self.set("plane", plane.as_str().into());
+                    self.set("dir", if *dir == ArcDir::Cw { "cw" } else { "ccw" }.into());
+                }
+            }
             Event::Frame { frame, .. } => {
                 self.pos(&frame.origin, 0);
                 if let Some(m) = &frame.linear {

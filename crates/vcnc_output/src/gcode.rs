@@ -62,7 +62,7 @@ impl<W: Write> GcodeSink<W> {
     fn axes(&self, to: &Pos) -> String {
         let mut s = String::new();
         for (i, l) in self.letters.iter().enumerate() {
-            s.push_str(&format!(" {l}{}", fmt(to.get(i))));
+            s.push_str(&format!(" {l}{}", length(to.get(i))));
         }
         s
     }
@@ -111,7 +111,7 @@ impl<W: Write> GcodeSink<W> {
             };
             let d = center.get(i) - self.pos.get(i);
             if d != 0.0 {
-                s.push_str(&format!(" {offset}{}", fmt(d)));
+                s.push_str(&format!(" {offset}{}", length(d)));
             }
         }
         s.push_str(&self.feed_word(feed));
@@ -202,6 +202,14 @@ fn g09(exact_stop: bool) -> &'static str {
 }
 
 /// Four decimals without trailing zeros: `5.5`, `-0.0125`, `10`.
+/// A length: like [`fmt`], always with a decimal point (`5.`), so that a
+/// Fanuc-style reader, where `X5` is 5 µm, reads the same millimetres as
+/// grbl and LinuxCNC.
+fn length(v: f64) -> String {
+    let s = fmt(v);
+    if s.contains('.') { s } else { s + "." }
+}
+
 fn fmt(v: f64) -> String {
     let s = format!("{:.4}", crate::num::round6(v));
     let s = s.trim_end_matches('0').trim_end_matches('.');

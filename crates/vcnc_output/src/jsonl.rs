@@ -180,6 +180,16 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
             j.head("frame", loc);
             j.frame(frame);
         }
+        Event::Contour { loc, from, to, arc } => {
+            j.head("contour", loc);
+            j.pos("from", from);
+            j.pos("to", to);
+            if let Some((center, plane, dir)) = arc {
+                j.pos("center", center);
+                j.str("plane", plane.as_str());
+                j.str("dir", if *dir == ArcDir::Cw { "cw" } else { "ccw" });
+            }
+        }
         Event::Alarm(d) => {
             j.head(
                 "alarm",

@@ -28,6 +28,9 @@ pub struct Summary {
     pub cut_mm: f64,
     /// Smallest and largest machine coordinate per axis (`None` if no motion).
     pub extents: Option<(Pos, Pos)>,
+    /// The same for the programmed path of the blocks cutter compensation
+    /// offset (`contour` events; `None` without compensation).
+    pub contour_extents: Option<(Pos, Pos)>,
     /// Tools changed to, in order of first use.
     pub tools: Vec<u32>,
     /// Slowest and fastest spindle speed commanded, rpm.
@@ -54,6 +57,7 @@ impl Summary {
             rapid_mm: 0.0,
             cut_mm: 0.0,
             extents: None,
+            contour_extents: None,
             tools: Vec::new(),
             spindle_rpm: None,
             untimed_moves: 0,
@@ -191,6 +195,34 @@ impl Sink for Summary {
                 let (lo, hi) = path.bounds(self.letters.len());
                 self.extend(lo, hi);
                 self.pos = *to;
+            }
+            Event::Contour { from, to, arc, .. } => {
+                let (lo, hi) = match arc {
+                    Some((center, plane, dir)) => {
+                        let idx = |l: u8| self.letters.iter().position(|x| *x == l);
+                        let [a, b, n] = plane.letters();
+                        let axes = PlaneAxes {
+                            a: idx(a).unwrap_or(0),
+                            b: idx(b).unwrap_or(0),
+                            n: idx(n),
+                        };
+                        ArcPath::new(*from, *to, *center, axes, *dir).bounds(self.letters.len())
+                    }
+                    None => {
+                        let (mut lo, mut hi) = (*from, *from);
+                        for i in 0..self.letters.len() {
+                            lo.0[i] = lo.0[i].min(to.0[i]);
+                            hi.0[i] = hi.0[i].max(to.0[i]);
+                        }
+                        (lo, hi)
+                    }
+                };
+                let (mut a, mut b) = self.contour_extents.unwrap_or((lo, hi));
+                for i in 0..self.letters.len() {
+                    a.0[i] = a.0[i].min(lo.0[i]);
+                    b.0[i] = b.0[i].max(hi.0[i]);
+                }
+                self.contour_extents = Some((a, b));
             }
             Event::Dwell { seconds, .. } => self.cycle_time_s += seconds,
             Event::ToolChange { tool, .. } if !self.tools.contains(tool) => self.tools.push(*tool),

@@ -43,6 +43,10 @@ impl Words<'_> {
 impl Interpreter<'_> {
     /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
     pub(crate) fn execute_motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.comp.engaged() {
+            // A D word (a new radius) reaches the compensation stage.
+            self.comp_codes(w)?;
+        }
         if let Some(motion) = w.group(Group::Motion) {
             self.apply_modal(motion.def.op);
         }
@@ -51,7 +55,11 @@ impl Interpreter<'_> {
             w.check_used(allowed, ext)?;
         }
         self.feed_word(w)?;
-        self.modal_motion(w)
+        self.modal_motion(w)?;
+        if self.comp.engaged() {
+            self.comp_block_end(w.first)?;
+        }
+        Ok(())
     }
 
     pub(crate) fn execute(
@@ -61,6 +69,7 @@ impl Interpreter<'_> {
         next: Cursor,
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
+        self.check_comp_changes(w)?;
         let path_before = self.state.modal.path;
         for at in w.modal_codes() {
             self.apply_modal(at.def.op);
@@ -82,6 +91,7 @@ impl Interpreter<'_> {
             self.emit(|loc| Event::Coolant { loc, on });
         }
         let tool_moved = self.frame_codes(w)?;
+        self.comp_codes(w)?;
         let moves_before = self.moves;
         match w.axis_user {
             Some(user) => self.axis_code(user.def.op, user.span, w)?,
@@ -89,6 +99,9 @@ impl Interpreter<'_> {
         }
         if tool_moved && self.moves == moves_before {
             self.tool_length_move(w)?;
+        }
+        if self.comp.engaged() {
+            self.comp_block_end(w.first)?;
         }
         // A frame changed without a move is reported with its block, before
         // the block's stop or end.
@@ -148,6 +161,10 @@ impl Interpreter<'_> {
         if self.state.modal.tool_length != crate::state::ToolLength::Off {
             // Under G43/G44 an H word alone changes the offset.
             allowed |= bit(b'H');
+        }
+        if self.state.modal.comp != crate::state::CompSide::Off {
+            // Under G41/G42 a D word alone changes the radius.
+            allowed |= bit(b'D');
         }
         let mut ext = 0u8;
         match w.axis_user.map(|u| u.def.axes) {
@@ -326,6 +343,9 @@ impl Interpreter<'_> {
                 code: StopCode::M01,
             }),
             MOp::End | MOp::EndRewind => {
+                // Compensation ends with the program: its last move leaves first.
+                self.comp_finish()?;
+                self.report_frame();
                 let code = if m.def.op == MOp::End {
                     EndCode::M02
                 } else {
@@ -379,7 +399,13 @@ impl Interpreter<'_> {
     /// block has succeeded.
     pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
         let loc = self.flow.loc.clone();
-        self.pending.push(make(loc));
+        let e = make(loc);
+        if self.comp.holding() {
+            // Behind a move cutter compensation still holds.
+            self.comp.queue_event(e);
+        } else {
+            self.pending.push(e);
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 //! (`crate::motion`); none of them emits a motion event itself.
 
 pub(crate) mod calls;
+pub(crate) mod comp;
 pub(crate) mod lathe_cycles;
 pub(crate) mod offsets;
 pub(crate) mod refs;

@@ -38,6 +38,8 @@ const MILL_G: &[GRow] = &[
     g(310, GOp::Skip, Group::NonModal).claims_axes(),
     g(330, GOp::Thread, Group::Motion),
     g(400, GOp::CompCancel, Group::CutterComp),
+    g(410, GOp::CompLeft, Group::CutterComp).reads(bit(b'D')),
+    g(420, GOp::CompRight, Group::CutterComp).reads(bit(b'D')),
     g(430, GOp::ToolLengthPlus, Group::ToolLength).reads(bit(b'H')),
     g(440, GOp::ToolLengthMinus, Group::ToolLength).reads(bit(b'H')),
     g(490, GOp::ToolLengthCancel, Group::ToolLength),
@@ -130,8 +132,6 @@ const MILL_LEX: LexRules = LexRules {
 const SYNTEC_LATER: &[(u16, &str)] = &[
     (51, "G05.1 path smoothing is not implemented yet"),
     (62, "G06.2 NURBS interpolation is not implemented yet"),
-    (410, "G41 cutter compensation is not implemented yet"),
-    (420, "G42 cutter compensation is not implemented yet"),
     (650, "G65 macro call is not implemented yet"),
     (660, "G66 macro modal call is not implemented yet"),
     (730, "canned cycles (G73) are not implemented yet"),

@@ -141,8 +141,11 @@ pub enum GOp {
     MirrorOff,
     RotateOn,
     RotateOff,
-    // Cancels of modes later work adds: nothing to cancel yet.
+    // Cutter radius compensation (Syntec 1.2.18).
     CompCancel,
+    CompLeft,
+    CompRight,
+    // Cancels of modes later work adds: nothing to cancel yet.
     CycleCancel,
     MacroModalCancel,
     ReturnInitial,

@@ -385,6 +385,12 @@ impl Frame {
         }
     }
 
+    /// Whether an odd number of mirrors act in `plane` (the compensation
+    /// side swaps, Syntec 1.2.21).
+    pub fn mirrors(&self, plane: Plane) -> bool {
+        matches!(self.arc_map(plane), ArcMap::Similar { reversed: true })
+    }
+
     /// The linear part (rows and columns x, y, z), for the `frame` event.
     pub fn linear(&self) -> Option<[[f64; 3]; 3]> {
         (!self.identity).then_some(self.affine.m)

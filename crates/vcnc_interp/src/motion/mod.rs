@@ -19,6 +19,7 @@
 //! program coordinates by [`arc`] before the move is committed.
 
 pub(crate) mod arc;
+pub(crate) mod comp;
 pub(crate) mod frame;
 pub(crate) mod line;
 pub(crate) mod travel;
@@ -125,32 +126,71 @@ impl MachineMove {
 
 impl Interpreter<'_> {
     /// Sends one move of the block `w` through the stages. Nothing is
-    /// changed unless every stage accepts it.
+    /// changed unless every stage accepts it (and the block as a whole).
     pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
         // 1 frame
         let (prog_to, mm) = self.to_machine_move(&mv)?;
-        // 2 compensation: the slot of the next stage (G41/G42).
-        // 3 travel
+        self.moves += 1;
+        self.state.prog = prog_to;
+        self.state.nominal = mm.to;
+        if !matches!(mv.to, Target::Relative(_)) {
+            self.state.detached = false;
+        }
+        // The frame this move uses is reported before it, also when the
+        // move waits in the compensation stage.
+        self.report_frame();
+        // 2 compensation
+        if self.comp.engaged() {
+            if !matches!(mv.to, Target::Machine(_)) {
+                return self.compensate(mm, mv.cmd);
+            }
+            // A move to a machine point (G28's second leg, G53) is not
+            // compensated: the held move ends square to its path, and the
+            // next move in the plane starts compensation again.
+            self.comp_finish()?;
+            if self.state.modal.comp != crate::state::CompSide::Off {
+                self.comp.mode = comp::Mode::Starting;
+            }
+        }
+        let at = comp::Origin {
+            loc: self.flow.loc.clone(),
+            src: 0,
+            line: None,
+            cmd: mv.cmd,
+        };
+        self.release(mm, &at, Some(w))
+    }
+
+    /// Stages 3 and 4: the travel check and the events of a machine move,
+    /// from where the tool is. A travel alarm points at the axis word of
+    /// `w` when the move is the current block's, else at `at`'s command.
+    pub(crate) fn release(
+        &mut self,
+        mm: MachineMove,
+        at: &comp::Origin,
+        w: Option<&Words<'_>>,
+    ) -> Result<(), Diagnostic> {
+        let mm = MachineMove {
+            from: self.state.pos,
+            ..mm
+        };
         let arc = match mm.kind {
-            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, mv.cmd)?),
+            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, at.cmd)?),
             _ => None,
         };
         if let Err(out) = travel::check(self.machine, &mm, arc.as_ref()) {
-            let span = self.axis_span(w, out.axis).unwrap_or(mv.cmd);
-            return Err(out.alarm(self.machine, span));
+            let span = w
+                .and_then(|w| self.axis_span(w, out.axis))
+                .unwrap_or(at.cmd);
+            let d = out.alarm(self.machine, span);
+            return Err(match at.line {
+                Some(line) => self.locate(d, at.src, &line),
+                None => d,
+            });
         }
-        // 4 events
         self.report_frame();
-        self.moves += 1;
-        match self.emit_motion(&mm) {
-            None => {
-                self.state.pos = mm.to;
-                self.state.nominal = mm.to;
-                self.state.prog = prog_to;
-                if !matches!(mv.to, Target::Relative(_)) {
-                    self.state.detached = false;
-                }
-            }
+        match self.emit_motion(&mm, &at.loc) {
+            None => self.state.pos = mm.to,
             Some(stop) => {
                 // The skip signal stopped the move short.
                 self.state.pos = stop;
@@ -255,24 +295,26 @@ impl Interpreter<'_> {
         self.emit(|loc| Event::Frame { loc, frame });
     }
 
-    /// Stage 4: the events of a machine move; returns where it stopped if
-    /// that is not its end (a G31 whose skip signal fired).
-    fn emit_motion(&mut self, m: &MachineMove) -> Option<Pos> {
+    /// Stage 4: the events of a machine move from the block at `loc`;
+    /// returns where it stopped if that is not its end (a G31 whose skip
+    /// signal fired).
+    fn emit_motion(&mut self, m: &MachineMove, loc: &crate::events::Loc) -> Option<Pos> {
         let (exact_stop, to) = (m.exact_stop, m.to);
+        let mut emit = |e: Event| self.pending.push(e);
         match m.kind {
             MachineKind::Rapid(may_dog_leg) => {
                 if may_dog_leg && self.machine.params.g00_mode == 1 {
                     let (corners, count) = line::dog_leg(self.machine, m.from, m.to);
                     for &to in &corners[..count] {
-                        self.emit(|loc| Event::Rapid {
-                            loc,
+                        emit(Event::Rapid {
+                            loc: loc.clone(),
                             to,
                             exact_stop,
                         });
                     }
                 } else {
-                    self.emit(|loc| Event::Rapid {
-                        loc,
+                    emit(Event::Rapid {
+                        loc: loc.clone(),
                         to,
                         exact_stop,
                     });
@@ -280,8 +322,8 @@ impl Interpreter<'_> {
                 None
             }
             MachineKind::Feed(feed) => {
-                self.emit(|loc| Event::Feed {
-                    loc,
+                emit(Event::Feed {
+                    loc: loc.clone(),
                     to,
                     feed,
                     exact_stop,
@@ -300,8 +342,8 @@ impl Interpreter<'_> {
                     center.set(a, ca);
                     center.set(b, cb);
                 }
-                self.emit(|loc| Event::Arc {
-                    loc,
+                emit(Event::Arc {
+                    loc: loc.clone(),
                     to,
                     center,
                     plane,
@@ -312,15 +354,19 @@ impl Interpreter<'_> {
                 None
             }
             MachineKind::Thread(lead_mm) => {
-                self.emit(|loc| Event::Thread { loc, to, lead_mm });
+                emit(Event::Thread {
+                    loc: loc.clone(),
+                    to,
+                    lead_mm,
+                });
                 None
             }
             MachineKind::Skip(feed) => {
                 let hit = line::skip_fraction(self.machine, m.from, m.to);
                 let to = hit.map_or(m.to, |t| line::lerp(m.from, m.to, t));
                 let triggered = hit.is_some();
-                self.emit(|loc| Event::Skip {
-                    loc,
+                emit(Event::Skip {
+                    loc: loc.clone(),
                     to,
                     feed,
                     triggered,

@@ -1,0 +1,96 @@
+//! The codes of cutter radius compensation (Syntec 1.2.18): G41/G42 with
+//! D, G40, and D alone while compensating. What the compensation does to
+//! the path is the motion stage's (`motion/comp/`); here the block sets the
+//! mode, the side and the radius.
+//!
+//! The radius is D's `d_mm + d_wear_mm`, latched when D is given (a later
+//! `G10 L12` of that D changes nothing until D is given again); D0 is a
+//! radius of 0; a negative value puts the tool on the other side (the
+//! manual's direction table). G41/G42/G40 in a block with G02/G03 alarm
+//! (E317, "only with G00 and G01").
+
+use crate::alarms;
+use crate::block::words::Words;
+use crate::dialect::{GOp, Group};
+use crate::interpreter::Interpreter;
+use crate::motion::comp::Mode;
+use crate::state::{CompSide, Motion};
+use vcnc_syntax::Diagnostic;
+
+impl Interpreter<'_> {
+    /// Step 6 for G40/G41/G42 and D.
+    pub(crate) fn comp_codes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let code = w.group(Group::CutterComp);
+        let arc = w
+            .group(Group::Motion)
+            .filter(|m| matches!(m.def.op, GOp::ArcCw | GOp::ArcCcw));
+        if let (Some(_), Some(m)) = (code, arc) {
+            return Err(alarms::comp_arc_startup(m.span));
+        }
+        if let Some(d) = w.get(b'D').filter(|_| self.reads_d(w)) {
+            let n = self.offset_number(&d)?;
+            let t = self.tables.tool(n);
+            self.state.d_number = n;
+            self.state.comp_d_mm = t.d_mm + t.d_wear_mm;
+        }
+        let Some(code) = code else { return Ok(()) };
+        let side = match code.def.op {
+            GOp::CompLeft => CompSide::Left,
+            GOp::CompRight => CompSide::Right,
+            _ => CompSide::Off,
+        };
+        self.state.modal.comp = side;
+        match (side, self.comp.mode) {
+            (CompSide::Off, Mode::Off) => {}
+            (CompSide::Off, Mode::Starting) => self.comp.mode = Mode::Off,
+            (CompSide::Off, _) => self.comp.mode = Mode::Cancelling,
+            (_, Mode::Off | Mode::Cancelling) => {
+                if self.comp.mode == Mode::Off {
+                    self.comp.plane = self.state.modal.plane;
+                }
+                self.comp.mode = if self.comp.holding() {
+                    Mode::On
+                } else {
+                    Mode::Starting
+                };
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Whether this block's D is a cutter radius (G41/G42 in it, or
+    /// compensation on), not the lathe's arc diameter.
+    fn reads_d(&self, w: &Words<'_>) -> bool {
+        w.group(Group::CutterComp).is_some()
+            || (self.state.modal.comp != CompSide::Off
+                && !matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw))
+    }
+
+    /// E320 when compensation is on and the block changes what it cannot
+    /// change under it: the plane, rotation, scaling.
+    pub(crate) fn check_comp_changes(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if !self.comp.engaged() || self.comp.mode == Mode::Cancelling {
+            return Ok(());
+        }
+        for (group, what) in [
+            (Group::Plane, "the plane (G17/G18/G19)"),
+            (Group::Rotation, "coordinate rotation (G68/G69)"),
+            (Group::Scaling, "scaling (G50/G51)"),
+        ] {
+            if let Some(g) = w.group(group) {
+                let same_plane = group == Group::Plane
+                    && matches!(
+                        (g.def.op, self.comp.plane),
+                        (GOp::PlaneXy, crate::events::Plane::Xy)
+                            | (GOp::PlaneZx, crate::events::Plane::Zx)
+                            | (GOp::PlaneYz, crate::events::Plane::Yz)
+                    );
+                if !same_plane {
+                    return Err(alarms::not_while_compensating(g.span, what));
+                }
+            }
+        }
+        Ok(())
+    }
+}

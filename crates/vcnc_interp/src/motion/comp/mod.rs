@@ -1,0 +1,446 @@
+//! Stage 2 of the motion stage: cutter radius compensation G40/G41/G42
+//! (Syntec 1.2.18, Fanuc 0i type A), between the frame and the travel check.
+//!
+//! ```text
+//!   G41 D1 … ──▶ Starting ──(first move in the plane: the start-up)──▶ On
+//!   On:  a move in the plane is held until the next one is read; then the
+//!        corner between them (geom::corner) settles where the held one ends
+//!        and it leaves, followed by what queued behind it (moves without
+//!        plane motion, at the tool's compensated position, and other events)
+//!   G40 ──▶ Cancelling ──(next move in the plane, or the end of the block
+//!        without one)──▶ Off
+//! ```
+//!
+//! The compensation works on machine moves, after rotation, scaling and
+//! mirror: the radius is not scaled, and one mirrored axis in the plane
+//! swaps the side (manual 1.2.21). The queue is bounded: more than
+//! `parameters.comp_lookahead_blocks` blocks without motion in the plane
+//! alarm. A block that alarms restores the whole stage (the interpreter
+//! saves it before each block while compensation is engaged), so moves
+//! still held when a later block alarms never reach the output.
+
+pub(crate) mod geom;
+
+use super::{MachineKind, MachineMove};
+use crate::alarms;
+use crate::events::{Event, Loc, Plane, Pos};
+use crate::interpreter::Interpreter;
+use geom::{Corner, Fault, Seg, V2};
+use vcnc_core::geometry::PlaneAxes;
+use vcnc_syntax::{Diagnostic, Line, Span};
+
+/// Below this a plane displacement is no motion in the plane, mm.
+const PLANE_EPS: f64 = 1e-9;
+
+/// Where the stage is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// No compensation.
+    Off,
+    /// G41/G42 given, waiting for the start-up move.
+    Starting,
+    /// Compensating.
+    On,
+    /// G40 given, waiting for the cancel move.
+    Cancelling,
+}
+
+/// Where a held move comes from, to report it and its alarms.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Origin {
+    pub loc: Loc,
+    pub src: usize,
+    pub line: Option<Line>,
+    pub cmd: Span,
+}
+
+/// A move in the plane whose end is not settled yet.
+#[derive(Debug, Clone, PartialEq)]
+struct Held {
+    mm: MachineMove,
+    seg: Seg,
+    /// Where its compensated path starts.
+    start: V2,
+    /// A joining move before it (a corner with α < 90°): to `l2`, then to
+    /// `start` along its tangent.
+    lead_in: Option<V2>,
+    side: f64,
+    r: f64,
+    /// The start-up move (from the uncompensated point).
+    startup: bool,
+    at: Origin,
+}
+
+/// What waits behind the held move.
+#[derive(Debug, Clone, PartialEq)]
+enum Queued {
+    /// A move without plane motion (its plane coordinates are set when it leaves).
+    Move(MachineMove, Origin),
+    Event(Event),
+}
+
+/// The compensation stage.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Comp {
+    pub mode: Mode,
+    /// The plane compensation runs in (set by G41/G42).
+    pub plane: Plane,
+    held: Option<Held>,
+    queue: Vec<Queued>,
+    /// Blocks without motion in the plane since the held move.
+    idle_blocks: u32,
+    /// Whether the current block put a move in the plane.
+    moved_in_plane: bool,
+    /// A held move is leaving: its events go out at once.
+    releasing: bool,
+}
+
+impl Default for Comp {
+    fn default() -> Comp {
+        Comp {
+            mode: Mode::Off,
+            plane: Plane::Xy,
+            held: None,
+            queue: Vec::new(),
+            idle_blocks: 0,
+            moved_in_plane: false,
+            releasing: false,
+        }
+    }
+}
+
+impl Comp {
+    /// Whether moves go through this stage.
+    #[inline]
+    pub fn engaged(&self) -> bool {
+        self.mode != Mode::Off
+    }
+
+    /// Whether events must wait behind a held move.
+    #[inline]
+    pub fn holding(&self) -> bool {
+        self.held.is_some() && !self.releasing
+    }
+
+    /// Queues an event behind the held move.
+    pub fn queue_event(&mut self, e: Event) {
+        self.queue.push(Queued::Event(e));
+    }
+}
+
+fn v2(p: Pos, axes: PlaneAxes) -> V2 {
+    V2::new(p.get(axes.a), p.get(axes.b))
+}
+
+fn with_plane(mut p: Pos, axes: PlaneAxes, q: V2) -> Pos {
+    p.set(axes.a, q.x);
+    p.set(axes.b, q.y);
+    p
+}
+
+impl Interpreter<'_> {
+    /// The plane geometry of a machine move, or `None` without plane motion.
+    fn plane_seg(&self, mm: &MachineMove, axes: PlaneAxes) -> Option<Seg> {
+        let (a, b) = (v2(mm.from, axes), v2(mm.to, axes));
+        match mm.kind {
+            MachineKind::Arc {
+                center, plane, dir, ..
+            } if plane == self.comp.plane => Some(Seg {
+                a,
+                b,
+                arc: Some((
+                    V2::new(center.0, center.1),
+                    dir == crate::events::ArcDir::Ccw,
+                )),
+            }),
+            _ if a.dist(b) > PLANE_EPS => Some(Seg::line(a, b)),
+            _ => None,
+        }
+    }
+
+    /// Side (+1 left, −1 right) and radius in force for a move now.
+    fn side_and_radius(&self) -> (f64, f64) {
+        let mut side = match self.state.modal.comp {
+            crate::state::CompSide::Left => 1.0,
+            crate::state::CompSide::Right => -1.0,
+            crate::state::CompSide::Off => 1.0,
+        };
+        let d = self.state.comp_d_mm;
+        if d < 0.0 {
+            side = -side;
+        }
+        if self.state.frame.mirrors(self.comp.plane) {
+            side = -side;
+        }
+        (side, d.abs())
+    }
+
+    /// Where the current block comes from.
+    fn origin(&self, cmd: Span) -> Origin {
+        Origin {
+            loc: self.flow.loc.clone(),
+            src: self.cur_line.map_or(0, |(s, _)| s),
+            line: self.cur_line.map(|(_, l)| l),
+            cmd,
+        }
+    }
+
+    /// An alarm about the block `at` (not necessarily the current one).
+    fn alarm_at(&mut self, d: Diagnostic, at: &Origin) -> Diagnostic {
+        match at.line {
+            Some(line) => self.locate(d, at.src, &line),
+            None => d,
+        }
+    }
+
+    fn fault(&mut self, f: Fault, at: &Origin) -> Diagnostic {
+        let d = match f {
+            Fault::ArcTooSmall => alarms::comp_arc_too_small(at.cmd),
+            Fault::NoIntersection => alarms::comp_overcut(at.cmd),
+        };
+        self.alarm_at(d, at)
+    }
+
+    /// Stage 2: a move while compensation is engaged.
+    pub(crate) fn compensate(&mut self, mm: MachineMove, cmd: Span) -> Result<(), Diagnostic> {
+        let axes = self.plane_axes(self.comp.plane, cmd)?;
+        let at = self.origin(cmd);
+        let Some(seg) = self.plane_seg(&mm, axes) else {
+            // No motion in the plane: it waits behind the held move.
+            if self.comp.held.is_some() {
+                self.comp.queue.push(Queued::Move(mm, at));
+                return Ok(());
+            }
+            return self.release(mm, &at, None);
+        };
+        self.comp.moved_in_plane = true;
+        if seg.arc.is_some() && matches!(self.comp.mode, Mode::Starting | Mode::Cancelling) {
+            return Err(alarms::comp_arc_startup(cmd));
+        }
+        let (side, r) = self.side_and_radius();
+        seg.check(side, r).map_err(|f| self.fault(f, &at))?;
+        match self.comp.mode {
+            Mode::Starting => {
+                self.comp.mode = Mode::On;
+                self.comp.held = Some(Held {
+                    mm,
+                    seg,
+                    start: seg.a,
+                    lead_in: None,
+                    side,
+                    r,
+                    startup: true,
+                    at,
+                });
+                Ok(())
+            }
+            Mode::Cancelling => {
+                let Some(held) = self.comp.held.take() else {
+                    self.comp.mode = Mode::Off;
+                    return self.release(mm, &at, None);
+                };
+                let end = self.settle_cancel(&held, &seg, &at)?;
+                self.release_held(&held, end, None)?;
+                self.comp.mode = Mode::Off;
+                self.release(mm, &at, None)
+            }
+            _ => {
+                let next = Held {
+                    mm,
+                    seg,
+                    start: seg.a,
+                    lead_in: None,
+                    side,
+                    r,
+                    startup: false,
+                    at,
+                };
+                self.advance(next)
+            }
+        }
+    }
+
+    /// Settles the corner between the held move and `next`, sends the
+    /// held one and holds `next`.
+    fn advance(&mut self, mut next: Held) -> Result<(), Diagnostic> {
+        let Some(held) = self.comp.held.as_ref() else {
+            return Ok(());
+        };
+        // A corner the tool cannot reach is the fault of the block that
+        // leads into it (the one being read, as the controller finds it).
+        let corner = if held.startup {
+            // The start-up ends where the next block's offset path starts.
+            geom::startup(&held.seg, &next.seg, next.side, next.r).map(Corner::At)
+        } else {
+            geom::corner(&held.seg, held.side, &next.seg, next.side, held.r)
+        };
+        let corner = match corner {
+            Ok(c) => c,
+            Err(f) => return Err(self.fault(f, &next.at)),
+        };
+        let (end, extension) = match corner {
+            Corner::At(p) => {
+                next.start = p;
+                (p, None)
+            }
+            Corner::Around { p1, l1, l2, p2 } => {
+                next.start = p2;
+                next.lead_in = Some(l2);
+                (p1, Some(l1))
+            }
+        };
+        self.comp.idle_blocks = 0;
+        let Some(slot) = self.comp.held.as_mut() else {
+            return Ok(());
+        };
+        let held = std::mem::replace(slot, next);
+        self.release_held(&held, end, extension)
+    }
+
+    /// Where the held move ends before the cancel move `c`.
+    fn settle_cancel(&mut self, held: &Held, c: &Seg, at: &Origin) -> Result<V2, Diagnostic> {
+        if held.startup {
+            // Cancelled right after the start-up: square to the start-up.
+            return Ok(held.seg.perpendicular(true, held.side, held.r));
+        }
+        geom::cancel(&held.seg, c, held.side, held.r).map_err(|f| self.fault(f, at))
+    }
+
+    /// G40 without a move in the plane, the end of the program, or a move
+    /// to a machine point: the held move ends square to its path.
+    pub(crate) fn comp_finish(&mut self) -> Result<(), Diagnostic> {
+        if let Some(held) = self.comp.held.take() {
+            let end = held.seg.perpendicular(true, held.side, held.r);
+            self.release_held(&held, end, None)?;
+        }
+        self.comp.mode = Mode::Off;
+        self.comp.idle_blocks = 0;
+        Ok(())
+    }
+
+    /// Counts a block without motion in the plane while a move is held.
+    pub(crate) fn comp_block_end(&mut self, first: Span) -> Result<(), Diagnostic> {
+        if self.comp.mode == Mode::Cancelling && !self.comp.moved_in_plane {
+            return self.comp_finish();
+        }
+        if self.comp.held.is_some() && !self.comp.moved_in_plane {
+            self.comp.idle_blocks += 1;
+            let limit = self.machine.params.comp_lookahead_blocks;
+            if self.comp.idle_blocks > limit {
+                return Err(alarms::comp_lookahead(first, limit));
+            }
+        }
+        self.comp.moved_in_plane = false;
+        Ok(())
+    }
+
+    /// Sends the held move, compensated from its start to `end` (then on to
+    /// `extension`), and what queued behind it.
+    fn release_held(
+        &mut self,
+        held: &Held,
+        end: V2,
+        extension: Option<V2>,
+    ) -> Result<(), Diagnostic> {
+        // What leaves now goes out, not behind the move held in its place.
+        self.comp.releasing = true;
+        let out = self.release_held_now(held, end, extension);
+        self.comp.releasing = false;
+        out
+    }
+
+    fn release_held_now(
+        &mut self,
+        held: &Held,
+        end: V2,
+        extension: Option<V2>,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.plane_axes(self.comp.plane, held.at.cmd)?;
+        if !held.startup && !held.seg.keeps_direction(held.start, end) {
+            return Err(self.fault(Fault::NoIntersection, &held.at));
+        }
+        let start_pos = with_plane(held.mm.from, axes, held.start);
+        let arc = match held.mm.kind {
+            MachineKind::Arc {
+                center, plane, dir, ..
+            } => Some((
+                with_plane(held.mm.from, axes, V2::new(center.0, center.1)),
+                plane,
+                dir,
+            )),
+            _ => None,
+        };
+        self.pending.push(Event::Contour {
+            loc: held.at.loc.clone(),
+            from: held.mm.from,
+            to: held.mm.to,
+            arc,
+        });
+        if let Some(l2) = held.lead_in {
+            // The joining move and the lead along the tangent (α < 90°).
+            let kind = straight_kind(&held.mm);
+            let join = MachineMove {
+                kind,
+                from: self.state.pos,
+                to: with_plane(held.mm.from, axes, l2),
+                exact_stop: false,
+            };
+            self.release(join, &held.at, None)?;
+            if held.seg.arc.is_some() {
+                let lead = MachineMove {
+                    to: start_pos,
+                    ..join
+                };
+                self.release(lead, &held.at, None)?;
+            }
+        }
+        // A line's extension (α < 90°) is the same straight line: one move.
+        let (end, extension) = match extension {
+            Some(l1) if held.seg.arc.is_none() => (l1, None),
+            other => (end, other),
+        };
+        let to = with_plane(held.mm.to, axes, end);
+        let moved = MachineMove {
+            from: self.state.pos,
+            to,
+            ..held.mm
+        };
+        self.release(moved, &held.at, None)?;
+        if let Some(l1) = extension {
+            let ext = MachineMove {
+                kind: straight_kind(&held.mm),
+                from: to,
+                to: with_plane(held.mm.to, axes, l1),
+                exact_stop: false,
+            };
+            self.release(ext, &held.at, None)?;
+        }
+        let mut queue = std::mem::take(&mut self.comp.queue);
+        for q in queue.drain(..) {
+            match q {
+                Queued::Move(mm, at) => {
+                    let plane = v2(self.state.pos, axes);
+                    let mm = MachineMove {
+                        from: self.state.pos,
+                        to: with_plane(mm.to, axes, plane),
+                        ..mm
+                    };
+                    self.release(mm, &at, None)?;
+                }
+                Queued::Event(e) => self.pending.push(e),
+            }
+        }
+        // Keep the queue's buffer for the next block.
+        self.comp.queue = queue;
+        Ok(())
+    }
+}
+
+/// A straight move of the same kind as `mm` (an arc's extra moves are feeds).
+fn straight_kind(mm: &MachineMove) -> MachineKind {
+    match mm.kind {
+        MachineKind::Arc { feed, .. } => MachineKind::Feed(feed),
+        MachineKind::Skip(feed) => MachineKind::Feed(feed),
+        k => k,
+    }
+}
