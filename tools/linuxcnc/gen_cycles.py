@@ -7,6 +7,7 @@ Each program exists in two spellings with identical line structure:
   G81 ... L3        (repeats)            G81 ... K3
   G82 ... P1.25     (dwell, seconds)     G82 ... P1250   (integer milliseconds)
   G86 ... P0.       (rs274 needs a P)    G86 ...         (Fanuc G86 has none)
+  G83 ...           (never dwells)       G83 ... P0      (after a G82/G89 P in the chain)
   G10 L1 / G4 P are not used.
 
 Line 1 of both is `(vcnc-args: --dialect fanuc --machine machine.toml)`.
@@ -331,6 +332,11 @@ class CycleProgram:
                 nc_extra.append("P%d" % p_ms)
             if cycle == "G86" and new_cycle:
                 ngc_extra.append("P0.")
+            if cycle in ("G73", "G83") and new_cycle and st["P"]:
+                # Syntec's G73/G83 dwell at the bottom with the modal P
+                # (1.2.31, 1.2.36), LinuxCNC's never: clear it for vcnc.
+                nc_extra.append("P0")
+                p_ms = 0
             tail_ngc, tail_nc = [], []
             if self.feed is None or (first and rng.random() < 0.4):
                 f = rng.choice(FEEDS)

@@ -137,8 +137,8 @@ def tlo_one(i, rs274):
 def make_tlo(rs274, jobs):
     import gen_tlo
     folder = os.path.join(FIXTURES, "linuxcnc_tlo")
-    clean(folder, ["nc", "ngc", "expected.jsonl"])
     results = run_all(lambda i: tlo_one(i, rs274), range(1, gen_tlo.DEFAULT_COUNT + 1), jobs)
+    clean(folder, ["nc", "ngc", "expected.jsonl"])
     n = 0
     for stem, ngc, nc, events in results:
         write_program(folder, stem, ngc, nc)
@@ -155,6 +155,9 @@ def cycles_to_ngc(line):
     """vcnc spelling -> LinuxCNC spelling of one line of gen_cycles.py."""
     m = re.search(r"G(8[1-9]|73)(?!\d)", line)
     line = re.sub(r" K(\d+)$", r" L\1", line)
+    if m and m.group(1) in ("73", "83"):
+        # the P0 that clears a modal dwell for vcnc (gen_cycles.py)
+        line = line.replace(" P0", "", 1) if re.search(r" P0(?![\d.])", line) else line
     if not line.startswith("G10") and re.search(r"P\d+(?![\d.])", line):
         ms = int(re.search(r"P(\d+)(?![\d.])", line).group(1))
         s = "%d.%03d" % divmod(ms, 1000)
@@ -211,9 +214,9 @@ def cycles_one(i, rs274):
 def make_cycles(rs274, jobs):
     import gen_cycles
     folder = os.path.join(FIXTURES, "linuxcnc_cycles")
-    clean(folder, ["nc", "ngc", "expected.jsonl"])
     results = run_all(lambda i: cycles_one(i, rs274),
                       range(1, gen_cycles.DEFAULT_COUNT + 1), jobs)
+    clean(folder, ["nc", "ngc", "expected.jsonl"])
     n = 0
     for stem, ngc, nc, events in results:
         write_program(folder, stem, ngc, nc)
@@ -261,8 +264,8 @@ def comp_one(i, rs274):
 def make_comp(rs274, jobs):
     import gen_comp
     folder = os.path.join(FIXTURES, "linuxcnc_comp")
-    clean(folder, ["nc", "ngc", "points.jsonl"])
     results = run_all(lambda i: comp_one(i, rs274), range(1, gen_comp.DEFAULT_COUNT + 1), jobs)
+    clean(folder, ["nc", "ngc", "points.jsonl"])
     n = 0
     worst = 0.0
     for stem, ngc, nc, rows, w in results:

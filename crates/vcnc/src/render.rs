@@ -138,6 +138,13 @@ pub fn summary(
             s.untimed_moves
         ));
     }
+    if s.waits > 0 {
+        time.push_str(&format!(
+            "; plus {} wait{} for the operator",
+            s.waits,
+            if s.waits == 1 { "" } else { "s" }
+        ));
+    }
     writeln!(out, "cycle time {time}")?;
     writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
     writeln!(out, "cutting    {:.3} mm", s.cut_mm)?;
@@ -171,6 +178,18 @@ pub fn summary(
             tools.join(" ")
         }
     )?;
+    if !s.holes.is_empty() {
+        let total: u64 = s.holes.iter().map(|(_, n)| n).sum();
+        let per_tool: Vec<String> = s
+            .holes
+            .iter()
+            .map(|(t, n)| match t {
+                Some(t) => format!("T{t} {n}"),
+                None => format!("no tool {n}"),
+            })
+            .collect();
+        writeln!(out, "holes      {total} ({})", per_tool.join(", "))?;
+    }
     match s.spindle_rpm {
         Some((lo, hi)) if (hi - lo).abs() < 1e-9 => writeln!(out, "spindle    {lo:.0} rpm")?,
         Some((lo, hi)) => writeln!(out, "spindle    {lo:.0} .. {hi:.0} rpm")?,

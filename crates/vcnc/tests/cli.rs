@@ -307,6 +307,85 @@ fn run_gcode_flattens_cutter_compensation_and_transforms() {
     }
 }
 
+const DRILLING: &str = "G21 G17 G90 G0 X0 Y0 Z20.\nT1 M06\nS1000 M03\n\
+G99 G83 X10. Y10. Z-10. R2. Q4. F200.\nG98 X20.\nG80\nT2 M06\n\
+G81 Z-3. R2. F300. K0\nG134 X50. Y50. I10. J0 K6\nG80\n\
+G84 X70. Y10. Z-8. R2. F1000.\nG88 X80. Z-5.\nG80\nM30\n";
+
+/// `check` counts the holes each tool drills (two G83 holes with T1; the
+/// six of a G134 circle and one tapped and one G88 hole with T2).
+#[test]
+fn check_counts_holes_per_tool() {
+    let dir = TempDir::new("check-holes");
+    dir.write("drill.nc", DRILLING);
+    let o = vcnc_in(dir.path(), &["check", "drill.nc", "--dialect", "fanuc"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("holes      10 (T1 2, T2 8)\n"), "{text}");
+    // G88 waits for the operator: not part of the time estimate.
+    assert!(text.contains("plus 1 wait for the operator"), "{text}");
+}
+
+/// `--format gcode` expands every cycle and pattern into plain moves (grbl
+/// has no canned cycles); run again, it moves as the original did.
+#[test]
+fn run_gcode_expands_canned_cycles() {
+    let dir = TempDir::new("flatten-cycles");
+    dir.write("drill.nc", DRILLING);
+    let original = vcnc_in(dir.path(), &["run", "drill.nc", "--dialect", "fanuc"]);
+    assert_eq!(code(&original), 0, "{}", stderr(&original));
+    let flat = vcnc_in(
+        dir.path(),
+        &["run", "drill.nc", "--dialect", "fanuc", "--format", "gcode"],
+    );
+    let text = stdout(&flat);
+    for code in ["G81", "G83", "G84", "G88", "G134", "G98", "G99"] {
+        let uncommented = text
+            .lines()
+            .any(|l| l.split('(').next().unwrap_or("").contains(code));
+        assert!(!uncommented, "{code} left in:\n{text}");
+    }
+    dir.write("flat.nc", &text);
+    let again = vcnc_in(dir.path(), &["run", "flat.nc", "--dialect", "fanuc"]);
+    assert_eq!(code(&again), 0, "{}", stderr(&again));
+    // Moves that go somewhere (the flat preamble's move to the start does
+    // not), to 0.0001 mm (the flat program's resolution).
+    let motion = |o: &Output| -> Vec<(String, [f64; 3])> {
+        let mut at = [0.0; 3];
+        let mut out = Vec::new();
+        for e in jsonl(o) {
+            let kind = e["type"].as_str().unwrap_or("").to_string();
+            if !matches!(kind.as_str(), "rapid" | "feed") {
+                continue;
+            }
+            let to = ["x", "y", "z"].map(|k| e["to"][k].as_f64().unwrap());
+            if to.iter().zip(&at).any(|(a, b)| (a - b).abs() > 1e-4) {
+                out.push((kind, to));
+            }
+            at = to;
+        }
+        out
+    };
+    let (a, b) = (motion(&original), motion(&again));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x.0, y.0);
+        assert!(
+            x.1.iter().zip(&y.1).all(|(p, q)| (p - q).abs() < 1e-4),
+            "{x:?} vs {y:?}"
+        );
+    }
+    // The spindle reversals of the tap and the G88 stop are there too.
+    let spindle = |o: &Output| -> Vec<Value> {
+        jsonl(o)
+            .into_iter()
+            .filter(|e| e["type"] == "spindle")
+            .map(|e| e["dir"].clone())
+            .collect()
+    };
+    assert_eq!(spindle(&original), spindle(&again));
+}
+
 // ---------------------------------------------------------------------------
 // Alarms
 // ---------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-//! Fixture-driven tests: every `*.nc` under `tests/fixtures/{manual,linuxcnc}`
+//! Fixture-driven tests: every `*.nc` under the folders of `tests/fixtures`
 //! runs through the interpreter and its JSON-lines events are compared with
 //! the `*.expected.jsonl` beside it.
 //!
@@ -200,6 +200,12 @@ fn lathe_document_examples_match_their_hand_worked_traces() {
 }
 
 #[test]
+fn eia_chapter_codes_match_their_hand_worked_traces() {
+    let n = check_folder("eia", "eia", 1e-6);
+    assert!(n >= 30, "only {n} EIA fixtures found");
+}
+
+#[test]
 fn linuxcnc_programs_match_rs274() {
     let n = check_folder("linuxcnc", "fanuc", 1e-4);
     assert!(n >= 300, "only {n} LinuxCNC fixtures found");
@@ -209,6 +215,12 @@ fn linuxcnc_programs_match_rs274() {
 fn linuxcnc_tool_length_programs_match_rs274() {
     let n = check_folder("linuxcnc_tlo", "fanuc", 1e-4);
     assert!(n >= 50, "only {n} LinuxCNC tool length fixtures found");
+}
+
+#[test]
+fn linuxcnc_canned_cycle_programs_match_rs274() {
+    let n = check_folder("linuxcnc_cycles", "fanuc", 1e-4);
+    assert!(n >= 80, "only {n} LinuxCNC canned-cycle fixtures found");
 }
 
 /// `linuxcnc_comp`: the tool-centre points that both LinuxCNC and a Fanuc

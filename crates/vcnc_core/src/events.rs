@@ -172,6 +172,63 @@ impl StopCode {
     }
 }
 
+/// A canned drilling cycle (the `cycle` of a `hole` event).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[allow(missing_docs)] // named after their codes
+pub enum Cycle {
+    G73,
+    G74,
+    G76,
+    G81,
+    G82,
+    G83,
+    G84,
+    G85,
+    G86,
+    G87,
+    G88,
+    G89,
+}
+
+impl Cycle {
+    /// `"G81"` …
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Cycle::G73 => "G73",
+            Cycle::G74 => "G74",
+            Cycle::G76 => "G76",
+            Cycle::G81 => "G81",
+            Cycle::G82 => "G82",
+            Cycle::G83 => "G83",
+            Cycle::G84 => "G84",
+            Cycle::G85 => "G85",
+            Cycle::G86 => "G86",
+            Cycle::G87 => "G87",
+            Cycle::G88 => "G88",
+            Cycle::G89 => "G89",
+        }
+    }
+}
+
+/// Why the program waits for the operator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WaitReason {
+    /// The operator moves the tool by hand, then presses cycle start (G88).
+    ManualMotion,
+    /// The operator presses cycle start (an untimed dwell).
+    CycleStart,
+}
+
+impl WaitReason {
+    /// `"manual_motion"` or `"cycle_start"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            WaitReason::ManualMotion => "manual_motion",
+            WaitReason::CycleStart => "cycle_start",
+        }
+    }
+}
+
 /// The program coordinate frame: `machine = linear · program + origin +
 /// tool_offset`, with `linear` acting on the X, Y and Z axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -309,6 +366,31 @@ pub enum Event {
         /// What ended it.
         code: EndCode,
     },
+    /// A hole of a canned cycle, sent before the hole's motions.
+    Hole {
+        /// Source.
+        loc: Loc,
+        /// The cycle that drills it.
+        cycle: Cycle,
+        /// The hole centre at its Z point (the bottom; G87: the top of the
+        /// back bore), machine coordinates.
+        at: Pos,
+    },
+    /// The program waits for the operator.
+    Wait {
+        /// Source.
+        loc: Loc,
+        /// What for.
+        reason: WaitReason,
+    },
+    /// A marker for the planner: the junction after this block's motion may
+    /// be passed without stopping (EIA G99 deceleration override).
+    Junction {
+        /// Source.
+        loc: Loc,
+        /// Whether the junction blends.
+        blend: bool,
+    },
     /// The programmed path of a block that cutter compensation offsets,
     /// sent before the block's (compensated) motion events: from `from` to
     /// `to`, straight or, with `arc`, about the arc's centre.
@@ -354,6 +436,9 @@ impl Event {
             Event::End { .. } => "end",
             Event::Frame { .. } => "frame",
             Event::Contour { .. } => "contour",
+            Event::Hole { .. } => "hole",
+            Event::Wait { .. } => "wait",
+            Event::Junction { .. } => "junction",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -375,7 +460,10 @@ impl Event {
             | Event::Stop { loc, .. }
             | Event::End { loc, .. }
             | Event::Frame { loc, .. }
-            | Event::Contour { loc, .. } => Some(loc),
+            | Event::Contour { loc, .. }
+            | Event::Hole { loc, .. }
+            | Event::Wait { loc, .. }
+            | Event::Junction { loc, .. } => Some(loc),
             Event::Alarm(_) => None,
         }
     }

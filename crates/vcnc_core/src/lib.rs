@@ -17,8 +17,8 @@ mod span;
 
 pub use diagnostic::{Code, Diagnostic};
 pub use events::{
-    ArcDir, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, PathMode, Plane, Pos, SpindleDir,
-    StopCode,
+    ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, PathMode, Plane, Pos,
+    SpindleDir, StopCode, WaitReason,
 };
 pub use machine::Machine;
 pub use sink::{NullSink, Sink, VecSink};

@@ -77,6 +77,17 @@ pub struct Params {
     /// Most blocks in a row without motion in the plane while cutter
     /// compensation holds a move (E319 beyond).
     pub comp_lookahead_blocks: u32,
+    /// Syntec 4002: the retract d of G73 and G84 type II pecks, and the
+    /// clearance G83 rapids back down to, mm.
+    pub peck_return_mm: f64,
+    /// Syntec 4001: peck tapping (G84 with Q) type: 0 general (type III,
+    /// back to R), 1 high speed (type II, back by d).
+    pub tapping_type: u8,
+    /// Syntec 4020: the direction G76/G87 shift away from the bore wall:
+    /// 0 +first axis, 1 −first, 2 +second, 3 −second axis of the plane.
+    pub shift_direction: u8,
+    /// Syntec 4010: pocket stepover, percent of the tool diameter.
+    pub pocket_stepover_pct: f64,
 }
 
 impl Default for Params {
@@ -88,6 +99,10 @@ impl Default for Params {
             same_group_in_block: SameGroup::LastWins,
             offset_registers: 200,
             comp_lookahead_blocks: 5,
+            peck_return_mm: 1.0,
+            tapping_type: 0,
+            shift_direction: 0,
+            pocket_stepover_pct: 50.0,
         }
     }
 }
@@ -393,6 +408,23 @@ impl Machine {
         if !(p.arc_tolerance_mm.is_finite() && p.arc_tolerance_mm > 0.0) {
             return Err(MachineError(
                 "parameters.arc_tolerance_mm must be positive".into(),
+            ));
+        }
+        if !(p.peck_return_mm.is_finite() && p.peck_return_mm >= 0.0) {
+            return Err(MachineError(
+                "parameters.peck_return_mm must be a length >= 0".into(),
+            ));
+        }
+        if p.tapping_type > 1 {
+            return Err(MachineError("parameters.tapping_type is 0 or 1".into()));
+        }
+        if p.shift_direction > 3 {
+            return Err(MachineError("parameters.shift_direction is 0 to 3".into()));
+        }
+        if !(p.pocket_stepover_pct > 0.0 && p.pocket_stepover_pct <= 100.0) {
+            return Err(MachineError(
+                "parameters.pocket_stepover_pct is a percentage, more than 0 and at most 100"
+                    .into(),
             ));
         }
         // Every level may hold an open program file (64 KiB each): 50

@@ -2,7 +2,8 @@
 //! of `tools/bench/gen_surfacing.py`) interpreted from memory into a sink
 //! that drops every event, plain and under rotation + scaling + tool length
 //! (issue #6: ≥ 3 M blocks/s), a contour under cutter compensation
-//! (issue #7: ≥ 3 M blocks/s), and a turning program under the seed lathe.
+//! (issue #7: ≥ 3 M blocks/s), a turning program under the seed lathe, and
+//! 100,000 G83 holes (issue #8; counted in events, about ten a hole).
 //! Run with `cargo bench -p vcnc_interp`; figures in docs/performance.md.
 
 use divan::{Bencher, counter::ItemsCount};
@@ -171,4 +172,42 @@ fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
         &dialect,
         "M30",
     );
+}
+
+/// `holes` G83 holes, three pecks each, the shape of
+/// `tools/bench/gen_drilling.py`.
+fn drilling(holes: usize) -> String {
+    let mut s = String::with_capacity(holes * 16);
+    s.push_str("G21 G17 G90 G94\nS3000 M03\nG00 X0 Y0 Z10.\n");
+    s.push_str("G99 G83 X0.000 Y0.000 Z-5.3 R1. Q2. F300.\n");
+    for k in 1..holes {
+        let _ = writeln!(
+            s,
+            "X{:.3} Y{:.3}",
+            (k % 1600) as f64 * 0.5,
+            (k / 1600) as f64 * 0.5
+        );
+    }
+    s.push_str("G80\nG00 Z10.\nM30\n");
+    s
+}
+
+/// Counts the events of a run.
+struct Count(usize);
+
+impl vcnc_interp::Sink for Count {
+    fn event(&mut self, _: &vcnc_interp::Event) {
+        self.0 += 1;
+    }
+}
+
+#[divan::bench(args = [100_000])]
+fn interpret_drilling_to_null_sink(bencher: Bencher, holes: usize) {
+    let dialect = Dialect::fanuc();
+    let machine = Machine::default_mill();
+    let program = drilling(holes);
+    let mut count = Count(0);
+    Interpreter::new(&machine, &dialect, Options::default()).run_str(&program, &mut count);
+    // Items are events here, not blocks.
+    bench_program(bencher, count.0, program, &machine, &dialect, "M30");
 }

@@ -626,3 +626,93 @@ pub fn not_while_compensating(span: Span, what: &str) -> Diagnostic {
         "cancel compensation with G40 first, and start it again afterwards",
     )
 }
+
+/// E321: a tapping cycle with the spindle stopped or turning the wrong
+/// way (`cw`: the direction it must turn, `None`: either).
+pub fn tapping_spindle(span: Span, code: &str, cw: Option<bool>) -> Diagnostic {
+    let (msg, help) = match cw {
+        Some(true) => (
+            format!(
+                "{code} taps with the spindle turning clockwise, but it is stopped or turning the other way"
+            ),
+            "start the spindle with M03 and an S speed before the tapping cycle",
+        ),
+        Some(false) => (
+            format!(
+                "{code} taps with the spindle turning counter-clockwise, but it is stopped or turning the other way"
+            ),
+            "start the spindle with M04 and an S speed before the tapping cycle",
+        ),
+        None => (
+            format!("{code} taps with the spindle turning, but it is stopped"),
+            "start the spindle (M03, or M04 for a left-hand tap) with an S speed before the tapping cycle",
+        ),
+    };
+    d(Code::E321, span, msg, help)
+}
+
+/// E322: a hole pattern with no canned cycle to drill its holes.
+pub fn pattern_without_cycle(span: Span) -> Diagnostic {
+    d(
+        Code::E322,
+        span,
+        "a hole pattern needs a canned cycle: no cycle is active".to_string(),
+        "select the cycle first (e.g. G81 Z.. R.. K0 stores it without drilling), then the pattern",
+    )
+}
+
+/// E323: the hole bottom on the wrong side of the R level.
+pub fn cycle_direction(span: Span, upward: bool) -> Diagnostic {
+    let (msg, help) = if upward {
+        (
+            "G87 bores upwards: its Z point must be above the R level",
+            "R is below the part for back boring; give Z above R",
+        )
+    } else {
+        (
+            "the hole bottom Z is not below the R level",
+            "give Z below R (under G91, Z is measured from the R level and is negative)",
+        )
+    };
+    d(Code::E323, span, msg.to_string(), help)
+}
+
+/// E324: G17/G18/G19 changing the plane while a cycle is active.
+pub fn cycle_plane(span: Span) -> Diagnostic {
+    d(
+        Code::E324,
+        span,
+        "the plane cannot change while a canned cycle is active".to_string(),
+        "cancel the cycle with G80, change the plane, then select the cycle again",
+    )
+}
+
+/// E325: a pocket not larger than the tool.
+pub fn pocket_too_small(span: Span, what: &str, tool_mm: f64) -> Diagnostic {
+    d(
+        Code::E325,
+        span,
+        format!("the pocket's {what} is not larger than the tool's diameter {tool_mm:.4} mm"),
+        "make the pocket larger, or change to a smaller tool (its radius is d_mm + d_wear_mm of the tool in the spindle)",
+    )
+}
+
+/// E326: one block asks for more holes than the bound.
+pub fn too_many_holes(span: Span, max: u64) -> Diagnostic {
+    d(
+        Code::E326,
+        span,
+        format!("this block drills more than {max} holes"),
+        "split the pattern or the K count over several blocks",
+    )
+}
+
+/// E326: a pocket with more passes than the bound.
+pub fn too_many_passes(span: Span, max: u64) -> Diagnostic {
+    d(
+        Code::E326,
+        span,
+        format!("this pocket cuts more than {max} rings over all its levels"),
+        "use a larger depth per pass Q, a larger stepover (parameters.pocket_stepover_pct) or a larger tool",
+    )
+}

@@ -32,6 +32,6 @@ pub use flow::{NoPrograms, ProgramStore};
 pub use interpreter::{Interpreter, Options, Outcome};
 pub use state::{State, Tables};
 pub use vcnc_core::{
-    ArcDir, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode, Plane,
-    Pos, Sink, SpindleDir, StopCode, VecSink, events, machine,
+    ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode,
+    Plane, Pos, Sink, SpindleDir, StopCode, VecSink, WaitReason, events, machine,
 };

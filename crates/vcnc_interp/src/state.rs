@@ -114,6 +114,36 @@ impl Modal {
     }
 }
 
+/// Canned-cycle mode and the data its blocks store (program coordinates on
+/// the drilling axis, mm; seconds).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleData {
+    /// The active cycle (`None`: G80 or a group-01 code).
+    pub code: Option<crate::events::Cycle>,
+    /// The drilling-axis level when the cycle mode was entered.
+    pub initial: f64,
+    /// Z point (the hole bottom).
+    pub z: Option<f64>,
+    /// R level.
+    pub r: Option<f64>,
+    /// Q: peck depth, or the G76/G87 shift.
+    pub q: Option<f64>,
+    /// P: dwell at the bottom, seconds.
+    pub p_s: Option<f64>,
+}
+
+impl CycleData {
+    /// No cycle mode, no data.
+    pub const OFF: CycleData = CycleData {
+        code: None,
+        initial: 0.0,
+        z: None,
+        r: None,
+        q: None,
+        p_s: None,
+    };
+}
+
 /// Everything a block may change, copied before each block so that an
 /// alarm restores it whole.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -146,6 +176,8 @@ pub struct State {
     pub(crate) comp_d_mm: f64,
     /// Last polar radius and angle (G16), program units mm and degrees.
     pub(crate) polar: (f64, f64),
+    /// Canned cycles.
+    pub cycle: CycleData,
     /// Programmed F, in program units (converted when used).
     pub feed: f64,
     /// Programmed S (rpm under G97, m/min under G96).
@@ -197,6 +229,7 @@ impl State {
             d_number: 0,
             comp_d_mm: 0.0,
             polar: (0.0, 0.0),
+            cycle: CycleData::OFF,
             feed: 0.0,
             s_value: 0.0,
             max_rpm: None,

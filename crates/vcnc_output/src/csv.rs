@@ -7,7 +7,9 @@
 //! after `message` were added later: columns are only ever appended). A
 //! `frame` row has its origin in the axis columns, its linear part as nine
 //! space-separated numbers (rows x, y, z) in `linear` and the tool length
-//! offset in `tool_offset_<axis>`.
+//! offset in `tool_offset_<axis>`. A `hole` row has its centre at the Z
+//! point in the axis columns and its cycle (`G81`) in `code`; a `wait` row
+//! its reason in `mode`; a `junction` row whether it blends in `on`.
 
 use crate::jsonl::{path_mode, spindle_dir};
 use crate::num::push_f64;
@@ -205,6 +207,12 @@ impl<W: Write> Sink for CsvSink<W> {
             Event::HighSpeed { on, .. } => self.set("on", on.to_string()),
             Event::Stop { code, .. } => self.set("code", code.as_str().into()),
             Event::End { code, .. } => self.set("code", code.as_str().into()),
+            Event::Hole { cycle, at, .. } => {
+                self.pos(at, 0);
+                self.set("code", cycle.as_str().into());
+            }
+            Event::Wait { reason, .. } => self.set("mode", reason.as_str().into()),
+            Event::Junction { blend, .. } => self.set("on", blend.to_string()),
             Event::Contour { to, arc, .. } => {
                 self.pos(to, 0);
                 if let Some((center, plane, dir)) = arc {

@@ -181,6 +181,15 @@ impl<W: Write> GcodeSink<W> {
                 )
             }
             Event::End { code, .. } => (if *code == EndCode::M30 { "M30" } else { "M2" }).into(),
+            // The cycle's moves follow as plain G0/G1: the hole is a comment.
+            Event::Hole { cycle, at, .. } => {
+                format!("({} hole at{})", cycle.as_str(), self.axes(at))
+            }
+            // M0 waits for cycle start on grbl and LinuxCNC alike.
+            Event::Wait { reason, .. } => format!("M0 (wait: {})", reason.as_str()),
+            Event::Junction { blend, .. } => {
+                format!("(junction {})", if *blend { "blends" } else { "stops" })
+            }
             // Positions are machine coordinates already: the frame is a comment.
             Event::Frame { frame, .. } => {
                 format!("(program origin at{})", self.axes(&frame.origin))

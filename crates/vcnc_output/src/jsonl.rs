@@ -180,6 +180,19 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
             j.head("frame", loc);
             j.frame(frame);
         }
+        Event::Hole { loc, cycle, at } => {
+            j.head("hole", loc);
+            j.str("cycle", cycle.as_str());
+            j.pos("at", at);
+        }
+        Event::Wait { loc, reason } => {
+            j.head("wait", loc);
+            j.str("reason", reason.as_str());
+        }
+        Event::Junction { loc, blend } => {
+            j.head("junction", loc);
+            j.boolean("blend", *blend);
+        }
         Event::Contour { loc, from, to, arc } => {
             j.head("contour", loc);
             j.pos("from", from);

@@ -1,5 +1,5 @@
 //! The numbers `vcnc check` prints: cycle time, rapid and cutting distance,
-//! extents, tools and spindle speeds.
+//! extents, tools, holes per tool, operator waits and spindle speeds.
 //!
 //! Cycle time here is kinematic-free: a rapid takes as long as its slowest
 //! axis at that axis's rapid rate, a cut takes its path length over the feed
@@ -37,6 +37,12 @@ pub struct Summary {
     pub spindle_rpm: Option<(f64, f64)>,
     /// Cutting moves whose time is unknown (feed per rev with the spindle stopped).
     pub untimed_moves: u64,
+    /// Holes drilled by each tool, in order of first hole (`None`: before
+    /// any tool change).
+    pub holes: Vec<(Option<u32>, u64)>,
+    /// Times the program waits for the operator (not in the cycle time).
+    pub waits: u64,
+    tool: Option<u32>,
 }
 
 impl Summary {
@@ -61,6 +67,9 @@ impl Summary {
             tools: Vec::new(),
             spindle_rpm: None,
             untimed_moves: 0,
+            holes: Vec::new(),
+            waits: 0,
+            tool: None,
         }
     }
 
@@ -225,7 +234,17 @@ impl Sink for Summary {
                 self.contour_extents = Some((a, b));
             }
             Event::Dwell { seconds, .. } => self.cycle_time_s += seconds,
-            Event::ToolChange { tool, .. } if !self.tools.contains(tool) => self.tools.push(*tool),
+            Event::ToolChange { tool, .. } => {
+                self.tool = Some(*tool);
+                if !self.tools.contains(tool) {
+                    self.tools.push(*tool);
+                }
+            }
+            Event::Hole { .. } => match self.holes.iter_mut().find(|(t, _)| *t == self.tool) {
+                Some((_, n)) => *n += 1,
+                None => self.holes.push((self.tool, 1)),
+            },
+            Event::Wait { .. } => self.waits += 1,
             Event::Spindle { rpm, .. } => {
                 self.rpm = *rpm;
                 if *rpm > 0.0 {

@@ -49,6 +49,9 @@ impl Interpreter<'_> {
         }
         if let Some(motion) = w.group(Group::Motion) {
             self.apply_modal(motion.def.op);
+            if self.state.cycle.code.is_some() {
+                self.cycle_modes(w)?;
+            }
         }
         if w.has_arc_words(self.axis_mask) {
             let (allowed, ext) = self.allowed_letters(w);
@@ -70,10 +73,12 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
         self.check_comp_changes(w)?;
+        self.check_cycle_plane(w)?;
         let path_before = self.state.modal.path;
         for at in w.modal_codes() {
             self.apply_modal(at.def.op);
         }
+        self.cycle_modes(w)?;
         if w.group(Group::Wcs).is_some() {
             self.state.refresh_origin(&self.tables);
         }
@@ -99,6 +104,21 @@ impl Interpreter<'_> {
         }
         if tool_moved && self.moves == moves_before {
             self.tool_length_move(w)?;
+        }
+        if let Some(g99) = w.once(GOp::Junction) {
+            // EIA G99: the junction after this block's cut may blend.
+            let cuts = matches!(
+                self.state.modal.motion,
+                Motion::Linear | Motion::ArcCw | Motion::ArcCcw
+            );
+            if !cuts || self.moves == moves_before || w.axis_user.is_some() {
+                return Err(alarms::needs_word(
+                    g99.span,
+                    "G99",
+                    "a G01, G02 or G03 move",
+                ));
+            }
+            self.emit(|loc| Event::Junction { loc, blend: true });
         }
         if self.comp.engaged() {
             self.comp_block_end(w.first)?;
@@ -165,6 +185,10 @@ impl Interpreter<'_> {
         if self.state.modal.comp != crate::state::CompSide::Off {
             // Under G41/G42 a D word alone changes the radius.
             allowed |= bit(b'D');
+        }
+        if self.state.cycle.code.is_some() && w.axis_user.is_none() {
+            // In cycle mode a drilling block may change the cycle's data.
+            allowed |= self.dialect.cycles.words();
         }
         let mut ext = 0u8;
         match w.axis_user.map(|u| u.def.axes) {

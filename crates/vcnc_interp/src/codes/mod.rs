@@ -5,8 +5,10 @@
 
 pub(crate) mod calls;
 pub(crate) mod comp;
+pub(crate) mod cycles;
 pub(crate) mod lathe_cycles;
 pub(crate) mod offsets;
+pub(crate) mod pockets;
 pub(crate) mod refs;
 pub(crate) mod tool_length;
 pub(crate) mod transforms;

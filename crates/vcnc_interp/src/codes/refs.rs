@@ -67,6 +67,11 @@ impl Interpreter<'_> {
             }
             GOp::CylinderCycle => self.cylinder_cycle(w, cmd),
             GOp::ThreadCycle => self.thread_cycle(w, cmd),
+            GOp::PatternCircle | GOp::PatternLine | GOp::PatternArc | GOp::PatternGrid => {
+                self.pattern(op, w, cmd)
+            }
+            GOp::DwellOrWait => self.dwell_or_wait(w),
+            GOp::PocketRect | GOp::PocketCircle => self.pocket(op, w, cmd),
             _ => Ok(()),
         }
     }
@@ -103,6 +108,29 @@ impl Interpreter<'_> {
                 word.addr.0,
                 word.value,
                 "a dwell is at most 9999.999 s",
+            ));
+        }
+        self.emit(|loc| Event::Dwell { loc, seconds });
+        Ok(())
+    }
+
+    /// EIA G04: P seconds with a point, milliseconds without; no P is the
+    /// chapter's untimed dwell, which waits for the operator like M00.
+    fn dwell_or_wait(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let Some(p) = w.get(b'P') else {
+            self.emit(|loc| Event::Wait {
+                loc,
+                reason: crate::events::WaitReason::CycleStart,
+            });
+            return Ok(());
+        };
+        let seconds = self.seconds(&p);
+        if !(0.0..=9_999.999).contains(&seconds) {
+            return Err(alarms::value_out_of_range(
+                p.span,
+                b'P',
+                p.value,
+                "a dwell is 0 to 9999.999 s",
             ));
         }
         self.emit(|loc| Event::Dwell { loc, seconds });

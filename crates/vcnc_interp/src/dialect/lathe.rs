@@ -5,7 +5,10 @@
 //!
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
-use super::{Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, bit, g, mill::MILL_M};
+use super::{
+    CycleRules, Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, RapidPath, bit, g,
+    mill::MILL_M,
+};
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
 use vcnc_syntax::{Addr, LexRules};
@@ -113,5 +116,7 @@ pub(super) fn lathe() -> Dialect {
         arc_letters: bit(b'D'),
         default_machine: DEFAULT_LATHE_TOML,
         unsupported: UNSPECIFIED,
+        rapid: RapidPath::ByParameter,
+        cycles: CycleRules::Fanuc,
     }
 }

@@ -3,9 +3,10 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, MGroup, MOp, MRow, bit, g,
+    CYCLE_WORDS, CycleRules, Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, MGroup,
+    MOp, MRow, RapidPath, bit, g,
 };
-use crate::events::Plane;
+use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::LexRules;
 
@@ -75,7 +76,19 @@ const MILL_G: &[GRow] = &[
         .reads(bit(b'R'))
         .claims_absolute_axes(),
     g(690, GOp::RotateOff, Group::Rotation),
+    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(CYCLE_WORDS),
+    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(CYCLE_WORDS),
+    g(760, GOp::Cycle(Cycle::G76), Group::Cycle).reads(CYCLE_WORDS),
     g(800, GOp::CycleCancel, Group::Cycle),
+    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(CYCLE_WORDS),
+    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(CYCLE_WORDS),
+    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(CYCLE_WORDS),
+    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(CYCLE_WORDS),
+    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(CYCLE_WORDS),
+    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(CYCLE_WORDS),
+    g(870, GOp::Cycle(Cycle::G87), Group::Cycle).reads(CYCLE_WORDS),
+    g(880, GOp::Cycle(Cycle::G88), Group::Cycle).reads(CYCLE_WORDS),
+    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(CYCLE_WORDS),
     g(900, GOp::Absolute, Group::Distance),
     g(910, GOp::Incremental, Group::Distance),
     g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
@@ -83,6 +96,18 @@ const MILL_G: &[GRow] = &[
     g(950, GOp::PerRev, Group::FeedMode),
     g(960, GOp::SurfaceSpeed, Group::SpindleMode),
     g(970, GOp::SpindleRpm, Group::SpindleMode),
+    g(1340, GOp::PatternCircle, Group::NonModal)
+        .reads(bit(b'I') | bit(b'J') | bit(b'K'))
+        .claims_axes(),
+    g(1350, GOp::PatternLine, Group::NonModal)
+        .reads(bit(b'I') | bit(b'J') | bit(b'K'))
+        .claims_axes(),
+    g(1360, GOp::PatternArc, Group::NonModal)
+        .reads(bit(b'I') | bit(b'J') | bit(b'K') | bit(b'P'))
+        .claims_axes(),
+    g(1371, GOp::PatternGrid, Group::NonModal)
+        .reads(bit(b'I') | bit(b'J') | bit(b'K') | bit(b'P'))
+        .claims_axes(),
     g(980, GOp::ReturnInitial, Group::ReturnLevel),
     g(990, GOp::ReturnR, Group::ReturnLevel),
 ];
@@ -134,22 +159,6 @@ const SYNTEC_LATER: &[(u16, &str)] = &[
     (62, "G06.2 NURBS interpolation is not implemented yet"),
     (650, "G65 macro call is not implemented yet"),
     (660, "G66 macro modal call is not implemented yet"),
-    (730, "canned cycles (G73) are not implemented yet"),
-    (740, "canned cycles (G74) are not implemented yet"),
-    (760, "canned cycles (G76) are not implemented yet"),
-    (810, "canned cycles (G81) are not implemented yet"),
-    (820, "canned cycles (G82) are not implemented yet"),
-    (830, "canned cycles (G83) are not implemented yet"),
-    (840, "canned cycles (G84) are not implemented yet"),
-    (850, "canned cycles (G85) are not implemented yet"),
-    (860, "canned cycles (G86) are not implemented yet"),
-    (870, "canned cycles (G87) are not implemented yet"),
-    (880, "canned cycles (G88) are not implemented yet"),
-    (890, "canned cycles (G89) are not implemented yet"),
-    (1340, "hole patterns (G134) are not implemented yet"),
-    (1350, "hole patterns (G135) are not implemented yet"),
-    (1360, "hole patterns (G136) are not implemented yet"),
-    (1371, "hole patterns (G137.1) are not implemented yet"),
 ];
 
 fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
@@ -170,6 +179,8 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: SYNTEC_LATER,
+        rapid: RapidPath::ByParameter,
+        cycles: CycleRules::Fanuc,
     }
 }
 

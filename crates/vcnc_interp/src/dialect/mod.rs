@@ -10,11 +10,16 @@
 //! subroutine call, G05 a three-point arc, G53 cancels the work offset) and
 //! adds word rules: U/W incremental axes, X in diameters, `CR=`, `IX`/`IZ`.
 
+mod eia;
 mod lathe;
 mod mill;
 
 use crate::events::Plane;
 use vcnc_syntax::LexRules;
+
+/// The data words of a canned cycle block: R level, Q peck or shift, P
+/// dwell, K repeats.
+pub(crate) const CYCLE_WORDS: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'K');
 
 /// Modal groups (Fanuc numbering in the comments). `NonModal` is group 00.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,6 +146,17 @@ pub enum GOp {
     MirrorOff,
     RotateOn,
     RotateOff,
+    // Canned cycles and hole patterns (Syntec 1.2.30–1.2.53).
+    Cycle(crate::events::Cycle),
+    PatternCircle,
+    PatternLine,
+    PatternArc,
+    PatternGrid,
+    // EIA-274-D (seed 004).
+    DwellOrWait,
+    PocketRect,
+    PocketCircle,
+    Junction,
     // Cutter radius compensation (Syntec 1.2.18).
     CompCancel,
     CompLeft,
@@ -320,6 +336,38 @@ pub struct Diameter {
     pub at_power_on: bool,
 }
 
+/// The path of a G00 that moves several axes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RapidPath {
+    /// Interpolated, or each axis at its own rapid rate under parameter
+    /// 411 = 1 (`g00_mode` of the machine file): Fanuc, Syntec.
+    ByParameter,
+    /// EIA-274-D axis priority: Z first when it rises, last when it falls;
+    /// X and Y at the same speed (a 45° leg, then the longer axis alone).
+    ZPriority,
+}
+
+/// Which reading of the canned drilling cycles a dialect has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CycleRules {
+    /// Syntec 900M / Fanuc 0i (`docs/cycles-spec.md`): G98/G99 return, R
+    /// required, K repeats, G87 back boring, G86 spindle stop.
+    Fanuc,
+    /// EIA-274-D (`docs/eia-spec.md` §5): return to R, R optional, no K,
+    /// G83 without clearance, G86 waits, G87 chip-breaking pecks.
+    Eia,
+}
+
+impl CycleRules {
+    /// Words a block may carry for the cycle data in cycle mode.
+    pub(crate) fn words(self) -> u32 {
+        match self {
+            CycleRules::Fanuc => CYCLE_WORDS,
+            CycleRules::Eia => bit(b'R') | bit(b'Q') | bit(b'P'),
+        }
+    }
+}
+
 /// A dialect profile: code tables plus the word rules that differ.
 pub struct Dialect {
     /// Name as given to `--dialect`.
@@ -346,6 +394,10 @@ pub struct Dialect {
     /// Codes the dialect's document lists that vcnc does not run, and why
     /// (E201 quotes it).
     pub unsupported: &'static [(u16, &'static str)],
+    /// The path of a multi-axis G00.
+    pub rapid: RapidPath,
+    /// The canned cycles' reading.
+    pub cycles: CycleRules,
 }
 
 impl std::fmt::Debug for Dialect {
@@ -370,12 +422,13 @@ impl Dialect {
             "syntec" => Some(mill::syntec()),
             "fanuc" => Some(mill::fanuc()),
             "lathe" => Some(lathe::lathe()),
+            "eia" => Some(eia::eia()),
             _ => None,
         }
     }
 
     /// Names accepted by [`by_name`](Self::by_name).
-    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc", "lathe"];
+    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc", "lathe", "eia"];
 
     /// Syntec 900M mill (the default).
     pub fn syntec() -> Dialect {
@@ -390,6 +443,11 @@ impl Dialect {
     /// The lathe controller of seed 003.
     pub fn lathe() -> Dialect {
         lathe::lathe()
+    }
+
+    /// Generic EIA-274-D (seed 004).
+    pub fn eia() -> Dialect {
+        eia::eia()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the

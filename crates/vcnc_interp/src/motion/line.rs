@@ -17,6 +17,9 @@ impl Interpreter<'_> {
     pub(crate) fn modal_motion(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let motion = self.state.modal.motion;
         let cmd = w.group(Group::Motion).map_or(w.first, |a| a.span);
+        if self.state.cycle.code.is_some() {
+            return self.drill(w, cmd);
+        }
         match motion {
             Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
             Motion::ThreePoint => self.three_point_arc(w, cmd),
@@ -133,6 +136,58 @@ pub(crate) fn dog_leg(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AXES]
         count += 1;
     }
     (corners, count.max(1))
+}
+
+/// The legs of an EIA-274-D G00 (`docs/eia-spec.md` §3): Z alone first
+/// when it rises; X and Y together at the same speed (both by the shorter
+/// travel, a 45° leg), then the longer one alone, other axes with the
+/// first of these legs; Z alone last when it falls.
+///
+/// ```text
+///   Z ▲ 1 rise          │ 3 plunge
+///     │      2 ╱────────┤ (X, Y: 45°, then the longer axis)
+///     └──────────────────▶ X/Y
+/// ```
+pub(crate) fn z_priority(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AXES], usize) {
+    let mut legs = [to; MAX_AXES];
+    let mut count = 0;
+    let mut push = |p: Pos| {
+        if count < MAX_AXES && (count == 0 || legs[count - 1] != p) {
+            legs[count] = p;
+            count += 1;
+        }
+    };
+    let (x, y, z) = (
+        machine.axis_of(b'X'),
+        machine.axis_of(b'Y'),
+        machine.axis_of(b'Z'),
+    );
+    let mut p = from;
+    let dz = z.map_or(0.0, |z| to.get(z) - from.get(z));
+    if let Some(z) = z.filter(|_| dz > 0.0) {
+        p.set(z, to.get(z));
+        push(p);
+    }
+    // Every axis but Z reaches its end in the plane legs.
+    let mut plane_end = to;
+    if let Some(z) = z {
+        plane_end.set(z, p.get(z));
+    }
+    if let (Some(x), Some(y)) = (x, y) {
+        let (dx, dy) = (to.get(x) - p.get(x), to.get(y) - p.get(y));
+        let m = dx.abs().min(dy.abs());
+        if m > 0.0 && (dx.abs() - dy.abs()).abs() > 1e-9 {
+            let mut corner = plane_end;
+            corner.set(x, p.get(x) + m.copysign(dx));
+            corner.set(y, p.get(y) + m.copysign(dy));
+            push(corner);
+        }
+    }
+    if plane_end != p {
+        push(plane_end);
+    }
+    push(to);
+    (legs, count)
 }
 
 /// The earliest fraction of `from → to` at which a skip trigger fires.

@@ -26,6 +26,7 @@ pub(crate) mod travel;
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::RapidPath;
 use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Interpreter;
 use frame::ArcMap;
@@ -303,8 +304,15 @@ impl Interpreter<'_> {
         let mut emit = |e: Event| self.pending.push(e);
         match m.kind {
             MachineKind::Rapid(may_dog_leg) => {
-                if may_dog_leg && self.machine.params.g00_mode == 1 {
-                    let (corners, count) = line::dog_leg(self.machine, m.from, m.to);
+                let legs = match self.dialect.rapid {
+                    _ if !may_dog_leg => None,
+                    RapidPath::ByParameter if self.machine.params.g00_mode == 1 => {
+                        Some(line::dog_leg(self.machine, m.from, m.to))
+                    }
+                    RapidPath::ByParameter => None,
+                    RapidPath::ZPriority => Some(line::z_priority(self.machine, m.from, m.to)),
+                };
+                if let Some((corners, count)) = legs {
                     for &to in &corners[..count] {
                         emit(Event::Rapid {
                             loc: loc.clone(),

@@ -1,0 +1,826 @@
+//! Canned drilling cycles G73, G74, G76, G81–G89 and the hole patterns
+//! G134–G137.1 of the mill (Syntec 1.2.30–1.2.53), as `docs/cycles-spec.md`
+//! specifies them step by step.
+//!
+//! ```text
+//!   initial level ─ ─ ●─────────▶●  positioning (G00, in the plane)
+//!                     │ G98      │
+//!   R level   ─ ─ ─ ─ ┼ ─ ─ ─ ─ ─●  approach (G00); G99 returns here
+//!                     │          │
+//!                     │          ▼  the cycle's steps (feed, pecks,
+//!   Z point   ─ ─ ─ ─ ┴ ─ ─ ─ ─ ─●  dwell, spindle reversal, shift)
+//! ```
+//!
+//! Every point is a program point on the motion stage, so offsets, tool
+//! length, rotation, scaling and mirror apply to holes and levels alike;
+//! the G76/G87 shift is a machine direction (parameter 4020). Cutter
+//! compensation is suspended for the holes and starts again at the next
+//! move in the plane (Fanuc). A hole is announced by a `hole` event; steps
+//! that would not move are not reported. A block's holes are bounded
+//! (`MAX_HOLES`), since its events are held until it has succeeded.
+
+use crate::alarms;
+use crate::block::words::Words;
+use crate::dialect::{CycleRules, GOp, Group};
+use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
+use crate::interpreter::Interpreter;
+use crate::motion::{MoveKind, Target};
+use crate::state::CycleData;
+use vcnc_syntax::{Diagnostic, Span, Word};
+
+/// EIA G87's back-off between pecks: the chapter's 0.010 inch.
+const EIA_BACK_OFF_MM: f64 = 0.254;
+
+/// Most holes one block may drill (a K count or a pattern).
+const MAX_HOLES: u64 = 10_000;
+
+/// Below this two levels or points are the same, mm.
+pub(crate) const SAME_MM: f64 = 1e-6;
+
+/// The axes of a cycle: two positioning axes and the drilling axis
+/// (machine indices).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CycleAxes {
+    pub a: usize,
+    pub b: usize,
+    pub z: usize,
+}
+
+impl Interpreter<'_> {
+    /// Whether the cycles are read the EIA-274-D way.
+    fn eia(&self) -> bool {
+        self.dialect.cycles == CycleRules::Eia
+    }
+
+    /// Whether cycle `c` pecks by Q (and so needs Q > 0).
+    fn pecks_with_q(&self, c: Cycle) -> bool {
+        match c {
+            Cycle::G73 => true,
+            Cycle::G83 => true,
+            Cycle::G87 => self.eia(),
+            _ => false,
+        }
+    }
+
+    pub(crate) fn cycle_axes(&self, cmd: Span) -> Result<CycleAxes, Diagnostic> {
+        let axes = self.plane_axes(self.state.modal.plane, cmd)?;
+        let z = axes
+            .n
+            .ok_or_else(|| alarms::needs_axes(cmd, "a canned cycle"))?;
+        Ok(CycleAxes {
+            a: axes.a,
+            b: axes.b,
+            z,
+        })
+    }
+
+    /// Before step 1: G17/G18/G19 may not change the plane under a cycle
+    /// (the drilling axis would change under the stored levels).
+    pub(crate) fn check_cycle_plane(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let Some(p) = w.group(Group::Plane) else {
+            return Ok(());
+        };
+        let cancels = w.group(Group::Motion).is_some()
+            || w.group(Group::Cycle)
+                .is_some_and(|c| c.def.op == GOp::CycleCancel);
+        if self.state.cycle.code.is_none() || cancels {
+            return Ok(());
+        }
+        let plane = match p.def.op {
+            GOp::PlaneXy => Plane::Xy,
+            GOp::PlaneZx => Plane::Zx,
+            _ => Plane::Yz,
+        };
+        if plane != self.state.modal.plane {
+            return Err(alarms::cycle_plane(p.span));
+        }
+        Ok(())
+    }
+
+    /// Step 1 for the cycle codes: a cycle code enters the cycle mode (the
+    /// initial level is latched when it is entered from the cancelled
+    /// state); otherwise G80 and the group-01 codes cancel it and its data.
+    pub(crate) fn cycle_modes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let code = w.group(Group::Cycle);
+        if let Some(GOp::Cycle(c)) = code.map(|c| c.def.op) {
+            if self.state.cycle.code.is_none() {
+                let axes = self.cycle_axes(code.map_or(w.first, |c| c.span))?;
+                self.state.cycle = CycleData {
+                    initial: self.state.prog.get(axes.z),
+                    ..CycleData::OFF
+                };
+            }
+            self.state.cycle.code = Some(c);
+        } else if w.group(Group::Motion).is_some() || code.is_some() {
+            self.state.cycle = CycleData::OFF;
+        }
+        Ok(())
+    }
+
+    /// A block in cycle mode: drill K holes if it has an axis word of the
+    /// plane or the drilling axis, else only check its words.
+    pub(crate) fn drill(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let cmd = w.group(Group::Cycle).map_or(cmd, |c| c.span);
+        let axes = self.cycle_axes(cmd)?;
+        let letters: Vec<u8> = self.axis_words.iter().map(|a| a.letter).collect();
+        let letter = |i: usize| letters.get(i).copied();
+        let drills = [axes.a, axes.b, axes.z]
+            .iter()
+            .filter_map(|&i| letter(i))
+            .any(|l| w.get(l).is_some());
+        if !drills {
+            // R, Q, P are stored only by a block that drills (1.2.31).
+            for l in [b'R', b'Q', b'P', b'K'] {
+                if let Some(word) = w.get(l) {
+                    return Err(alarms::word_not_allowed(word.span, l));
+                }
+            }
+            return Ok(());
+        }
+        self.store_cycle_words(w, axes)?;
+        let count = match w.get(b'K') {
+            Some(k) => {
+                crate::block::convert::whole(&k, b'K', 0.0, 9999.0, "K is a repeat count 0-9999")?
+            }
+            None => 1,
+        };
+        let drill_letter = letter(axes.z).unwrap_or(b'Z');
+        // Where each hole is: the block's plane words (G91: once more per
+        // repeat), the drilling axis at the tool's level.
+        let keep =
+            |g: &mut crate::block::convert::Goal, prog: Pos| g.prog.set(axes.z, prog.get(axes.z));
+        if count == 0 {
+            // K0 stores the data and moves nothing (1.2.30).
+            return self.cycle_ready(cmd, w.get(drill_letter)).map(|_| ());
+        }
+        let c = self.cycle_ready(cmd, w.get(drill_letter))?;
+        let suspended = self.suspend_comp()?;
+        for _ in 0..count {
+            let mut goal = self.target(w, self.state.modal.incremental);
+            keep(&mut goal, self.state.prog);
+            self.hole(
+                c,
+                axes,
+                goal.prog.get(axes.a),
+                goal.prog.get(axes.b),
+                w,
+                cmd,
+            )?;
+        }
+        self.resume_comp(suspended);
+        Ok(())
+    }
+
+    /// Z, R, Q, P of a drilling block into the cycle data (levels resolved
+    /// to absolute program levels: under G91 R is from the initial level
+    /// and Z from the R level).
+    fn store_cycle_words(&mut self, w: &Words<'_>, axes: CycleAxes) -> Result<(), Diagnostic> {
+        let inc = self.state.modal.incremental;
+        if let Some(r) = w.get(b'R') {
+            let v = self.length_mm(&r);
+            self.state.cycle.r = Some(if inc { self.state.cycle.initial + v } else { v });
+        }
+        let z_letter = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
+        if let Some(z) = w.get(z_letter) {
+            let v = self.axis_value(axes.z, &z);
+            let r_level = self.state.cycle.r.unwrap_or(self.state.cycle.initial);
+            self.state.cycle.z = Some(if inc { r_level + v } else { v });
+        }
+        if let Some(q) = w.get(b'Q') {
+            let v = self.length_mm(&q);
+            let code = self.state.cycle.code;
+            let bad = match code {
+                Some(Cycle::G84) if self.eia() => false,
+                Some(Cycle::G84) => v < 0.0,
+                Some(c) => self.pecks_with_q(c) && v <= 0.0,
+                None => false,
+            };
+            if bad {
+                return Err(alarms::value_out_of_range(
+                    q.span,
+                    b'Q',
+                    q.value,
+                    "a peck depth Q is more than 0",
+                ));
+            }
+            self.state.cycle.q = Some(v);
+        }
+        if let Some(p) = w.get(b'P') {
+            if p.value < 0.0 {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    b'P',
+                    p.value,
+                    "a dwell is not negative",
+                ));
+            }
+            self.state.cycle.p_s = Some(self.seconds(&p));
+        }
+        Ok(())
+    }
+
+    /// Checks that the stored data can drill: Z and R known, Z below R (above
+    /// for G87), Q for the pecking cycles, the spindle for tapping.
+    fn cycle_ready(&self, cmd: Span, z_word: Option<Word>) -> Result<Cycle, Diagnostic> {
+        let data = self.state.cycle;
+        let c = data
+            .code
+            .ok_or_else(|| alarms::pattern_without_cycle(cmd))?;
+        // EIA: R is optional, the R level is then the initial level.
+        let r = if self.eia() {
+            Some(data.r.unwrap_or(data.initial))
+        } else {
+            data.r
+        };
+        let (Some(z), Some(r)) = (data.z, r) else {
+            let what = if self.eia() {
+                "Z (the hole depth)"
+            } else {
+                "Z (the hole bottom) and R (the R level)"
+            };
+            return Err(alarms::needs_word(cmd, c.as_str(), what));
+        };
+        let upward = c == Cycle::G87 && !self.eia();
+        if (upward && z <= r + SAME_MM) || (!upward && z >= r - SAME_MM) {
+            return Err(alarms::cycle_direction(
+                z_word.map_or(cmd, |w| w.span),
+                upward,
+            ));
+        }
+        if self.pecks_with_q(c) && data.q.is_none_or(|q| q <= 0.0) {
+            return Err(alarms::needs_word(
+                cmd,
+                c.as_str(),
+                "Q (the depth of each peck)",
+            ));
+        }
+        let turning =
+            matches!(self.state.spindle, SpindleDir::Cw | SpindleDir::Ccw) && self.state.rpm > 0.0;
+        let wanted = match c {
+            // EIA: a tap in either direction (a left-hand tap turns M04).
+            Cycle::G84 if self.eia() => Some(None),
+            Cycle::G84 => Some(Some(SpindleDir::Cw)),
+            Cycle::G74 => Some(Some(SpindleDir::Ccw)),
+            _ => None,
+        };
+        if let Some(dir) = wanted
+            && (!turning || dir.is_some_and(|d| d != self.state.spindle))
+        {
+            let cw = dir.map(|d| d == SpindleDir::Cw);
+            return Err(alarms::tapping_spindle(cmd, c.as_str(), cw));
+        }
+        Ok(c)
+    }
+
+    /// Cutter compensation is suspended for a cycle's holes (Fanuc): the
+    /// held move ends square to its path.
+    pub(crate) fn suspend_comp(&mut self) -> Result<bool, Diagnostic> {
+        if !self.comp.engaged() {
+            return Ok(false);
+        }
+        self.comp_finish()?;
+        Ok(self.state.modal.comp != crate::state::CompSide::Off)
+    }
+
+    /// After the holes: the next move in the plane starts compensation again.
+    pub(crate) fn resume_comp(&mut self, suspended: bool) {
+        if suspended {
+            self.comp.mode = crate::motion::comp::Mode::Starting;
+        }
+    }
+
+    /// One hole at program (a, b) with the stored data.
+    fn hole(
+        &mut self,
+        c: Cycle,
+        axes: CycleAxes,
+        a: f64,
+        b: f64,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let data = self.state.cycle;
+        let Some(zz) = data.z else {
+            return Err(alarms::needs_word(cmd, c.as_str(), "Z"));
+        };
+        // `cycle_ready` has checked that R is given where it is required.
+        let zr = data.r.unwrap_or(data.initial);
+        let mut at = self.state.prog;
+        at.set(axes.a, a);
+        at.set(axes.b, b);
+        at.set(axes.z, zz);
+        let at = self.state.frame.machine_of(at);
+        self.emit(|loc| Event::Hole { loc, cycle: c, at });
+        let eia = self.eia();
+        let ret = if eia || (self.state.modal.return_r && c != Cycle::G87) {
+            zr
+        } else {
+            data.initial
+        };
+        let mut s = Steps {
+            axes,
+            xy: (a, b),
+            w,
+            cmd,
+        };
+        // Positioning in the plane at the current level, then to R.
+        let z_now = self.state.prog.get(axes.z);
+        s.rapid(self, z_now)?;
+        if c == Cycle::G87 && !eia {
+            return self.back_bore(&mut s, zr, zz, data);
+        }
+        s.rapid(self, zr)?;
+        let feed = self.feed(cmd)?;
+        let dwell = data.p_s.filter(|p| *p > 0.0);
+        // A spindle the cycle stops or orients starts again as it turned.
+        let turning = self.state.spindle;
+        match c {
+            _ if eia => return self.eia_hole(&mut s, c, (zr, zz), data, feed),
+            Cycle::G81 => s.feed(self, zz, feed)?,
+            Cycle::G82 | Cycle::G89 => {
+                s.feed(self, zz, feed)?;
+                self.cycle_dwell(dwell);
+                if c == Cycle::G89 {
+                    s.feed(self, zr, feed)?;
+                }
+            }
+            Cycle::G73 | Cycle::G83 => self.pecks(&mut s, c, zr, zz, data, feed)?,
+            Cycle::G74 | Cycle::G84 => {
+                let (fwd, rev) = if c == Cycle::G84 {
+                    (SpindleDir::Cw, SpindleDir::Ccw)
+                } else {
+                    (SpindleDir::Ccw, SpindleDir::Cw)
+                };
+                let peck = data.q.filter(|q| *q > 0.0 && c == Cycle::G84);
+                self.tap(&mut s, (fwd, rev), (zr, zz), peck, dwell, feed)?;
+            }
+            Cycle::G85 => {
+                s.feed(self, zz, feed)?;
+                s.feed(self, zr, feed)?;
+            }
+            Cycle::G86 => {
+                s.feed(self, zz, feed)?;
+                self.cycle_spindle(SpindleDir::Stop);
+                s.rapid(self, ret)?;
+                self.cycle_spindle(turning);
+                return Ok(());
+            }
+            Cycle::G88 => {
+                s.feed(self, zz, feed)?;
+                self.cycle_dwell(dwell);
+                self.cycle_spindle(SpindleDir::Stop);
+                self.emit(|loc| Event::Wait {
+                    loc,
+                    reason: WaitReason::ManualMotion,
+                });
+                s.feed(self, zr, feed)?;
+                s.rapid(self, ret)?;
+                self.cycle_spindle(turning);
+                return Ok(());
+            }
+            Cycle::G76 => {
+                s.feed(self, zz, feed)?;
+                self.cycle_dwell(dwell);
+                self.cycle_spindle(SpindleDir::Orient);
+                let shift = self.shift_vector(axes, data);
+                s.shift(self, shift, zz)?;
+                s.shifted(self, shift, ret)?;
+                s.shift(self, (0.0, 0.0), ret)?;
+                self.cycle_spindle(turning);
+                return Ok(());
+            }
+            Cycle::G87 => {}
+        }
+        s.rapid(self, ret)
+    }
+
+    /// G73 (retract d) and G83 (back to R, down to d above the last depth).
+    fn pecks(
+        &mut self,
+        s: &mut Steps<'_, '_>,
+        c: Cycle,
+        zr: f64,
+        zz: f64,
+        data: CycleData,
+        feed: Feed,
+    ) -> Result<(), Diagnostic> {
+        let d = self.machine.params.peck_return_mm;
+        let back_to_r = c == Cycle::G83;
+        self.peck_moves(s, (zr, zz), data.q, d, back_to_r, feed)?;
+        self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
+        Ok(())
+    }
+
+    /// Pecks of depth q from zr down to zz: after each peck back to R and
+    /// down again to d above the last depth (`back_to_r`, G83), or back
+    /// off by d (G73, EIA G87).
+    fn peck_moves(
+        &mut self,
+        s: &mut Steps<'_, '_>,
+        (zr, zz): (f64, f64),
+        q: Option<f64>,
+        d: f64,
+        back_to_r: bool,
+        feed: Feed,
+    ) -> Result<(), Diagnostic> {
+        let q = q.unwrap_or(zr - zz);
+        let mut depth = zr;
+        loop {
+            let next = (depth - q).max(zz);
+            if back_to_r && depth < zr - SAME_MM {
+                // Back down to d above the last depth.
+                s.rapid(self, (depth + d).min(zr))?;
+            }
+            s.feed(self, next, feed)?;
+            if next <= zz + SAME_MM {
+                return Ok(());
+            }
+            if back_to_r {
+                s.rapid(self, zr)?;
+            } else {
+                s.rapid(self, next + d)?;
+            }
+            depth = next;
+        }
+    }
+
+    /// G74/G84: in with the spindle forward, out reversed; with a peck
+    /// depth, pecks (parameter 4001: type II backs off d, type III goes
+    /// back to R).
+    fn tap(
+        &mut self,
+        s: &mut Steps<'_, '_>,
+        (fwd, rev): (SpindleDir, SpindleDir),
+        (zr, zz): (f64, f64),
+        peck: Option<f64>,
+        dwell: Option<f64>,
+        feed: Feed,
+    ) -> Result<(), Diagnostic> {
+        let type_two = self.machine.params.tapping_type == 1;
+        let d = self.machine.params.peck_return_mm;
+        let mut depth = zr;
+        loop {
+            let next = match peck {
+                Some(q) => (depth - q).max(zz),
+                None => zz,
+            };
+            s.feed(self, next, feed)?;
+            self.cycle_dwell(dwell);
+            self.cycle_spindle(rev);
+            let last = next <= zz + SAME_MM;
+            let out = if last || !type_two { zr } else { next + d };
+            s.feed(self, out, feed)?;
+            self.cycle_dwell(dwell);
+            self.cycle_spindle(fwd);
+            if last {
+                return Ok(());
+            }
+            depth = next;
+        }
+    }
+
+    /// A hole of the EIA-274-D cycles (`docs/eia-spec.md` §5), after the
+    /// approach to R; the return is always to R.
+    fn eia_hole(
+        &mut self,
+        s: &mut Steps<'_, '_>,
+        c: Cycle,
+        (zr, zz): (f64, f64),
+        data: CycleData,
+        feed: Feed,
+    ) -> Result<(), Diagnostic> {
+        let dwell = data.p_s.filter(|p| *p > 0.0);
+        match c {
+            Cycle::G82 | Cycle::G89 => {
+                s.feed(self, zz, feed)?;
+                self.cycle_dwell(dwell);
+                if c == Cycle::G89 {
+                    s.feed(self, zr, feed)?;
+                }
+            }
+            // "Rapids back down to its previous depth": no clearance.
+            Cycle::G83 => self.peck_moves(s, (zr, zz), data.q, 0.0, true, feed)?,
+            // Chip breaking: back off 0.010 inch between pecks.
+            Cycle::G87 => self.peck_moves(s, (zr, zz), data.q, EIA_BACK_OFF_MM, false, feed)?,
+            Cycle::G84 => {
+                let fwd = self.state.spindle;
+                let rev = if fwd == SpindleDir::Ccw {
+                    SpindleDir::Cw
+                } else {
+                    SpindleDir::Ccw
+                };
+                self.tap(s, (fwd, rev), (zr, zz), None, None, feed)?;
+            }
+            Cycle::G85 => {
+                s.feed(self, zz, feed)?;
+                s.feed(self, zr, feed)?;
+            }
+            Cycle::G86 => {
+                // The cutter rapids out when the operator presses START.
+                s.feed(self, zz, feed)?;
+                self.emit(|loc| Event::Wait {
+                    loc,
+                    reason: WaitReason::CycleStart,
+                });
+            }
+            _ => s.feed(self, zz, feed)?,
+        }
+        s.rapid(self, zr)
+    }
+
+    /// G87 back boring: shifted down to R below the part, bore up to Z,
+    /// shifted out to the initial level.
+    fn back_bore(
+        &mut self,
+        s: &mut Steps<'_, '_>,
+        zr: f64,
+        zz: f64,
+        data: CycleData,
+    ) -> Result<(), Diagnostic> {
+        let shift = self.shift_vector(s.axes, data);
+        let feed = self.feed(s.cmd)?;
+        let z_now = self.state.prog.get(s.axes.z);
+        let turning = self.state.spindle;
+        self.cycle_spindle(SpindleDir::Orient);
+        s.shift(self, shift, z_now)?;
+        s.shifted(self, shift, zr)?;
+        s.shift(self, (0.0, 0.0), zr)?;
+        self.cycle_spindle(turning);
+        s.feed(self, zz, feed)?;
+        self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
+        self.cycle_spindle(SpindleDir::Orient);
+        s.shift(self, shift, zz)?;
+        s.shifted(self, shift, data.initial)?;
+        s.shift(self, (0.0, 0.0), data.initial)?;
+        self.cycle_spindle(turning);
+        Ok(())
+    }
+
+    /// The G76/G87 shift in program coordinates of the plane: |Q| along the
+    /// machine direction of parameter 4020.
+    fn shift_vector(&self, axes: CycleAxes, data: CycleData) -> (f64, f64) {
+        let q = data.q.unwrap_or(0.0).abs();
+        let mut m = Pos::default();
+        let (i, sign) = match self.machine.params.shift_direction {
+            0 => (axes.a, 1.0),
+            1 => (axes.a, -1.0),
+            2 => (axes.b, 1.0),
+            _ => (axes.b, -1.0),
+        };
+        m.set(i, sign * q);
+        // A machine direction, brought back through the frame's linear part.
+        let origin = self.state.frame.program_of(Pos::default());
+        let p = self.state.frame.program_of(m);
+        (
+            p.get(axes.a) - origin.get(axes.a),
+            p.get(axes.b) - origin.get(axes.b),
+        )
+    }
+
+    fn cycle_dwell(&mut self, seconds: Option<f64>) {
+        if let Some(seconds) = seconds {
+            self.emit(|loc| Event::Dwell { loc, seconds });
+        }
+    }
+
+    /// A spindle change inside a cycle (reversal, stop, orientation).
+    fn cycle_spindle(&mut self, dir: SpindleDir) {
+        let rpm = match dir {
+            SpindleDir::Cw | SpindleDir::Ccw => self.state.rpm,
+            _ => 0.0,
+        };
+        let (surface, keep) = (None, self.state.rpm);
+        self.state.spindle = dir;
+        self.state.rpm = keep;
+        self.emit(|loc| Event::Spindle {
+            loc,
+            dir,
+            rpm,
+            surface_m_per_min: surface,
+        });
+    }
+
+    /// A hole pattern G134–G137.1: the holes of the active cycle at the
+    /// pattern's positions, in the order of `docs/cycles-spec.md` §8.
+    pub(crate) fn pattern(&mut self, op: GOp, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let c = self.cycle_ready(cmd, None)?;
+        let axes = self.cycle_axes(cmd)?;
+        let (x, y) = {
+            let mut goal = self.target(w, self.state.modal.incremental);
+            goal.prog.set(axes.z, self.state.prog.get(axes.z));
+            (goal.prog.get(axes.a), goal.prog.get(axes.b))
+        };
+        let holes = self.pattern_holes(op, w, cmd, (x, y))?;
+        let suspended = self.suspend_comp()?;
+        for (a, b) in holes {
+            self.hole(c, axes, a, b, w, cmd)?;
+        }
+        self.resume_comp(suspended);
+        Ok(())
+    }
+
+    /// The hole positions of a pattern.
+    fn pattern_holes(
+        &self,
+        op: GOp,
+        w: &Words<'_>,
+        cmd: Span,
+        (x, y): (f64, f64),
+    ) -> Result<Vec<(f64, f64)>, Diagnostic> {
+        let need = |l: u8, what: &str| {
+            w.get(l)
+                .ok_or_else(|| alarms::needs_word(cmd, "a hole pattern", what))
+        };
+        let count = |word: Word, min: f64, why: &str| {
+            crate::block::convert::whole(&word, word.addr.0, min, 9999.0, why)
+        };
+        let positive = |word: Word, v: f64, why: &str| {
+            if v <= 0.0 {
+                Err(alarms::value_out_of_range(
+                    word.span,
+                    word.addr.0,
+                    word.value,
+                    why,
+                ))
+            } else {
+                Ok(v)
+            }
+        };
+        let mut out = Vec::new();
+        match op {
+            GOp::PatternCircle => {
+                let i = need(b'I', "I (the radius)")?;
+                let r = positive(i, self.length_mm(&i), "the radius I is more than 0")?;
+                let start = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j));
+                let k = need(b'K', "K (the number of holes)")?;
+                if k.point {
+                    return Err(alarms::no_decimal_point(k.span, b'K', "K counts holes"));
+                }
+                if k.value == 0.0 || k.value.abs() > 9999.0 {
+                    return Err(alarms::value_out_of_range(
+                        k.span,
+                        b'K',
+                        k.value,
+                        "K is ±1 to ±9999 holes",
+                    ));
+                }
+                let n = k.value.abs();
+                let step = 360.0 / n * k.value.signum();
+                let mut i = 0.0;
+                while i < n {
+                    let ang = (start + i * step).to_radians();
+                    out.push((x + r * ang.cos(), y + r * ang.sin()));
+                    i += 1.0;
+                }
+            }
+            GOp::PatternLine => {
+                let i = need(b'I', "I (the interval)")?;
+                let step = self.length_mm(&i);
+                if step == 0.0 {
+                    return Err(alarms::value_out_of_range(
+                        i.span,
+                        b'I',
+                        i.value,
+                        "the interval I is not 0",
+                    ));
+                }
+                let ang = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j)).to_radians();
+                let n = count(
+                    need(b'K', "K (the number of holes)")?,
+                    1.0,
+                    "K is 1 to 9999 holes",
+                )?;
+                for k in 0..n {
+                    let d = f64::from(k) * step;
+                    out.push((x + d * ang.cos(), y + d * ang.sin()));
+                }
+            }
+            GOp::PatternArc => {
+                let i = need(b'I', "I (the radius)")?;
+                let r = positive(i, self.length_mm(&i), "the radius I is more than 0")?;
+                let start = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j));
+                let n = count(
+                    need(b'K', "K (the number of holes)")?,
+                    1.0,
+                    "K is 1 to 9999 holes",
+                )?;
+                let p = need(b'P', "P (the angle between holes)")?;
+                let step = self.angle_deg(&p);
+                if step == 0.0 && n > 1 {
+                    return Err(alarms::value_out_of_range(
+                        p.span,
+                        b'P',
+                        p.value,
+                        "the angle step P is not 0",
+                    ));
+                }
+                for k in 0..n {
+                    let ang = (start + f64::from(k) * step).to_radians();
+                    out.push((x + r * ang.cos(), y + r * ang.sin()));
+                }
+            }
+            _ => {
+                let (iw, jw) = (
+                    need(b'I', "I (the X interval)")?,
+                    need(b'J', "J (the Y interval)")?,
+                );
+                let (di, dj) = (self.length_mm(&iw), self.length_mm(&jw));
+                let per_row = count(
+                    need(b'P', "P (holes per row)")?,
+                    1.0,
+                    "P is 1 to 9999 holes",
+                )?;
+                let rows = count(
+                    need(b'K', "K (the number of rows)")?,
+                    1.0,
+                    "K is 1 to 9999 rows",
+                )?;
+                if u64::from(per_row) * u64::from(rows) > MAX_HOLES {
+                    return Err(alarms::too_many_holes(cmd, MAX_HOLES));
+                }
+                if di == 0.0 && per_row > 1 {
+                    return Err(alarms::value_out_of_range(
+                        iw.span,
+                        b'I',
+                        iw.value,
+                        "the interval I is not 0",
+                    ));
+                }
+                if dj == 0.0 && rows > 1 {
+                    return Err(alarms::value_out_of_range(
+                        jw.span,
+                        b'J',
+                        jw.value,
+                        "the interval J is not 0",
+                    ));
+                }
+                for row in 0..rows {
+                    for k in 0..per_row {
+                        // Serpentine: every other row runs back.
+                        let col = if row % 2 == 0 { k } else { per_row - 1 - k };
+                        out.push((x + f64::from(col) * di, y + f64::from(row) * dj));
+                    }
+                }
+            }
+        }
+        if out.len() as u64 > MAX_HOLES {
+            return Err(alarms::too_many_holes(cmd, MAX_HOLES));
+        }
+        Ok(out)
+    }
+}
+
+/// The moves of one hole: to a level at the hole's position, or shifted.
+struct Steps<'w, 'b> {
+    axes: CycleAxes,
+    xy: (f64, f64),
+    w: &'w Words<'b>,
+    cmd: Span,
+}
+
+impl Steps<'_, '_> {
+    fn point(&self, it: &Interpreter<'_>, (da, db): (f64, f64), z: f64) -> Pos {
+        let mut p = it.state.prog;
+        p.set(self.axes.a, self.xy.0 + da);
+        p.set(self.axes.b, self.xy.1 + db);
+        p.set(self.axes.z, z);
+        p
+    }
+
+    /// A move to `p` unless the tool is there already.
+    fn go(&self, it: &mut Interpreter<'_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
+        let here = it.state.prog;
+        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
+        if same {
+            return Ok(());
+        }
+        it.straight(kind, Target::Program(p), self.w, self.cmd)
+    }
+
+    fn rapid(&mut self, it: &mut Interpreter<'_>, z: f64) -> Result<(), Diagnostic> {
+        let p = self.point(it, (0.0, 0.0), z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+
+    fn feed(&mut self, it: &mut Interpreter<'_>, z: f64, feed: Feed) -> Result<(), Diagnostic> {
+        let p = self.point(it, (0.0, 0.0), z);
+        self.go(it, MoveKind::Feed(feed), p)
+    }
+
+    /// A rapid in the plane to the shifted (or, with (0,0), centred) point.
+    fn shift(&mut self, it: &mut Interpreter<'_>, s: (f64, f64), z: f64) -> Result<(), Diagnostic> {
+        let p = self.point(it, s, z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+
+    /// A rapid along the drilling axis at the shifted point.
+    fn shifted(
+        &mut self,
+        it: &mut Interpreter<'_>,
+        s: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, s, z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+}
