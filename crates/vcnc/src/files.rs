@@ -3,9 +3,129 @@
 //! through positioned reads, never loaded whole.
 
 use std::fs::File;
-use std::io;
+use std::io::{self, Read};
 use std::path::{Path, PathBuf};
-use vcnc_syntax::TextSource;
+use std::sync::Arc;
+use vcnc_syntax::{MemSource, TextSource};
+
+/// Where a main program comes from: a file, or standard input (`-`),
+/// which is read whole into memory.
+#[derive(Debug, Clone)]
+pub enum Input {
+    /// A file on disk.
+    File(PathBuf),
+    /// Standard input's text.
+    Stdin(Arc<[u8]>),
+}
+
+impl Input {
+    /// `-` reads standard input now; anything else is a file.
+    pub fn from_arg(path: &Path) -> Result<Input, String> {
+        if path.as_os_str() == "-" {
+            let mut text = Vec::new();
+            io::stdin()
+                .lock()
+                .read_to_end(&mut text)
+                .map_err(|e| format!("cannot read standard input: {e}"))?;
+            return Ok(Input::Stdin(text.into()));
+        }
+        Ok(Input::File(path.to_path_buf()))
+    }
+
+    /// How the program is named in reports.
+    pub fn name(&self) -> String {
+        match self {
+            Input::File(p) => p.display().to_string(),
+            Input::Stdin(_) => "<stdin>".to_string(),
+        }
+    }
+
+    /// The program's text source.
+    pub fn open(&self) -> Result<Box<dyn TextSource>, String> {
+        match self {
+            Input::File(p) => open_program(p),
+            Input::Stdin(text) => Ok(Box::new(MemSource(text.to_vec()))),
+        }
+    }
+
+    /// Where its called programs are, unless `--program-dir` says.
+    pub fn dir(&self) -> PathBuf {
+        match self {
+            Input::File(p) => parent_dir(p),
+            Input::Stdin(_) => PathBuf::from("."),
+        }
+    }
+
+    /// The raw bytes of the line that starts at `offset` (no line end).
+    pub fn line_at(&self, offset: u64) -> Option<Vec<u8>> {
+        let mut buf = match self {
+            Input::File(p) => {
+                use std::io::{Seek, SeekFrom};
+                let mut f = File::open(p).ok()?;
+                f.seek(SeekFrom::Start(offset)).ok()?;
+                let mut buf = vec![0; 4096];
+                let n = f.read(&mut buf).ok()?;
+                buf.truncate(n);
+                buf
+            }
+            Input::Stdin(text) => {
+                let start = usize::try_from(offset).ok()?;
+                let rest = text.get(start..)?;
+                rest[..rest.len().min(4096)].to_vec()
+            }
+        };
+        let mut end = buf.iter().position(|b| *b == b'\n').unwrap_or(buf.len());
+        if end > 0 && buf[end - 1] == b'\r' {
+            end -= 1;
+        }
+        buf.truncate(end);
+        Some(buf)
+    }
+}
+
+/// Program files under `root` (itself when it is a file): the usual
+/// extensions, and extension-less `O1234` files; sorted, so that reports
+/// come in a stable order.
+pub fn programs_under(root: &Path) -> Result<Vec<PathBuf>, String> {
+    let meta =
+        std::fs::metadata(root).map_err(|e| format!("cannot open {}: {e}", root.display()))?;
+    if !meta.is_dir() {
+        return Ok(vec![root.to_path_buf()]);
+    }
+    let mut out = Vec::new();
+    let mut dirs = vec![root.to_path_buf()];
+    while let Some(dir) = dirs.pop() {
+        let entries =
+            std::fs::read_dir(&dir).map_err(|e| format!("cannot list {}: {e}", dir.display()))?;
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            if kind.is_dir() {
+                dirs.push(path);
+            } else if kind.is_file() && is_program_name(&path) {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+/// Whether a file name looks like a part program.
+fn is_program_name(path: &Path) -> bool {
+    const EXTENSIONS: [&str; 7] = ["nc", "ngc", "tap", "cnc", "gcode", "mpf", "txt"];
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(ext) => EXTENSIONS.iter().any(|x| x.eq_ignore_ascii_case(ext)),
+        None => path.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+            let mut chars = n.chars();
+            matches!(chars.next(), Some('O' | 'o'))
+                && n.len() > 1
+                && chars.all(|c| c.is_ascii_digit())
+        }),
+    }
+}
 
 /// A file read at offsets.
 pub struct FileSource(File);

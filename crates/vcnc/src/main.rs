@@ -2,18 +2,21 @@
 //! controller. This is the only crate that touches files, the terminal and
 //! the process exit code; everything else is a library.
 //!
-//! Exit codes: 0 clean run, 1 the program raised an alarm, 2 usage error
-//! (bad arguments, unreadable file, invalid machine file).
+//! Exit codes (docs/cli.md): 0 clean run, 1 an alarm (or a warning under
+//! `--deny-warnings`), 2 usage error (bad arguments, unreadable file,
+//! invalid machine file).
 
+mod check;
 mod cli;
 mod files;
 mod render;
 
 use clap::Parser;
-use cli::{Cli, Command, Common, Format};
+use cli::{Cli, Command, Format, Options, RunArgs};
+use files::Input;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
-use vcnc_interp::{Dialect, Interpreter, Machine, Outcome, Sink};
+use vcnc_interp::{Dialect, Event, Interpreter, Machine, Outcome, Sink};
 use vcnc_output::{CsvSink, GcodeSink, JsonlSink, Summary};
 
 fn main() -> ExitCode {
@@ -29,22 +32,19 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
-        Command::Check { common } => check(&common),
-        Command::Run { common, format } => run_events(&common, format),
+        Command::Check(args) => check::check(&args),
+        Command::Run(args) => run_events(&args),
     }
 }
 
-/// Everything a run needs, resolved from the common options.
-struct Setup {
-    /// The main program, opened before any output is written so that a
-    /// missing file is a usage error with nothing on stdout.
-    main: Option<Box<dyn vcnc_syntax::TextSource>>,
-    machine: Machine,
-    dialect: Dialect,
-    options: vcnc_interp::Options,
+/// The machine and dialect the options ask for.
+pub(crate) struct Setup {
+    pub machine: Machine,
+    pub dialect: Dialect,
+    pub options: vcnc_interp::Options,
 }
 
-fn setup(c: &Common) -> Result<Setup, String> {
+pub(crate) fn setup(c: &Options) -> Result<Setup, String> {
     let dialect = Dialect::by_name(&c.dialect).ok_or_else(|| {
         format!(
             "unknown dialect {:?}: use one of {}",
@@ -66,66 +66,46 @@ fn setup(c: &Common) -> Result<Setup, String> {
         optional_stop: c.optional_stop,
     };
     Ok(Setup {
-        main: Some(files::open_program(&c.file)?),
         machine,
         dialect,
         options,
     })
 }
 
-/// Runs the program of `c` into `sink`.
-/// Returns how the run ended and whether it ended in diameter programming.
-fn execute<S: Sink>(c: &Common, s: &mut Setup, sink: &mut S) -> Result<(Outcome, bool), String> {
-    let main = s.main.take().ok_or("the program was already run")?;
-    let dir = c
-        .program_dir
-        .clone()
-        .unwrap_or_else(|| files::parent_dir(&c.file));
+/// Runs the program `input` into `sink`. Returns how the run ended and
+/// whether it ended in diameter programming.
+pub(crate) fn execute<S: Sink>(
+    c: &Options,
+    s: &Setup,
+    input: &Input,
+    sink: &mut S,
+) -> Result<(Outcome, bool), String> {
+    let main = input.open()?;
+    let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
     let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
     let outcome = interp.run(main, &mut store, sink);
     Ok((outcome, interp.state().modal.diameter))
 }
 
-fn check(c: &Common) -> Result<ExitCode, String> {
-    let mut s = setup(c)?;
-    let mut summary = Summary::new(&s.machine);
-    let (outcome, diameter) = execute(c, &mut s, &mut summary)?;
-    if let Outcome::Alarm(d) = &outcome {
-        eprint!("{}", render::diagnostic(d, &c.file));
-    }
-    let mut out = std::io::stdout().lock();
-    let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
-    render::summary(
-        &mut out,
-        c,
-        &s.dialect,
-        &s.machine,
-        &summary,
-        &outcome,
-        diameter_axis,
-    )
-    .map_err(|e| e.to_string())?;
-    Ok(exit_code(&outcome))
-}
-
-fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
-    let mut s = setup(c)?;
+fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
+    let s = setup(&args.opts)?;
+    // Opened before any output is written, so that a missing file is a
+    // usage error with nothing on stdout.
+    let input = Input::from_arg(&args.file)?;
+    drop(input.open()?);
     // The JSON-lines sink buffers itself; the others go through a BufWriter.
     let out = std::io::stdout().lock();
     // One monomorphic run per format: the sink is on the hot path.
-    let (outcome, written) = match format {
-        Format::Jsonl => {
-            let sink = JsonlSink::new(out, &s.machine);
-            stream(c, &mut s, sink)?
-        }
+    let (outcome, warnings, written) = match args.format {
+        Format::Jsonl => stream(args, &s, &input, JsonlSink::new(out, &s.machine))?,
         Format::Csv => {
             let sink = CsvSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
-            stream(c, &mut s, sink)?
+            stream(args, &s, &input, sink)?
         }
         Format::Gcode => {
             let sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
-            stream(c, &mut s, sink)?
+            stream(args, &s, &input, sink)?
         }
     };
     match written {
@@ -133,27 +113,56 @@ fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
         Err(e) => return Err(format!("writing output: {e}")),
         Ok(()) => {}
     }
+    eprint!("{}", render::warnings(&warnings, &input));
     if let Outcome::Alarm(d) = &outcome {
-        eprint!("{}", render::diagnostic(d, &c.file));
+        eprint!("{}", render::diagnostic(d, &input));
     }
     let _ = std::io::stderr().flush();
-    Ok(exit_code(&outcome))
+    let denied = args.deny_warnings && warnings.warning_total() > 0;
+    Ok(exit_code(&outcome, denied))
 }
+
+/// A sink that passes events on and keeps the warnings (in a summary) for
+/// the terminal.
+struct Tap<S> {
+    inner: S,
+    warnings: Summary,
+}
+
+impl<S: Sink> Sink for Tap<S> {
+    fn event(&mut self, e: &Event) {
+        if matches!(e, Event::Warning(_)) {
+            self.warnings.event(e);
+        }
+        self.inner.event(e);
+    }
+    fn is_done(&self) -> bool {
+        self.inner.is_done()
+    }
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.inner.finish()
+    }
+}
+
+type Streamed = (Outcome, Summary, std::io::Result<()>);
 
 /// Runs into `sink` and flushes it.
-fn stream<S: Sink>(
-    c: &Common,
-    s: &mut Setup,
-    mut sink: S,
-) -> Result<(Outcome, std::io::Result<()>), String> {
-    let (outcome, _) = execute(c, s, &mut sink)?;
-    Ok((outcome, sink.finish()))
+fn stream<S: Sink>(args: &RunArgs, s: &Setup, input: &Input, sink: S) -> Result<Streamed, String> {
+    let mut tap = Tap {
+        inner: sink,
+        warnings: Summary::new(&s.machine),
+    };
+    let (outcome, _) = execute(&args.opts, s, input, &mut tap)?;
+    let written = tap.finish();
+    Ok((outcome, tap.warnings, written))
 }
 
-fn exit_code(o: &Outcome) -> ExitCode {
+/// 1 for an alarm, or for warnings when they are denied.
+pub(crate) fn exit_code(o: &Outcome, denied_warnings: bool) -> ExitCode {
     match o {
+        Outcome::Alarm(_) => ExitCode::from(1),
+        _ if denied_warnings => ExitCode::from(1),
         // Stopped: the reader of the output went away (`vcnc run | head`).
         Outcome::Ended(_) | Outcome::Stopped => ExitCode::SUCCESS,
-        Outcome::Alarm(_) => ExitCode::from(1),
     }
 }

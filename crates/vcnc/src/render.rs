@@ -1,28 +1,20 @@
 //! Rendering for people: alarms like rustc diagnostics (annotate-snippets)
 //! and the `vcnc check` summary.
 
-use crate::cli::Common;
+use crate::files::Input;
 use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
-use std::io::{self, Read, Seek, SeekFrom, Write};
-use std::path::Path;
+use std::io::{self, Write};
 use vcnc_interp::{Dialect, Machine, Outcome, Pos};
 use vcnc_output::Summary;
 use vcnc_syntax::Diagnostic;
 
-/// The source line of a diagnostic, read back from its file, as raw bytes.
-fn source_line(d: &Diagnostic, main: &Path) -> Option<Vec<u8>> {
-    let path = d.file.as_deref().map_or(main, Path::new);
-    let mut f = std::fs::File::open(path).ok()?;
-    f.seek(SeekFrom::Start(d.line_offset)).ok()?;
-    let mut buf = vec![0; 4096];
-    let n = f.read(&mut buf).ok()?;
-    buf.truncate(n);
-    let mut end = buf.iter().position(|b| *b == b'\n').unwrap_or(buf.len());
-    if end > 0 && buf[end - 1] == b'\r' {
-        end -= 1;
+/// The source line of a diagnostic, read back from its program, as raw
+/// bytes.
+fn source_line(d: &Diagnostic, main: &Input) -> Option<Vec<u8>> {
+    match &d.file {
+        Some(path) => Input::File(path.into()).line_at(d.line_offset),
+        None => main.line_at(d.line_offset),
     }
-    buf.truncate(end);
-    Some(buf)
 }
 
 /// A byte offset of the raw line as an offset into its lossy UTF-8 text
@@ -37,10 +29,15 @@ fn lossy_offset(raw: &[u8], text: &str, byte: usize) -> usize {
     at
 }
 
-/// An alarm with its source line and a caret, like rustc.
-pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
-    let file = d.file.clone().unwrap_or_else(|| main.display().to_string());
-    let title = format!("alarm: {}", d.message);
+/// An alarm or a warning with its source line and a caret, like rustc.
+pub fn diagnostic(d: &Diagnostic, main: &Input) -> String {
+    let file = d.file.clone().unwrap_or_else(|| main.name());
+    let warning = d.code.is_warning();
+    let (level, title) = if warning {
+        (Level::WARNING, d.message.clone())
+    } else {
+        (Level::ERROR, format!("alarm: {}", d.message))
+    };
     let renderer = if std::env::var_os("NO_COLOR").is_none() && io_is_terminal() {
         Renderer::styled()
     } else {
@@ -51,7 +48,7 @@ pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
             let line = String::from_utf8_lossy(&raw).into_owned();
             let start = lossy_offset(&raw, &line, d.span.start as usize);
             let end = lossy_offset(&raw, &line, d.span.end as usize).max(start);
-            let report = [Level::ERROR
+            let report = [level
                 .primary_title(title)
                 .id(d.code.as_str())
                 .element(
@@ -68,7 +65,8 @@ pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
             renderer.render(&report)
         }
         None => format!(
-            "error[{}]: {} at {}:{}:{}\n  help: {}",
+            "{}[{}]: {} at {}:{}:{}\n  help: {}",
+            if warning { "warning" } else { "error" },
             d.code.as_str(),
             d.message,
             file,
@@ -78,6 +76,27 @@ pub fn diagnostic(d: &Diagnostic, main: &Path) -> String {
         ),
     };
     format!("{text}\n")
+}
+
+/// Warnings shown on the terminal for one program; the rest are counted.
+pub const SHOWN_WARNINGS: usize = 20;
+
+/// The warnings of a run for stderr: the first [`SHOWN_WARNINGS`], then
+/// how many more there were.
+pub fn warnings(s: &Summary, main: &Input) -> String {
+    let mut out = String::new();
+    for d in s.warnings.iter().take(SHOWN_WARNINGS) {
+        out.push_str(&diagnostic(d, main));
+    }
+    let total = s.warning_total();
+    let shown = s.warnings.len().min(SHOWN_WARNINGS) as u64;
+    if total > shown {
+        out.push_str(&format!(
+            "warning: {} more warnings not shown\n",
+            total - shown
+        ));
+    }
+    out
 }
 
 fn io_is_terminal() -> bool {
@@ -100,10 +119,10 @@ fn duration(s: f64) -> String {
     }
 }
 
-/// The summary block of `vcnc check`.
+/// The summary block of `vcnc check` for one program.
 pub fn summary(
     out: &mut impl Write,
-    c: &Common,
+    name: &str,
     dialect: &Dialect,
     machine: &Machine,
     s: &Summary,
@@ -112,12 +131,14 @@ pub fn summary(
 ) -> io::Result<()> {
     writeln!(
         out,
-        "program    {} ({} dialect, {})",
-        c.file.display(),
-        dialect.name,
-        machine.name
+        "program    {name} ({} dialect, {})",
+        dialect.name, machine.name
     )?;
     match outcome {
+        Outcome::Ended(vcnc_interp::EndCode::M99) => writeln!(
+            out,
+            "result     one pass, ended by M99 (a machine repeats it for ever)"
+        )?,
         Outcome::Ended(code) => writeln!(out, "result     ended by {}", code.as_str())?,
         Outcome::Stopped => writeln!(out, "result     stopped (output closed)")?,
         Outcome::Alarm(d) => writeln!(
@@ -195,6 +216,25 @@ pub fn summary(
         Some((lo, hi)) => writeln!(out, "spindle    {lo:.0} .. {hi:.0} rpm")?,
         None => writeln!(out, "spindle    not started")?,
     }
+    if s.warning_total() > 0 {
+        let by_code: Vec<String> = s
+            .warning_counts
+            .iter()
+            .map(|(c, n)| format!("{} {n}", c.as_str()))
+            .collect();
+        writeln!(
+            out,
+            "warnings   {} ({})",
+            s.warning_total(),
+            by_code.join(", ")
+        )?;
+    }
+    if !machine.has_travel_limits() {
+        writeln!(
+            out,
+            "travel     not checked: the machine has no travel limits (give --machine FILE)"
+        )?;
+    }
     Ok(())
 }
 
@@ -204,6 +244,7 @@ fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) ->
         .axis_letters()
         .iter()
         .enumerate()
+        .filter(|(i, _)| s.reports_axis(*i))
         .map(|(i, l)| {
             if diameter_axis == Some(*l) {
                 format!(

@@ -111,7 +111,7 @@ fn check_bracket_prints_the_summary() {
     assert_eq!(
         stdout(&o),
         "\
-program    examples/bracket.nc (syntec dialect, generic 3-axis mill)
+program    examples/bracket.nc (syntec dialect, generic mill)
 result     ended by M30
 cycle time 33.7s (distance/feed estimate, no acceleration)
 rapid      167.928 mm
@@ -119,6 +119,7 @@ cutting    349.540 mm
 extents    X -10.000 .. 60.000   Y -10.000 .. 40.000   Z -2.000 .. 50.000 (machine mm)
 tools      T1
 spindle    2400 rpm
+travel     not checked: the machine has no travel limits (give --machine FILE)
 "
     );
     assert_eq!(stderr(&o), "");
@@ -131,7 +132,7 @@ fn check_names_the_dialect() {
     assert_eq!(code(&o), 1);
     let out = stdout(&o);
     assert!(
-        out.starts_with("program    examples/bracket.nc (fanuc dialect, generic 3-axis mill)\n"),
+        out.starts_with("program    examples/bracket.nc (fanuc dialect, generic mill)\n"),
         "{out}"
     );
     assert!(
@@ -209,7 +210,7 @@ fn run_csv_has_a_header_and_one_row_per_event() {
     let header = lines.next().expect("header");
     assert_eq!(
         header,
-        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help,linear,tool_offset_x,tool_offset_y,tool_offset_z"
+        "type,line,file,x,y,z,a,b,c,center_x,center_y,center_z,center_a,center_b,center_c,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help,linear,tool_offset_x,tool_offset_y,tool_offset_z,tool_offset_a,tool_offset_b,tool_offset_c"
     );
     let columns = header.split(',').count();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
@@ -239,6 +240,8 @@ fn run_csv_has_a_header_and_one_row_per_event() {
         ],
         ["60.0", "0.0", "50.0", "0.0", "ccw", "800.0"]
     );
+    // The rotary axes of the built-in mill stay empty until they move.
+    assert_eq!([arc[col("a")], arc[col("center_c")]], ["", ""]);
 }
 
 #[test]
@@ -477,7 +480,11 @@ fn an_alarm_in_a_called_program_names_its_file() {
     let dir = TempDir::new("sub-alarm");
     dir.write("main.nc", "G90 G00 X1.\nM98 P10\nM30\n");
     let sub = dir.write("O0010.nc", "G00 Y2.\n  G01 X5000. F100\nM99\n");
-    let o = vcnc_in(dir.path(), &["run", "main.nc"]);
+    let limited = workspace().join("tests/fixtures/machines/mill_travel_limits.toml");
+    let o = vcnc_in(
+        dir.path(),
+        &["run", "main.nc", "--machine", limited.to_str().unwrap()],
+    );
     assert_eq!(code(&o), 1);
     let events = jsonl(&o);
     let alarm = events.last().unwrap();
@@ -523,9 +530,11 @@ fn assert_usage_error(o: &Output, needle: &str) {
 #[test]
 fn unknown_dialect_is_a_usage_error() {
     let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "heidenhain"]);
-    assert_usage_error(
-        &o,
-        "unknown dialect \"heidenhain\": use one of syntec, fanuc",
+    assert_usage_error(&o, "invalid value 'heidenhain' for '--dialect");
+    assert!(
+        stderr(&o).contains("[possible values: syntec, fanuc, lathe, eia, grbl, haas]"),
+        "{}",
+        stderr(&o)
     );
     assert_eq!(stdout(&o), "");
 }
@@ -663,7 +672,11 @@ fn program_dir_finds_called_programs() {
     );
 
     // Without --program-dir the program's own directory is searched: no O0010.
-    let o = vcnc_in(dir.path(), &["run", "main.nc"]);
+    let limited = workspace().join("tests/fixtures/machines/mill_travel_limits.toml");
+    let o = vcnc_in(
+        dir.path(),
+        &["run", "main.nc", "--machine", limited.to_str().unwrap()],
+    );
     assert_eq!(code(&o), 1);
     let events = jsonl(&o);
     let alarm = events.last().unwrap();
@@ -780,35 +793,35 @@ fn an_alarm_on_a_gbk_line_is_rendered_without_panic() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Regression: feed per revolution with the spindle stopped used to be
-/// flattened as `F0`, which LinuxCNC rejects; it stays G95.
+/// Feed per revolution with the spindle stopped cannot move (E342); with
+/// the spindle turning it flattens to feed per minute at the speed in
+/// force. Regression: it used to be flattened as `F0`, which LinuxCNC
+/// rejects.
 #[test]
-fn feed_per_rev_with_the_spindle_stopped_stays_g95_in_the_flattened_program() {
-    let dir = std::env::temp_dir().join(format!("vcnc-cli-g95-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("g95.nc");
-    std::fs::write(&file, "G95 G01 X10. F0.1\nS1000 M03\nX20.\nM30\n").unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(["run", "--format", "gcode"])
-        .arg(&file)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("G1 X10. Y0. Z0. G95 F0.1\n"), "{stdout}");
+fn feed_per_rev_flattens_at_the_spindle_speed_and_alarms_when_stopped() {
+    let dir = TempDir::new("g95");
+    dir.write("stopped.nc", "G95 G01 X10. F0.1\nS1000 M03\nX20.\nM30\n");
+    let o = vcnc_in(dir.path(), &["run", "--format", "gcode", "stopped.nc"]);
+    assert_eq!(code(&o), 1);
+    let text = stdout(&o);
+    assert!(text.contains("(ALARM E342 line 1:"), "{text}");
+    dir.write("turning.nc", "S1000 M03\nG95 G01 X10. F0.1\nX20.\nM30\n");
+    let o = vcnc_in(dir.path(), &["run", "--format", "gcode", "turning.nc"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let text = stdout(&o);
     // Regression: the flattened program starts where the source machine does.
     assert!(
-        stdout.contains("G21 G90 G94 G17\nG0 X0. Y0. Z0. (power-on position)\n"),
-        "{stdout}"
+        text.contains("G21 G90 G94 G17\nG0 X0. Y0. Z0. (power-on position)\n"),
+        "{text}"
     );
     // 0.1 mm/rev at 1000 rpm is 100 mm/min.
-    assert!(stdout.contains("G1 X20. Y0. Z0. G94 F100\n"), "{stdout}");
-    std::fs::remove_dir_all(&dir).ok();
+    assert!(text.contains("G1 X10. Y0. Z0. F100\n"), "{text}");
 }
 
 /// `vcnc run big.nc | head -1`: when the reader goes away the run stops at
-/// once. The program here never ends by itself (a main program ending in
-/// M99 starts again) and would run until the jump limit alarms (exit 1);
-/// stopping because the output closed is a clean exit 0.
+/// once. The program here runs a subprogram 99,999,999 times and would run
+/// until the block limit alarms (exit 1); stopping because the output
+/// closed is a clean exit 0.
 #[test]
 fn run_stops_when_its_reader_goes_away() {
     use std::io::{BufRead, BufReader};
@@ -816,7 +829,11 @@ fn run_stops_when_its_reader_goes_away() {
     let dir = std::env::temp_dir().join(format!("vcnc_head_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("forever.nc");
-    std::fs::write(&file, "G91 G01 X0.001 F1000.\nG01 X-0.001\nM99\n").unwrap();
+    std::fs::write(
+        &file,
+        "S1000 M03\nM98 P2 L99999999\nM30\nO0002\nG91 G01 X0.001 F1000.\nG01 X-0.001\nM99\n",
+    )
+    .unwrap();
     let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
         .args(["run", file.to_str().unwrap()])
         .stdout(Stdio::piped())
@@ -826,7 +843,7 @@ fn run_stops_when_its_reader_goes_away() {
     let mut out = BufReader::new(child.stdout.take().unwrap());
     let mut first = String::new();
     out.read_line(&mut first).unwrap();
-    assert!(first.starts_with("{\"type\":\"feed\""), "{first}");
+    assert!(first.starts_with("{\"type\":\"spindle\""), "{first}");
     drop(out);
     let status = child.wait().unwrap();
     std::fs::remove_dir_all(&dir).ok();

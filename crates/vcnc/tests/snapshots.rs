@@ -53,8 +53,12 @@ fn alarm_arc_end_off_the_circle() {
 fn alarm_over_travel_points_at_the_axis_word() {
     insta::assert_snapshot!(vcnc_on(
         "travel",
-        "G00 X10. Y10.\nG01 X20. Y1200. F500.\nM30\n",
-        &["check"]
+        "S1000 M03\nG00 X10. Y10.\nG01 X20. Y1200. F500.\nM30\n",
+        &[
+            "check",
+            "--machine",
+            "tests/fixtures/machines/mill_travel_limits.toml"
+        ]
     ));
 }
 
@@ -87,5 +91,16 @@ fn check_summary_of_a_lathe_program() {
         "lathe",
         "G0 X45 Z130\nG81 X40 Z100 R15 I-3 K-1 F100\nM02\n",
         &["check", "--dialect", "lathe"]
+    ));
+}
+
+#[test]
+fn warnings_are_rendered_and_counted() {
+    // A point-less length among pointed ones, a cut with the spindle
+    // stopped, an unknown M code and no program end.
+    insta::assert_snapshot!(vcnc_on(
+        "warn",
+        "G90 G00 X10. Y10.\nG01 X20 F500.\nM31\n",
+        &["check"]
     ));
 }

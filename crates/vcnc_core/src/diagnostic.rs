@@ -31,6 +31,11 @@ macro_rules! codes {
                 }
             }
 
+            /// Whether this is a warning (`W…`): reported, the run goes on.
+            pub fn is_warning(self) -> bool {
+                self.as_str().starts_with('W')
+            }
+
             /// A short title (the first column of `docs/alarms.md`).
             pub fn title(self) -> &'static str {
                 match self {
@@ -87,6 +92,9 @@ codes! {
     E324 => "plane change in a canned cycle",
     E325 => "pocket smaller than the tool",
     E326 => "one block expands to too many moves",
+    E340 => "probe did not trip",
+    E341 => "spindle too fast for the thread's lead",
+    E342 => "feed per revolution with the spindle stopped",
     E401 => "program number not found",
     E402 => "sequence number not found",
     E403 => "subprogram nesting too deep",
@@ -99,6 +107,13 @@ codes! {
     E501 => "soft over-travel",
     E502 => "reference point not defined",
     E503 => "offset number out of range",
+    W101 => "length without a decimal point in a program that writes points",
+    W102 => "feed above the machine's maximum",
+    W103 => "spindle speed above the machine's maximum",
+    W104 => "cutting with the spindle stopped",
+    W105 => "M code the controller does not know",
+    W106 => "program ends without M02 or M30",
+    W107 => "M99 repeats the main program",
 }
 
 /// One alarm: what, where, and how to fix it.
@@ -172,20 +187,21 @@ mod catalogue_tests {
         let doc = include_str!("../../../docs/alarms.md");
         let rows: Vec<&str> = doc
             .lines()
-            .filter_map(|l| l.strip_prefix("| E"))
+            .filter_map(|l| l.strip_prefix("| "))
+            .filter(|l| l.starts_with(['E', 'W']))
             .filter_map(|l| l.split_whitespace().next())
             .collect();
         for code in Code::ALL {
             assert!(
-                rows.contains(&&code.as_str()[1..]),
+                rows.contains(&code.as_str()),
                 "docs/alarms.md has no row for {}",
                 code.as_str()
             );
         }
         for row in rows {
             assert!(
-                Code::ALL.iter().any(|c| &c.as_str()[1..] == row),
-                "docs/alarms.md documents E{row}, which the catalogue does not declare"
+                Code::ALL.iter().any(|c| c.as_str() == row),
+                "docs/alarms.md documents {row}, which the catalogue does not declare"
             );
         }
     }

@@ -140,15 +140,19 @@ pub enum EndCode {
     M30,
     /// The main program ran out of blocks (end of file, `%`, next `O`).
     Eof,
+    /// M99 in the main program: a controller would run it again for ever;
+    /// vcnc runs one pass (warning W107).
+    M99,
 }
 
 impl EndCode {
-    /// `"M02"`, `"M30"` or `"EOF"`.
+    /// `"M02"`, `"M30"`, `"EOF"` or `"M99"`.
     pub fn as_str(self) -> &'static str {
         match self {
             EndCode::M02 => "M02",
             EndCode::M30 => "M30",
             EndCode::Eof => "EOF",
+            EndCode::M99 => "M99",
         }
     }
 }
@@ -413,6 +417,28 @@ pub enum Event {
         /// The new frame.
         frame: FrameInfo,
     },
+    /// A machine-builder M code the machine file lists (chip conveyor,
+    /// door, brakes …): the interpreter passes it on, the machine acts.
+    Aux {
+        /// Source.
+        loc: Loc,
+        /// The M number.
+        code: u32,
+        /// What the machine file says it does.
+        description: Arc<str>,
+    },
+    /// A smoothing setting for the planner (Haas G187 P1–P3 E): `level`
+    /// 1 rough … 3 finish, `tolerance_mm` the corner tolerance when given.
+    Smoothing {
+        /// Source.
+        loc: Loc,
+        /// 1 rough, 2 medium, 3 finish.
+        level: u8,
+        /// The allowed deviation at corners, mm.
+        tolerance_mm: Option<f64>,
+    },
+    /// A warning: the run goes on (`vcnc --deny-warnings` fails it).
+    Warning(Diagnostic),
     /// An alarm; always the last event.
     Alarm(Diagnostic),
 }
@@ -439,6 +465,9 @@ impl Event {
             Event::Hole { .. } => "hole",
             Event::Wait { .. } => "wait",
             Event::Junction { .. } => "junction",
+            Event::Aux { .. } => "aux",
+            Event::Smoothing { .. } => "smoothing",
+            Event::Warning(_) => "warning",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -463,8 +492,10 @@ impl Event {
             | Event::Contour { loc, .. }
             | Event::Hole { loc, .. }
             | Event::Wait { loc, .. }
-            | Event::Junction { loc, .. } => Some(loc),
-            Event::Alarm(_) => None,
+            | Event::Junction { loc, .. }
+            | Event::Aux { loc, .. }
+            | Event::Smoothing { loc, .. } => Some(loc),
+            Event::Warning(_) | Event::Alarm(_) => None,
         }
     }
 

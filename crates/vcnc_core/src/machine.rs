@@ -16,20 +16,26 @@ use std::collections::BTreeMap;
 /// The embedded default mill.
 pub const DEFAULT_MILL_TOML: &str = include_str!("default_mill.toml");
 
+/// The embedded mill of the haas dialect (the default mill with Haas's M
+/// codes).
+pub const DEFAULT_HAAS_TOML: &str = include_str!("default_haas.toml");
+
 /// The embedded 2-axis lathe of the seed-003 dialect.
 pub const DEFAULT_LATHE_TOML: &str = include_str!("default_lathe.toml");
 
 /// Number of work coordinate systems (G54–G59, G59.1–G59.9).
 pub const WORK_SYSTEMS: usize = 15;
 
-/// One axis.
+/// One axis. A rotary axis (A, B, C) counts in degrees where a linear one
+/// counts in mm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
     /// Uppercase letter.
     pub letter: u8,
-    /// Travel limits, machine coordinates.
+    /// Travel limits, machine coordinates (infinite when the machine file
+    /// gives none).
     pub min_mm: f64,
-    /// Travel limits, machine coordinates.
+    /// Travel limits, machine coordinates (infinite when not given).
     pub max_mm: f64,
     /// Rapid rate.
     pub rapid_mm_per_min: f64,
@@ -88,6 +94,12 @@ pub struct Params {
     pub shift_direction: u8,
     /// Syntec 4010: pocket stepover, percent of the tool diameter.
     pub pocket_stepover_pct: f64,
+    /// Highest spindle speed; a higher S is clamped with warning W103
+    /// (0: no limit).
+    pub max_spindle_rpm: f64,
+    /// An M code neither the dialect nor `[m_codes]` knows: alarm E202
+    /// (`true`) or warning W105 and ignored (`false`).
+    pub strict_m_codes: bool,
 }
 
 impl Default for Params {
@@ -103,6 +115,8 @@ impl Default for Params {
             tapping_type: 0,
             shift_direction: 0,
             pocket_stepover_pct: 50.0,
+            max_spindle_rpm: 0.0,
+            strict_m_codes: false,
         }
     }
 }
@@ -115,7 +129,9 @@ pub struct Limits {
     pub max_call_depth: u32,
     /// Most jumps: M98 calls, M99 returns to a sequence, main-program repeats (E405).
     pub max_jumps: u64,
-    /// Most blocks executed (E404).
+    /// Most blocks executed beyond one per byte of program text read
+    /// (E404): a program that runs straight through never reaches it, a
+    /// loop does within about a second.
     pub max_executed_blocks: u64,
 }
 
@@ -124,7 +140,7 @@ impl Default for Limits {
         Limits {
             max_call_depth: 10,
             max_jumps: 1_000_000,
-            max_executed_blocks: 100_000_000,
+            max_executed_blocks: 5_000_000,
         }
     }
 }
@@ -174,6 +190,9 @@ pub struct Machine {
     pub limits: Limits,
     /// G31 skip triggers.
     pub skip: Vec<SkipTrigger>,
+    /// The machine builder's M codes (auxiliary functions) and what each
+    /// does: they pass through as `aux` events.
+    pub m_codes: BTreeMap<u32, std::sync::Arc<str>>,
 }
 
 /// Why a machine file was rejected.
@@ -194,8 +213,10 @@ type AxisMap = BTreeMap<String, f64>;
 #[serde(deny_unknown_fields)]
 struct FileAxis {
     letter: String,
-    min_mm: f64,
-    max_mm: f64,
+    #[serde(default)]
+    min_mm: Option<f64>,
+    #[serde(default)]
+    max_mm: Option<f64>,
     rapid_mm_per_min: f64,
     max_feed_mm_per_min: f64,
     #[serde(default = "default_accel")]
@@ -232,6 +253,8 @@ struct File {
     limits: Limits,
     #[serde(default)]
     skip: Vec<FileSkip>,
+    #[serde(default)]
+    m_codes: BTreeMap<String, String>,
 }
 
 impl Machine {
@@ -254,6 +277,21 @@ impl Machine {
     pub fn axis_of(&self, letter: u8) -> Option<usize> {
         let i = usize::from(letter.checked_sub(b'A')?);
         self.letter_axis.get(i).copied().flatten().map(usize::from)
+    }
+
+    /// Whether any axis has a travel limit (else E501 cannot happen).
+    pub fn has_travel_limits(&self) -> bool {
+        self.axes
+            .iter()
+            .any(|a| a.min_mm.is_finite() || a.max_mm.is_finite())
+    }
+
+    /// The highest cutting feed any axis allows (the control's clamp).
+    pub fn max_feed_mm_per_min(&self) -> f64 {
+        self.axes
+            .iter()
+            .map(|a| a.max_feed_mm_per_min)
+            .fold(0.0, f64::max)
     }
 
     /// Bit mask (bit 0 = 'A') of the machine's axis letters.
@@ -279,6 +317,7 @@ impl Machine {
             params: f.parameters,
             limits: f.limits,
             skip: Vec::new(),
+            m_codes: BTreeMap::new(),
         };
         for (i, a) in f.axes.into_iter().enumerate() {
             m.add_axis(i, a)?;
@@ -311,6 +350,14 @@ impl Machine {
                 .map_err(|_| MachineError(format!("tools.{key}: a tool number is an integer")))?;
             m.tools.insert(n, tool);
         }
+        for (key, what) in f.m_codes {
+            let n: u32 = key
+                .parse()
+                .ok()
+                .filter(|n| *n < 1000)
+                .ok_or_else(|| MachineError(format!("m_codes.{key}: an M code is 0 to 999")))?;
+            m.m_codes.insert(n, what.into());
+        }
         for s in f.skip {
             let axis = m.letter_index(&s.axis, "skip.axis")?;
             m.skip.push(SkipTrigger {
@@ -337,14 +384,17 @@ impl Machine {
             return Err(MachineError(format!("axis {} is defined twice", a.letter)));
         }
         *slot = u8::try_from(i).ok();
-        let finite = [
-            a.min_mm,
-            a.max_mm,
-            a.rapid_mm_per_min,
-            a.max_feed_mm_per_min,
-            a.accel_mm_s2,
-        ];
-        if finite.iter().any(|v| !v.is_finite()) || a.min_mm > a.max_mm {
+        // No limit given: the axis travels without limit (no E501 on it).
+        let (min_mm, max_mm) = (
+            a.min_mm.unwrap_or(f64::NEG_INFINITY),
+            a.max_mm.unwrap_or(f64::INFINITY),
+        );
+        let finite = [a.rapid_mm_per_min, a.max_feed_mm_per_min, a.accel_mm_s2];
+        let given = [a.min_mm, a.max_mm];
+        if finite.iter().any(|v| !v.is_finite())
+            || given.iter().flatten().any(|v| !v.is_finite())
+            || min_mm > max_mm
+        {
             return Err(MachineError(format!(
                 "axis {}: limits must be finite with min_mm <= max_mm",
                 a.letter
@@ -358,8 +408,8 @@ impl Machine {
         }
         self.axes.push(Axis {
             letter,
-            min_mm: a.min_mm,
-            max_mm: a.max_mm,
+            min_mm,
+            max_mm,
             rapid_mm_per_min: a.rapid_mm_per_min,
             max_feed_mm_per_min: a.max_feed_mm_per_min,
             accel_mm_s2: a.accel_mm_s2,
@@ -421,6 +471,11 @@ impl Machine {
         if p.shift_direction > 3 {
             return Err(MachineError("parameters.shift_direction is 0 to 3".into()));
         }
+        if !(p.max_spindle_rpm.is_finite() && p.max_spindle_rpm >= 0.0) {
+            return Err(MachineError(
+                "parameters.max_spindle_rpm is a speed >= 0 (0: no limit)".into(),
+            ));
+        }
         if !(p.pocket_stepover_pct > 0.0 && p.pocket_stepover_pct <= 100.0) {
             return Err(MachineError(
                 "parameters.pocket_stepover_pct is a percentage, more than 0 and at most 100"
@@ -459,9 +514,20 @@ mod tests {
     #[test]
     fn the_embedded_machine_is_valid() {
         let m = Machine::from_toml(DEFAULT_MILL_TOML).unwrap();
-        assert_eq!(m.axes.len(), 3);
+        assert_eq!(m.axes.len(), 6);
+        assert!(!m.has_travel_limits());
         assert_eq!(m.axis_of(b'Z'), Some(2));
         assert_eq!(m.reference[1].unwrap().get(0), 200.0);
+    }
+
+    #[test]
+    fn the_embedded_haas_and_lathe_machines_are_valid() {
+        let haas = Machine::from_toml(DEFAULT_HAAS_TOML).unwrap();
+        assert_eq!(
+            haas.m_codes.get(&31).map(|d| &**d),
+            Some("chip conveyor forward")
+        );
+        assert!(Machine::from_toml(DEFAULT_LATHE_TOML).is_ok());
     }
 
     #[test]

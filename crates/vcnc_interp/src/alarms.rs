@@ -414,8 +414,10 @@ pub fn block_limit(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E404,
         span,
-        format!("more than {max} blocks executed"),
-        "check for an endless loop, or raise limits.max_executed_blocks in the machine file",
+        format!(
+            "more than {max} blocks executed beyond the program's own length: it runs in a loop"
+        ),
+        "check for an endless loop (repeats, jumps back), or raise limits.max_executed_blocks in the machine file",
     )
 }
 
@@ -714,5 +716,139 @@ pub fn too_many_passes(span: Span, max: u64) -> Diagnostic {
         span,
         format!("this pocket cuts more than {max} rings over all its levels"),
         "use a larger depth per pass Q, a larger stepover (parameters.pocket_stepover_pct) or a larger tool",
+    )
+}
+
+/// E340: a probing move that never tripped.
+pub fn probe_not_tripped(span: Span) -> Diagnostic {
+    d(
+        Code::E340,
+        span,
+        "the probe signal did not change along this move".to_string(),
+        "probe toward the part far enough to touch it, or use G38.3/G38.5 (no alarm); the signal is the machine file's [[skip]] trigger",
+    )
+}
+
+/// E341: a thread too fast for the machine's feed.
+pub fn thread_too_fast(span: Span, rpm: f64, lead_mm: f64, max_feed: f64) -> Diagnostic {
+    d(
+        Code::E341,
+        span,
+        format!(
+            "the spindle at {rpm:.0} rpm with a {lead_mm:.4} mm lead feeds {:.1} mm/min, above the machine's maximum {max_feed:.1} mm/min",
+            rpm * lead_mm
+        ),
+        &format!(
+            "lower S to at most {:.0} rpm (maximum feed / lead)",
+            (max_feed / lead_mm).floor()
+        ),
+    )
+}
+
+/// E342: a feed per revolution with the spindle stopped.
+pub fn per_rev_spindle_stopped(span: Span) -> Diagnostic {
+    d(
+        Code::E342,
+        span,
+        "this move feeds per spindle revolution, but the spindle is stopped".to_string(),
+        "start the spindle (M03/M04 with S) first, or feed per minute (G94)",
+    )
+}
+
+/// E210: an M code in G05 high-speed mode.
+pub fn m_code_in_high_speed(span: Span) -> Diagnostic {
+    d(
+        Code::E210,
+        span,
+        "M codes are not allowed in high-speed mode (G05 P…)".to_string(),
+        "leave the mode with G05 P0 before the M code (Syntec 1.2.6)",
+    )
+}
+
+// ---------------------------------------------------------------------------
+// Warnings: the run goes on.
+// ---------------------------------------------------------------------------
+
+/// W101: a length without a decimal point where the program writes points.
+pub fn least_increment_trap(span: Span, l: u8, value: f64, mm: f64, inch: bool) -> Diagnostic {
+    let unit = if inch { "in" } else { "mm" };
+    let shown = if inch { mm / 25.4 } else { mm };
+    d(
+        Code::W101,
+        span,
+        format!(
+            "{}{value} has no decimal point: it is read as {shown} {unit} (least input increments), while this program writes its other lengths with a point",
+            letter(l)
+        ),
+        &format!(
+            "write {}{value}. if {value} {unit} is meant, or run with --dialect grbl if the program counts whole units",
+            letter(l)
+        ),
+    )
+}
+
+/// W102: a feed above the machine's maximum, clamped.
+pub fn feed_clamped(span: Span, asked: f64, max: f64) -> Diagnostic {
+    d(
+        Code::W102,
+        span,
+        format!(
+            "the feed {asked:.1} mm/min is above the machine's maximum {max:.1} mm/min: it is clamped"
+        ),
+        "lower F, or raise max_feed_mm_per_min in the machine file",
+    )
+}
+
+/// W103: a spindle speed above the machine's maximum, clamped.
+pub fn spindle_clamped(span: Span, asked: f64, max: f64) -> Diagnostic {
+    d(
+        Code::W103,
+        span,
+        format!(
+            "the spindle speed {asked:.0} rpm is above the machine's maximum {max:.0} rpm: it is clamped"
+        ),
+        "lower S, or raise parameters.max_spindle_rpm in the machine file",
+    )
+}
+
+/// W104: a cutting move with the spindle stopped.
+pub fn cut_spindle_stopped(span: Span) -> Diagnostic {
+    d(
+        Code::W104,
+        span,
+        "this cut runs with the spindle stopped".to_string(),
+        "start the spindle (M03/M04 with S) before cutting; a laser, plotter or drag knife program can ignore this",
+    )
+}
+
+/// W105: an M code neither the dialect nor the machine file knows.
+pub fn unknown_m_ignored(span: Span, value: u32, dialect: &str) -> Diagnostic {
+    d(
+        Code::W105,
+        span,
+        format!(
+            "M{value} is not an M code of the {dialect} dialect nor of this machine: it is ignored"
+        ),
+        "list the machine builder's M codes under [m_codes] in the machine file, or set parameters.strict_m_codes = true to make this an alarm",
+    )
+}
+
+/// W106: the program ends without M02 or M30.
+pub fn no_program_end(span: Span) -> Diagnostic {
+    d(
+        Code::W106,
+        span,
+        "the program ends without M02 or M30".to_string(),
+        "end the program with M30 (or M02); a controller would otherwise wait at the last block",
+    )
+}
+
+/// W107: M99 in the main program repeats it for ever on a machine.
+pub fn main_program_repeats(span: Span) -> Diagnostic {
+    d(
+        Code::W107,
+        span,
+        "M99 in the main program runs it again for ever on a machine (a bar-feeder loop): vcnc runs one pass".to_string(),
+        "end the program with M30 if it should stop here",
     )
 }

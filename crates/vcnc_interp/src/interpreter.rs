@@ -102,6 +102,11 @@ pub struct Interpreter<'a> {
     /// How each machine axis is written, in axis order.
     pub(crate) axis_words: Vec<AxisWord>,
     executed: u64,
+    /// How far each source has been read (a line's offset + 1, by source
+    /// index), and the sum: a block budget that grows with the text read,
+    /// so that only blocks run again count against the runaway limit.
+    read_high: Vec<u64>,
+    read_total: u64,
     /// Moves committed so far (a block compares it to know if it moved).
     pub(crate) moves: u64,
     /// The cutter compensation stage, and its copy taken before a block
@@ -113,6 +118,13 @@ pub struct Interpreter<'a> {
     pub(crate) cur_line: Option<(usize, Line)>,
     /// Events of the block being executed, sent when it succeeds.
     pub(crate) pending: Vec<Event>,
+    /// What the program's length words look like (warning W101).
+    pub(crate) points: crate::block::convert::PointStyle,
+    /// W104 was given and the spindle has not turned since (or it turns:
+    /// no check needed until it stops).
+    pub(crate) spindle_warned: bool,
+    /// The highest cutting feed, mm/min (the control's clamp).
+    pub(crate) max_feed: f64,
 }
 
 impl<'a> Interpreter<'a> {
@@ -133,11 +145,16 @@ impl<'a> Interpreter<'a> {
             axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask()),
             axis_words,
             executed: 0,
+            read_high: Vec::new(),
+            read_total: 0,
             moves: 0,
             comp: Default::default(),
             comp_saved: Default::default(),
             cur_line: None,
             pending: Vec::new(),
+            points: crate::block::convert::PointStyle::new(machine, dialect),
+            spindle_warned: false,
+            max_feed: machine.max_feed_mm_per_min(),
         }
     }
 
@@ -203,6 +220,7 @@ impl<'a> Interpreter<'a> {
                 }
             };
             self.flow.loc.line = line.number;
+            self.note_read(src, line.offset);
             let mut i = std::mem::take(&mut col);
             loop {
                 // Lex straight from the reader's buffer: no copy of the line.
@@ -213,7 +231,10 @@ impl<'a> Interpreter<'a> {
                     _ => break,
                 };
                 let start = i;
-                i = lexed.map_err(|d| self.locate(d, src, &line))?;
+                i = lexed.map_err(|d| {
+                    let d = self.locate(d, src, &line);
+                    self.semicolon_hint(d, src, &line, start)
+                })?;
                 if block.is_empty() {
                     continue;
                 }
@@ -228,9 +249,10 @@ impl<'a> Interpreter<'a> {
                 };
                 let depth = self.flow.frames.len();
                 self.cur_line = Some((src, line));
-                let step = self
-                    .block(&block, here, next, store, sink)
-                    .map_err(|d| self.locate(d, src, &line))?;
+                let step = self.block(&block, here, next, store, sink).map_err(|d| {
+                    let d = self.locate(d, src, &line);
+                    self.semicolon_hint(d, src, &line, start)
+                })?;
                 if sink.is_done() {
                     return Ok(None);
                 }
@@ -255,6 +277,20 @@ impl<'a> Interpreter<'a> {
                     },
                 }
             }
+        }
+    }
+
+    /// Counts text read for the first time towards the block budget.
+    #[inline]
+    fn note_read(&mut self, src: usize, offset: u64) {
+        if src >= self.read_high.len() {
+            self.read_high.resize(src + 1, 0);
+        }
+        if let Some(high) = self.read_high.get_mut(src)
+            && offset + 1 > *high
+        {
+            self.read_total += offset + 1 - *high;
+            *high = offset + 1;
         }
     }
 
@@ -309,6 +345,36 @@ impl<'a> Interpreter<'a> {
         d
     }
 
+    /// An alarm in the text after a `;` on the same line: the dialect ends
+    /// the block there, so a grbl-style comment was read as words. The help
+    /// says so.
+    #[cold]
+    fn semicolon_hint(
+        &mut self,
+        mut d: Diagnostic,
+        src: usize,
+        line: &Line,
+        start: usize,
+    ) -> Diagnostic {
+        let reading = matches!(d.code.as_str().as_bytes().get(1), Some(b'1' | b'2'));
+        if !reading || start == 0 || d.line != line.number {
+            return d;
+        }
+        let text = self
+            .flow
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default();
+        let before = text.get(..start).unwrap_or_default().trim_ascii_end();
+        if before.ends_with(b";") {
+            d.help = format!(
+                "`;` ends the block in the {} dialect, so the text after it is read as words: write comments in ( ), or run with --dialect grbl where `;` starts a comment ({})",
+                self.dialect.name, d.help
+            );
+        }
+        d
+    }
+
     /// One non-empty block: block delete, tape marks, headers, then execution.
     fn block<S: Sink>(
         &mut self,
@@ -329,18 +395,20 @@ impl<'a> Interpreter<'a> {
             f.started = true;
         }
         self.executed += 1;
-        if self.executed > self.machine.limits.max_executed_blocks {
+        if self.executed
+            > self
+                .machine
+                .limits
+                .max_executed_blocks
+                .saturating_add(self.read_total)
+        {
             return Err(alarms::block_limit(
                 block.first_span(),
                 self.machine.limits.max_executed_blocks,
             ));
         }
         let mut words = Words::new(block);
-        words.fill(
-            self.dialect,
-            self.machine.params.same_group_in_block,
-            self.axis_mask,
-        )?;
+        words.fill(self.dialect, self.machine, self.axis_mask)?;
         for a in self.axis_words.iter().filter(|a| a.inc.is_some()) {
             if let (Some(_), Some(inc)) = (words.get(a.letter), a.inc.and_then(|l| words.get(l))) {
                 return Err(alarms::absolute_and_incremental(
@@ -417,6 +485,14 @@ impl<'a> Interpreter<'a> {
             None => self.flow.loc.line = self.flow.loc.line.max(1),
         }
         self.flow.loc.file = self.flow.source(frame.source).and_then(|s| s.name.clone());
+        if self.flow.frames.len() == 1 {
+            let mut w = alarms::no_program_end(span);
+            if let Some((line, _)) = last {
+                w = self.locate(w, frame.source, &line);
+            }
+            self.pending.clear();
+            self.pending.push(Event::Warning(w));
+        }
         match self.finish_program(span, sink) {
             Ok(Step::End(code)) => Ok(Some(code)),
             Ok(_) => Ok(None),
@@ -433,8 +509,8 @@ impl<'a> Interpreter<'a> {
             let code = self.flow().frame().returns_with;
             return Err(alarms::sub_without_return(span, code));
         }
-        // Compensation ends with the program: its last move leaves first.
-        self.pending.clear();
+        // Compensation ends with the program: its last move leaves first
+        // (after the warning that the program has no end code).
         self.comp_finish()?;
         self.report_frame();
         for e in self.pending.drain(..) {

@@ -13,9 +13,10 @@
 //! let dialect = Dialect::syntec();
 //! let mut sink = VecSink::default();
 //! let out = Interpreter::new(&machine, &dialect, Options::default())
-//!     .run_str("G01 X10. F300;\nM30\n", &mut sink);
+//!     .run_str("S1000 M03\nG01 X10. F300;\nM30\n", &mut sink);
 //! assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
-//! assert_eq!(sink.0.len(), 2);
+//! // spindle, feed, end
+//! assert_eq!(sink.0.len(), 3);
 //! ```
 
 pub mod alarms;

@@ -49,6 +49,12 @@ pub struct Modal {
     pub polar: bool,
     /// Lathe G23 (diameter programming) when true, G22 when false.
     pub diameter: bool,
+    /// G93 inverse-time feed (grbl) when true.
+    pub inverse_time: bool,
+    /// G90.1: arc centres I/J/K are absolute program coordinates when true.
+    pub arc_absolute: bool,
+    /// G05 P1–P5/P10000 high-speed mode (Syntec 1.2.6) when true.
+    pub high_speed: bool,
 }
 
 /// The modal motion (group 01).
@@ -110,6 +116,9 @@ impl Modal {
             path: PathMode::Cutting,
             polar: false,
             diameter: dialect.diameter.at_power_on,
+            inverse_time: false,
+            arc_absolute: false,
+            high_speed: false,
         }
     }
 }
@@ -188,6 +197,8 @@ pub struct State {
     pub spindle: SpindleDir,
     /// Speed the spindle turns at (last `spindle` event), rpm.
     pub rpm: f64,
+    /// Coolant on (M07/M08) or off (M09).
+    pub coolant: bool,
     /// Last T word.
     pub tool_selected: Option<u32>,
     /// Tool in the spindle.
@@ -235,6 +246,7 @@ impl State {
             max_rpm: None,
             spindle: SpindleDir::Stop,
             rpm: 0.0,
+            coolant: false,
             tool_selected: None,
             tool_active: None,
             intermediate: Pos::default(),
@@ -312,6 +324,7 @@ enum Undo {
     Transforms(Transforms),
     Local(Pos),
     Shift(Pos),
+    Reference(usize, Option<Pos>),
 }
 
 /// Data the program writes rarely: the offset tables (G10) and the
@@ -330,6 +343,9 @@ pub struct Tables {
     pub local: Pos,
     /// G92 shift, common to all work systems.
     pub shift: Pos,
+    /// Reference points 1–4 (machine coordinates): the machine file's,
+    /// until G28.1/G30.1 store the current position.
+    pub reference: [Option<Pos>; 4],
     journal: Vec<Undo>,
 }
 
@@ -342,6 +358,7 @@ impl Tables {
             transforms: Transforms::default(),
             local: Pos::default(),
             shift: Pos::default(),
+            reference: machine.reference,
             journal: Vec::new(),
         }
     }
@@ -370,6 +387,14 @@ impl Tables {
     pub(crate) fn set_shift(&mut self, p: Pos) {
         self.journal.push(Undo::Shift(self.shift));
         self.shift = p;
+    }
+
+    /// Sets reference point `n` (0 = the first).
+    pub(crate) fn set_reference(&mut self, n: usize, p: Pos) {
+        if let Some(slot) = self.reference.get_mut(n) {
+            self.journal.push(Undo::Reference(n, *slot));
+            *slot = Some(p);
+        }
     }
 
     /// Sets the transforms in force.
@@ -406,6 +431,11 @@ impl Tables {
                 Undo::Transforms(t) => self.transforms = t,
                 Undo::Local(p) => self.local = p,
                 Undo::Shift(p) => self.shift = p,
+                Undo::Reference(n, p) => {
+                    if let Some(slot) = self.reference.get_mut(n) {
+                        *slot = p;
+                    }
+                }
             }
         }
     }

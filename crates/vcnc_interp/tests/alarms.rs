@@ -19,7 +19,6 @@
 
 use std::collections::HashMap;
 use std::io;
-use vcnc_interp::machine::DEFAULT_MILL_TOML;
 use vcnc_interp::{
     Dialect, EndCode, Event, Interpreter, Loc, Machine, NoPrograms, Options, Outcome, ProgramStore,
     State, VecSink,
@@ -66,12 +65,20 @@ fn run_on(machine: &Machine, program: &str) -> Run {
 }
 
 fn run(program: &str) -> Run {
-    run_on(&Machine::default_mill(), program)
+    run_on(&limited_mill(), program)
 }
 
-/// The default mill with some lines of its TOML text replaced.
+/// The 3-axis mill with travel limits these tests were written for (the
+/// built-in machines have none).
+const LIMITED_MILL: &str = include_str!("../../../tests/fixtures/machines/mill_travel_limits.toml");
+
+fn limited_mill() -> Machine {
+    Machine::from_toml(LIMITED_MILL).expect("valid test machine")
+}
+
+/// The limited mill with some lines of its TOML text replaced.
 fn machine_with(edits: &[(&str, &str)]) -> Machine {
-    let mut text = DEFAULT_MILL_TOML.to_string();
+    let mut text = LIMITED_MILL.to_string();
     for (from, to) in edits {
         assert!(text.contains(from), "the default machine has no {from:?}");
         text = text.replace(from, to);
@@ -187,7 +194,7 @@ fn check_on(machine: &Machine, program: &str, code: Code, line: u64, column: u32
 
 /// [`check_on`] on the default mill.
 fn check(program: &str, code: Code, line: u64, column: u32) -> Run {
-    check_on(&Machine::default_mill(), program, code, line, column)
+    check_on(&limited_mill(), program, code, line, column)
 }
 
 /// Called programs held in memory: number → (name, text).
@@ -252,7 +259,7 @@ fn e101_illegal_character() {
     check("G90 G00 X1.\nG00；X2. #\n", Code::E101, 2, 9);
     // A stray non-UTF-8 byte still gets its own column.
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "syntec",
         Options::default(),
         b"G00 X1.\n  Y2. \xff\n",
@@ -261,7 +268,7 @@ fn e101_illegal_character() {
     assert_alarm(&r, Code::E101, 2, 7);
     // NUL is not a blank.
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "syntec",
         Options::default(),
         b"G00 X1.\nG00 \0\n",
@@ -318,7 +325,7 @@ fn e106_line_longer_than_the_64k_reader_buffer() {
     // Also when the long line is a comment, and in the fanuc dialect.
     let program = format!("G00 X1.\n({})\nG00 Y1.\nM30\n", "c".repeat(80_000));
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "fanuc",
         Options::default(),
         program.as_bytes(),
@@ -364,7 +371,7 @@ fn e201_unknown_g_code() {
     let d = assert_alarm(&run("G00 X1.\nN2 G20\n"), Code::E201, 2, 4);
     assert!(d.help.contains("fanuc"), "help: {}", d.help);
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "fanuc",
         Options::default(),
         b"G00 X1.\nN2 G70\n",
@@ -376,7 +383,10 @@ fn e201_unknown_g_code() {
 
 #[test]
 fn e202_unknown_m_code() {
-    check("G00 X1.\nN2 M03 M77\n", Code::E202, 2, 8);
+    // Only on a machine that says so; otherwise W105 (tests/warnings.rs).
+    let mut strict = limited_mill();
+    strict.params.strict_m_codes = true;
+    check_on(&strict, "G00 X1.\nN2 M03 M77\n", Code::E202, 2, 8);
 }
 
 #[test]
@@ -547,7 +557,7 @@ fn e312_tool_length_on_a_machine_without_z() {
     assert!(matches!(r.outcome, Outcome::Ended(_)));
     // The lathe has no G43; on a mill file without Z it alarms E312.
     let xy = Machine::from_toml(
-        &DEFAULT_MILL_TOML
+        &LIMITED_MILL
             .replace("[[axes]]\nletter = \"z\"", "[[axes]]\nletter = \"a\"")
             .replace("z = 0.0", "a = 0.0")
             .replace("z = 100.0", "a = 100.0")
@@ -592,7 +602,7 @@ fn e401_program_not_found() {
     // The store is asked too; it does not have it either.
     let store = &mut MapStore::default().with(10, "O0010.nc", "G00 Y1.\nM99\n");
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "syntec",
         Options::default(),
         b"G00 X1.\nN2 M98 P11\n",
@@ -628,42 +638,59 @@ fn e403_self_recursive_subprogram() {
 
 #[test]
 fn e404_block_limit() {
-    let m = machine_with(&[("max_executed_blocks = 100000000", "max_executed_blocks = 5")]);
-    let program: String = (1..=10).map(|i| format!("   N{i} G00 X{i}.\n")).collect();
-    let r = check_on(&m, &program, Code::E404, 6, 4);
-    assert_eq!(motions(&r.events).len(), 5);
+    let m = machine_with(&[("max_executed_blocks = 5000000", "max_executed_blocks = 10")]);
+    // The budget is 10 blocks beyond one per byte read: the lines read
+    // reach offset 46 (the sub's M99), so 57 blocks run. Block 1 is the
+    // call, then each repeat runs X1 and M99: block 58 is repeat 29's X1.
+    let program = "O0001\nN1 M98 P2 L1000\nM30\nO0002\n  G91 G00 X1.\nM99\n";
+    let r = run_on(&m, program);
+    // Line 5 ran before: only the last event is checked, not "no motion
+    // from the alarming line".
+    assert_last_alarm(&r, Code::E404, 5, 3);
+    assert_eq!(motions(&r.events).len(), 28);
 }
 
 #[test]
-fn e404_block_limit_stops_an_endless_loop() {
-    let m = machine_with(&[(
-        "max_executed_blocks = 100000000",
-        "max_executed_blocks = 10",
-    )]);
-    let r = run_on(&m, "  N1 G91 G00 X1.\nM99\n");
-    // Blocks 1, 3, …, 9 moved; block 11 is line 1 again.
-    assert_last_alarm(&r, Code::E404, 1, 3);
-    assert_eq!(motions(&r.events).len(), 5);
-    assert_eq!(r.state.pos.get(0), 5.0);
+fn a_long_straight_program_never_reaches_the_block_limit() {
+    let m = machine_with(&[("max_executed_blocks = 5000000", "max_executed_blocks = 0")]);
+    let program: String = (1..=1000).map(|i| format!("N{i} G00 X{i}.\n")).collect();
+    let r = run_on(&m, &program);
+    assert!(
+        matches!(r.outcome, Outcome::Ended(EndCode::Eof)),
+        "{:?}",
+        r.outcome
+    );
+    assert_eq!(motions(&r.events).len(), 1000);
 }
 
 #[test]
-fn e405_endless_m99_main_loop() {
-    let m = machine_with(&[("max_jumps = 1000000", "max_jumps = 5")]);
-    let r = run_on(&m, "N1 G91 G00 X1.\nN2 M99\n");
-    assert_alarm(&r, Code::E405, 2, 4);
-    // Six passes moved 1 mm each; the sixth M99 is the sixth jump.
-    assert_eq!(motions(&r.events).len(), 6);
-    assert_eq!(r.state.pos.get(0), 6.0);
-}
-
-#[test]
-fn e405_endless_m99_p_loop() {
-    let m = machine_with(&[("max_jumps = 1000000", "max_jumps = 5")]);
-    let r = run_on(&m, "G90 G00 X0\nN10 G91 G00 X1.\n  M99 P10\nM30\n");
-    assert_alarm(&r, Code::E405, 3, 3);
-    assert_eq!(motions(&r.events).len(), 7);
-    assert_eq!(r.state.pos.get(0), 6.0);
+fn m99_in_the_main_program_runs_one_pass_and_warns() {
+    // A machine repeats it for ever (bar feeder): vcnc stops after one pass.
+    for program in [
+        "N1 G91 G00 X1.\nN2 M99\n",
+        "G90 G00 X0\nN10 G91 G00 X1.\n  M99 P10\nM30\n",
+    ] {
+        let r = run(program);
+        assert!(
+            matches!(r.outcome, Outcome::Ended(EndCode::M99)),
+            "{:?}",
+            r.outcome
+        );
+        let warned = r
+            .events
+            .iter()
+            .any(|e| matches!(e, Event::Warning(d) if d.code == Code::W107));
+        assert!(warned, "{program}");
+        assert_eq!(r.state.pos.get(0), 1.0);
+    }
+    // M99 P to a later block is a jump, not a repeat.
+    let r = run("G90 G00 X0\nM99 P20\nG00 X5.\nN20 G00 X1.\nM30\n");
+    assert!(
+        matches!(r.outcome, Outcome::Ended(EndCode::M30)),
+        "{:?}",
+        r.outcome
+    );
+    assert_eq!(r.state.pos.get(0), 1.0);
 }
 
 #[test]
@@ -686,7 +713,7 @@ fn e406_subprogram_ends_without_m99_at_end_of_file() {
     // The same for a subprogram from the program store: the alarm names its file.
     let store = &mut MapStore::default().with(10, "O0010.nc", "G00 X1.\n  G00 Y1.\n");
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "syntec",
         Options::default(),
         b"G00 X0\nN2 M98 P10\nM30\n",
@@ -699,7 +726,7 @@ fn e406_subprogram_ends_without_m99_at_end_of_file() {
 #[test]
 fn e408_called_program_cannot_be_opened() {
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "syntec",
         Options::default(),
         b"G00 X1.\nN2 M98 P10\n",
@@ -772,8 +799,8 @@ fn e503_work_offset_number_out_of_range() {
 
 #[test]
 fn an_alarm_leaves_modal_state_position_and_offsets_as_before_the_block() {
-    let setup = "G90 G17 G71 G94 G54 G64\nG00 X10. Y10.\n";
-    let m = Machine::default_mill();
+    let setup = "G90 G17 G71 G94 G54 G64 S1000 M03\nG00 X10. Y10.\n";
+    let m = limited_mill();
     let no_jumps = machine_with(&[("max_jumps = 1000000", "max_jumps = 0")]);
     let cases: &[(&Machine, &str, Code, u32)] = &[
         // Modal codes of every group written in a block that then alarms.
@@ -856,7 +883,7 @@ fn regression_flow_alarms_in_a_moving_block_move_nothing() {
         |block: &str| format!("O0001\nG90 G00 X1.\nM98 P2\nM30\nO0002\n{block}\nM99\nO0003\nM99\n");
     let depth = machine_with(&[("max_call_depth = 10", "max_call_depth = 1")]);
     let jumps = machine_with(&[("max_jumps = 1000000", "max_jumps = 1")]);
-    let m = Machine::default_mill();
+    let m = limited_mill();
     let cases: Vec<(&Machine, String, Code, u64, u32)> = vec![
         (&m, main("N2 G00 X10. M98 P1234"), Code::E401, 3, 17),
         (&m, main("N2 G00 X10. M99 P50"), Code::E402, 3, 17),
@@ -888,7 +915,7 @@ fn regression_flow_alarms_in_a_moving_block_move_nothing() {
 #[test]
 fn regression_e408_read_error_points_at_the_p_word() {
     let r = run_with(
-        &Machine::default_mill(),
+        &limited_mill(),
         "syntec",
         Options::default(),
         b"G00 X1.\nN2 M98 P10\n",

@@ -119,7 +119,14 @@ fn bad_cycle_words_alarm_where_they_are_and_the_block_moves_nothing() {
 #[test]
 fn a_k_block_that_fails_at_a_later_hole_emits_none_of_its_holes() {
     // Hole 3 of 4 is beyond X +1000 (the travel): the whole block alarms.
-    let (events, out) = run("G0 Z10\nG91 G81 X400. Z-5. R-8. F100 K4\n");
+    let m = Machine::from_toml(include_str!(
+        "../../../tests/fixtures/machines/mill_travel_limits.toml"
+    ))
+    .unwrap();
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&m, &Dialect::fanuc(), Options::default())
+        .run_str("G0 Z10\nG91 G81 X400. Z-5. R-8. F100 K4\n", &mut sink);
+    let events = sink.0;
     assert_eq!(alarm(&out).map(|a| a.0), Some(Code::E501));
     assert_eq!(line_events(&events, 2), 0, "no event of the block");
 }

@@ -15,10 +15,7 @@ fn small_lathe() -> Machine {
     let text = d
         .default_machine
         .replace("max_jumps = 1000000", "max_jumps = 40")
-        .replace(
-            "max_executed_blocks = 100000000",
-            "max_executed_blocks = 400",
-        )
+        .replace("max_executed_blocks = 5000000", "max_executed_blocks = 400")
         .replace("max_call_depth = 10", "max_call_depth = 4");
     Machine::from_toml(&text).unwrap()
 }

@@ -45,7 +45,7 @@ const LIMITS: [(&str, &str); 3] = [
     ("max_call_depth = 10", "max_call_depth = 4"),
     ("max_jumps = 1000000", "max_jumps = 20"),
     (
-        "max_executed_blocks = 100000000",
+        "max_executed_blocks = 5000000",
         "max_executed_blocks = 2000",
     ),
 ];

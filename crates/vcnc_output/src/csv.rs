@@ -1,6 +1,9 @@
 //! CSV: one row per event with a fixed header, for spreadsheets and quick
 //! plots. Columns that do not apply to an event are empty.
 //!
+//! A rotary axis' cells (A, B, C) stay empty until it has moved, as the
+//! JSON events leave it out.
+//!
 //! Header: `type,line,file,<axes>,<center_axes>,plane,dir,feed,feed_per_rev,
 //! lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,
 //! exact_stop,p,surface_m_per_min,help,linear,<tool_offset_axes>` (those
@@ -9,7 +12,9 @@
 //! space-separated numbers (rows x, y, z) in `linear` and the tool length
 //! offset in `tool_offset_<axis>`. A `hole` row has its centre at the Z
 //! point in the axis columns and its cycle (`G81`) in `code`; a `wait` row
-//! its reason in `mode`; a `junction` row whether it blends in `on`.
+//! its reason in `mode`; a `junction` row whether it blends in `on`; an
+//! `aux` row its M code in `code` and its description in `message`; a
+//! `warning` row is laid out like an `alarm` row.
 
 use crate::jsonl::{path_mode, spindle_dir};
 use crate::num::push_f64;
@@ -46,6 +51,9 @@ const TAIL: [&str; 13] = [
 pub struct CsvSink<W: Write> {
     out: W,
     n_axes: usize,
+    /// Bit i: axis i is written (linear axes always, a rotary one once it
+    /// has moved; its cells stay empty before).
+    shown: u32,
     row: Vec<String>,
     buf: Vec<u8>,
     error: Option<io::Error>,
@@ -68,8 +76,14 @@ impl<W: Write> CsvSink<W> {
         header.extend(letters.iter().map(|l| format!("tool_offset_{l}")));
         let error = writeln!(out, "{}", header.join(",")).err();
         let cols = header.len();
+        let shown = letters
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| matches!(l, 'x' | 'y' | 'z'))
+            .fold(0, |m, (i, _)| m | 1 << i);
         CsvSink {
             out,
+            shown,
             n_axes: letters.len(),
             row: vec![String::new(); cols],
             buf: Vec::new(),
@@ -105,8 +119,13 @@ impl<W: Write> CsvSink<W> {
 
     fn pos(&mut self, p: &Pos, offset: usize) {
         for i in 0..self.n_axes {
-            let v = self.num(p.get(i));
-            self.row[3 + offset + i] = v;
+            if p.get(i) != 0.0 {
+                self.shown |= 1 << i;
+            }
+            if self.shown & (1 << i) != 0 {
+                let v = self.num(p.get(i));
+                self.row[3 + offset + i] = v;
+            }
         }
     }
 
@@ -232,7 +251,13 @@ impl<W: Write> Sink for CsvSink<W> {
                     self.pos(&frame.tool_offset, offset);
                 }
             }
-            Event::Alarm(d) => {
+            Event::Aux {
+                code, description, ..
+            } => {
+                self.set("code", format!("M{code}"));
+                self.set("message", quote(description));
+            }
+            Event::Alarm(d) | Event::Warning(d) => {
                 self.set("line", d.line.to_string());
                 self.set("file", d.file.as_deref().map(quote).unwrap_or_default());
                 self.set("code", d.code.as_str().into());

@@ -17,6 +17,9 @@ use vcnc_core::{ArcDir, EndCode, Event, Feed, Machine, Plane, Pos, Sink, Spindle
 pub struct GcodeSink<W: Write> {
     out: W,
     letters: Vec<char>,
+    /// Bit i: axis i is written (linear axes always, a rotary axis once it
+    /// has moved: 3-axis programs stay 3-axis for grbl).
+    shown: u32,
     pos: Pos,
     plane: Plane,
     feed: Option<f64>,
@@ -37,6 +40,12 @@ impl<W: Write> GcodeSink<W> {
         let mut sink = GcodeSink {
             out,
             letters: machine.axes.iter().map(|a| char::from(a.letter)).collect(),
+            shown: machine
+                .axes
+                .iter()
+                .enumerate()
+                .filter(|(_, a)| matches!(a.letter, b'X' | b'Y' | b'Z'))
+                .fold(0, |m, (i, _)| m | 1 << i),
             pos: machine.start,
             plane: Plane::Xy,
             feed: None,
@@ -59,10 +68,15 @@ impl<W: Write> GcodeSink<W> {
         self.out
     }
 
-    fn axes(&self, to: &Pos) -> String {
+    fn axes(&mut self, to: &Pos) -> String {
         let mut s = String::new();
         for (i, l) in self.letters.iter().enumerate() {
-            s.push_str(&format!(" {l}{}", length(to.get(i))));
+            if to.get(i) != 0.0 {
+                self.shown |= 1 << i;
+            }
+            if self.shown & (1 << i) != 0 {
+                s.push_str(&format!(" {l}{}", length(to.get(i))));
+            }
         }
         s
     }
@@ -194,6 +208,16 @@ impl<W: Write> GcodeSink<W> {
             Event::Frame { frame, .. } => {
                 format!("(program origin at{})", self.axes(&frame.origin))
             }
+            // The machine builder's codes mean nothing to grbl or LinuxCNC.
+            Event::Aux {
+                code, description, ..
+            } => format!("(M{code}: {})", description.replace(['(', ')'], "")),
+            Event::Warning(d) => format!(
+                "(warning {} line {}: {})",
+                d.code.as_str(),
+                d.line,
+                d.message.replace(['(', ')'], "")
+            ),
             Event::Alarm(d) => format!(
                 "(ALARM {} line {}: {})\nM2",
                 d.code.as_str(),

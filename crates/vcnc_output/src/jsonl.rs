@@ -14,22 +14,68 @@ use vcnc_core::{ArcDir, Event, Feed, FrameInfo, Loc, Machine, PathMode, Pos, Sin
 /// Writes one JSON object per event.
 pub struct JsonlSink<W: Write> {
     out: W,
-    axes: Vec<u8>,
+    axes: EventAxes,
     buf: Vec<u8>,
     error: Option<io::Error>,
+}
+
+/// The axes an event lists: the linear axes always, a rotary axis (A, B,
+/// C) from the first position where it is away from 0 on, so that a 3-axis
+/// program reads the same on a machine that also has rotary axes.
+#[derive(Debug, Clone)]
+pub struct EventAxes {
+    letters: Vec<u8>,
+    /// Bit i: axis i is listed.
+    shown: u32,
+    all: u32,
+}
+
+impl EventAxes {
+    /// The axes of `machine`, before any event.
+    pub fn new(machine: &Machine) -> EventAxes {
+        let letters: Vec<u8> = machine
+            .axes
+            .iter()
+            .map(|a| a.letter.to_ascii_lowercase())
+            .collect();
+        let shown = letters
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| matches!(l, b'x' | b'y' | b'z'))
+            .fold(0, |m, (i, _)| m | 1 << i);
+        let all = (1u32 << letters.len()) - 1;
+        EventAxes {
+            letters,
+            shown,
+            all,
+        }
+    }
+
+    /// Lists from now on every rotary axis `p` has away from 0.
+    #[inline]
+    fn note(&mut self, p: &Pos) {
+        if self.shown == self.all {
+            return;
+        }
+        for i in 0..self.letters.len() {
+            if p.get(i) != 0.0 {
+                self.shown |= 1 << i;
+            }
+        }
+    }
+
+    /// Whether axis `i` is listed.
+    pub fn shows(&self, i: usize) -> bool {
+        self.shown & (1 << i) != 0
+    }
 }
 
 impl<W: Write> JsonlSink<W> {
     /// A sink writing to `out` for a machine's axes.
     pub fn new(out: W, machine: &Machine) -> JsonlSink<W> {
-        let axes = machine
-            .axes
-            .iter()
-            .map(|a| a.letter.to_ascii_lowercase())
-            .collect();
         JsonlSink {
             out,
-            axes,
+            axes: EventAxes::new(machine),
             buf: Vec::with_capacity(FLUSH_BYTES + 1024),
             error: None,
         }
@@ -50,7 +96,7 @@ impl<W: Write> Sink for JsonlSink<W> {
         if self.error.is_some() {
             return;
         }
-        write_event(&mut self.buf, &self.axes, event);
+        write_event(&mut self.buf, &mut self.axes, event);
         self.buf.push(b'\n');
         if self.buf.len() >= FLUSH_BYTES {
             if let Err(e) = self.out.write_all(&self.buf) {
@@ -76,9 +122,9 @@ impl<W: Write> Sink for JsonlSink<W> {
     }
 }
 
-/// Appends the JSON object of `event` (no newline) for the given lowercase
-/// axis letters.
-pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
+/// Appends the JSON object of `event` (no newline) with the axes `axes`
+/// lists (and notes the rotary axes it moves).
+pub fn write_event(out: &mut Vec<u8>, axes: &mut EventAxes, event: &Event) {
     let mut j = Obj { out, axes };
     match event {
         Event::Rapid {
@@ -203,21 +249,28 @@ pub fn write_event(out: &mut Vec<u8>, axes: &[u8], event: &Event) {
                 j.str("dir", if *dir == ArcDir::Cw { "cw" } else { "ccw" });
             }
         }
-        Event::Alarm(d) => {
-            j.head(
-                "alarm",
-                &Loc {
-                    line: d.line,
-                    file: d.file.as_deref().map(Into::into),
-                },
-            );
-            j.int("column", u64::from(d.column));
-            j.str("code", d.code.as_str());
-            j.key("message");
-            push_json_str(j.out, &d.message);
-            j.key("help");
-            push_json_str(j.out, &d.help);
+        Event::Aux {
+            loc,
+            code,
+            description,
+        } => {
+            j.head("aux", loc);
+            j.int("code", u64::from(*code));
+            j.str("description", description);
         }
+        Event::Smoothing {
+            loc,
+            level,
+            tolerance_mm,
+        } => {
+            j.head("smoothing", loc);
+            j.int("level", u64::from(*level));
+            if let Some(t) = tolerance_mm {
+                j.num("tolerance_mm", *t);
+            }
+        }
+        Event::Warning(d) => j.diagnostic("warning", d),
+        Event::Alarm(d) => j.diagnostic("alarm", d),
         // The contract is additive: an event type this writer does not know
         // yet still leaves as a valid object with its type and line.
         other => j.head(other.kind(), other.loc().unwrap_or(&Loc::default())),
@@ -247,10 +300,27 @@ pub(crate) fn path_mode(m: PathMode) -> &'static str {
 
 struct Obj<'a> {
     out: &'a mut Vec<u8>,
-    axes: &'a [u8],
+    axes: &'a mut EventAxes,
 }
 
 impl Obj<'_> {
+    /// An alarm or a warning: where, code, message, help.
+    fn diagnostic(&mut self, kind: &str, d: &vcnc_core::Diagnostic) {
+        self.head(
+            kind,
+            &Loc {
+                line: d.line,
+                file: d.file.as_deref().map(Into::into),
+            },
+        );
+        self.int("column", u64::from(d.column));
+        self.str("code", d.code.as_str());
+        self.key("message");
+        push_json_str(self.out, &d.message);
+        self.key("help");
+        push_json_str(self.out, &d.help);
+    }
+
     fn head(&mut self, kind: &str, loc: &Loc) {
         self.out.extend_from_slice(b"{\"type\":\"");
         self.out.extend_from_slice(kind.as_bytes());
@@ -269,10 +339,16 @@ impl Obj<'_> {
     fn pos(&mut self, k: &str, p: &Pos) {
         self.key(k);
         self.out.push(b'{');
-        for (i, letter) in self.axes.iter().enumerate() {
-            if i > 0 {
+        self.axes.note(p);
+        let mut first = true;
+        for (i, letter) in self.axes.letters.iter().enumerate() {
+            if !self.axes.shows(i) {
+                continue;
+            }
+            if !first {
                 self.out.push(b',');
             }
+            first = false;
             self.out.extend_from_slice(&[b'"', *letter, b'"', b':']);
             push_f64(self.out, p.get(i));
         }

@@ -15,5 +15,5 @@ mod summary;
 
 pub use csv::CsvSink;
 pub use gcode::GcodeSink;
-pub use jsonl::{JsonlSink, write_event};
-pub use summary::Summary;
+pub use jsonl::{EventAxes, JsonlSink, write_event};
+pub use summary::{KEPT_WARNINGS, Summary};

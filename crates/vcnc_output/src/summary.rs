@@ -7,8 +7,13 @@
 //! the spindle speed in force), plus dwells. Acceleration is the planner's
 //! business (a later crate); this is the distance/feed estimate.
 
+use std::collections::BTreeMap;
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
-use vcnc_core::{ArcDir, Event, Feed, Machine, Plane, Pos, Sink};
+use vcnc_core::{ArcDir, Code, Diagnostic, Event, Feed, Machine, Plane, Pos, Sink};
+
+/// Warnings kept whole (with their text and place) by a summary; beyond,
+/// they are only counted.
+pub const KEPT_WARNINGS: usize = 100;
 
 /// Accumulates the summary of a run.
 #[derive(Debug, Clone)]
@@ -42,6 +47,12 @@ pub struct Summary {
     pub holes: Vec<(Option<u32>, u64)>,
     /// Times the program waits for the operator (not in the cycle time).
     pub waits: u64,
+    /// Warnings by code.
+    pub warning_counts: BTreeMap<Code, u64>,
+    /// The first warnings (at most [`KEPT_WARNINGS`]).
+    pub warnings: Vec<Diagnostic>,
+    /// Auxiliary (machine-builder) M codes passed to the machine.
+    pub aux_codes: u64,
     tool: Option<u32>,
 }
 
@@ -69,6 +80,9 @@ impl Summary {
             untimed_moves: 0,
             holes: Vec::new(),
             waits: 0,
+            warning_counts: BTreeMap::new(),
+            warnings: Vec::new(),
+            aux_codes: 0,
             tool: None,
         }
     }
@@ -76,6 +90,21 @@ impl Summary {
     /// The machine's axis letters, in event order.
     pub fn axis_letters(&self) -> &[u8] {
         &self.letters
+    }
+
+    /// Warnings in all.
+    pub fn warning_total(&self) -> u64 {
+        self.warning_counts.values().sum()
+    }
+
+    /// Whether axis `i` belongs in a report: a linear axis always, a rotary
+    /// one when the program moved it.
+    pub fn reports_axis(&self, i: usize) -> bool {
+        let linear = matches!(self.letters.get(i), Some(b'X' | b'Y' | b'Z'));
+        linear
+            || self
+                .extents
+                .is_some_and(|(lo, hi)| lo.get(i) != 0.0 || hi.get(i) != 0.0)
     }
 
     fn extend(&mut self, lo: Pos, hi: Pos) {
@@ -245,6 +274,13 @@ impl Sink for Summary {
                 None => self.holes.push((self.tool, 1)),
             },
             Event::Wait { .. } => self.waits += 1,
+            Event::Aux { .. } => self.aux_codes += 1,
+            Event::Warning(d) => {
+                *self.warning_counts.entry(d.code).or_insert(0) += 1;
+                if self.warnings.len() < KEPT_WARNINGS {
+                    self.warnings.push(d.clone());
+                }
+            }
             Event::Spindle { rpm, .. } => {
                 self.rpm = *rpm;
                 if *rpm > 0.0 {

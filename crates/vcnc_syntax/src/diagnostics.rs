@@ -27,6 +27,40 @@ pub fn illegal_character(span: Span, ch: char) -> Diagnostic {
     )
 }
 
+/// E101: a grbl system command in a program.
+pub fn system_command(span: Span, text: &str) -> Diagnostic {
+    Diagnostic::new(
+        Code::E101,
+        span,
+        format!(
+            "{text} is a grbl system command ($H homing, $X unlock, $$ settings), not G-code: a program cannot carry it"
+        ),
+        "remove the line; send system commands to the controller from its console, not in the program",
+    )
+}
+
+/// E101: a block that starts with a digit.
+pub fn digit_first(span: Span, text: &str) -> Diagnostic {
+    Diagnostic::new(
+        Code::E101,
+        span,
+        format!("the block starts with the number {text}, which has no address letter"),
+        &format!(
+            "write a sequence number as N{text}, or put the letter the value belongs to before it"
+        ),
+    )
+}
+
+/// E104: a program name with a letter in it (`O7997A`).
+pub fn lettered_program_name(span: Span, name: &str) -> Diagnostic {
+    Diagnostic::new(
+        Code::E104,
+        span,
+        format!("{name} is not a program number: O takes digits only"),
+        "name the program with digits (O7997) and put any text in a comment: O7997 (A)",
+    )
+}
+
 /// E102: the digits after an address do not form a number.
 pub fn malformed_number(span: Span, letter: char) -> Diagnostic {
     Diagnostic::new(

@@ -23,6 +23,8 @@ pub const MAX_BLOCK_BYTES: usize = 4096;
 /// Dialect-dependent lexical rules.
 #[derive(Debug, Clone, Copy)]
 pub struct LexRules {
+    /// What `;` means.
+    pub semicolon: Semicolon,
     /// `//` starts a comment that runs to the end of the line (Syntec).
     pub slash_comments: bool,
     /// The full-width `；` (U+FF1B) ends a block like `;`.
@@ -33,6 +35,16 @@ pub struct LexRules {
     /// Addresses of other dialects, with the dialect that has them, so that
     /// `CR=10` under the mill dialects says where `CR=` belongs.
     pub foreign: &'static [(&'static str, &'static str)],
+}
+
+/// What `;` means in a dialect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Semicolon {
+    /// It ends the block, like a line end (Fanuc's EOB, Syntec).
+    EndOfBlock,
+    /// It starts a comment that runs to the end of the line (grbl,
+    /// LinuxCNC and the hobby CAM programs written for them).
+    Comment,
 }
 
 const FULLWIDTH_SEMICOLON: &[u8] = "；".as_bytes();
@@ -62,6 +74,9 @@ pub fn lex_block(
         }
         match b {
             b' ' | b'\t' | b'\r' | b'\n' | 0x0c => i += 1,
+            b';' if rules.semicolon == Semicolon::Comment => {
+                return finish(out, start, i, line.len());
+            }
             b';' => return finish(out, start, i, i + 1),
             b'(' => i = skip_comment(line, i)?,
             b'/' if rules.slash_comments && line.get(i + 1) == Some(&b'/') => {
@@ -88,6 +103,8 @@ pub fn lex_block(
             }
             // A byte-order mark (editors put one at the start of a file).
             0xEF if line[i..].starts_with(BOM) => i += BOM.len(),
+            b'$' if first => return Err(system_command(line, i)),
+            b'0'..=b'9' if first => return Err(digit_first(line, i)),
             _ => return Err(illegal_at(line, i)),
         }
         first = first && matches!(b, b' ' | b'\t' | b'\r' | b'(' | 0x0c);
@@ -123,6 +140,7 @@ fn lex_word(
         Ok(n) => n,
         Err(e) => {
             return Err(foreign_address(line, at, rules)
+                .or_else(|| lettered_program_name(line, at, out))
                 .unwrap_or_else(|| number_error(line, at, value_at, e)));
         }
     };
@@ -136,6 +154,28 @@ fn lex_word(
         return Err(diag::too_many_words(word.span, MAX_WORDS));
     }
     Ok(n.end)
+}
+
+/// `O7997A`: a letter glued to the program number of an `O` word that
+/// starts the block.
+#[cold]
+fn lettered_program_name(line: &[u8], at: usize, out: &Block) -> Option<Diagnostic> {
+    let first = out.words().first()?;
+    let glued = out.words().len() == 1
+        && first.addr.as_letter() == Some(b'O')
+        && first.span.end as usize == at;
+    if !glued {
+        return None;
+    }
+    let end = line[at..]
+        .iter()
+        .position(|b| !b.is_ascii_alphanumeric())
+        .map_or(line.len(), |k| at + k);
+    let name = String::from_utf8_lossy(&line[first.span.start as usize..end]).into_owned();
+    Some(diag::lettered_program_name(
+        Span::new(first.span.start as usize, end),
+        &name,
+    ))
 }
 
 /// An address of another dialect at `at`, as a diagnostic.
@@ -173,6 +213,29 @@ fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
     (Addr::letter(line[at].to_ascii_uppercase()), at + 1)
 }
 
+/// A grbl system command (`$H`, `$X`, `$$`) in a program.
+#[cold]
+fn system_command(line: &[u8], i: usize) -> Diagnostic {
+    let end = line[i..]
+        .iter()
+        .position(|b| b.is_ascii_whitespace() || *b == b';' || *b == b'(')
+        .map_or(line.len(), |k| i + k);
+    let text = String::from_utf8_lossy(&line[i..end]).into_owned();
+    diag::system_command(Span::new(i, end), &text)
+}
+
+/// A block that starts with a digit: a line number without its N, or a
+/// value without its address.
+#[cold]
+fn digit_first(line: &[u8], i: usize) -> Diagnostic {
+    let end = line[i..]
+        .iter()
+        .position(|b| !(b.is_ascii_digit() || *b == b'.'))
+        .map_or(line.len(), |k| i + k);
+    let text = String::from_utf8_lossy(&line[i..end]).into_owned();
+    diag::digit_first(Span::new(i, end), &text)
+}
+
 fn illegal_at(line: &[u8], i: usize) -> Diagnostic {
     let rest = &line[i..];
     let len = utf8_len(rest);
@@ -203,6 +266,7 @@ mod tests {
     use crate::diagnostics::Code;
 
     const SYNTEC: LexRules = LexRules {
+        semicolon: Semicolon::EndOfBlock,
         slash_comments: true,
         fullwidth_semicolon: true,
         extended: &[],

@@ -89,6 +89,54 @@ impl Interpreter<'_> {
         }
     }
 
+    /// Warning W101: a length word without a decimal point in a program
+    /// that otherwise writes points — the least-increment trap (`X35` is
+    /// 0.035 mm). A program that never writes a point is consistent (tape
+    /// format) and silent; so are whole-unit dialects.
+    pub(crate) fn note_points(&mut self, w: &Words<'_>) {
+        if !self.points.active {
+            return;
+        }
+        for i in 0..self.axis_words.len() {
+            let Some(a) = self.axis_words.get(i).copied() else {
+                continue;
+            };
+            let Some(word) = w.get(a.letter).or_else(|| a.inc.and_then(|l| w.get(l))) else {
+                continue;
+            };
+            if word.value == 0.0 {
+                continue;
+            }
+            if word.point {
+                if !self.points.seen_point {
+                    self.points.seen_point = true;
+                    if let Some(d) = self.points.first_plain.take() {
+                        self.points.warned += 1;
+                        self.emit(|_| crate::events::Event::Warning(d));
+                    }
+                }
+            } else if self.points.warned < PointStyle::MAX_WARNINGS {
+                let d = alarms::least_increment_trap(
+                    word.span,
+                    word.addr.0,
+                    word.value,
+                    self.axis_mm(&a, &word),
+                    self.state.modal.inch,
+                );
+                if self.points.seen_point {
+                    self.points.warned += 1;
+                    self.warn(d);
+                } else if self.points.first_plain.is_none() {
+                    let d = match self.cur_line {
+                        Some((src, line)) => self.locate(d, src, &line),
+                        None => d,
+                    };
+                    self.points.first_plain = Some(d);
+                }
+            }
+        }
+    }
+
     /// Target of the block's axis words in program coordinates, absolute
     /// or incremental from the programmed point (an incremental word such
     /// as U always counts from there); axes not named keep their program
@@ -189,6 +237,33 @@ impl Interpreter<'_> {
                 (x.hypot(y), y.atan2(x).to_degrees())
             }
             _ => (0.0, 0.0),
+        }
+    }
+}
+
+/// What the program's axis words look like so far (warning W101).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct PointStyle {
+    /// Integers are least increments here (else nothing to warn about).
+    pub active: bool,
+    /// A length with a decimal point was written.
+    pub seen_point: bool,
+    /// The first length without one, before any point was seen.
+    pub first_plain: Option<vcnc_syntax::Diagnostic>,
+    /// Warnings given (at most `MAX_WARNINGS`).
+    pub warned: u32,
+}
+
+impl PointStyle {
+    /// Past this many, the trap is reported no more (the program has it
+    /// throughout).
+    pub const MAX_WARNINGS: u32 = 10;
+
+    pub fn new(machine: &crate::machine::Machine, dialect: &crate::dialect::Dialect) -> PointStyle {
+        PointStyle {
+            active: dialect.integers == IntegerWords::LeastIncrement
+                && machine.params.decimal_input == DecimalInput::Increment,
+            ..PointStyle::default()
         }
     }
 }

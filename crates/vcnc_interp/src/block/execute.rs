@@ -19,7 +19,7 @@
 
 use crate::alarms;
 use crate::block::words::{ALWAYS, Words};
-use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, bit};
+use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, ProgramStop, bit};
 use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
@@ -57,6 +57,9 @@ impl Interpreter<'_> {
             let (allowed, ext) = self.allowed_letters(w);
             w.check_used(allowed, ext)?;
         }
+        if self.points.active {
+            self.note_points(w);
+        }
         self.feed_word(w)?;
         self.modal_motion(w)?;
         if self.comp.engaged() {
@@ -74,6 +77,9 @@ impl Interpreter<'_> {
     ) -> Result<Step, Diagnostic> {
         self.check_comp_changes(w)?;
         self.check_cycle_plane(w)?;
+        if self.state.modal.high_speed {
+            self.check_high_speed(w)?;
+        }
         let path_before = self.state.modal.path;
         for at in w.modal_codes() {
             self.apply_modal(at.def.op);
@@ -84,6 +90,9 @@ impl Interpreter<'_> {
         }
         let (allowed, ext) = self.allowed_letters(w);
         w.check_used(allowed, ext)?;
+        if self.points.active {
+            self.note_points(w);
+        }
         if self.state.modal.path != path_before {
             let mode = self.state.modal.path;
             self.emit(|loc| Event::PathMode { loc, mode });
@@ -93,10 +102,13 @@ impl Interpreter<'_> {
         self.spindle_words(w)?;
         if let Some(m) = w.m_of(MGroup::Coolant) {
             let on = m.def.op == MOp::CoolantOn;
+            self.state.coolant = on;
             self.emit(|loc| Event::Coolant { loc, on });
         }
+        self.other_m_codes(w);
         let tool_moved = self.frame_codes(w)?;
         self.comp_codes(w)?;
+        self.setting_codes(w);
         let moves_before = self.moves;
         match w.axis_user {
             Some(user) => self.axis_code(user.def.op, user.span, w)?,
@@ -150,8 +162,20 @@ impl Interpreter<'_> {
             GOp::PlaneYz => m.plane = Plane::Yz,
             GOp::Absolute => m.incremental = false,
             GOp::Incremental => m.incremental = true,
-            GOp::PerMinute => m.per_rev = false,
-            GOp::PerRev => m.per_rev = true,
+            GOp::PerMinute => {
+                m.per_rev = false;
+                m.inverse_time = false;
+            }
+            GOp::PerRev => {
+                m.per_rev = true;
+                m.inverse_time = false;
+            }
+            GOp::InverseTime => {
+                m.per_rev = false;
+                m.inverse_time = true;
+            }
+            GOp::ArcCentersAbsolute => m.arc_absolute = true,
+            GOp::ArcCentersIncremental => m.arc_absolute = false,
             GOp::Inch => m.inch = true,
             GOp::Metric => m.inch = false,
             GOp::SurfaceSpeed => m.css = true,
@@ -234,7 +258,13 @@ impl Interpreter<'_> {
             Motion::ThreadInch if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * crate::block::convert::MM_PER_INCH);
             }
-            _ => self.state.feed = f.value,
+            _ => {
+                self.state.feed = f.value;
+                let mm_per_min = f.value * self.unit_mm() * self.state.feed_factor;
+                if !self.state.modal.per_rev && mm_per_min > self.max_feed {
+                    self.warn(alarms::feed_clamped(f.span, mm_per_min, self.max_feed));
+                }
+            }
         }
         Ok(())
     }
@@ -303,11 +333,20 @@ impl Interpreter<'_> {
             .map(|a| a.span)
             .or(s_word.map(|s| s.span))
             .or(m.map(|a| a.span));
-        let (rpm, surface) = if turning {
+        let (mut rpm, surface) = if turning {
             self.spindle_rpm(why.unwrap_or(w.first))?
         } else {
             (0.0, None)
         };
+        let max_rpm = self.machine.params.max_spindle_rpm;
+        if max_rpm > 0.0 && rpm > max_rpm {
+            self.warn(alarms::spindle_clamped(
+                why.unwrap_or(w.first),
+                rpm,
+                max_rpm,
+            ));
+            rpm = max_rpm;
+        }
         if turning
             && m.is_none()
             && (rpm - self.state.rpm).abs() < 1e-9
@@ -317,6 +356,9 @@ impl Interpreter<'_> {
         }
         self.state.spindle = dir;
         self.state.rpm = rpm;
+        if rpm > 0.0 {
+            self.spindle_warned = false;
+        }
         self.emit(|loc| Event::Spindle {
             loc,
             dir,
@@ -352,35 +394,115 @@ impl Interpreter<'_> {
         Ok((rpm, Some(surface_m_per_min)))
     }
 
+    /// M00, or M01 with the optional-stop switch on: the program waits for
+    /// the operator; on most controls the spindle and coolant stop first.
+    fn program_stop(&mut self, code: StopCode) {
+        if self.dialect.program_stop == ProgramStop::StopsSpindleAndCoolant {
+            if self.state.spindle != SpindleDir::Stop {
+                self.state.spindle = SpindleDir::Stop;
+                self.state.rpm = 0.0;
+                self.emit(|loc| Event::Spindle {
+                    loc,
+                    dir: SpindleDir::Stop,
+                    rpm: 0.0,
+                    surface_m_per_min: None,
+                });
+            }
+            if self.state.coolant {
+                self.state.coolant = false;
+                self.emit(|loc| Event::Coolant { loc, on: false });
+            }
+        }
+        self.emit(|loc| Event::Stop { loc, code });
+    }
+
+    /// Syntec 1.2.6: M codes are invalid in high-speed mode; G05 P0 leaves it.
+    fn check_high_speed(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let m =
+            w.m.iter()
+                .flatten()
+                .map(|m| m.span)
+                .chain(w.other_m.iter().flatten().map(|m| m.span))
+                .min_by_key(|s| s.start);
+        match m {
+            Some(span) => Err(alarms::m_code_in_high_speed(span)),
+            None => Ok(()),
+        }
+    }
+
+    /// Step 6b: one-shot settings without axis words (G28.1/G30.1, G92.1,
+    /// G187).
+    fn setting_codes(&mut self, w: &Words<'_>) {
+        for at in w.once_codes() {
+            match at.def.op {
+                GOp::RefStore(n) => self.store_reference(n),
+                GOp::ShiftCancel => {
+                    self.tables.set_shift(crate::events::Pos::default());
+                    self.state.refresh_origin(&self.tables);
+                }
+                GOp::Smoothing => {
+                    let level = w.get(b'P').map_or(1.0, |p| p.value.clamp(1.0, 3.0));
+                    // P1–P3: whole and in range after the clamp.
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let level = level as u8;
+                    let tolerance_mm = w.get(b'E').map(|e| self.length_mm(&e));
+                    self.emit(|loc| Event::Smoothing {
+                        loc,
+                        level,
+                        tolerance_mm,
+                    });
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// Step 5b: the machine builder's M codes pass through as `aux`
+    /// events; unknown ones (on a machine that is not strict) warn.
+    fn other_m_codes(&mut self, w: &Words<'_>) {
+        for m in w.other_m.iter().flatten() {
+            match self.machine.m_codes.get(&m.def) {
+                Some(description) => {
+                    let description = description.clone();
+                    self.emit(|loc| Event::Aux {
+                        loc,
+                        code: m.def,
+                        description,
+                    });
+                }
+                None => self.warn(alarms::unknown_m_ignored(m.span, m.def, self.dialect.name)),
+            }
+        }
+    }
+
     /// Step 8: stops, ends, calls and returns (already resolved).
     fn program_flow(&mut self, w: &Words<'_>, flow: Option<Step>) -> Result<Step, Diagnostic> {
         let Some(m) = w.m_of(MGroup::Flow) else {
             return Ok(flow.unwrap_or(Step::Next));
         };
         match m.def.op {
-            MOp::Stop => self.emit(|loc| Event::Stop {
-                loc,
-                code: StopCode::M00,
-            }),
-            MOp::OptionalStop if self.opts.optional_stop => self.emit(|loc| Event::Stop {
-                loc,
-                code: StopCode::M01,
-            }),
+            MOp::Stop => self.program_stop(StopCode::M00),
+            MOp::OptionalStop if self.opts.optional_stop => self.program_stop(StopCode::M01),
             MOp::End | MOp::EndRewind => {
-                // Compensation ends with the program: its last move leaves first.
-                self.comp_finish()?;
-                self.report_frame();
                 let code = if m.def.op == MOp::End {
                     EndCode::M02
                 } else {
                     EndCode::M30
                 };
-                self.emit(|loc| Event::End { loc, code });
-                return Ok(Step::End(code));
+                return self.end_program(code);
             }
             _ => {}
         }
         Ok(flow.unwrap_or(Step::Next))
+    }
+
+    /// The end of the run: compensation's last move leaves first, then the
+    /// frame, then the `end` event.
+    pub(crate) fn end_program(&mut self, code: EndCode) -> Result<Step, Diagnostic> {
+        self.comp_finish()?;
+        self.report_frame();
+        self.emit(|loc| Event::End { loc, code });
+        Ok(Step::End(code))
     }
 
     /// Resolves M98/M99 of the block into the jump it will make.
@@ -413,10 +535,22 @@ impl Interpreter<'_> {
             return Ok(None);
         };
         match m.def.op {
-            MOp::Call => self.call(w, m.span, here, next, store).map(Some),
-            MOp::Return => self.ret(w, m.span).map(Some),
+            MOp::Call => self.call(w, m.span, here, next, store, false).map(Some),
+            MOp::Return => self.ret(w, m.span, here).map(Some),
+            MOp::LocalCall => self.call(w, m.span, here, next, store, true).map(Some),
             _ => Ok(None),
         }
+    }
+
+    /// Reports a warning about the current block (located in its line); it
+    /// reaches the sink with the block's events.
+    #[cold]
+    pub(crate) fn warn(&mut self, d: Diagnostic) {
+        let d = match self.cur_line {
+            Some((src, line)) => self.locate(d, src, &line),
+            None => d,
+        };
+        self.emit(|_| Event::Warning(d));
     }
 
     /// Adds an event of the current block; it reaches the sink when the

@@ -10,11 +10,15 @@ use crate::alarms;
 use crate::dialect::{
     AxisWords, Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit,
 };
-use crate::machine::SameGroup;
+use crate::machine::{Machine, SameGroup};
 use vcnc_syntax::{Addr, Block, Diagnostic, Span, Word};
 
 /// Most one-shot (group 00) codes in one block.
 const MAX_ONCE: usize = 4;
+
+/// Most machine-builder (or unknown) M codes in one block besides the
+/// dialect's own (Fanuc 0i allows three M codes a block).
+pub(crate) const MAX_OTHER_M: usize = 3;
 
 /// Most modal codes of different groups in one block (a safe-start line
 /// such as `G00 G17 G21 G40 G49 G80 G90 G94 G98` has nine).
@@ -47,6 +51,9 @@ pub struct Words<'b> {
     pub axis_user: Option<At<GDef>>,
     /// M codes by group.
     pub m: [Option<At<MDef>>; M_GROUPS],
+    /// M codes the dialect does not know: the machine file's auxiliary
+    /// codes (`aux`) or unknown ones (a warning), by number.
+    pub other_m: [Option<At<u32>>; MAX_OTHER_M],
     /// The block's first word span (for alarms about the whole block).
     pub first: Span,
     /// Whether any G code other than a motion code, or any M code, is written
@@ -68,6 +75,7 @@ impl<'b> Words<'b> {
             once: [None; MAX_ONCE],
             axis_user: None,
             m: [None; M_GROUPS],
+            other_m: [None; MAX_OTHER_M],
             first: block.first_span(),
             has_codes: false,
         }
@@ -80,9 +88,10 @@ impl<'b> Words<'b> {
     pub fn fill(
         &mut self,
         dialect: &Dialect,
-        same_group: SameGroup,
+        machine: &Machine,
         axis_mask: u32,
     ) -> Result<(), Diagnostic> {
+        let same_group = machine.params.same_group_in_block;
         let block = self.block;
         if block.is_plain() {
             return Ok(());
@@ -91,7 +100,7 @@ impl<'b> Words<'b> {
         for (k, word) in block.words().iter().enumerate() {
             match word.addr.as_letter() {
                 Some(b'G') => self.add_g(word, dialect, same_group)?,
-                Some(b'M') => self.add_m(word, dialect)?,
+                Some(b'M') => self.add_m(word, dialect, machine)?,
                 Some(l) => {
                     let bit = 1 << (l - b'A');
                     if seen & bit != 0 {
@@ -221,7 +230,12 @@ impl<'b> Words<'b> {
         Ok(())
     }
 
-    fn add_m(&mut self, word: &Word, dialect: &Dialect) -> Result<(), Diagnostic> {
+    fn add_m(
+        &mut self,
+        word: &Word,
+        dialect: &Dialect,
+        machine: &Machine,
+    ) -> Result<(), Diagnostic> {
         if word.point {
             return Err(alarms::no_decimal_point(
                 word.span,
@@ -229,9 +243,9 @@ impl<'b> Words<'b> {
                 "M codes are whole numbers",
             ));
         }
-        let def = dialect
-            .m(word.value)
-            .ok_or_else(|| alarms::unknown_m(word.span, word.value, dialect.name))?;
+        let Some(def) = dialect.m(word.value) else {
+            return self.add_other_m(word, dialect, machine);
+        };
         let slot = &mut self.m[def.group as usize];
         if slot.is_some() {
             return Err(alarms::same_m_group(word.span));
@@ -242,6 +256,37 @@ impl<'b> Words<'b> {
         });
         self.has_codes = true;
         Ok(())
+    }
+
+    /// An M code the dialect does not know: the machine's auxiliary code,
+    /// or an unknown one (an alarm on a strict machine, else kept for a
+    /// warning).
+    #[cold]
+    fn add_other_m(
+        &mut self,
+        word: &Word,
+        dialect: &Dialect,
+        machine: &Machine,
+    ) -> Result<(), Diagnostic> {
+        let code = u32::try_from(whole_m(word.value)).ok();
+        let known = code.is_some_and(|c| machine.m_codes.contains_key(&c));
+        if !known && machine.params.strict_m_codes {
+            return Err(alarms::unknown_m(word.span, word.value, dialect.name));
+        }
+        let Some(code) = code else {
+            return Err(alarms::unknown_m(word.span, word.value, dialect.name));
+        };
+        self.has_codes = true;
+        match self.other_m.iter_mut().find(|s| s.is_none()) {
+            Some(slot) => {
+                *slot = Some(At {
+                    def: code,
+                    span: word.span,
+                });
+                Ok(())
+            }
+            None => Err(alarms::same_m_group(word.span)),
+        }
     }
 
     /// Rejects any letter outside `allowed` (bit mask), pointing at the first.
@@ -293,6 +338,11 @@ impl<'b> Words<'b> {
         self.once.iter().flatten().find(|a| a.def.op == op).copied()
     }
 
+    /// The block's one-shot (group 00) codes.
+    pub fn once_codes(&self) -> impl Iterator<Item = &At<GDef>> {
+        self.once.iter().flatten()
+    }
+
     fn has_once(&self, op: GOp) -> bool {
         self.once(op).is_some()
     }
@@ -331,3 +381,16 @@ impl<'b> Words<'b> {
 
 /// Letters every block may carry.
 pub const ALWAYS: u32 = bit(b'N') | bit(b'F') | bit(b'S') | bit(b'T');
+
+/// An M value as a whole number in 0..=9999, or -1 (the lexer already
+/// rejected points; values beyond are not M codes of any machine).
+fn whole_m(v: f64) -> i64 {
+    if (0.0..=9999.0).contains(&v) && v.fract() == 0.0 {
+        // In range and whole: the cast is exact.
+        #[allow(clippy::cast_possible_truncation)]
+        let n = v as i64;
+        n
+    } else {
+        -1
+    }
+}

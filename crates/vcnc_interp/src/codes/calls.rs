@@ -14,6 +14,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
+use crate::events::EndCode;
 use crate::flow::{Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
 use vcnc_syntax::{Cursor, Diagnostic, Span};
@@ -27,13 +28,20 @@ impl Interpreter<'_> {
         here: Cursor,
         next: Cursor,
         store: &mut dyn ProgramStore,
+        local: bool,
     ) -> Result<Step, Diagnostic> {
-        let program = w.get(b'P').map(|p| {
+        // M98 P program [H sequence]; Haas M97 P sequence (of this program).
+        let (program_letter, seq_letter) = if local {
+            (None, b'P')
+        } else {
+            (Some(b'P'), b'H')
+        };
+        let program = program_letter.and_then(|l| w.get(l)).map(|p| {
             whole(&p, b'P', 0.0, 99_999_999.0, "P is a program number").map(|n| (n, p.span))
         });
         let program = program.transpose()?;
-        let seq = w.get(b'H').map(|h| {
-            whole(&h, b'H', 0.0, 99_999_999.0, "H is a sequence number").map(|n| (n, h.span))
+        let seq = w.get(seq_letter).map(|h| {
+            whole(&h, h.addr.0, 0.0, 99_999_999.0, "a sequence number").map(|n| (n, h.span))
         });
         let seq = seq.transpose()?;
         let runs = match w.get(b'L') {
@@ -41,11 +49,11 @@ impl Interpreter<'_> {
             None => 1,
         };
         if program.is_none() && seq.is_none() {
-            return Err(alarms::needs_word(
-                m,
-                "M98",
-                "P (a program number) or H (a sequence number)",
-            ));
+            return Err(if local {
+                alarms::needs_word(m, "M97", "P (a sequence number of this program)")
+            } else {
+                alarms::needs_word(m, "M98", "P (a program number) or H (a sequence number)")
+            });
         }
         let depth = self.flow().frames.len() as u64;
         if depth > u64::from(self.machine.limits.max_call_depth) {
@@ -89,7 +97,7 @@ impl Interpreter<'_> {
     }
 
     /// M99.
-    pub(crate) fn ret(&mut self, w: &Words<'_>, m: Span) -> Result<Step, Diagnostic> {
+    pub(crate) fn ret(&mut self, w: &Words<'_>, m: Span, here: Cursor) -> Result<Step, Diagnostic> {
         let target = w.get(b'P').map(|p| {
             whole(&p, b'P', 0.0, 99_999_999.0, "M99 P is a sequence number").map(|n| (n, p.span))
         });
@@ -108,9 +116,12 @@ impl Interpreter<'_> {
                     .ok_or_else(|| alarms::sequence_not_found(span, n))?,
                 None => frame.start,
             };
-            if let Some(f) = flow.frame_mut().filter(|_| target.is_none()) {
-                // Run again: a `%` or O header at the start is skipped again.
-                f.started = false;
+            if (to.offset, to.col) <= (here.offset, here.col) {
+                // Back to an earlier block: nothing in a program without
+                // variables can end the loop, so a machine runs it for
+                // ever (a bar feeder); one pass is the run.
+                self.warn(alarms::main_program_repeats(m));
+                return self.end_program(EndCode::M99);
             }
             return Ok(Step::Jump(to));
         }

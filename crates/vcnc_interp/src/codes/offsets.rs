@@ -12,6 +12,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
+use crate::dialect::G10L20;
 use crate::interpreter::Interpreter;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -35,38 +36,75 @@ impl Interpreter<'_> {
                 "L (2 work offset, 10/11 H geometry/wear, 12/13 D geometry/wear) and P",
             )
         })?;
-        match whole(&l, b'L', 2.0, 13.0, "G10 L is 2, 10, 11, 12 or 13")? {
-            2 => self.set_work_offset(w, cmd),
+        let from_position = self.dialect.l20 == G10L20::FromPosition;
+        match whole(&l, b'L', 2.0, 20.0, "G10 L is 2, 10, 11, 12 or 13")? {
+            2 => self.set_work_offset(w, cmd, false),
+            20 if from_position => self.set_work_offset(w, cmd, true),
             n @ 10..=13 => self.set_tool_offset(w, cmd, n),
             _ => Err(alarms::value_out_of_range(
                 l.span,
                 b'L',
                 l.value,
-                "G10 L is 2, 10, 11, 12 or 13",
+                if from_position {
+                    "G10 L is 2, 10, 11, 12, 13 or 20"
+                } else {
+                    "G10 L is 2, 10, 11, 12 or 13"
+                },
             )),
         }
     }
 
-    /// G10 L2 Pn: sets work offset n (1 = G54 … 6 = G59).
-    fn set_work_offset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+    /// G10 L2 Pn: sets work offset n (1 = G54 … 6 = G59); with
+    /// `from_position` (G10 L20, grbl/LinuxCNC) so that the current position
+    /// reads as the axis words. Where G10 L20 exists, P0 is the active
+    /// system.
+    fn set_work_offset(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        from_position: bool,
+    ) -> Result<(), Diagnostic> {
         if let Some(r) = w.get(b'R') {
             return Err(alarms::word_not_allowed(r.span, b'R'));
         }
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
-        if p.point || !(1.0..=6.0).contains(&p.value) {
+        let lowest = if self.dialect.l20 == G10L20::FromPosition {
+            0.0
+        } else {
+            1.0
+        };
+        if p.point || !(lowest..=6.0).contains(&p.value) {
             return Err(alarms::bad_offset_number(p.span, p.value));
         }
-        let n = whole(&p, b'P', 1.0, 6.0, "P is a work offset number")? as usize - 1;
+        let n = match whole(&p, b'P', lowest, 6.0, "P is a work offset number")? {
+            0 => self.state.modal.wcs,
+            k => k as usize - 1,
+        };
         let values = self.named_values(w);
         if values.is_empty() {
-            return Err(alarms::needs_axes(cmd, "G10 L2"));
+            return Err(alarms::needs_axes(
+                cmd,
+                if from_position { "G10 L20" } else { "G10 L2" },
+            ));
         }
         let incremental = self.state.modal.incremental;
         let mut offset = self.tables.work[n];
         for (i, v) in values {
-            offset.set(i, if incremental { offset.get(i) + v } else { v });
+            let value = if from_position {
+                let s = &self.state;
+                s.nominal.get(i)
+                    - self.tables.local.get(i)
+                    - self.tables.shift.get(i)
+                    - s.frame.tool.get(i)
+                    - v
+            } else if incremental {
+                offset.get(i) + v
+            } else {
+                v
+            };
+            offset.set(i, value);
         }
         self.tables.set_work(n, offset);
         self.state.refresh_origin(&self.tables);

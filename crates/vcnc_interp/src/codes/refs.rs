@@ -16,7 +16,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::dialect::GOp;
+use crate::dialect::{BareReturn, GOp};
 use crate::events::Event;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
@@ -71,6 +71,9 @@ impl Interpreter<'_> {
                 self.pattern(op, w, cmd)
             }
             GOp::DwellOrWait => self.dwell_or_wait(w),
+            GOp::DwellP => self.dwell_p(w, cmd),
+            GOp::Probe { must_trip } => self.probe(w, cmd, must_trip),
+            GOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
             GOp::PocketRect | GOp::PocketCircle => self.pocket(op, w, cmd),
             _ => Ok(()),
         }
@@ -98,7 +101,14 @@ impl Interpreter<'_> {
                 ));
             }
             (None, Some(x)) => self.seconds(&x),
-            (None, None) => 0.0,
+            // Syntec 1.2.5: the dwell is X or P; a bare G04 says nothing.
+            (None, None) => {
+                return Err(alarms::needs_word(
+                    w.first,
+                    "G04",
+                    "X (seconds) or P (milliseconds)",
+                ));
+            }
         };
         // Manual 1.2.5: 0.001 to 9999.999 s (0 is the exact-stop check).
         if seconds > 9_999.999 {
@@ -112,6 +122,52 @@ impl Interpreter<'_> {
         }
         self.emit(|loc| Event::Dwell { loc, seconds });
         Ok(())
+    }
+
+    /// grbl G4 P: seconds (whole units), P required.
+    fn dwell_p(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G4", "P (the dwell in seconds)"))?;
+        let seconds = self.seconds(&p);
+        if !(0.0..=9_999.999).contains(&seconds) {
+            return Err(alarms::value_out_of_range(
+                p.span,
+                b'P',
+                p.value,
+                "a dwell is 0 to 9999.999 s",
+            ));
+        }
+        self.emit(|loc| Event::Dwell { loc, seconds });
+        Ok(())
+    }
+
+    /// G38.2–G38.5: a probing move, a skip that fires where the machine
+    /// file's probe (skip) signal is, whether the probe moves toward the
+    /// work (contact made) or away (contact lost): the signal changes where
+    /// the path crosses it. G38.2/G38.4 alarm when it does not.
+    fn probe(&mut self, w: &Words<'_>, cmd: Span, must_trip: bool) -> Result<(), Diagnostic> {
+        self.skip(w, cmd)?;
+        let tripped = self
+            .pending
+            .iter()
+            .rev()
+            .find_map(|e| match e {
+                Event::Skip { triggered, .. } => Some(*triggered),
+                _ => None,
+            })
+            .unwrap_or(false);
+        if must_trip && !tripped {
+            return Err(alarms::probe_not_tripped(cmd));
+        }
+        Ok(())
+    }
+
+    /// G28.1 / G30.1: the current machine position becomes reference
+    /// point 1 / 2 (grbl's stored G28/G30 positions).
+    pub(crate) fn store_reference(&mut self, n: u8) {
+        let pos = self.state.pos;
+        self.tables.set_reference(usize::from(n) - 1, pos);
     }
 
     /// EIA G04: P seconds with a point, milliseconds without; no P is the
@@ -152,6 +208,7 @@ impl Interpreter<'_> {
                 "G05 P is 0, 1-5 or 10000",
             ));
         }
+        self.state.modal.high_speed = n != 0;
         self.emit(|loc| Event::HighSpeed {
             loc,
             on: n != 0,
@@ -164,12 +221,16 @@ impl Interpreter<'_> {
     fn reference_return(&mut self, w: &Words<'_>, cmd: Span, n: usize) -> Result<(), Diagnostic> {
         let goal = self.target(w, self.state.modal.incremental);
         let (mid, named) = (goal.prog, goal.named);
-        if named == 0 {
+        let reference = self.tables.reference.get(n - 1).copied().flatten();
+        if named == 0 && self.dialect.bare_return == BareReturn::NeedsAxes {
             return Err(alarms::needs_axes(cmd, "a reference return"));
         }
-        let reference = self.machine.reference.get(n - 1).copied().flatten();
         let reference = reference
             .ok_or_else(|| alarms::no_reference(w.get(b'P').map_or(cmd, |p| p.span), n))?;
+        if named == 0 {
+            // Haas, grbl: every axis goes straight to the reference point.
+            return self.straight(MoveKind::Rapid, Target::Machine(reference), w, cmd);
+        }
         for i in 0..self.machine.axes.len() {
             if named & (1 << i) != 0 {
                 self.state.intermediate.set(i, mid.get(i));

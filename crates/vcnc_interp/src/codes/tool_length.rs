@@ -18,11 +18,12 @@
 use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::{GOp, Group};
+use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::motion::frame::Transform;
 use crate::motion::{MoveKind, Target};
 use crate::state::{Motion, ToolLength};
-use vcnc_syntax::Diagnostic;
+use vcnc_syntax::{Diagnostic, Span};
 
 impl Interpreter<'_> {
     /// Step 6 for codes without axis words. Returns whether the tool
@@ -75,6 +76,10 @@ impl Interpreter<'_> {
         if code.is_none() && h.is_none() {
             return Ok(false);
         }
+        if code.is_some_and(|c| c.def.op == GOp::ToolLengthDynamic) {
+            // G43.1 takes its value from the axis words (refs.rs dispatch).
+            return Ok(false);
+        }
         let mode = match code.map(|c| c.def.op) {
             Some(GOp::ToolLengthPlus) => ToolLength::Plus,
             Some(GOp::ToolLengthMinus) => ToolLength::Minus,
@@ -108,6 +113,36 @@ impl Interpreter<'_> {
         self.state.frame.tool = tool;
         self.state.frame_dirty = true;
         Ok(true)
+    }
+
+    /// grbl/LinuxCNC G43.1 Z: a tool length offset given as a value, not a
+    /// register. Nothing moves: the programmed position reads the new
+    /// offset, and the next move goes where it puts the program point.
+    pub(crate) fn dynamic_tool_length(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let z = self
+            .machine
+            .axis_of(b'Z')
+            .ok_or_else(|| alarms::tool_length_without_z(cmd))?;
+        let word = w
+            .get(b'Z')
+            .ok_or_else(|| alarms::needs_word(cmd, "G43.1", "Z (the tool length offset)"))?;
+        for a in self.axis_words.iter().filter(|a| a.letter != b'Z') {
+            if let Some(other) = w.get(a.letter) {
+                return Err(alarms::word_not_allowed(other.span, a.letter));
+            }
+        }
+        let mut tool = Pos::default();
+        tool.set(z, self.length_mm(&word));
+        self.state.modal.tool_length = ToolLength::Plus;
+        self.state.frame.tool = tool;
+        self.state.prog = self.state.frame.program_of(self.state.nominal);
+        self.state.detached = false;
+        self.state.frame_dirty = true;
+        Ok(())
     }
 
     /// A block that changed the tool offset and did not move: Z moves so

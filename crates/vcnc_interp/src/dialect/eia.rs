@@ -5,12 +5,12 @@
 //! cycles, the pockets G78/G79 and G99 as a junction marker.
 
 use super::{
-    CYCLE_WORDS, CycleRules, Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord,
-    RapidPath, bit, g, mill::MILL_M,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
+    LongChord, ProgramStop, RapidPath, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::LexRules;
+use vcnc_syntax::{LexRules, Semicolon};
 
 /// What a drilling cycle reads (Q and P only where they mean something,
 /// but the data words are shared: `CycleRules::words`).
@@ -57,6 +57,7 @@ const EIA_G: &[GRow] = &[
 
 /// RS-274-D reading: no `//` comments, no full-width `；` (Syntec habits).
 const EIA_LEX: LexRules = LexRules {
+    semicolon: Semicolon::EndOfBlock,
     slash_comments: false,
     fullwidth_semicolon: false,
     extended: &[],
@@ -86,5 +87,8 @@ pub(super) fn eia() -> Dialect {
         unsupported: &[],
         rapid: RapidPath::ZPriority,
         cycles: CycleRules::Eia,
+        bare_return: BareReturn::NeedsAxes,
+        l20: G10L20::Unsupported,
+        program_stop: ProgramStop::StopsSpindleAndCoolant,
     }
 }

@@ -6,12 +6,12 @@
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
 use super::{
-    CycleRules, Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, RapidPath, bit, g,
-    mill::MILL_M,
+    BareReturn, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords, LongChord,
+    ProgramStop, RapidPath, bit, g, mill::MILL_M,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
-use vcnc_syntax::{Addr, LexRules};
+use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 const LATHE_G: &[GRow] = &[
     g(0, GOp::Rapid, Group::Motion),
@@ -80,6 +80,7 @@ const LATHE_G: &[GRow] = &[
 ];
 
 const LATHE_LEX: LexRules = LexRules {
+    semicolon: Semicolon::EndOfBlock,
     slash_comments: true,
     fullwidth_semicolon: true,
     extended: &[
@@ -118,5 +119,8 @@ pub(super) fn lathe() -> Dialect {
         unsupported: UNSPECIFIED,
         rapid: RapidPath::ByParameter,
         cycles: CycleRules::Fanuc,
+        bare_return: BareReturn::NeedsAxes,
+        l20: G10L20::Unsupported,
+        program_stop: ProgramStop::StopsSpindleAndCoolant,
     }
 }

@@ -3,12 +3,12 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    CYCLE_WORDS, CycleRules, Dialect, Diameter, GOp, GRow, Group, IntegerWords, LongChord, MGroup,
-    MOp, MRow, RapidPath, bit, g,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
+    LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::LexRules;
+use vcnc_syntax::{LexRules, Semicolon};
 
 /// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
 const MILL_G: &[GRow] = &[
@@ -147,6 +147,7 @@ pub(super) const MILL_M: &[MRow] = &[
 ];
 
 const MILL_LEX: LexRules = LexRules {
+    semicolon: Semicolon::EndOfBlock,
     slash_comments: true,
     fullwidth_semicolon: true,
     extended: &[],
@@ -159,6 +160,21 @@ const SYNTEC_LATER: &[(u16, &str)] = &[
     (62, "G06.2 NURBS interpolation is not implemented yet"),
     (650, "G65 macro call is not implemented yet"),
     (660, "G66 macro modal call is not implemented yet"),
+];
+
+/// Haas's codes beyond Fanuc's that its programs use (Haas mill operator's
+/// manual, G- and M-code chapters).
+const HAAS_G: &[GRow] = &[
+    // G187 P1–P3 (rough, medium, finish) E corner tolerance: a setting for
+    // the planner.
+    g(1870, GOp::Smoothing, Group::NonModal).reads(bit(b'P') | bit(b'E')),
+];
+
+/// Haas M codes with a controller meaning (the machine builder's others
+/// are in `default_haas.toml`'s `[m_codes]`).
+const HAAS_M: &[MRow] = &[
+    (16, MOp::ToolChange, MGroup::Tool, 0),
+    (97, MOp::LocalCall, MGroup::Flow, bit(b'P') | bit(b'L')),
 ];
 
 fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
@@ -181,6 +197,9 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         unsupported: SYNTEC_LATER,
         rapid: RapidPath::ByParameter,
         cycles: CycleRules::Fanuc,
+        bare_return: BareReturn::NeedsAxes,
+        l20: G10L20::Unsupported,
+        program_stop: ProgramStop::StopsSpindleAndCoolant,
     }
 }
 
@@ -192,4 +211,19 @@ pub(super) fn syntec() -> Dialect {
 /// Fanuc 0i mill.
 pub(super) fn fanuc() -> Dialect {
     mill("fanuc", FANUC_UNITS)
+}
+
+/// Haas mills: Fanuc plus G187, M97 local subprograms, M16, G28 without
+/// axes homing every axis, and the Haas machine's M codes.
+pub(super) fn haas() -> Dialect {
+    let rows: Vec<MRow> = MILL_M.iter().chain(HAAS_M).copied().collect();
+    let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, HAAS_G], &rows);
+    Dialect {
+        name: "haas",
+        g,
+        m,
+        default_machine: crate::machine::DEFAULT_HAAS_TOML,
+        bare_return: BareReturn::AllAxes,
+        ..fanuc()
+    }
 }

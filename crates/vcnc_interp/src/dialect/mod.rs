@@ -11,6 +11,7 @@
 //! adds word rules: U/W incremental axes, X in diameters, `CR=`, `IX`/`IZ`.
 
 mod eia;
+mod grbl;
 mod lathe;
 mod mill;
 
@@ -62,10 +63,12 @@ pub enum Group {
     Mirror,
     /// Lathe G22/G23: radius or diameter programming.
     DiameterMode,
+    /// G90.1/G91.1: arc centres absolute or incremental (LinuxCNC, grbl).
+    ArcDistance,
 }
 
 /// Number of modal groups other than `NonModal`.
-pub const MODAL_GROUPS: usize = 18;
+pub const MODAL_GROUPS: usize = 19;
 
 impl Group {
     /// Slot of a modal group in per-block tables (`None` for group 00).
@@ -152,6 +155,22 @@ pub enum GOp {
     PatternLine,
     PatternArc,
     PatternGrid,
+    // grbl 1.1 (and LinuxCNC where they agree).
+    ArcCentersAbsolute,
+    ArcCentersIncremental,
+    /// G38.2–G38.5: alarm if the probe signal does not change (`true`:
+    /// G38.2 toward, G38.4 away).
+    Probe {
+        must_trip: bool,
+    },
+    InverseTime,
+    /// G28.1 (1) / G30.1 (2): store the position as that reference point.
+    RefStore(u8),
+    ToolLengthDynamic,
+    ShiftCancel,
+    DwellP,
+    // Haas.
+    Smoothing,
     // EIA-274-D (seed 004).
     DwellOrWait,
     PocketRect,
@@ -200,6 +219,8 @@ pub enum MOp {
     CoolantOff,
     Call,
     Return,
+    /// Haas M97: a subprogram at a sequence number of this program.
+    LocalCall,
 }
 
 /// M-code groups: two codes of one group in a block alarm (E206).
@@ -347,6 +368,38 @@ pub enum RapidPath {
     ZPriority,
 }
 
+/// What G28 without axis words does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BareReturn {
+    /// Alarm E312: the command names the axes to return (Syntec 1.2.13,
+    /// Fanuc).
+    NeedsAxes,
+    /// Every axis goes straight to the reference point (Haas, grbl).
+    AllAxes,
+}
+
+/// What M00 (and an effective M01) does besides waiting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProgramStop {
+    /// The spindle and the coolant stop (Syntec M-code table: "the spindle
+    /// will stop to rotate … cutting oil will stop"); the program starts
+    /// them again.
+    StopsSpindleAndCoolant,
+    /// A pause: spindle and coolant stay as they are (grbl).
+    Pause,
+}
+
+/// What `G10 L20` means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum G10L20 {
+    /// Not a code of the dialect (Fanuc uses it for the G54.1 extended
+    /// offsets, which vcnc does not run): E109.
+    Unsupported,
+    /// Set work offset P so that the current position reads as the axis
+    /// words (grbl, LinuxCNC).
+    FromPosition,
+}
+
 /// Which reading of the canned drilling cycles a dialect has.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CycleRules {
@@ -398,6 +451,12 @@ pub struct Dialect {
     pub rapid: RapidPath,
     /// The canned cycles' reading.
     pub cycles: CycleRules,
+    /// G28 without axis words.
+    pub bare_return: BareReturn,
+    /// G10 L20.
+    pub l20: G10L20,
+    /// M00.
+    pub program_stop: ProgramStop,
 }
 
 impl std::fmt::Debug for Dialect {
@@ -423,12 +482,14 @@ impl Dialect {
             "fanuc" => Some(mill::fanuc()),
             "lathe" => Some(lathe::lathe()),
             "eia" => Some(eia::eia()),
+            "grbl" => Some(grbl::grbl()),
+            "haas" => Some(mill::haas()),
             _ => None,
         }
     }
 
     /// Names accepted by [`by_name`](Self::by_name).
-    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc", "lathe", "eia"];
+    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc", "lathe", "eia", "grbl", "haas"];
 
     /// Syntec 900M mill (the default).
     pub fn syntec() -> Dialect {
@@ -448,6 +509,16 @@ impl Dialect {
     /// Generic EIA-274-D (seed 004).
     pub fn eia() -> Dialect {
         eia::eia()
+    }
+
+    /// grbl 1.1 and the hobby CAM programs written for it.
+    pub fn grbl() -> Dialect {
+        grbl::grbl()
+    }
+
+    /// Haas mills (Fanuc with Haas's differences).
+    pub fn haas() -> Dialect {
+        mill::haas()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the

@@ -70,6 +70,14 @@ impl Interpreter<'_> {
                 // The lathe document: a chord longer than 2R is cut straight.
                 None => return self.straight(MoveKind::Feed(feed), self.to_target(&goal), w, cmd),
             },
+            None if has_center && self.state.modal.arc_absolute => {
+                // G90.1: I/J/K are the centre's program coordinates; both
+                // are needed (LinuxCNC).
+                let (Some(i), Some(j)) = (w.get(oa), w.get(ob)) else {
+                    return Err(alarms::arc_without_center(cmd, plane.as_str()));
+                };
+                (self.length_mm(&i), self.length_mm(&j))
+            }
             None if has_center => {
                 let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
                 (s.0 + off(oa), s.1 + off(ob))
@@ -98,17 +106,20 @@ impl Interpreter<'_> {
                 line_if_short: self.dialect.long_chord == LongChord::Line,
             });
         }
+        // `CR=` and D behave like R (the lathe document: "the formats behave
+        // alike"), a too-long chord included.
+        let line_if_short = self.dialect.long_chord == LongChord::Line;
         if let Some(cr) = w.get_ext(Addr::CR) {
             return Some(Radius {
                 mm: self.length_mm(&cr),
                 span: cr.span,
-                line_if_short: false,
+                line_if_short,
             });
         }
         w.get(b'D').map(|d| Radius {
             mm: self.length_mm(&d) / 2.0,
             span: d.span,
-            line_if_short: false,
+            line_if_short,
         })
     }
 
@@ -130,7 +141,21 @@ impl Interpreter<'_> {
         let mut offset = Pos::default();
         offset.set(idx.a, center.0 - s.0);
         offset.set(idx.b, center.1 - s.1);
-        let feed = self.feed(cmd)?;
+        let feed = if self.state.modal.inverse_time {
+            let axes = self.plane_axes(plane, cmd)?;
+            let mut c = from;
+            c.set(idx.a, center.0);
+            c.set(idx.b, center.1);
+            let dir = if cw {
+                crate::events::ArcDir::Cw
+            } else {
+                crate::events::ArcDir::Ccw
+            };
+            let len = vcnc_core::geometry::ArcPath::new(from, to, c, axes, dir).length();
+            self.inverse_time_feed(w, cmd, len)?
+        } else {
+            self.feed(cmd)?
+        };
         self.straight(
             MoveKind::Arc {
                 offset,

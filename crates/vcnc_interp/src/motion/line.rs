@@ -30,8 +30,17 @@ impl Interpreter<'_> {
                 self.straight(MoveKind::Rapid, to, w, cmd)
             }
             Motion::Linear => {
-                let feed = self.feed(cmd)?;
                 let goal = self.target(w, self.state.modal.incremental);
+                let feed = if self.state.modal.inverse_time {
+                    let from = self.state.prog;
+                    let len = (0..MAX_AXES)
+                        .map(|i| (goal.prog.get(i) - from.get(i)).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    self.inverse_time_feed(w, cmd, len)?
+                } else {
+                    self.feed(cmd)?
+                };
                 let to = self.to_target(&goal);
                 self.straight(MoveKind::Feed(feed), to, w, cmd)
             }
@@ -70,7 +79,8 @@ impl Interpreter<'_> {
         w.once(GOp::ExactStopOnce).is_some()
     }
 
-    /// The current feed, or E301 when it is zero.
+    /// The current feed (clamped to the machine's maximum), or E301 when
+    /// it is zero.
     pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
         let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
         if f <= 0.0 {
@@ -79,8 +89,28 @@ impl Interpreter<'_> {
         Ok(if self.state.modal.per_rev {
             Feed::PerRev(f)
         } else {
-            Feed::PerMin(f)
+            // The control clamps a feed above its maximum (warning W102
+            // when F was given).
+            Feed::PerMin(f.min(self.max_feed))
         })
+    }
+
+    /// G93 (grbl, LinuxCNC): F is the inverse of the move's time in minutes,
+    /// given in every cutting block; the feed is the path length times F
+    /// (clamped to the machine's maximum).
+    pub(crate) fn inverse_time_feed(
+        &self,
+        w: &Words<'_>,
+        cmd: Span,
+        length_mm: f64,
+    ) -> Result<Feed, Diagnostic> {
+        let f = w.get(b'F').ok_or_else(|| {
+            alarms::needs_word(cmd, "a cut under G93", "F (1 / the move's time in minutes)")
+        })?;
+        if f.value <= 0.0 {
+            return Err(alarms::zero_feed(f.span));
+        }
+        Ok(Feed::PerMin((length_mm * f.value).min(self.max_feed)))
     }
 
     /// G31: moves like G01 until the skip signal of the machine file fires.

@@ -129,6 +129,19 @@ impl Interpreter<'_> {
     /// Sends one move of the block `w` through the stages. Nothing is
     /// changed unless every stage accepts it (and the block as a whole).
     pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.state.rpm <= 0.0 {
+            self.stopped_spindle(&mv)?;
+        } else if let MoveKind::Thread { lead_mm } = mv.kind {
+            // Syntec 1.2.17: 1 <= S <= maximum feed / lead.
+            if self.state.rpm * lead_mm > self.max_feed {
+                return Err(alarms::thread_too_fast(
+                    mv.cmd,
+                    self.state.rpm,
+                    lead_mm,
+                    self.max_feed,
+                ));
+            }
+        }
         // 1 frame
         let (prog_to, mm) = self.to_machine_move(&mv)?;
         self.moves += 1;
@@ -160,6 +173,29 @@ impl Interpreter<'_> {
             cmd: mv.cmd,
         };
         self.release(mm, &at, Some(w))
+    }
+
+    /// Warning W104, once until the spindle turns again: a cut with the
+    /// spindle stopped.
+    /// A move with the spindle stopped: a thread or a feed per revolution
+    /// cannot move at all (E342); another cut warns once (W104) until the
+    /// spindle turns again.
+    #[cold]
+    fn stopped_spindle(&mut self, mv: &Move) -> Result<(), Diagnostic> {
+        let per_rev = match mv.kind {
+            MoveKind::Thread { .. } => true,
+            MoveKind::Feed(f) | MoveKind::Arc { feed: f, .. } => matches!(f, Feed::PerRev(_)),
+            _ => false,
+        };
+        if per_rev {
+            return Err(alarms::per_rev_spindle_stopped(mv.cmd));
+        }
+        let cut = matches!(mv.kind, MoveKind::Feed(_) | MoveKind::Arc { .. });
+        if cut && !self.spindle_warned {
+            self.spindle_warned = true;
+            self.warn(alarms::cut_spindle_stopped(mv.cmd));
+        }
+        Ok(())
     }
 
     /// Stages 3 and 4: the travel check and the events of a machine move,

@@ -119,7 +119,10 @@ mod tests {
 
     #[test]
     fn an_arc_whose_ends_are_inside_can_still_leave_the_box() {
-        let machine = Machine::default_mill();
+        let machine = Machine::from_toml(include_str!(
+            "../../../../tests/fixtures/machines/mill_travel_limits.toml"
+        ))
+        .unwrap();
         // From (999, 0) round (0, 0) to (-999, 0) through y = 999: inside.
         let (m, path) = arc_move(p(999.0, 0.0), p(-999.0, 0.0), (0.0, 0.0), ArcDir::Ccw);
         assert_eq!(check(&machine, &m, Some(&path)), Ok(()));

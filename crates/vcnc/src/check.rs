@@ -1,0 +1,421 @@
+//! `vcnc check`: one program in detail, or many in parallel with one line
+//! each; text, JSON or SARIF reports.
+//!
+//! ```text
+//!   paths ─▶ programs (files; directories walked; `-` = stdin)
+//!        ─▶ rayon: one interpreter per program, a Summary sink each
+//!        ─▶ results in path order ─▶ text | json | sarif ─▶ exit code
+//! ```
+//!
+//! Programs are independent, so they are checked on all cores; each run
+//! streams its file as `run` does, so memory is one summary per program.
+
+use crate::cli::{CheckArgs, CheckFormat};
+use crate::files::{self, Input};
+use crate::{Setup, execute, render, setup};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde_json::{Value, json};
+use std::io::{IsTerminal, Write};
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+use vcnc_interp::{Outcome, Pos};
+use vcnc_output::Summary;
+use vcnc_syntax::{Code, Diagnostic};
+
+/// One program's result.
+struct Checked {
+    input: Input,
+    /// `Err`: the program could not be read at all.
+    run: Result<Ran, String>,
+}
+
+struct Ran {
+    outcome: Outcome,
+    summary: Summary,
+    diameter: bool,
+}
+
+impl Checked {
+    fn alarm(&self) -> Option<&Diagnostic> {
+        match &self.run {
+            Ok(Ran {
+                outcome: Outcome::Alarm(d),
+                ..
+            }) => Some(d),
+            _ => None,
+        }
+    }
+
+    fn warnings(&self) -> u64 {
+        self.run.as_ref().map_or(0, |r| r.summary.warning_total())
+    }
+}
+
+/// Runs the check and reports it.
+pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
+    let s = setup(&args.opts)?;
+    let mut inputs = Vec::new();
+    let mut single_file = args.paths.len() == 1;
+    for path in &args.paths {
+        if path.as_os_str() == "-" {
+            inputs.push(Input::from_arg(path)?);
+            continue;
+        }
+        let found = files::programs_under(path)?;
+        if found.is_empty() {
+            return Err(format!("no programs found under {}", path.display()));
+        }
+        single_file &= !path.is_dir();
+        inputs.extend(found.into_iter().map(Input::File));
+    }
+    if single_file && args.format == CheckFormat::Text {
+        return detailed(args, &s, &inputs[0]);
+    }
+    let results = check_all(args, &s, inputs)?;
+    let mut out = std::io::stdout().lock();
+    let written = match args.format {
+        CheckFormat::Text => text_report(&mut out, &results),
+        CheckFormat::Json => {
+            let doc = json_report(args, &s, &results);
+            writeln!(out, "{doc:#}")
+        }
+        CheckFormat::Sarif => {
+            let doc = sarif_report(&results);
+            writeln!(out, "{doc:#}")
+        }
+    };
+    written.map_err(|e| format!("writing the report: {e}"))?;
+    if results.iter().any(|r| r.run.is_err()) {
+        return Ok(ExitCode::from(2));
+    }
+    let alarms = results.iter().any(|r| r.alarm().is_some());
+    let warned = results.iter().any(|r| r.warnings() > 0);
+    Ok(if alarms || (args.deny_warnings && warned) {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// One program: the summary block, warnings and the alarm on stderr.
+fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, String> {
+    let mut summary = Summary::new(&s.machine);
+    let (outcome, diameter) = execute(&args.opts, s, input, &mut summary)?;
+    eprint!("{}", render::warnings(&summary, input));
+    if let Outcome::Alarm(d) = &outcome {
+        eprint!("{}", render::diagnostic(d, input));
+    }
+    let mut out = std::io::stdout().lock();
+    let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
+    render::summary(
+        &mut out,
+        &input.name(),
+        &s.dialect,
+        &s.machine,
+        &summary,
+        &outcome,
+        diameter_axis,
+    )
+    .map_err(|e| e.to_string())?;
+    let denied = args.deny_warnings && summary.warning_total() > 0;
+    Ok(crate::exit_code(&outcome, denied))
+}
+
+/// Checks every program on the thread pool, in input order.
+fn check_all(args: &CheckArgs, s: &Setup, inputs: Vec<Input>) -> Result<Vec<Checked>, String> {
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = args.jobs {
+        pool = pool.num_threads(n.max(1));
+    }
+    let pool = pool
+        .build()
+        .map_err(|e| format!("cannot start threads: {e}"))?;
+    let progress = Progress::new(inputs.len());
+    let results = pool.install(|| {
+        inputs
+            .into_par_iter()
+            .map(|input| {
+                let mut summary = Summary::new(&s.machine);
+                let run =
+                    execute(&args.opts, s, &input, &mut summary).map(|(outcome, diameter)| Ran {
+                        outcome,
+                        summary,
+                        diameter,
+                    });
+                progress.tick();
+                Checked { input, run }
+            })
+            .collect()
+    });
+    progress.done();
+    Ok(results)
+}
+
+/// A progress bar on a terminal, shown once the check has taken a second.
+struct Progress {
+    start: Instant,
+    total: usize,
+    state: Mutex<(usize, Option<ProgressBar>)>,
+    terminal: bool,
+}
+
+impl Progress {
+    fn new(total: usize) -> Progress {
+        Progress {
+            start: Instant::now(),
+            total,
+            state: Mutex::new((0, None)),
+            terminal: std::io::stderr().is_terminal(),
+        }
+    }
+
+    fn tick(&self) {
+        if !self.terminal {
+            return;
+        }
+        let Ok(mut state) = self.state.lock() else {
+            return;
+        };
+        state.0 += 1;
+        if state.1.is_none() && self.start.elapsed() > Duration::from_secs(1) {
+            let bar = ProgressBar::new(self.total as u64);
+            if let Ok(style) =
+                ProgressStyle::with_template("{bar:40} {pos}/{len} programs, {eta} left")
+            {
+                bar.set_style(style);
+            }
+            state.1 = Some(bar);
+        }
+        let done = state.0 as u64;
+        if let Some(bar) = &state.1 {
+            bar.set_position(done);
+        }
+    }
+
+    fn done(&self) {
+        if let Ok(state) = self.state.lock()
+            && let Some(bar) = &state.1
+        {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// One line per program, then the totals.
+fn text_report(out: &mut impl Write, results: &[Checked]) -> std::io::Result<()> {
+    let (mut ended, mut alarms, mut warned, mut warnings, mut unreadable) = (0, 0, 0, 0u64, 0);
+    for r in results {
+        let name = r.input.name();
+        let ran = match &r.run {
+            Ok(ran) => ran,
+            Err(e) => {
+                unreadable += 1;
+                writeln!(out, "{name}: error: {e}")?;
+                continue;
+            }
+        };
+        let w = ran.summary.warning_total();
+        warnings += w;
+        warned += usize::from(w > 0);
+        let warn_text = match w {
+            0 => String::new(),
+            1 => ", 1 warning".to_string(),
+            n => format!(", {n} warnings"),
+        };
+        match &ran.outcome {
+            Outcome::Alarm(d) => {
+                alarms += 1;
+                let place = d
+                    .file
+                    .as_deref()
+                    .map_or(String::new(), |f| format!(" in {f}"));
+                writeln!(
+                    out,
+                    "{name}: alarm {} at line {}, column {}{place}: {}{warn_text}",
+                    d.code.as_str(),
+                    d.line,
+                    d.column,
+                    d.message
+                )?;
+            }
+            Outcome::Ended(code) => {
+                ended += 1;
+                writeln!(
+                    out,
+                    "{name}: ended by {}, {:.1} s{warn_text}",
+                    code.as_str(),
+                    ran.summary.cycle_time_s
+                )?;
+            }
+            Outcome::Stopped => writeln!(out, "{name}: stopped{warn_text}")?,
+        }
+    }
+    write!(
+        out,
+        "{} programs: {ended} ran to the end, {alarms} stopped by an alarm, {warned} with warnings ({warnings} in all)",
+        results.len()
+    )?;
+    if unreadable > 0 {
+        write!(out, ", {unreadable} unreadable")?;
+    }
+    writeln!(out)
+}
+
+fn diagnostic_json(d: &Diagnostic) -> Value {
+    let mut v = json!({
+        "code": d.code.as_str(),
+        "line": d.line,
+        "column": d.column,
+        "message": d.message,
+        "help": d.help,
+    });
+    if let (Some(file), Some(obj)) = (&d.file, v.as_object_mut()) {
+        obj.insert("file".into(), json!(file));
+    }
+    v
+}
+
+fn pos_json(s: &Summary, p: &Pos) -> Value {
+    let mut m = serde_json::Map::new();
+    for (i, l) in s.axis_letters().iter().enumerate() {
+        if s.reports_axis(i) {
+            m.insert(
+                char::from(l.to_ascii_lowercase()).to_string(),
+                json!(p.get(i)),
+            );
+        }
+    }
+    Value::Object(m)
+}
+
+fn summary_json(s: &Summary, diameter: bool) -> Value {
+    let holes: u64 = s.holes.iter().map(|(_, n)| n).sum();
+    json!({
+        "cycle_time_s": s.cycle_time_s,
+        "rapid_mm": s.rapid_mm,
+        "cut_mm": s.cut_mm,
+        "extents": s.extents.map(|(lo, hi)| json!({"min": pos_json(s, &lo), "max": pos_json(s, &hi)})),
+        "tools": s.tools,
+        "holes": holes,
+        "spindle_rpm": s.spindle_rpm.map(|(lo, hi)| json!([lo, hi])),
+        "waits": s.waits,
+        "diameter_programming": diameter,
+    })
+}
+
+/// The JSON report: one document (docs/cli.md).
+fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
+    let files: Vec<Value> = results
+        .iter()
+        .map(|r| {
+            let mut v = json!({ "path": r.input.name() });
+            let Some(obj) = v.as_object_mut() else {
+                return v;
+            };
+            match &r.run {
+                Err(e) => {
+                    obj.insert("result".into(), json!("error"));
+                    obj.insert("error".into(), json!(e));
+                }
+                Ok(ran) => {
+                    let (result, end) = match &ran.outcome {
+                        Outcome::Ended(code) => ("ended", Some(code.as_str())),
+                        Outcome::Alarm(_) => ("alarm", None),
+                        Outcome::Stopped => ("stopped", None),
+                    };
+                    obj.insert("result".into(), json!(result));
+                    obj.insert("end".into(), json!(end));
+                    obj.insert("alarm".into(), json!(r.alarm().map(diagnostic_json)));
+                    let warnings: Vec<Value> =
+                        ran.summary.warnings.iter().map(diagnostic_json).collect();
+                    obj.insert("warnings".into(), json!(warnings));
+                    obj.insert("warning_count".into(), json!(ran.summary.warning_total()));
+                    obj.insert("summary".into(), summary_json(&ran.summary, ran.diameter));
+                }
+            }
+            v
+        })
+        .collect();
+    let count = |f: &dyn Fn(&Checked) -> bool| results.iter().filter(|r| f(r)).count();
+    json!({
+        "version": 1,
+        "dialect": s.dialect.name,
+        "machine": s.machine.name,
+        "deny_warnings": args.deny_warnings,
+        "files": files,
+        "totals": {
+            "programs": results.len(),
+            "ended": count(&|r| matches!(r.run, Ok(Ran { outcome: Outcome::Ended(_), .. }))),
+            "alarms": count(&|r| r.alarm().is_some()),
+            "with_warnings": count(&|r| r.warnings() > 0),
+            "warnings": results.iter().map(Checked::warnings).sum::<u64>(),
+            "unreadable": count(&|r| r.run.is_err()),
+        },
+    })
+}
+
+/// A path as a SARIF artifact URI (relative paths stay relative).
+fn uri(name: &str) -> String {
+    name.replace('\\', "/")
+}
+
+fn sarif_result(d: &Diagnostic, main: &str) -> Value {
+    let file = d.file.as_deref().map_or_else(|| uri(main), uri);
+    json!({
+        "ruleId": d.code.as_str(),
+        "level": if d.code.is_warning() { "warning" } else { "error" },
+        "message": { "text": format!("{} ({})", d.message, d.help) },
+        "locations": [{
+            "physicalLocation": {
+                "artifactLocation": { "uri": file },
+                "region": { "startLine": d.line.max(1), "startColumn": d.column.max(1) },
+            }
+        }],
+    })
+}
+
+/// SARIF 2.1.0: one run, a rule per code used, a result per alarm and
+/// warning.
+fn sarif_report(results: &[Checked]) -> Value {
+    let mut used: Vec<Code> = Vec::new();
+    let mut out = Vec::new();
+    for r in results {
+        let name = r.input.name();
+        let Ok(ran) = &r.run else {
+            continue;
+        };
+        for d in ran.summary.warnings.iter().chain(r.alarm()) {
+            used.push(d.code);
+            out.push(sarif_result(d, &name));
+        }
+    }
+    used.sort();
+    used.dedup();
+    let rules: Vec<Value> = used
+        .iter()
+        .map(|c| {
+            json!({
+                "id": c.as_str(),
+                "shortDescription": { "text": c.title() },
+                "helpUri": "https://github.com/vcnc/vcnc/blob/main/docs/alarms.md",
+            })
+        })
+        .collect();
+    json!({
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [{
+            "tool": {
+                "driver": {
+                    "name": "vcnc",
+                    "version": env!("CARGO_PKG_VERSION"),
+                    "informationUri": "https://github.com/vcnc/vcnc",
+                    "rules": rules,
+                }
+            },
+            "results": out,
+        }],
+    })
+}

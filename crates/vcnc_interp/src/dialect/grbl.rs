@@ -1,0 +1,117 @@
+//! grbl 1.1 and the hobby CAM programs written for it (Fusion 360's grbl
+//! post, CNC.js, Estlcam, Inkscape, pcb2gcode …): `;` comments, integers
+//! in whole units, G91.1 arc centres, probes, inverse-time feed, G28.1 and
+//! G43.1. The code list is grbl 1.1's (its wiki "Grbl v1.1 Commands"), with
+//! G90.1, G64 and M06 accepted as the CAM output of LinuxCNC-minded posts
+//! writes them (grblHAL runs them too). The flattened `--format gcode`
+//! output runs on it.
+
+use super::{
+    BareReturn, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords, LongChord,
+    MGroup, MOp, MRow, ProgramStop, RapidPath, bit, g,
+};
+use crate::events::Plane;
+use crate::machine::DEFAULT_MILL_TOML;
+use vcnc_syntax::{LexRules, Semicolon};
+
+const GRBL_G: &[GRow] = &[
+    g(0, GOp::Rapid, Group::Motion),
+    g(10, GOp::Linear, Group::Motion),
+    g(20, GOp::ArcCw, Group::Motion),
+    g(30, GOp::ArcCcw, Group::Motion),
+    g(40, GOp::DwellP, Group::NonModal)
+        .reads(bit(b'P'))
+        .refuses_axes(),
+    g(100, GOp::SetData, Group::NonModal)
+        .reads(bit(b'L') | bit(b'P'))
+        .claims_absolute_axes(),
+    g(170, GOp::PlaneXy, Group::Plane),
+    g(180, GOp::PlaneZx, Group::Plane),
+    g(190, GOp::PlaneYz, Group::Plane),
+    g(200, GOp::Inch, Group::Units),
+    g(210, GOp::Metric, Group::Units),
+    g(280, GOp::RefReturn, Group::NonModal).claims_axes(),
+    g(281, GOp::RefStore(1), Group::NonModal),
+    g(300, GOp::RefReturnN, Group::NonModal).claims_axes(),
+    g(301, GOp::RefStore(2), Group::NonModal),
+    // G38.2/G38.3 probe toward the work, G38.4/G38.5 away from it.
+    g(382, GOp::Probe { must_trip: true }, Group::NonModal).claims_axes(),
+    g(383, GOp::Probe { must_trip: false }, Group::NonModal).claims_axes(),
+    g(384, GOp::Probe { must_trip: true }, Group::NonModal).claims_axes(),
+    g(385, GOp::Probe { must_trip: false }, Group::NonModal).claims_axes(),
+    g(400, GOp::CompCancel, Group::CutterComp),
+    g(431, GOp::ToolLengthDynamic, Group::ToolLength).claims_absolute_axes(),
+    g(490, GOp::ToolLengthCancel, Group::ToolLength),
+    g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
+    g(540, GOp::WorkSystem(0), Group::Wcs),
+    g(550, GOp::WorkSystem(1), Group::Wcs),
+    g(560, GOp::WorkSystem(2), Group::Wcs),
+    g(570, GOp::WorkSystem(3), Group::Wcs),
+    g(580, GOp::WorkSystem(4), Group::Wcs),
+    g(590, GOp::WorkSystem(5), Group::Wcs),
+    g(610, GOp::PathExact, Group::Path),
+    g(640, GOp::PathCutting, Group::Path),
+    // grbl's G80 cancels the motion mode; with no canned cycles it asks
+    // for nothing (a safe-start line's G80 runs).
+    g(800, GOp::CycleCancel, Group::Cycle),
+    g(900, GOp::Absolute, Group::Distance),
+    g(901, GOp::ArcCentersAbsolute, Group::ArcDistance),
+    g(910, GOp::Incremental, Group::Distance),
+    g(911, GOp::ArcCentersIncremental, Group::ArcDistance),
+    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
+    g(921, GOp::ShiftCancel, Group::NonModal),
+    g(930, GOp::InverseTime, Group::FeedMode),
+    g(940, GOp::PerMinute, Group::FeedMode),
+];
+
+/// grbl's M codes; M07 is mist coolant, reported as coolant on.
+const GRBL_M: &[MRow] = &[
+    (0, MOp::Stop, MGroup::Flow, 0),
+    (1, MOp::OptionalStop, MGroup::Flow, 0),
+    (2, MOp::End, MGroup::Flow, 0),
+    (3, MOp::SpindleCw, MGroup::Spindle, 0),
+    (4, MOp::SpindleCcw, MGroup::Spindle, 0),
+    (5, MOp::SpindleStop, MGroup::Spindle, 0),
+    (6, MOp::ToolChange, MGroup::Tool, 0),
+    (7, MOp::CoolantOn, MGroup::Coolant, 0),
+    (8, MOp::CoolantOn, MGroup::Coolant, 0),
+    (9, MOp::CoolantOff, MGroup::Coolant, 0),
+    (30, MOp::EndRewind, MGroup::Flow, 0),
+];
+
+/// `;` starts a comment; no `//` comments, no full-width `；`.
+const GRBL_LEX: LexRules = LexRules {
+    semicolon: Semicolon::Comment,
+    slash_comments: false,
+    fullwidth_semicolon: false,
+    extended: &[],
+    foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+};
+
+/// The grbl dialect.
+pub(super) fn grbl() -> Dialect {
+    let (g, m) = Dialect::tables(&[GRBL_G], GRBL_M);
+    Dialect {
+        name: "grbl",
+        lex: GRBL_LEX,
+        g,
+        m,
+        incremental_words: &[],
+        diameter: Diameter {
+            axis: None,
+            at_power_on: false,
+        },
+        // `X5` is 5 mm: grbl has no least-increment input.
+        integers: IntegerWords::WholeUnits,
+        plane: Plane::Xy,
+        long_chord: LongChord::Alarm,
+        arc_letters: 0,
+        default_machine: DEFAULT_MILL_TOML,
+        unsupported: &[],
+        rapid: RapidPath::ByParameter,
+        cycles: CycleRules::Fanuc,
+        bare_return: BareReturn::AllAxes,
+        l20: G10L20::FromPosition,
+        program_stop: ProgramStop::Pause,
+    }
+}
