@@ -390,6 +390,179 @@ fn run_gcode_expands_canned_cycles() {
 }
 
 // ---------------------------------------------------------------------------
+// check: many programs, JSON, SARIF, stdin, --deny-warnings
+// ---------------------------------------------------------------------------
+
+/// A directory of programs: two clean, one that alarms, one that warns, a
+/// file that is not a program, and a nested folder.
+fn batch_dir() -> TempDir {
+    let dir = TempDir::new("batch");
+    dir.write("good.nc", "S1000 M03\nG00 X1.\nG01 X2. F100.\nM30\n");
+    dir.write("bad.nc", "G00 X1.\nG02 X5. Y0 I-3. J-1. F100.\nM30\n");
+    dir.write("warns.ngc", "G00 X1.\nG01 X2. F100.\nM30\n");
+    dir.write("notes.md", "not a program\n");
+    std::fs::create_dir_all(dir.path().join("sub")).unwrap();
+    dir.write("sub/O1234", "S1000 M03\nG00 Y1.\nM30\n");
+    dir
+}
+
+#[test]
+fn check_runs_every_program_of_a_directory_with_one_line_each() {
+    let dir = batch_dir();
+    let o = vcnc_in(dir.path(), &["check", "."]);
+    assert_eq!(code(&o), 1, "an alarm fails the batch: {}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 5, "{text}");
+    assert!(
+        lines[0].starts_with("./bad.nc: alarm E303 at line 2, column 1: "),
+        "{text}"
+    );
+    assert!(lines[1].starts_with("./good.nc: ended by M30, "), "{text}");
+    assert!(lines[2].starts_with("./sub/O1234: ended by M30"), "{text}");
+    assert!(
+        lines[3].starts_with("./warns.ngc: ended by M30, ") && lines[3].ends_with(", 1 warning"),
+        "{text}"
+    );
+    assert_eq!(
+        lines[4],
+        "4 programs: 3 ran to the end, 1 stopped by an alarm, 1 with warnings (1 in all)"
+    );
+}
+
+#[test]
+fn check_json_is_one_document_per_run() {
+    let dir = batch_dir();
+    let o = vcnc_in(
+        dir.path(),
+        &["check", ".", "--format", "json", "--jobs", "2"],
+    );
+    assert_eq!(code(&o), 1);
+    let doc: Value = serde_json::from_str(&stdout(&o)).expect("one JSON document");
+    assert_eq!(doc["version"], 1);
+    assert_eq!(doc["totals"]["programs"], 4);
+    assert_eq!(doc["totals"]["alarms"], 1);
+    let files = doc["files"].as_array().unwrap();
+    let bad = &files[0];
+    assert_eq!(bad["path"], "./bad.nc");
+    assert_eq!(bad["result"], "alarm");
+    assert_eq!(
+        (
+            &bad["alarm"]["code"],
+            &bad["alarm"]["line"],
+            &bad["alarm"]["column"]
+        ),
+        (&json!("E303"), &json!(2), &json!(1))
+    );
+    let warns = &files[3];
+    assert_eq!(warns["warning_count"], 1);
+    assert_eq!(warns["warnings"][0]["code"], "W104");
+    assert_eq!(warns["summary"]["extents"]["max"]["x"], 2.0);
+    assert!(
+        warns["summary"]["extents"]["max"].get("a").is_none(),
+        "rotary axes that never moved are left out"
+    );
+}
+
+#[test]
+fn check_sarif_has_what_ci_annotations_need() {
+    let dir = batch_dir();
+    let o = vcnc_in(dir.path(), &["check", ".", "--format", "sarif"]);
+    assert_eq!(code(&o), 1);
+    let doc: Value = serde_json::from_str(&stdout(&o)).expect("SARIF is JSON");
+    // The required properties of SARIF 2.1.0: version, runs, runs[].tool.
+    // driver.name, results[].message.text (and, for annotations, ruleId,
+    // level and a physical location with a region).
+    assert_eq!(doc["version"], "2.1.0");
+    assert!(doc["$schema"].as_str().unwrap().contains("sarif-2.1.0"));
+    let run = &doc["runs"][0];
+    assert_eq!(run["tool"]["driver"]["name"], "vcnc");
+    let rules: Vec<&str> = run["tool"]["driver"]["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(rules, ["E303", "W104"]);
+    let results = run["results"].as_array().unwrap();
+    assert_eq!(results.len(), 2);
+    for r in results {
+        assert!(r["message"]["text"].as_str().is_some_and(|t| !t.is_empty()));
+        assert!(rules.contains(&r["ruleId"].as_str().unwrap()));
+        let loc = &r["locations"][0]["physicalLocation"];
+        assert!(loc["artifactLocation"]["uri"].as_str().is_some());
+        assert!(loc["region"]["startLine"].as_u64().unwrap() >= 1);
+    }
+    let alarm = results.iter().find(|r| r["ruleId"] == "E303").unwrap();
+    assert_eq!(alarm["level"], "error");
+    assert_eq!(
+        alarm["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
+        "./bad.nc"
+    );
+    assert_eq!(
+        alarm["locations"][0]["physicalLocation"]["region"]["startColumn"],
+        1
+    );
+}
+
+#[test]
+fn check_reads_a_program_from_stdin() {
+    use std::io::Write as _;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["check", "-"])
+        .current_dir(workspace())
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"G00 X1.\nG02 X5. Y0 I-3. J-1. F100.\nM30\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(code(&o), 1);
+    assert!(
+        stdout(&o).starts_with("program    <stdin> (syntec dialect"),
+        "{}",
+        stdout(&o)
+    );
+    // The alarm shows the line from standard input.
+    let err = stderr(&o);
+    assert!(err.contains("--> <stdin>:2:1"), "{err}");
+    assert!(err.contains("2 | G02 X5. Y0 I-3. J-1. F100."), "{err}");
+}
+
+#[test]
+fn deny_warnings_fails_a_run_that_warns() {
+    let dir = batch_dir();
+    let o = vcnc_in(dir.path(), &["check", "warns.ngc"]);
+    assert_eq!(code(&o), 0);
+    assert!(stderr(&o).contains("warning[W104]"), "{}", stderr(&o));
+    let o = vcnc_in(dir.path(), &["check", "warns.ngc", "--deny-warnings"]);
+    assert_eq!(code(&o), 1);
+    let o = vcnc_in(dir.path(), &["run", "warns.ngc", "--deny-warnings"]);
+    assert_eq!(code(&o), 1);
+    assert!(
+        stdout(&o).contains("\"type\":\"warning\""),
+        "{}",
+        stdout(&o)
+    );
+    let o = vcnc_in(dir.path(), &["check", "good.nc", "--deny-warnings"]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+}
+
+#[test]
+fn a_directory_without_programs_is_a_usage_error() {
+    let dir = TempDir::new("empty-batch");
+    dir.write("readme.md", "nothing here\n");
+    let o = vcnc_in(dir.path(), &["check", "."]);
+    assert_usage_error(&o, "no programs found under .");
+}
+
+// ---------------------------------------------------------------------------
 // Alarms
 // ---------------------------------------------------------------------------
 

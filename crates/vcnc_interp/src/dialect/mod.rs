@@ -580,12 +580,26 @@ impl Dialect {
     }
 
     /// Another dialect that knows G `value`, for a hint.
+    ///
+    /// A lathe program is pointed at lathe dialects only (a Fanuc lathe
+    /// program's G18 under the seed lathe must not be sent to a mill), a
+    /// mill program at mill dialects first.
     pub fn g_elsewhere(&self, value: f64) -> Option<&'static str> {
-        Dialect::NAMES.iter().copied().find(|n| {
-            *n != self.name
-                && Dialect::by_name(n)
-                    .is_some_and(|d| d.g(value).is_some() || d.unsupported_reason(value).is_some())
-        })
+        let lathe = |d: &Dialect| d.diameter.axis.is_some();
+        let has = |d: &Dialect| d.g(value).is_some() || d.unsupported_reason(value).is_some();
+        let others: Vec<(&'static str, Dialect)> = Dialect::NAMES
+            .iter()
+            .copied()
+            .filter(|n| *n != self.name)
+            .filter_map(|n| Dialect::by_name(n).map(|d| (n, d)))
+            .filter(|(_, d)| has(d))
+            .collect();
+        let same = others.iter().find(|(_, d)| lathe(d) == lathe(self));
+        match same {
+            Some((n, _)) => Some(n),
+            None if lathe(self) => None,
+            None => others.first().map(|(n, _)| *n),
+        }
     }
 }
 
@@ -627,7 +641,9 @@ mod tests {
         assert_eq!(l.g(53.0).map(|d| d.op), Some(GOp::CancelOffsets));
         assert_eq!(s.g(53.0).map(|d| d.op), Some(GOp::MachineCoords));
         assert_eq!(l.g(16.0), None);
-        assert_eq!(l.g_elsewhere(16.0), Some("syntec"));
+        // A lathe program is not sent to a mill dialect; a mill's is.
+        assert_eq!(l.g_elsewhere(16.0), None);
+        assert_eq!(s.g_elsewhere(21.0), Some("fanuc"));
         assert!(l.unsupported_reason(7.0).is_some());
     }
 }

@@ -1,0 +1,149 @@
+//! One test per warning code (W101–W107, `docs/alarms.md`): the code, its
+//! line and column, that the run goes on, and where a warning must stay
+//! silent. Columns are counted by hand from the program text.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use vcnc_interp::{Dialect, EndCode, Event, Interpreter, Machine, Options, Outcome, VecSink};
+use vcnc_syntax::{Code, Diagnostic};
+
+fn run_in(machine: &Machine, dialect: Dialect, program: &str) -> (Vec<Event>, Outcome) {
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(machine, &dialect, Options::default()).run_str(program, &mut sink);
+    (sink.0, out)
+}
+
+fn run(program: &str) -> (Vec<Event>, Outcome) {
+    run_in(&Machine::default_mill(), Dialect::syntec(), program)
+}
+
+fn warnings(events: &[Event]) -> Vec<&Diagnostic> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Warning(d) => Some(d),
+            _ => None,
+        })
+        .collect()
+}
+
+/// (code, line, column) of every warning.
+fn places(events: &[Event]) -> Vec<(Code, u64, u32)> {
+    warnings(events)
+        .iter()
+        .map(|d| (d.code, d.line, d.column))
+        .collect()
+}
+
+#[test]
+fn w101_a_length_without_a_point_among_points() {
+    let (ev, out) = run("S1000 M03\nG00 X10. Y10.\nG01 X35 F500.\nY20.\nM30\n");
+    assert!(matches!(out, Outcome::Ended(EndCode::M30)));
+    assert_eq!(places(&ev), vec![(Code::W101, 3, 5)]);
+    // X35 is 0.035 mm, as the warning says.
+    let w = warnings(&ev)[0];
+    assert!(w.message.contains("0.035 mm"), "{}", w.message);
+}
+
+#[test]
+fn w101_is_given_for_an_early_point_less_word_once_points_appear() {
+    // The trap is seen at line 3; the warning names line 2.
+    let (ev, _) = run("S1000 M03\nG00 X10 Y0\nG01 X20. F500.\nM30\n");
+    assert_eq!(places(&ev), vec![(Code::W101, 2, 5)]);
+}
+
+#[test]
+fn w101_stays_silent_on_a_consistent_program() {
+    // Tape format throughout, zeros, and whole-unit dialects never warn.
+    let (ev, _) = run("S1000 M03\nG00 X10000 Y5000\nG01 X20000 F500\nX0 Y0\nM30\n");
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+    let (ev, _) = run("S1000 M03\nG00 X10. Y0\nG01 X20. Y0 F500.\nM30\n");
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+    let (ev, _) = run_in(
+        &Machine::default_mill(),
+        Dialect::grbl(),
+        "M3 S1000\nG0 X10. Y10\nG1 X35 F500\nM30\n",
+    );
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+}
+
+#[test]
+fn w101_stops_after_ten() {
+    let mut p = String::from("S1000 M03\nG00 X1.\n");
+    for i in 1..=20 {
+        p += &format!("G01 X{i} F500.\n");
+    }
+    p += "M30\n";
+    let (ev, _) = run(&p);
+    assert_eq!(places(&ev).len(), 10);
+}
+
+#[test]
+fn w102_a_feed_above_the_maximum_is_clamped() {
+    let (ev, _) = run("S1000 M03\nG01 X10. F20000.\nM30\n");
+    assert_eq!(places(&ev), vec![(Code::W102, 2, 10)]);
+    let feed = ev.iter().find_map(|e| match e {
+        Event::Feed { feed, .. } => Some(*feed),
+        _ => None,
+    });
+    assert_eq!(feed, Some(vcnc_interp::Feed::PerMin(10_000.0)));
+}
+
+#[test]
+fn w103_a_spindle_speed_above_the_maximum_is_clamped() {
+    let (ev, _) = run("G00 X1.\n  S20000 M03\nM30\n");
+    assert_eq!(places(&ev), vec![(Code::W103, 2, 3)]);
+    let rpm = ev.iter().find_map(|e| match e {
+        Event::Spindle { rpm, .. } => Some(*rpm),
+        _ => None,
+    });
+    assert_eq!(rpm, Some(12_000.0));
+}
+
+#[test]
+fn w104_once_until_the_spindle_turns_again() {
+    let program = "G01 X1. F100.\nX2.\nS100 M03\nX3.\nM05\n  G02 X4. R1.\nX5.\nM30\n";
+    let (ev, _) = run(program);
+    assert_eq!(
+        places(&ev),
+        vec![(Code::W104, 1, 1), (Code::W104, 6, 3)],
+        "line 2 and 7 are in the same stretch as lines 1 and 6"
+    );
+}
+
+#[test]
+fn w105_an_unknown_m_code_is_ignored() {
+    let (ev, out) = run("G00 X1.\nN2 M03 S100 M77\nM30\n");
+    assert!(matches!(out, Outcome::Ended(EndCode::M30)));
+    assert_eq!(places(&ev), vec![(Code::W105, 2, 13)]);
+    // A machine that lists it passes it through instead.
+    let mut m = Machine::default_mill();
+    m.m_codes.insert(77, "pallet clamp".into());
+    let (ev, _) = run_in(&m, Dialect::syntec(), "G00 X1.\nN2 M03 S100 M77\nM30\n");
+    assert!(places(&ev).is_empty());
+    assert!(ev.iter().any(|e| matches!(e, Event::Aux { code: 77, .. })));
+}
+
+#[test]
+fn w106_no_program_end() {
+    let (ev, out) = run("G00 X1.\n  G00 Y1.\n");
+    assert!(matches!(out, Outcome::Ended(EndCode::Eof)));
+    assert_eq!(places(&ev), vec![(Code::W106, 2, 3)]);
+    // The warning comes before the `end` event.
+    assert!(matches!(ev.last(), Some(Event::End { .. })));
+}
+
+#[test]
+fn w107_m99_in_the_main_program_runs_one_pass() {
+    let (ev, out) = run("G91 G00 X1.\n  M99\n");
+    assert_eq!(out, Outcome::Ended(EndCode::M99));
+    assert_eq!(places(&ev), vec![(Code::W107, 2, 3)]);
+}
+
+#[test]
+fn a_block_that_alarms_drops_its_warnings() {
+    // W102 on the F word, then E303 in the same block: no warning remains.
+    let (ev, out) = run("G00 X1.\nG02 X10. Y0 I-3. J-1. F20000.\nM30\n");
+    assert!(matches!(out, Outcome::Alarm(_)));
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+}
