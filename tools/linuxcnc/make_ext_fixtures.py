@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Write the LinuxCNC-derived fixture sets linuxcnc_tlo, linuxcnc_cycles and
-linuxcnc_comp (tests/fixtures/<set>/).
+"""Write the LinuxCNC-derived fixture sets linuxcnc_tlo, linuxcnc_cycles,
+linuxcnc_comp and linuxcnc_grbl (tests/fixtures/<set>/).
 
-For each program of a set (gen_tlo.py, gen_cycles.py, gen_comp.py; seeded,
-so the output is byte-for-byte reproducible) this script
+For each program of a set (gen_tlo.py, gen_cycles.py, gen_comp.py,
+gen_grbl.py; seeded, so the output is byte-for-byte reproducible) this
+script
 
   1. checks that the .nc (vcnc, fanuc dialect) and the .ngc (LinuxCNC) have
      the same lines and differ only in the spellings the set's README lists;
@@ -15,11 +16,13 @@ so the output is byte-for-byte reproducible) this script
      the program (motion end points, frames, holes: an independent Fanuc
      reading of the same program), so a program on which LinuxCNC and
      Fanuc disagree stops the script instead of becoming a fixture;
-  4. writes NNN.nc, NNN.ngc and NNN.expected.jsonl (tlo, cycles) or
+  4. writes NNN.nc, NNN.ngc and NNN.expected.jsonl (tlo, cycles, grbl) or
      NNN.points.jsonl (comp), and machine.toml (the default mill with the
-     set's tool table and parameters).
+     set's tool table and parameters; not for grbl, which runs on vcnc's
+     built-in mill). The grbl set also (re)writes sanity_*.expected.jsonl
+     from the hand-written sanity_*.ngc in its folder.
 
-Usage: make_ext_fixtures.py [--set tlo|cycles|comp|all] [--rs274 PATH] [-j N]
+Usage: make_ext_fixtures.py [--set tlo|cycles|comp|grbl|all] [--rs274 PATH] [-j N]
 """
 
 import argparse
@@ -279,6 +282,73 @@ def make_comp(rs274, jobs):
             "rs274's: %.6f mm) -> %s" % (len(results), n, worst, folder))
 
 
+# -- linuxcnc_grbl ------------------------------------------------------------------
+
+def grbl_events(ngc, stem, rs274):
+    """rs274's trace of a grbl-set program (both spellings are this text)."""
+    import gen_grbl
+    end, cycles, m5 = rv.program_facts(ngc)
+    if cycles or end is None:
+        raise ConvertError("%s: canned cycles or no M2/M30" % stem)
+    out = rv.run_rs274(rs274, ngc, rv.tool_table_text(gen_grbl.TOOLS), stem,
+                       var_text=gen_grbl.VAR_TEXT)
+    return rv.convert(out, stem, end, None, m5, inch=True,
+                      end_code=rv.end_code(ngc, end),
+                      home_lines=rv.home_lines(ngc),
+                      optional_stop="--optional-stop" in ngc[0])
+
+
+def grbl_one(i, rs274):
+    import gen_grbl
+    stem = "%03d" % i
+    lines, trace, frames, feeds = gen_grbl.generate(i)
+    events = grbl_events(lines, stem, rs274)
+    check_trace(events, trace, stem)
+    got = [(e["line"], e["origin"], e.get("tool_offset", {"z": 0.0})["z"])
+           for e in events if e["type"] == "frame"]
+    want = [(l, mm_point(o), t / 10000.0) for l, o, t in frames]
+    if len(got) != len(want) or any(
+            gl != wl or not close(go, wo) or abs(gt - wt) > TOL
+            for (gl, go, gt), (wl, wo, wt) in zip(got, want)):
+        raise ConvertError("%s: frames from rs274 %s, generator %s" % (stem, got, want))
+    # inverse time: rs274's equivalent feed, the generator's length x F
+    by_line = {e["line"]: e["feed"] for e in events
+               if e["type"] in ("feed", "arc") and e["line"] in dict(feeds)}
+    for line, f in feeds:
+        if line not in by_line or abs(by_line[line] - f) > TOL:
+            raise ConvertError("%s:%d: G93 feed from rs274 %s, generator %.6f"
+                               % (stem, line, by_line.get(line), f))
+    return stem, lines, events
+
+
+def make_grbl(rs274, jobs):
+    import gen_grbl
+    folder = os.path.join(FIXTURES, "linuxcnc_grbl")
+    results = run_all(lambda i: grbl_one(i, rs274),
+                      range(1, gen_grbl.DEFAULT_COUNT + 1), jobs)
+    clean(folder, ["nc", "ngc", "expected.jsonl"])
+    n = 0
+    for stem, lines, events in results:
+        write_program(folder, stem, lines, lines)
+        rv.write_jsonl(os.path.join(folder, stem + ".expected.jsonl"), events)
+        n += len(events)
+    sanity = sorted(f[:-4] for f in os.listdir(folder)
+                    if f.startswith("sanity_") and f.endswith(".ngc"))
+    for stem in sanity:
+        with open(os.path.join(folder, stem + ".ngc")) as f:
+            ngc = f.read().split("\n")
+        with open(os.path.join(folder, stem + ".nc")) as f:
+            if f.read().split("\n") != ngc:
+                sys.exit("%s: .nc and .ngc differ" % stem)
+        if ngc[-1] != "":
+            sys.exit("%s: no final newline" % stem)
+        events = grbl_events(ngc[:-1], stem, rs274)
+        rv.write_jsonl(os.path.join(folder, stem + ".expected.jsonl"), events)
+        n += len(events)
+    return "%d programs + %d sanity programs, %d events -> %s" % (
+        len(results), len(sanity), n, folder)
+
+
 # -- driver ------------------------------------------------------------------------
 
 def run_all(fn, indices, jobs):
@@ -300,7 +370,7 @@ def run_all(fn, indices, jobs):
     return results
 
 
-SETS = {"tlo": make_tlo, "cycles": make_cycles, "comp": make_comp}
+SETS = {"tlo": make_tlo, "cycles": make_cycles, "comp": make_comp, "grbl": make_grbl}
 
 
 def main(argv=None):

@@ -2,7 +2,8 @@
 """Convert rs274 canonical calls to vcnc events (docs/events.md), in machine
 coordinates and mm: the converter of every LinuxCNC fixture set
 (make_fixtures.py: linuxcnc; make_ext_fixtures.py: linuxcnc_tlo,
-linuxcnc_cycles, linuxcnc_comp). It also runs rs274 and parses its output.
+linuxcnc_cycles, linuxcnc_comp, linuxcnc_grbl). It also runs rs274 and
+parses its output.
 
   * motion: STRAIGHT_TRAVERSE -> rapid, STRAIGHT_FEED -> feed (the feed of
     the last SET_FEED_RATE), ARC_FEED -> arc, DWELL -> dwell, PROGRAM_END ->
@@ -21,8 +22,27 @@ linuxcnc_cycles, linuxcnc_comp). It also runs rs274 and parses its output.
     which keeps the physical feed, and vcnc, which keeps F's number, differ
     there). SET_XY_ROTATION must be 0;
   * the tool length offset: USE_TOOL_LENGTH_OFFSET(x y z, ...) gives the
-    offset (rs274 prints it in mm, whatever units the tool table uses;
-    refused under G20, where that is not verified);
+    offset, printed like every length in the units in force (checked: a
+    tool of 1 in gives 25.4000 after G21 and 1.0000 after G20, and
+    `G20 G43.1 Z1` gives 1.0000), so it is converted like the others and
+    must be exact in inches too. rs274 keeps the offset's number across a
+    unit change and later misreads it (G53, G28/G30, G43.1/G49 after
+    G20/G21 with an offset on: tests/fixtures/linuxcnc_grbl/README.md), so
+    a set must not carry an offset across G20/G21;
+  * G28 / G30 without axis words (`home_lines`): rs274 prints two
+    traverses, the first to where the tool already is (its intermediate
+    point is the current point); that zero-length one is dropped, so the
+    block is one rapid to the stored position, as grbl moves. With axis
+    words both legs stay, even when one has zero length;
+  * inverse-time feed (G93): rs274 turns F into the equivalent feed of each
+    move (path length x F, helix length for a helix) and prints it with
+    SET_FEED_RATE before the move, so the event's `feed` is that mm/min
+    value (SET_FEED_MODE itself has nothing for the trace);
+  * coolant: MIST_ON and FLOOD_ON (M7, M8) -> coolant on; M9's MIST_OFF and
+    FLOOD_OFF -> one coolant off. PROGRAM_STOP (M0) -> stop M00;
+    OPTIONAL_PROGRAM_STOP (M1) -> stop M01 only with `optional_stop` (vcnc
+    reports M01 only with --optional-stop). PROGRAM_END -> end with the
+    program's own code (`end_code`, M02 or M30);
   * `frame` events (the project's conventions, /work/notes/conventions.md):
     one whenever origin (G5x + G92) or tool offset differs from the last one
     reported, emitted before the first event of the block that changed it,
@@ -80,7 +100,7 @@ ZERO = {a: Decimal(0) for a in AXES}
 
 # Calls with nothing for the event trace in these sets.
 IGNORED = {
-    "SET_FEED_REFERENCE", "ON_RESET", "COMMENT",
+    "SET_FEED_REFERENCE", "ON_RESET", "COMMENT", "PALLET_SHUTTLE",
     "SET_FEED_MODE", "SET_SPINDLE_MODE", "SET_MOTION_CONTROL_MODE",
     "SET_NAIVECAM_TOLERANCE", "SET_TOOL_TABLE_ENTRY", "START_CHANGE",
 }
@@ -122,9 +142,11 @@ def tool_table_text(tools):
     return "\n".join(lines) + "\n"
 
 
-def run_rs274(rs274, lines, table_text, name):
+def run_rs274(rs274, lines, table_text, name, var_text=""):
     """rs274 -g on `lines` (each prefixed with N<line number>), with its own
-    tool table and a fresh empty parameter file; returns stdout."""
+    tool table and a fresh parameter file (empty, or `var_text`: lines
+    "<number> <value>", lengths in inches like the tool table); returns
+    stdout."""
     with tempfile.TemporaryDirectory(prefix="vcnc_rs274_") as tmp:
         prog = os.path.join(tmp, "prog.ngc")
         with open(prog, "w") as f:
@@ -134,7 +156,8 @@ def run_rs274(rs274, lines, table_text, name):
         with open(tbl, "w") as f:
             f.write(table_text)
         var = os.path.join(tmp, "params.var")
-        open(var, "w").close()
+        with open(var, "w") as f:
+            f.write(var_text)
         env = dict(os.environ, HOME=tmp)   # rs274 writes ~/.tool.mmap
         r = subprocess.run([rs274, "-g", "-t", tbl, "-v", var, prog],
                            stdin=subprocess.DEVNULL, capture_output=True,
@@ -149,11 +172,19 @@ def run_rs274(rs274, lines, table_text, name):
 class Converter:
     """One program's canonical calls -> events. `end_line`: the M2 block;
     `cycles`: {line: "G81", ...} for the canned-cycle blocks; `m5_lines`:
-    lines whose block says M5; `inch`: accept G20 (USE_LENGTH_UNITS inches)."""
+    lines whose block says M5; `inch`: accept G20 (USE_LENGTH_UNITS inches);
+    `end_code`: the end event's code; `home_lines`: G28/G30 blocks without
+    axis words; `optional_stop`: report M1 (vcnc's --optional-stop)."""
 
-    def __init__(self, name, end_line, cycles=None, m5_lines=(), inch=False):
+    def __init__(self, name, end_line, cycles=None, m5_lines=(), inch=False,
+                 end_code="M02", home_lines=(), optional_stop=False):
         self.name = name
         self.inch = inch
+        self.end_code = end_code
+        self.home_lines = set(home_lines)
+        self.optional_stop = optional_stop
+        self.coolant_off_line = None  # M9 prints MIST_OFF and FLOOD_OFF: one event
+        self.home_first = None        # the G28/G30 block whose first leg is pending
         self.unit = MM_PER["CANON_UNITS_MM"]   # mm per printed length unit
         self.end_line = end_line
         self.cycles = cycles or {}
@@ -240,6 +271,14 @@ class Converter:
     # -- calls -----------------------------------------------------------------
     def straight(self, call, args):
         to = self.machine(dict(zip(AXES, map(self.mm, args[0:3]))))
+        if self.line in self.home_lines and self.home_first != self.line:
+            # G28/G30 without axis words: the first traverse is rs274's
+            # intermediate point, which is where the tool already is
+            self.home_first = self.line
+            if call != "STRAIGHT_TRAVERSE" or to != self.pos:
+                self.err("G28/G30 without axis words: first leg %s to %s is not "
+                         "zero-length" % (call, to))
+            return
         ev = {"type": "rapid" if call == "STRAIGHT_TRAVERSE" else "feed",
               "line": self.line, "to": point(to)}
         if call == "STRAIGHT_FEED":
@@ -318,11 +357,10 @@ class Converter:
             self.g92 = dict(zip(AXES, map(self.mm, args[0:3])))
             self.frame_line = self.line
         elif call == "USE_TOOL_LENGTH_OFFSET":
-            if self.unit != 1:
-                self.err("tool length offset under G20: its units are not verified")
-            # "x y z, a b c, u v w": the first group, blank separated
+            # "x y z, a b c, u v w": the first group, blank separated, in
+            # the units in force
             xyz = args[0].split()
-            self.tlo = dict(zip(AXES, map(num, xyz[0:3])))
+            self.tlo = dict(zip(AXES, map(self.mm, xyz[0:3])))
             self.frame_line = self.line
         elif call == "SET_FEED_RATE":
             self.feed = self.mm(args[0], exact=False)   # quantized on output
@@ -352,6 +390,17 @@ class Converter:
                 self.err("CHANGE_TOOL without SELECT_TOOL")
             self.emit({"type": "tool_change", "line": self.line,
                        "tool": self.selected_tool})
+        elif call in ("MIST_ON", "FLOOD_ON"):
+            self.emit({"type": "coolant", "line": self.line, "on": True})
+        elif call in ("MIST_OFF", "FLOOD_OFF"):
+            if self.coolant_off_line != self.line:
+                self.coolant_off_line = self.line
+                self.emit({"type": "coolant", "line": self.line, "on": False})
+        elif call == "PROGRAM_STOP":
+            self.emit({"type": "stop", "line": self.line, "code": "M00"})
+        elif call == "OPTIONAL_PROGRAM_STOP":
+            if self.optional_stop:
+                self.emit({"type": "stop", "line": self.line, "code": "M01"})
         elif call in IGNORED:
             pass
         else:
@@ -383,7 +432,7 @@ class Converter:
             if call == "PROGRAM_END":
                 self.flush_hole()
                 self.frame_line = None     # M2's reset of G5x is not reported
-                self.events.append({"type": "end", "line": line, "code": "M02"})
+                self.events.append({"type": "end", "line": line, "code": self.end_code})
                 self.ended = True
                 continue
             if line is not None and line == self.end_line and call in (
@@ -395,8 +444,9 @@ class Converter:
         return self.events
 
 
-def convert(canon_text, name, end_line, cycles=None, m5_lines=(), inch=False):
-    return Converter(name, end_line, cycles, m5_lines, inch).convert(canon_text)
+def convert(canon_text, name, end_line, cycles=None, m5_lines=(), inch=False, **kw):
+    """`kw`: end_code, home_lines, optional_stop (see Converter)."""
+    return Converter(name, end_line, cycles, m5_lines, inch, **kw).convert(canon_text)
 
 
 def write_jsonl(path, rows):
@@ -415,7 +465,7 @@ def program_facts(ngc_lines):
     m5 = []
     end = None
     for i, text in enumerate(ngc_lines, 1):
-        code = re.sub(r"\([^)]*\)", "", text).upper()
+        code = strip_comments(text)
         gs = []
         for g in re.findall(r"G\s*(\d+(?:\.\d*)?)", code):
             v = float(g)
@@ -431,3 +481,24 @@ def program_facts(ngc_lines):
                 and not re.search(r"G(10|28|30|53|92)(?![\d.])", code):
             cycles[i] = "G" + motion
     return end, cycles, m5
+
+
+def strip_comments(text):
+    """A line without its ( ) comments and its ; comment, upper case."""
+    return re.sub(r"\([^)]*\)", "", text).split(";")[0].upper()
+
+
+def end_code(ngc_lines, end_line):
+    """"M30" when the program's end block says M30, else "M02"."""
+    code = strip_comments(ngc_lines[end_line - 1])
+    return "M30" if re.search(r"M30(?![\d.])", code) else "M02"
+
+
+def home_lines(ngc_lines):
+    """Lines of G28/G30 blocks (not G28.1/G30.1) without X/Y/Z words."""
+    out = []
+    for i, text in enumerate(ngc_lines, 1):
+        code = strip_comments(text)
+        if re.search(r"G0*(28|30)(?![\d.])", code) and not re.search(r"[XYZ]", code):
+            out.append(i)
+    return out
