@@ -61,11 +61,16 @@ def machine_toml(tools, parameters=(), header=""):
                   "d_mm = %r" % float(radius)]
     text = text[:start] + "\n".join(table) + "\n\n" + text[end:]
     if parameters:
+        # A key the default already sets is replaced (TOML forbids a key
+        # twice); comments and new keys go right after [parameters].
+        keys = {l.split("=")[0].strip() for l in parameters if "=" in l and not l.startswith("#")}
+        text = "\n".join(l for l in text.split("\n")
+                         if l.split("=")[0].strip() not in keys or "=" not in l)
         marker = "[parameters]\n"
         i = text.index(marker) + len(marker)
         text = text[:i] + "".join(l + "\n" for l in parameters) + text[i:]
-    text = text.replace('name = "generic 3-axis mill"',
-                        'name = "generic 3-axis mill (%s)"' % header)
+    text = re.sub(r'name = "([^"]*)"', lambda m: 'name = "%s (%s)"' % (m.group(1), header),
+                  text, count=1)
     return text
 
 

@@ -52,7 +52,8 @@ parses its output.
     Offsets the M2 block resets (LinuxCNC re-selects G54 at program end) are
     not reported;
   * `spindle` events: SET_SPINDLE_SPEED while turning (when the speed
-    changes), START_SPINDLE_CLOCKWISE / COUNTERCLOCKWISE, and
+    changes; a START in the same block replaces it: one event a block),
+    START_SPINDLE_CLOCKWISE / COUNTERCLOCKWISE, and
     STOP_SPINDLE_TURNING when the spindle turns or the block says M5 (the
     stops rs274 makes on its own at M6 and M2 with the spindle already
     stopped, or at M2, are not events);
@@ -336,6 +337,11 @@ class Converter:
                            "rpm": 0.0})
         else:
             self.spindle_dir = "cw" if call == "START_SPINDLE_CLOCKWISE" else "ccw"
+            # `S.. M4` on a turning spindle is one spindle change in vcnc's
+            # contract: the speed change of the same block is replaced.
+            last = self.events[-1] if self.events and self.hole is None else None
+            if last and last["type"] == "spindle" and last["line"] == self.line:
+                self.events.pop()
             self.emit({"type": "spindle", "line": self.line,
                        "dir": self.spindle_dir, "rpm": out_num(self.rpm)})
 

@@ -7,8 +7,8 @@
 //! the LinuxCNC ones converted from `rs274` output by
 //! `tools/linuxcnc/make_fixtures.py` and `make_ext_fixtures.py` (through
 //! the shared converter `rs274_events.py`). Numbers compare within a tolerance
-//! (rs274 prints 4 decimals); alarm messages are not compared, their code,
-//! line and column are. A first line `(vcnc-args: …)` passes options:
+//! (rs274 prints 4 decimals); alarm and warning messages are not compared,
+//! their code, line and column are. A first line `(vcnc-args: …)` passes options:
 //! `--dialect D`, `--machine FILE`, `--optional-stop`, `--block-delete`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
@@ -107,9 +107,13 @@ fn close(a: &Value, b: &Value, tol: f64, key: &str) -> bool {
             (x - y).abs() <= t
         }
         (Value::Object(x), Value::Object(y)) => {
-            let skip = |k: &String| {
-                x.get("type") == Some(&Value::from("alarm")) && (k == "message" || k == "help")
-            };
+            // Alarm and warning texts are not compared: code, line and
+            // column are.
+            let diagnostic = matches!(
+                x.get("type").and_then(Value::as_str),
+                Some("alarm" | "warning")
+            );
+            let skip = |k: &String| diagnostic && (k == "message" || k == "help");
             let kx: Vec<_> = x.keys().filter(|k| !skip(k)).collect();
             let ky: Vec<_> = y.keys().filter(|k| !skip(k)).collect();
             let mut kx_sorted = kx.clone();
@@ -207,6 +211,26 @@ fn eia_chapter_codes_match_their_hand_worked_traces() {
 }
 
 #[test]
+fn grbl_dialect_differences_match_their_hand_worked_traces() {
+    let n = check_folder("grbl", "grbl", 1e-6);
+    assert!(n >= 20, "only {n} grbl fixtures found");
+}
+
+#[test]
+fn haas_dialect_differences_match_their_hand_worked_traces() {
+    let n = check_folder("haas", "haas", 1e-6);
+    assert!(n >= 10, "only {n} haas fixtures found");
+}
+
+/// The seed-by-seed audit's fixes (M00, G04, G05, G33, G95, lathe CR=/D)
+/// and the warnings, each from the manual.
+#[test]
+fn fidelity_fixes_match_their_hand_worked_traces() {
+    let n = check_folder("fidelity", "syntec", 1e-6);
+    assert!(n >= 20, "only {n} fidelity fixtures found");
+}
+
+#[test]
 fn linuxcnc_programs_match_rs274() {
     let n = check_folder("linuxcnc", "fanuc", 1e-4);
     assert!(n >= 300, "only {n} LinuxCNC fixtures found");
@@ -216,6 +240,12 @@ fn linuxcnc_programs_match_rs274() {
 fn linuxcnc_tool_length_programs_match_rs274() {
     let n = check_folder("linuxcnc_tlo", "fanuc", 1e-4);
     assert!(n >= 50, "only {n} LinuxCNC tool length fixtures found");
+}
+
+#[test]
+fn linuxcnc_grbl_style_programs_match_rs274() {
+    let n = check_folder("linuxcnc_grbl", "grbl", 1e-4);
+    assert!(n >= 80, "only {n} LinuxCNC grbl-style fixtures found");
 }
 
 #[test]

@@ -91,7 +91,12 @@ fn w102_a_feed_above_the_maximum_is_clamped() {
 
 #[test]
 fn w103_a_spindle_speed_above_the_maximum_is_clamped() {
+    // The built-in machines have no spindle limit: a machine file gives it.
     let (ev, _) = run("G00 X1.\n  S20000 M03\nM30\n");
+    assert!(places(&ev).is_empty());
+    let mut m = Machine::default_mill();
+    m.params.max_spindle_rpm = 12_000.0;
+    let (ev, _) = run_in(&m, Dialect::syntec(), "G00 X1.\n  S20000 M03\nM30\n");
     assert_eq!(places(&ev), vec![(Code::W103, 2, 3)]);
     let rpm = ev.iter().find_map(|e| match e {
         Event::Spindle { rpm, .. } => Some(*rpm),

@@ -39,6 +39,17 @@ pub fn system_command(span: Span, text: &str) -> Diagnostic {
     )
 }
 
+/// E101: a `)` outside a comment (usually an inner `( )` that closed the
+/// comment early).
+pub fn stray_close_paren(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E101,
+        span,
+        "`)` without an open `(`: comments do not nest, so an inner `)` closed the comment before it".to_string(),
+        "write the inner parentheses of a comment as [ ], or remove them",
+    )
+}
+
 /// E101: a block that starts with a digit.
 pub fn digit_first(span: Span, text: &str) -> Diagnostic {
     Diagnostic::new(

@@ -104,6 +104,7 @@ pub fn lex_block(
             // A byte-order mark (editors put one at the start of a file).
             0xEF if line[i..].starts_with(BOM) => i += BOM.len(),
             b'$' if first => return Err(system_command(line, i)),
+            b')' => return Err(diag::stray_close_paren(Span::new(i, i + 1))),
             b'0'..=b'9' if first => return Err(digit_first(line, i)),
             _ => return Err(illegal_at(line, i)),
         }

@@ -159,7 +159,9 @@ fn slow_number(bytes: &[u8], start: usize) -> Result<Number, NumberError> {
             NumberError::Missing
         });
     }
-    let magnitude = acc.mantissa as f64 / POW10[acc.frac as usize];
+    // Fraction digits beyond the 15th significant one were dropped: round.
+    let mantissa = acc.mantissa + u64::from(acc.first_dropped.is_some_and(|d| d >= 5));
+    let magnitude = mantissa as f64 / POW10[acc.frac as usize];
     let value = if negative { -magnitude } else { magnitude };
     Ok(Number {
         value,
@@ -183,11 +185,20 @@ struct Digits {
     int_digits: u32,
     frac: u32,
     point: bool,
+    /// The first fraction digit beyond the precision kept, if any.
+    first_dropped: Option<u8>,
 }
 
 impl Digits {
     fn digit(&mut self, d: u8) -> Result<(), NumberError> {
         self.digits += 1;
+        if self.point && (self.significant >= MAX_SIG_DIGITS || self.frac >= MAX_SIG_DIGITS) {
+            // CAM output prints doubles in full (0.2949604031677465): a
+            // fraction digit beyond 15 significant ones is below any
+            // resolution, so it is dropped, not an error.
+            self.first_dropped.get_or_insert(d);
+            return Ok(());
+        }
         if self.significant == 0 && d == 0 {
             // Leading zeros cost nothing, but fraction zeros still scale.
             if self.point {
@@ -243,7 +254,10 @@ mod tests {
         assert_eq!(val("1.2.3"), Err(NumberError::Malformed));
         assert_eq!(val("1-2"), Err(NumberError::Malformed));
         assert_eq!(val("1234567890"), Err(NumberError::OutOfRange));
-        assert_eq!(val("0.1234567890123456"), Err(NumberError::OutOfRange));
+        // Fraction digits beyond 15 significant ones are rounded away.
+        assert_eq!(val("0.1234567890123456"), Ok((0.123456789012346, true)));
+        assert_eq!(val("0.2949604031677465"), Ok((0.294960403167747, true)));
+        assert_eq!(val("12345678901234567.5"), Err(NumberError::OutOfRange));
         assert_eq!(val("0000000000000000000000001"), Ok((1.0, false)));
     }
 }

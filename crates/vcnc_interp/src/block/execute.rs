@@ -19,7 +19,7 @@
 
 use crate::alarms;
 use crate::block::words::{ALWAYS, Words};
-use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, ProgramStop, bit};
+use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, ProgramStop, ToolLengthChange, bit};
 use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
@@ -115,7 +115,14 @@ impl Interpreter<'_> {
             None => self.modal_motion(w)?,
         }
         if tool_moved && self.moves == moves_before {
-            self.tool_length_move(w)?;
+            match self.dialect.tool_length_change {
+                ToolLengthChange::MovesNow => self.tool_length_move(w)?,
+                ToolLengthChange::AtNextMove => {
+                    let s = &mut self.state;
+                    s.prog = s.frame.program_of(s.nominal);
+                    s.detached = false;
+                }
+            }
         }
         if let Some(g99) = w.once(GOp::Junction) {
             // EIA G99: the junction after this block's cut may blend.

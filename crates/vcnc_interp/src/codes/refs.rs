@@ -31,7 +31,7 @@ impl Interpreter<'_> {
         w: &Words<'_>,
     ) -> Result<(), Diagnostic> {
         match op {
-            GOp::Dwell => self.dwell(w),
+            GOp::Dwell => self.dwell(w, cmd),
             GOp::SetData => self.set_data(w, cmd),
             GOp::PresetOrClamp => self.preset(w, cmd),
             GOp::LocalSystem => self.local_system(w, cmd),
@@ -80,7 +80,7 @@ impl Interpreter<'_> {
     }
 
     /// G04: P whole milliseconds, or X seconds (milliseconds without a point).
-    fn dwell(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+    fn dwell(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let seconds = match (w.get(b'P'), w.get(b'X')) {
             (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, b'X')),
             (Some(p), None) => {
@@ -104,7 +104,7 @@ impl Interpreter<'_> {
             // Syntec 1.2.5: the dwell is X or P; a bare G04 says nothing.
             (None, None) => {
                 return Err(alarms::needs_word(
-                    w.first,
+                    cmd,
                     "G04",
                     "X (seconds) or P (milliseconds)",
                 ));

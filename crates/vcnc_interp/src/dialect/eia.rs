@@ -6,7 +6,7 @@
 
 use super::{
     BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
-    LongChord, ProgramStop, RapidPath, bit, g, mill::MILL_M,
+    LongChord, ProgramStop, RapidPath, ToolLengthChange, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -90,5 +90,6 @@ pub(super) fn eia() -> Dialect {
         bare_return: BareReturn::NeedsAxes,
         l20: G10L20::Unsupported,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
+        tool_length_change: ToolLengthChange::MovesNow,
     }
 }

@@ -8,7 +8,7 @@
 
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords, LongChord,
-    MGroup, MOp, MRow, ProgramStop, RapidPath, bit, g,
+    MGroup, MOp, MRow, ProgramStop, RapidPath, ToolLengthChange, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
@@ -50,7 +50,9 @@ const GRBL_G: &[GRow] = &[
     g(580, GOp::WorkSystem(4), Group::Wcs),
     g(590, GOp::WorkSystem(5), Group::Wcs),
     g(610, GOp::PathExact, Group::Path),
-    g(640, GOp::PathCutting, Group::Path),
+    // LinuxCNC's blending tolerances P (path) and Q (naive CAM), for the
+    // planner to read one day; accepted as LinuxCNC-minded posts write them.
+    g(640, GOp::PathCutting, Group::Path).reads(bit(b'P') | bit(b'Q')),
     // grbl's G80 cancels the motion mode; with no canned cycles it asks
     // for nothing (a safe-start line's G80 runs).
     g(800, GOp::CycleCancel, Group::Cycle),
@@ -113,5 +115,6 @@ pub(super) fn grbl() -> Dialect {
         bare_return: BareReturn::AllAxes,
         l20: G10L20::FromPosition,
         program_stop: ProgramStop::Pause,
+        tool_length_change: ToolLengthChange::AtNextMove,
     }
 }

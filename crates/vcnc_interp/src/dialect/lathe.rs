@@ -7,7 +7,7 @@
 
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords, LongChord,
-    ProgramStop, RapidPath, bit, g, mill::MILL_M,
+    ProgramStop, RapidPath, ToolLengthChange, bit, g, mill::MILL_M,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
@@ -122,5 +122,6 @@ pub(super) fn lathe() -> Dialect {
         bare_return: BareReturn::NeedsAxes,
         l20: G10L20::Unsupported,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
+        tool_length_change: ToolLengthChange::MovesNow,
     }
 }

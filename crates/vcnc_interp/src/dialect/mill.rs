@@ -4,7 +4,7 @@
 
 use super::{
     BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
-    LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, bit, g,
+    LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, ToolLengthChange, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -200,6 +200,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         bare_return: BareReturn::NeedsAxes,
         l20: G10L20::Unsupported,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
+        tool_length_change: ToolLengthChange::MovesNow,
     }
 }
 

@@ -389,6 +389,17 @@ pub enum ProgramStop {
     Pause,
 }
 
+/// When a change of tool length offset (G43/G44/G49) takes effect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ToolLengthChange {
+    /// A block that changes it and does not move moves Z so that the
+    /// programmed point stays (Fanuc type A, Syntec 1.2.19).
+    MovesNow,
+    /// Nothing moves; the next move goes where the new offset puts the
+    /// program point (grbl, LinuxCNC).
+    AtNextMove,
+}
+
 /// What `G10 L20` means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum G10L20 {
@@ -457,6 +468,8 @@ pub struct Dialect {
     pub l20: G10L20,
     /// M00.
     pub program_stop: ProgramStop,
+    /// G43/G44/G49 without a move.
+    pub tool_length_change: ToolLengthChange,
 }
 
 impl std::fmt::Debug for Dialect {
