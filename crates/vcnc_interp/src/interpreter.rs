@@ -125,6 +125,8 @@ pub struct Interpreter<'a> {
     pub(crate) spindle_warned: bool,
     /// The highest cutting feed, mm/min (the control's clamp).
     pub(crate) max_feed: f64,
+    /// Whether the machine has travel limits to check (E501).
+    pub(crate) travel_limited: bool,
 }
 
 impl<'a> Interpreter<'a> {
@@ -155,6 +157,7 @@ impl<'a> Interpreter<'a> {
             points: crate::block::convert::PointStyle::new(machine, dialect),
             spindle_warned: false,
             max_feed: machine.max_feed_mm_per_min(),
+            travel_limited: machine.has_travel_limits(),
         }
     }
 
