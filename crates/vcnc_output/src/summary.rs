@@ -145,17 +145,17 @@ impl Summary {
     fn line(&self, to: &Pos) -> (f64, f64) {
         let mut d = [0.0f64; vcnc_core::MAX_AXES];
         let mut sq = 0.0;
-        for i in 0..vcnc_core::MAX_AXES {
-            d[i] = (to.0[i] - self.pos.0[i]).abs();
-            sq += d[i] * d[i];
+        for ((di, t), p) in d.iter_mut().zip(&to.0).zip(&self.pos.0) {
+            *di = (t - p).abs();
+            sq += *di * *di;
         }
         let len = sq.sqrt();
         // The axis that reaches its cap first: max·len/d smallest, i.e.
         // d/max largest.
         let mut worst = 0.0f64;
-        for i in 0..vcnc_core::MAX_AXES {
-            if d[i] > 1e-12 {
-                worst = worst.max(d[i] / self.max_feeds[i]);
+        for (di, max) in d.iter().zip(&self.max_feeds) {
+            if *di > 1e-12 {
+                worst = worst.max(di / max);
             }
         }
         let cap = if worst > 0.0 {
