@@ -326,6 +326,14 @@ impl<'a> Interpreter<'a> {
         }
     }
 
+    /// The bytes of `line` of source `src`, read again (cold paths only).
+    fn line_text(&mut self, src: usize, line: &Line) -> Vec<u8> {
+        self.flow
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default()
+    }
+
     /// Fills in line, column and file of a diagnostic raised in `line` of
     /// source `src` (cold path: the line is read again for the column).
     pub(crate) fn locate(&mut self, mut d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
@@ -333,11 +341,7 @@ impl<'a> Interpreter<'a> {
             // Raised about an earlier block (a move compensation held).
             return d;
         }
-        let text = self
-            .flow
-            .source(src)
-            .map(|s| s.reader.reread(line))
-            .unwrap_or_default();
+        let text = self.line_text(src, line);
         d.line = line.number;
         d.column = column_of(&text, d.span.start);
         d.line_offset = line.offset;
@@ -363,11 +367,7 @@ impl<'a> Interpreter<'a> {
         if !reading || start == 0 || d.line != line.number {
             return d;
         }
-        let text = self
-            .flow
-            .source(src)
-            .map(|s| s.reader.reread(line))
-            .unwrap_or_default();
+        let text = self.line_text(src, line);
         let before = text.get(..start).unwrap_or_default().trim_ascii_end();
         if before.ends_with(b";") {
             d.help = format!(

@@ -129,7 +129,13 @@ impl Interpreter<'_> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G4", "P (the dwell in seconds)"))?;
-        let seconds = self.seconds(&p);
+        self.dwell_p_seconds(&p)
+    }
+
+    /// A dwell of P seconds (milliseconds without a point in least-increment
+    /// dialects), 0 to 9999.999 s.
+    fn dwell_p_seconds(&mut self, p: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
+        let seconds = self.seconds(p);
         if !(0.0..=9_999.999).contains(&seconds) {
             return Err(alarms::value_out_of_range(
                 p.span,
@@ -180,17 +186,7 @@ impl Interpreter<'_> {
             });
             return Ok(());
         };
-        let seconds = self.seconds(&p);
-        if !(0.0..=9_999.999).contains(&seconds) {
-            return Err(alarms::value_out_of_range(
-                p.span,
-                b'P',
-                p.value,
-                "a dwell is 0 to 9999.999 s",
-            ));
-        }
-        self.emit(|loc| Event::Dwell { loc, seconds });
-        Ok(())
+        self.dwell_p_seconds(&p)
     }
 
     /// Syntec G05 P10000 / P1–P5 (on) and P0 (off), manual 1.2.6: recorded
