@@ -12,6 +12,7 @@ pub mod diagnostic;
 pub mod events;
 pub mod geometry;
 pub mod machine;
+pub mod motion;
 mod sink;
 mod span;
 

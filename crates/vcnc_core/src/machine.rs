@@ -10,6 +10,7 @@
 //! plotter) needs the same axes, rates and limits as the interpreter.
 
 use crate::events::{MAX_AXES, Pos};
+use crate::motion::Motion;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -37,6 +38,12 @@ pub struct Axis {
     pub max_feed_mm_per_min: f64,
     /// Acceleration.
     pub accel_mm_s2: f64,
+    /// Jerk (rate of change of acceleration), for jerk-limited profiles.
+    pub jerk_mm_s3: f64,
+    /// In-position window of cutting moves (Syntec 421–440).
+    pub in_position_mm: f64,
+    /// In-position window of rapids (Syntec 461–480).
+    pub in_position_rapid_mm: f64,
 }
 
 /// How words without a decimal point are read (Fanuc parameter DPI).
@@ -174,6 +181,8 @@ pub struct Machine {
     pub limits: Limits,
     /// G31 skip triggers.
     pub skip: Vec<SkipTrigger>,
+    /// Motion planning: profile, look-ahead, corner tolerance, times.
+    pub motion: Motion,
 }
 
 /// Why a machine file was rejected.
@@ -200,11 +209,28 @@ struct FileAxis {
     max_feed_mm_per_min: f64,
     #[serde(default = "default_accel")]
     accel_mm_s2: f64,
+    jerk_mm_s3: Option<f64>,
+    #[serde(default = "default_in_position")]
+    in_position_mm: f64,
+    #[serde(default = "default_in_position_rapid")]
+    in_position_rapid_mm: f64,
 }
 
 fn default_accel() -> f64 {
     1000.0
 }
+
+fn default_in_position() -> f64 {
+    0.01
+}
+
+fn default_in_position_rapid() -> f64 {
+    0.02
+}
+
+/// Without `jerk_mm_s3`, an axis reaches its acceleration in this time
+/// (jerk = acceleration / 0.05 s), a common bell-shaped time constant.
+pub const DEFAULT_JERK_TIME_S: f64 = 0.05;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -232,6 +258,8 @@ struct File {
     limits: Limits,
     #[serde(default)]
     skip: Vec<FileSkip>,
+    #[serde(default)]
+    motion: Motion,
 }
 
 impl Machine {
@@ -279,6 +307,7 @@ impl Machine {
             params: f.parameters,
             limits: f.limits,
             skip: Vec::new(),
+            motion: f.motion,
         };
         for (i, a) in f.axes.into_iter().enumerate() {
             m.add_axis(i, a)?;
@@ -356,6 +385,14 @@ impl Machine {
                 a.letter
             )));
         }
+        let jerk_mm_s3 = a.jerk_mm_s3.unwrap_or(a.accel_mm_s2 / DEFAULT_JERK_TIME_S);
+        let positive = [jerk_mm_s3, a.in_position_mm, a.in_position_rapid_mm];
+        if positive.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(MachineError(format!(
+                "axis {}: jerk_mm_s3, in_position_mm and in_position_rapid_mm must be positive",
+                a.letter
+            )));
+        }
         self.axes.push(Axis {
             letter,
             min_mm: a.min_mm,
@@ -363,6 +400,9 @@ impl Machine {
             rapid_mm_per_min: a.rapid_mm_per_min,
             max_feed_mm_per_min: a.max_feed_mm_per_min,
             accel_mm_s2: a.accel_mm_s2,
+            jerk_mm_s3,
+            in_position_mm: a.in_position_mm,
+            in_position_rapid_mm: a.in_position_rapid_mm,
         });
         Ok(())
     }
@@ -427,6 +467,7 @@ impl Machine {
                     .into(),
             ));
         }
+        self.motion.check()?;
         // Every level may hold an open program file (64 KiB each): 50
         // levels keep memory bounded (Fanuc 0i allows 10).
         if self.limits.max_call_depth == 0 || self.limits.max_call_depth > 50 {
