@@ -27,10 +27,74 @@ pub enum Command {
         /// Program and machine options.
         #[command(flatten)]
         common: Common,
-        /// Output format: JSON lines (the event contract), CSV, or a flattened plain G-code program.
+        /// Output format: JSON lines (the event contract), CSV, a flattened plain G-code program, or the planned trajectory sampled every --period seconds.
         #[arg(long, value_enum, default_value_t = Format::Jsonl)]
         format: Format,
+        /// Sampling period of --format trace, seconds.
+        #[arg(long, default_value_t = 0.001)]
+        period: f64,
+        /// Speed profile of --format trace (default: the machine file's).
+        #[arg(long, value_enum)]
+        profile: Option<ProfileArg>,
     },
+    /// Plan the motion on the machine model and print the cycle time and its split.
+    Time(TimeArgs),
+}
+
+/// `vcnc time FILE…`.
+#[derive(Debug, Args)]
+pub struct TimeArgs {
+    /// The programs.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill) or lathe (the seed lathe controller).
+    #[arg(long, default_value = "syntec")]
+    pub dialect: String,
+    /// Machine file (TOML); default: the built-in machine of the dialect.
+    #[arg(long)]
+    pub machine: Option<PathBuf>,
+    /// Where called programs are looked up; default: each program's directory.
+    #[arg(long)]
+    pub program_dir: Option<PathBuf>,
+    /// Block delete switch on.
+    #[arg(long)]
+    pub block_delete: bool,
+    /// Optional stop switch on.
+    #[arg(long)]
+    pub optional_stop: bool,
+    /// Output: text for people, or one JSON object per program.
+    #[arg(long, value_enum, default_value_t = TimeFormat::Text)]
+    pub format: TimeFormat,
+    /// Speed profile (default: the machine file's).
+    #[arg(long, value_enum)]
+    pub profile: Option<ProfileArg>,
+}
+
+/// Output formats of `vcnc time`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum TimeFormat {
+    /// For people.
+    Text,
+    /// One JSON object per program.
+    Json,
+}
+
+/// Speed profile shapes.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ProfileArg {
+    /// Constant acceleration ramps.
+    Trapezoid,
+    /// Jerk-limited S-curve ramps.
+    Jerk,
+}
+
+impl From<ProfileArg> for vcnc_planner::ProfileShape {
+    fn from(p: ProfileArg) -> Self {
+        match p {
+            ProfileArg::Trapezoid => vcnc_planner::ProfileShape::Trapezoid,
+            ProfileArg::Jerk => vcnc_planner::ProfileShape::Jerk,
+        }
+    }
 }
 
 /// Options every subcommand takes.
@@ -64,4 +128,6 @@ pub enum Format {
     Csv,
     /// A flattened plain program for grbl or LinuxCNC.
     Gcode,
+    /// The planned trajectory as CSV samples (docs/planner.md).
+    Trace,
 }

@@ -8,6 +8,8 @@
 mod cli;
 mod files;
 mod render;
+mod timing;
+mod trace;
 
 use clap::Parser;
 use cli::{Cli, Command, Common, Format};
@@ -30,7 +32,13 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check { common } => check(&common),
-        Command::Run { common, format } => run_events(&common, format),
+        Command::Run {
+            common,
+            format,
+            period,
+            profile,
+        } => run_events(&common, format, (period, profile.map(Into::into))),
+        Command::Time(args) => timing::time(&args),
     }
 }
 
@@ -90,7 +98,9 @@ fn execute<S: Sink>(c: &Common, s: &mut Setup, sink: &mut S) -> Result<(Outcome,
 fn check(c: &Common) -> Result<ExitCode, String> {
     let mut s = setup(c)?;
     let mut summary = Summary::new(&s.machine);
-    let (outcome, diameter) = execute(c, &mut s, &mut summary)?;
+    let mut plan = timing::planner(&s.machine, None);
+    let (outcome, diameter) = execute(c, &mut s, &mut timing::Tee(&mut summary, &mut plan))?;
+    let planned = plan.into_timeline();
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, &c.file));
     }
@@ -101,7 +111,7 @@ fn check(c: &Common) -> Result<ExitCode, String> {
         c,
         &s.dialect,
         &s.machine,
-        &summary,
+        (&summary, &planned),
         &outcome,
         diameter_axis,
     )
@@ -109,7 +119,11 @@ fn check(c: &Common) -> Result<ExitCode, String> {
     Ok(exit_code(&outcome))
 }
 
-fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
+fn run_events(
+    c: &Common,
+    format: Format,
+    (period, profile): (f64, Option<vcnc_planner::ProfileShape>),
+) -> Result<ExitCode, String> {
     let mut s = setup(c)?;
     // The JSON-lines sink buffers itself; the others go through a BufWriter.
     let out = std::io::stdout().lock();
@@ -125,6 +139,10 @@ fn run_events(c: &Common, format: Format) -> Result<ExitCode, String> {
         }
         Format::Gcode => {
             let sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            stream(c, &mut s, sink)?
+        }
+        Format::Trace => {
+            let sink = trace::TraceSink::new(out, &s.machine, period, profile);
             stream(c, &mut s, sink)?
         }
     };

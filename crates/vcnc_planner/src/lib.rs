@@ -25,7 +25,7 @@ pub use planner::Planner;
 pub use ramp::{Kin, Profile, Ramp};
 pub use time::CycleTime;
 pub use timeline::{Attr, AxesMove, MoveKind, Pause, PauseKind, Segment, Timeline};
-pub use trace::{Sample, Sampler};
+pub use trace::{Sample, SampleSink, Sampler};
 pub use vcnc_core::motion::Profile as ProfileShape;
 
 /// Plans a whole run: feed the events to the returned planner, then call

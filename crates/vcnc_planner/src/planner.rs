@@ -138,6 +138,11 @@ impl<T: Timeline> Planner<T> {
         &self.out
     }
 
+    /// The consumer, to change.
+    pub fn timeline_mut(&mut self) -> &mut T {
+        &mut self.out
+    }
+
     /// Flushes and returns the consumer.
     pub fn into_timeline(mut self) -> T {
         self.flush();

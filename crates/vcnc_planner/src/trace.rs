@@ -32,9 +32,21 @@ pub struct Sample {
     pub line: u64,
 }
 
-/// Calls `f` with every sample of the timeline.
+/// Receives samples.
+pub trait SampleSink {
+    /// One sample, in time order.
+    fn sample(&mut self, s: &Sample);
+}
+
+impl<F: FnMut(&Sample)> SampleSink for F {
+    fn sample(&mut self, s: &Sample) {
+        self(s);
+    }
+}
+
+/// Hands every sample of the timeline to `f`.
 #[derive(Debug)]
-pub struct Sampler<F: FnMut(&Sample)> {
+pub struct Sampler<F: SampleSink> {
     period: f64,
     /// Start time of the next piece.
     t0: f64,
@@ -44,7 +56,17 @@ pub struct Sampler<F: FnMut(&Sample)> {
     f: F,
 }
 
-impl<F: FnMut(&Sample)> Sampler<F> {
+impl<F: SampleSink> Sampler<F> {
+    /// The receiver of the samples.
+    pub fn sink(&self) -> &F {
+        &self.f
+    }
+
+    /// The receiver of the samples, to change.
+    pub fn sink_mut(&mut self) -> &mut F {
+        &mut self.f
+    }
+
     /// Samples every `period_s` seconds (at least 1 µs), starting at `start`.
     pub fn new(period_s: f64, start: Pos, f: F) -> Sampler<F> {
         Sampler {
@@ -76,7 +98,7 @@ impl<F: FnMut(&Sample)> Sampler<F> {
             path_jerk: 0.0,
             line: 0,
         };
-        (self.f)(&s);
+        self.f.sample(&s);
     }
 
     /// Samples the piece of `duration` from the current time with `eval`.
@@ -90,7 +112,7 @@ impl<F: FnMut(&Sample)> Sampler<F> {
             }
             let mut s = eval((t - self.t0).max(0.0));
             s.t = t;
-            (self.f)(&s);
+            self.f.sample(&s);
             self.k += 1;
         }
         self.t0 = end;
@@ -109,7 +131,7 @@ fn at_rest(pos: Pos, line: u64) -> Sample {
     }
 }
 
-impl<F: FnMut(&Sample)> Timeline for Sampler<F> {
+impl<F: SampleSink> Timeline for Sampler<F> {
     fn segment(&mut self, seg: &Segment, profile: &Profile) {
         let path = seg.path;
         let line = seg.attr.line;
