@@ -56,6 +56,10 @@ pub struct AxisLimits {
     pub in_position_rapid: Vector,
     /// Axis letters.
     pub letters: Vec<u8>,
+    /// The smallest acceleration of any axis.
+    pub min_accel: f64,
+    /// The smallest jerk of any axis.
+    pub min_jerk: f64,
 }
 
 impl AxisLimits {
@@ -70,6 +74,8 @@ impl AxisLimits {
             in_position: [f64::INFINITY; MAX_AXES],
             in_position_rapid: [f64::INFINITY; MAX_AXES],
             letters: machine.axes.iter().map(|a| a.letter).collect(),
+            min_accel: f64::INFINITY,
+            min_jerk: f64::INFINITY,
         };
         for (i, a) in machine.axes.iter().enumerate().take(MAX_AXES) {
             l.rapid[i] = a.rapid_mm_per_min / 60.0;
@@ -81,7 +87,14 @@ impl AxisLimits {
             l.in_position[i] = a.in_position_mm;
             l.in_position_rapid[i] = a.in_position_rapid_mm;
         }
+        l.min_accel = l.n_min(&l.accel);
+        l.min_jerk = l.n_min(&l.jerk);
         l
+    }
+
+    /// The smallest of `v` over the machine's axes.
+    pub fn n_min(&self, v: &Vector) -> f64 {
+        v.iter().take(self.n).fold(f64::INFINITY, |a, b| a.min(*b))
     }
 
     /// The smallest `limit[i] / share[i]` over the axes that move.
@@ -127,9 +140,17 @@ pub fn arc_limits(l: &AxisLimits, kappa: f64, a: usize, b: usize, kin: Kin) -> (
 }
 
 /// The speed at which the corner from direction `u1` to `u2` may be passed
-/// with corner tolerance `tol_mm`, before the two moves' own speed limits,
-/// and the per-axis speed limits `vlim` in the corner's plane.
-pub fn corner_speed(l: &AxisLimits, u1: &Vector, u2: &Vector, tol_mm: f64, vlim: &Vector) -> f64 {
+/// with corner tolerance `tol_mm` and the per-axis speed limits `vlim` in
+/// the corner's plane; infinite when it is at least `v_cap` (the moves' own
+/// limit), which a cheap bound often shows.
+pub fn corner_speed(
+    l: &AxisLimits,
+    u1: &Vector,
+    u2: &Vector,
+    tol_mm: f64,
+    vlim: &Vector,
+    v_cap: f64,
+) -> f64 {
     let (mut n1, mut n2) = (0.0, 0.0);
     for i in 0..l.n {
         n1 += u1[i] * u1[i];
@@ -139,7 +160,7 @@ pub fn corner_speed(l: &AxisLimits, u1: &Vector, u2: &Vector, tol_mm: f64, vlim:
     if !(n1 > TINY && n2 > TINY) {
         return 0.0;
     }
-    // e1 = u1/|u1|, d = u2/|u2| − e1 (chord), s = u2/|u2| + e1.
+    // e1, e2: the unit tangents; |e2 − e1| = 2·sin(θ/2), |e2 + e1| = 2·cos(θ/2).
     let mut e1 = [0.0; MAX_AXES];
     let mut e2 = [0.0; MAX_AXES];
     let (mut chord, mut sum, mut dot) = (0.0, 0.0, 0.0);
@@ -150,13 +171,21 @@ pub fn corner_speed(l: &AxisLimits, u1: &Vector, u2: &Vector, tol_mm: f64, vlim:
         sum += (e2[i] + e1[i]) * (e2[i] + e1[i]);
         dot += e1[i] * e2[i];
     }
-    let half = chord.sqrt().atan2(sum.sqrt()); // θ/2
-    if half < 1e-9 {
+    let (sh, ch) = (0.5 * chord.sqrt(), 0.5 * sum.sqrt());
+    if sh < 1e-9 {
         return f64::INFINITY; // tangent: only the moves' own limits
     }
-    // R = δ·cos(θ/2) / (1 − cos(θ/2)), with 1 − cos x = 2 sin²(x/2).
-    let s4 = (half / 2.0).sin();
-    let radius = tol_mm * half.cos() / (2.0 * s4 * s4);
+    // R = δ·cos(θ/2) / (1 − cos(θ/2)), with 1 − cos = sin²/(1 + cos): no
+    // cancellation at small angles, no trigonometry.
+    let radius = tol_mm * ch * (1.0 + ch) / (sh * sh);
+    // Every axis spans at most all of the plane: with the smallest limits
+    // of all axes the corner is already faster than either move may go.
+    if l.min_accel * radius >= v_cap * v_cap
+        && (!l.min_jerk.is_finite() || l.min_jerk * radius * radius >= v_cap * v_cap * v_cap)
+        && l.n_min(vlim) >= v_cap
+    {
+        return f64::INFINITY;
+    }
     // The corner's plane: e1 and the unit part of e2 orthogonal to it.
     let mut w = [0.0; MAX_AXES];
     let mut wn = 0.0;
@@ -168,13 +197,13 @@ pub fn corner_speed(l: &AxisLimits, u1: &Vector, u2: &Vector, tol_mm: f64, vlim:
     let mut span = [0.0; MAX_AXES];
     for i in 0..l.n {
         let wi = if wn > TINY { w[i] / wn } else { 0.0 };
-        span[i] = e1[i].hypot(wi);
+        span[i] = (e1[i] * e1[i] + wi * wi).sqrt();
     }
     let accel = l.along(&l.accel, &span);
     let jerk = l.along(&l.jerk, &span);
     let mut v = (accel * radius).sqrt();
-    if jerk.is_finite() {
-        v = v.min((jerk * radius * radius).cbrt());
+    if jerk.is_finite() && v * v * v > jerk * radius * radius {
+        v = (jerk * radius * radius).cbrt();
     }
     v.min(l.along(vlim, &span))
 }
@@ -206,7 +235,7 @@ mod tests {
         let l = limits();
         let u1 = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
         let u2 = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
-        let v = corner_speed(&l, &u1, &u2, 0.02, &l.max_feed);
+        let v = corner_speed(&l, &u1, &u2, 0.02, &l.max_feed, f64::INFINITY);
         // θ = 90°: R = δ·cos45°/(1 − cos45°) = 2.4142·δ; v = √(a·R).
         let c = std::f64::consts::FRAC_1_SQRT_2;
         let r = 0.02 * c / (1.0 - c);
@@ -218,7 +247,7 @@ mod tests {
         let l = limits();
         let u = [0.6, 0.8, 0.0, 0.0, 0.0, 0.0];
         let back = u.map(|x| -x);
-        assert!(corner_speed(&l, &u, &u, 0.02, &l.max_feed).is_infinite());
-        assert!(corner_speed(&l, &u, &back, 0.02, &l.max_feed) < 1e-6);
+        assert!(corner_speed(&l, &u, &u, 0.02, &l.max_feed, 1e9).is_infinite());
+        assert!(corner_speed(&l, &u, &back, 0.02, &l.max_feed, 1e9) < 1e-6);
     }
 }

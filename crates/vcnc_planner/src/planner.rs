@@ -260,7 +260,7 @@ impl<T: Timeline> Planner<T> {
         let u_start = seg.path.tangent(0.0);
         let u_end = seg.path.tangent(seg.path.len);
         let cap = self.corner_cap(&seg, &u_start).min(seg.v_max);
-        let entry_max = cap.min(seg.kin.reach(0.0, seg.path.len));
+        let entry_max = seg.kin.reach_capped(0.0, seg.path.len, cap);
         self.window.push_back(Pending {
             seg,
             end,
@@ -288,9 +288,8 @@ impl<T: Timeline> Planner<T> {
             prev.end = End::Stop;
             return 0.0;
         }
-        let v = corner_speed(lim, &prev.u_end, u_start, tol, &lim.max_feed)
-            .min(prev.seg.v_max)
-            .min(seg.v_max);
+        let v_cap = prev.seg.v_max.min(seg.v_max);
+        let v = corner_speed(lim, &prev.u_end, u_start, tol, &lim.max_feed, v_cap).min(v_cap);
         if prev.end == End::Tangent {
             let tangent = cosine(&prev.u_end, u_start) >= TANGENT_COS;
             let (a, b) = (prev.seg.v_max, seg.v_max);
@@ -312,7 +311,7 @@ impl<T: Timeline> Planner<T> {
             i -= 1;
             let exit = self.window[i + 1].entry_max;
             let p = &mut self.window[i];
-            let new = p.entry_cap.min(p.seg.kin.reach(exit, p.seg.path.len));
+            let new = p.seg.kin.reach_capped(exit, p.seg.path.len, p.entry_cap);
             if new == p.entry_max {
                 break;
             }
@@ -332,7 +331,7 @@ impl<T: Timeline> Planner<T> {
             0.0
         } else {
             let next = self.window.front().map_or(0.0, |n| n.entry_max);
-            next.min(p.seg.kin.reach(v0, len))
+            p.seg.kin.reach_capped(v0, len, next)
         };
         let profile = Profile::plan(v0, v1, p.seg.v_max, len, p.seg.kin);
         self.out.segment(&p.seg, &profile);

@@ -62,6 +62,16 @@ impl Kin {
         0.5 * (v0 + v1) * self.ramp_time((v1 - v0).abs())
     }
 
+    /// `reach(v0, len)` capped at `cap`, without solving for the reach when
+    /// a ramp to `cap` already fits (the common case, and cheaper).
+    pub fn reach_capped(self, v0: f64, len: f64, cap: f64) -> f64 {
+        if cap <= v0 || self.ramp_dist(v0, cap) <= len {
+            cap
+        } else {
+            self.reach(v0, len).min(cap)
+        }
+    }
+
     /// The highest speed reachable from `v0` (or from which `v0` is
     /// reachable) within `len` mm.
     pub fn reach(self, v0: f64, len: f64) -> f64 {
