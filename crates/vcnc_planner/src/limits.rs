@@ -9,13 +9,17 @@
 //! passes at distance δ (the corner tolerance) from the corner point:
 //!
 //! ```text
-//!        u₁ ───────────●╮ corner         R = δ·cos(θ/2) / (1 − cos(θ/2))
-//!                   δ ┆  ╲ ╮             v² = a_c·R   (centripetal limit)
+//!        u₁ ───────────●╮ corner         R = δ·cos(θ/2) / (1 − cos(θ/2)),
+//!                   δ ┆  ╲ ╮               at most (L/2)/tan(θ/2)
+//!                      ╰──╮╲             v² = a_c·R   (centripetal limit)
 //!                      ╰──╮╲             v³ = j_c·R²  (jerk limit, S-curve)
 //!                   circle ╲ u₂
 //! ```
 //!
-//! a_c and j_c are the smallest axis limits scaled by how much of the
+//! L is the shorter of the two moves: the rounding must fit in half of each,
+//! which on a chain of short chords (a curve a CAM system flattened) limits
+//! the speed to the curve's own centripetal limit. a_c and j_c are the
+//! smallest axis limits scaled by how much of the
 //! corner's plane each axis spans, so no axis exceeds its own limit
 //! anywhere on that circle. The commanded path still goes through the
 //! corner point (the interpolator's path); the servo's rounding stays within
@@ -140,7 +144,8 @@ pub fn arc_limits(l: &AxisLimits, kappa: f64, a: usize, b: usize, kin: Kin) -> (
 }
 
 /// The speed at which the corner from direction `u1` to `u2` may be passed
-/// with corner tolerance `tol_mm` and the per-axis speed limits `vlim` in
+/// with corner tolerance `tol_mm`, a rounding that stays within `half_len`
+/// of the corner on either move, and the per-axis speed limits `vlim` in
 /// the corner's plane; infinite when it is at least `v_cap` (the moves' own
 /// limit), which a cheap bound often shows.
 pub fn corner_speed(
@@ -148,6 +153,7 @@ pub fn corner_speed(
     u1: &Vector,
     u2: &Vector,
     tol_mm: f64,
+    half_len: f64,
     vlim: &Vector,
     v_cap: f64,
 ) -> f64 {
@@ -177,7 +183,11 @@ pub fn corner_speed(
     }
     // R = δ·cos(θ/2) / (1 − cos(θ/2)), with 1 − cos = sin²/(1 + cos): no
     // cancellation at small angles, no trigonometry.
-    let radius = tol_mm * ch * (1.0 + ch) / (sh * sh);
+    // The rounding must also fit in half of the shorter move: the circle
+    // tangent to both at `half_len` from the corner has r = half_len/tan(θ/2).
+    // On a chain of short chords this is the curve's own radius, so the
+    // chain runs at its centripetal limit.
+    let radius = (tol_mm * ch * (1.0 + ch) / (sh * sh)).min(half_len * ch / sh);
     // Every axis spans at most all of the plane: with the smallest limits
     // of all axes the corner is already faster than either move may go.
     if l.min_accel * radius >= v_cap * v_cap
@@ -235,7 +245,7 @@ mod tests {
         let l = limits();
         let u1 = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
         let u2 = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
-        let v = corner_speed(&l, &u1, &u2, 0.02, &l.max_feed, f64::INFINITY);
+        let v = corner_speed(&l, &u1, &u2, 0.02, 10.0, &l.max_feed, f64::INFINITY);
         // θ = 90°: R = δ·cos45°/(1 − cos45°) = 2.4142·δ; v = √(a·R).
         let c = std::f64::consts::FRAC_1_SQRT_2;
         let r = 0.02 * c / (1.0 - c);
@@ -247,7 +257,7 @@ mod tests {
         let l = limits();
         let u = [0.6, 0.8, 0.0, 0.0, 0.0, 0.0];
         let back = u.map(|x| -x);
-        assert!(corner_speed(&l, &u, &u, 0.02, &l.max_feed, 1e9).is_infinite());
-        assert!(corner_speed(&l, &u, &back, 0.02, &l.max_feed, 1e9) < 1e-6);
+        assert!(corner_speed(&l, &u, &u, 0.02, 10.0, &l.max_feed, 1e9).is_infinite());
+        assert!(corner_speed(&l, &u, &back, 0.02, 10.0, &l.max_feed, 1e9) < 1e-6);
     }
 }

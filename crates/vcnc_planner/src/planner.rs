@@ -289,7 +289,17 @@ impl<T: Timeline> Planner<T> {
             return 0.0;
         }
         let v_cap = prev.seg.v_max.min(seg.v_max);
-        let v = corner_speed(lim, &prev.u_end, u_start, tol, &lim.max_feed, v_cap).min(v_cap);
+        let half_len = 0.5 * prev.seg.path.len.min(seg.path.len);
+        let v = corner_speed(
+            lim,
+            &prev.u_end,
+            u_start,
+            tol,
+            half_len,
+            &lim.max_feed,
+            v_cap,
+        )
+        .min(v_cap);
         if prev.end == End::Tangent {
             let tangent = cosine(&prev.u_end, u_start) >= TANGENT_COS;
             let (a, b) = (prev.seg.v_max, seg.v_max);
