@@ -68,9 +68,27 @@ compare() { # name generator blocks
         --profile trapezoid --format json |
         python3 -c 'import json,sys; d=json.load(sys.stdin); print(d["cutting_s"]+d["rapid_s"], d["distance_feed_s"])')
     t1=$(date +%s.%N)
+    # Klipper's G-code: rapids as G1 at the rapid rate, every cutting move
+    # with its own F (a G1 after a converted rapid would keep F30000).
     "$vcnc" run "$dir/$name.nc" --dialect fanuc --machine "$dir/machine.toml" --format gcode |
-        sed -e 's/([^)]*)//g' -e '/^G21/d' -e '/^M/d' -e 's/^G0 \(.*\)/G1 \1 F30000/' \
-            -e 's/X\([-0-9.]*\)\. /X\1 /;s/Y\([-0-9.]*\)\. /Y\1 /;s/Z\([-0-9.]*\)\.\( \|$\)/Z\1\2/' > "$dir/$name.gcode"
+        python3 -c '
+import re, sys
+feed = None
+for line in sys.stdin:
+    line = re.sub(r"\([^)]*\)", "", line).strip()
+    if not line or line.startswith(("G21", "M")):
+        continue
+    m = re.search(r"F([0-9.]+)", line)
+    if m:
+        feed = m.group(1)
+        line = re.sub(r" ?F[0-9.]+", "", line)
+    if line.startswith("G0 "):
+        print("G1 " + line[3:] + " F30000")
+    elif line.startswith("G1 ") and feed:
+        print(line + " F" + feed)
+    else:
+        print(line)
+' > "$dir/$name.gcode"
     local k0 k1
     k0=$(date +%s.%N)
     theirs=$("$KE" --config_file "$dir/klipper.json" estimate "$dir/$name.gcode" --format json |

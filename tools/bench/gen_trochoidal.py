@@ -5,8 +5,8 @@ and cross-check input).
 Usage: gen_trochoidal.py [N] [OUT.nc]     (N defaults to 100,000; OUT to stdout)
 
 The tool runs loops of radius 1.5 mm whose centre advances 0.3 mm per loop
-along X, each loop flattened into 0.1 mm chords (about 94 per loop) at F3000
-(50 mm/s): every block is a G1 of 0.1 mm with a 3.8-degree corner, so the
+along X, each loop flattened into 0.1 mm chords (about 94 per loop) at F6000
+(100 mm/s): every block is a G1 of 0.1 mm with a 3.8-degree corner, so the
 time is set by the centripetal limit of the loops and by acceleration, not
 by the feed. Rows of 200 mm are joined by a short linking move in Y.
 Exactly N lines: a `G21 G17 G90 G94` header, a positioning move and a
@@ -20,7 +20,7 @@ R = 1.5
 CHORD = 0.1
 ADVANCE = 0.3
 ROW = 200.0
-FEED = "F3000.0"
+FEED = "F6000.0"
 
 
 def blocks():
