@@ -65,7 +65,10 @@ pub fn time(a: &TimeArgs) -> Result<ExitCode, String> {
             TimeFormat::Text => text(&mut out, &c, &s.machine, profile, &t, &summary, &outcome),
             TimeFormat::Json => json(&mut out, &c, profile, &t, &summary, &outcome),
         };
-        r.map_err(|e| e.to_string())?;
+        match r {
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(worst),
+            r => r.map_err(|e| e.to_string())?,
+        }
     }
     Ok(worst)
 }

@@ -212,7 +212,7 @@ fn run_csv_has_a_header_and_one_row_per_event() {
     let header = lines.next().expect("header");
     assert_eq!(
         header,
-        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help,linear,tool_offset_x,tool_offset_y,tool_offset_z"
+        "type,line,file,x,y,z,center_x,center_y,center_z,plane,dir,feed,feed_per_rev,lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,exact_stop,p,surface_m_per_min,help,linear,tool_offset_x,tool_offset_y,tool_offset_z,tolerance_mm"
     );
     let columns = header.split(',').count();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();

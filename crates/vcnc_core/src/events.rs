@@ -413,8 +413,43 @@ pub enum Event {
         /// The new frame.
         frame: FrameInfo,
     },
+    /// G05.1 path smoothing of G01 chains (Syntec 1.2.7) takes effect
+    /// (`on`, with its largest path error) or stops, before the first G01
+    /// it concerns.
+    Smoothing {
+        /// Source.
+        loc: Loc,
+        /// Whether the following G01 moves are smoothed.
+        on: bool,
+        /// The largest allowed path error E, mm (0 when off).
+        tolerance_mm: f64,
+    },
+    /// A NURBS curve (G06.2, Syntec 1.2.8): from the current position
+    /// along the curve its control points and knots define, ending at the
+    /// last control point.
+    Nurbs {
+        /// Source (the block that completed the definition).
+        loc: Loc,
+        /// The curve.
+        curve: Arc<Nurbs>,
+        /// Feed (the curve's F).
+        feed: Feed,
+    },
     /// An alarm; always the last event.
     Alarm(Diagnostic),
+}
+
+/// A NURBS curve in machine coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nurbs {
+    /// Order (degree + 1), 2 to 4.
+    pub order: u8,
+    /// Knot vector, non-decreasing, `points.len() + order` long.
+    pub knots: Vec<f64>,
+    /// Control points, machine coordinates.
+    pub points: Vec<Pos>,
+    /// Weights, one per control point, positive.
+    pub weights: Vec<f64>,
 }
 
 impl Event {
@@ -439,6 +474,8 @@ impl Event {
             Event::Hole { .. } => "hole",
             Event::Wait { .. } => "wait",
             Event::Junction { .. } => "junction",
+            Event::Smoothing { .. } => "smoothing",
+            Event::Nurbs { .. } => "nurbs",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -463,7 +500,9 @@ impl Event {
             | Event::Contour { loc, .. }
             | Event::Hole { loc, .. }
             | Event::Wait { loc, .. }
-            | Event::Junction { loc, .. } => Some(loc),
+            | Event::Junction { loc, .. }
+            | Event::Smoothing { loc, .. }
+            | Event::Nurbs { loc, .. } => Some(loc),
             Event::Alarm(_) => None,
         }
     }
@@ -476,6 +515,7 @@ impl Event {
             | Event::Arc { to, .. }
             | Event::Thread { to, .. }
             | Event::Skip { to, .. } => Some(*to),
+            Event::Nurbs { curve, .. } => curve.points.last().copied(),
             _ => None,
         }
     }

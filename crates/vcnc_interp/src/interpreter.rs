@@ -113,6 +113,8 @@ pub struct Interpreter<'a> {
     pub(crate) cur_line: Option<(usize, Line)>,
     /// Events of the block being executed, sent when it succeeds.
     pub(crate) pending: Vec<Event>,
+    /// A G06.2 curve whose definition is still being read.
+    pub(crate) nurbs: Option<crate::codes::nurbs::NurbsBuild>,
 }
 
 impl<'a> Interpreter<'a> {
@@ -138,6 +140,7 @@ impl<'a> Interpreter<'a> {
             comp_saved: Default::default(),
             cur_line: None,
             pending: Vec::new(),
+            nurbs: None,
         }
     }
 

@@ -37,6 +37,8 @@ use vcnc_core::{Event, Feed, Loc, MAX_AXES, Machine, PathMode, Plane, Pos, Sink,
 const TANGENT_COS: f64 = 0.999_847_695;
 /// G99 blends only between feeds within this ratio.
 const FEED_RATIO: f64 = 1.1;
+/// How far the chords a NURBS curve is followed by may pass from it, mm.
+pub const NURBS_CHORD_MM: f64 = 0.001;
 
 /// How a segment ends.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,6 +63,8 @@ struct Pending {
     /// in time (the backward pass).
     entry_max: f64,
     u_end: Vector,
+    /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
+    smooth_mm: f64,
 }
 
 /// Settings from the machine file and G05.
@@ -92,6 +96,10 @@ pub struct Planner<T: Timeline> {
     tool: Option<u32>,
     dogleg: Option<(Attr, Pos, Pos)>,
     in_position_check: bool,
+    /// G05.1 tolerance the next G01 moves get (0: none).
+    smoothing_mm: f64,
+    /// The segment being pushed is a smoothed G01.
+    smooth_next: f64,
     /// Moves that could not be timed.
     pub untimed_moves: u64,
 }
@@ -129,6 +137,8 @@ impl<T: Timeline> Planner<T> {
             tool: None,
             dogleg: None,
             in_position_check: false,
+            smoothing_mm: 0.0,
+            smooth_next: 0.0,
             untimed_moves: 0,
         }
     }
@@ -268,6 +278,7 @@ impl<T: Timeline> Planner<T> {
             entry_cap: cap,
             entry_max,
             u_end,
+            smooth_mm: self.smooth_next,
         });
         self.backward();
         while self.window.len() > self.set.lookahead {
@@ -278,7 +289,8 @@ impl<T: Timeline> Planner<T> {
     /// The highest speed at the junction between the newest segment in
     /// the window and `seg`; decides how a G99 junction ends.
     fn corner_cap(&mut self, seg: &Segment, u_start: &Vector) -> f64 {
-        let tol = self.set.corner_tolerance_mm;
+        // Between two smoothed G01 moves the corner tolerance is G05.1's E.
+        let smooth = self.smooth_next;
         let lim = &self.lim;
         let Some(prev) = self.window.back_mut() else {
             return 0.0;
@@ -288,6 +300,11 @@ impl<T: Timeline> Planner<T> {
             prev.end = End::Stop;
             return 0.0;
         }
+        let tol = if smooth > 0.0 && prev.smooth_mm > 0.0 {
+            smooth
+        } else {
+            self.set.corner_tolerance_mm
+        };
         let v_cap = prev.seg.v_max.min(seg.v_max);
         let half_len = 0.5 * prev.seg.path.len.min(seg.path.len);
         let v = corner_speed(
@@ -454,6 +471,23 @@ impl<T: Timeline> Planner<T> {
         }
     }
 
+    /// A NURBS curve: its chords within [`NURBS_CHORD_MM`], blended
+    /// into each other, the last one ending as the block's mode says.
+    fn nurbs(&mut self, curve: &vcnc_core::Nurbs, feed: Feed, loc: &Loc) {
+        let points = curve.flatten(NURBS_CHORD_MM);
+        let v = self.feed_speed(feed);
+        let last = points.len().saturating_sub(1);
+        for (i, to) in points.into_iter().enumerate() {
+            let end = if i == last {
+                self.cut_end(false)
+            } else {
+                End::Blend
+            };
+            let path = Path::line(self.pos, to, self.lim.n);
+            self.motion(path, to, MoveKind::Cut, v, end, loc);
+        }
+    }
+
     /// How a cutting move ends, and whether it checks the in-position
     /// window (G09, G61; G63 stops without the check).
     fn cut_end(&mut self, exact_stop: bool) -> End {
@@ -501,7 +535,19 @@ impl<T: Timeline> Sink for Planner<T> {
                 let path = Path::line(self.pos, *to, n);
                 let end = self.cut_end(*exact_stop);
                 let v = self.feed_speed(*feed);
+                self.smooth_next = self.smoothing_mm;
                 self.motion(path, *to, MoveKind::Cut, v, end, loc);
+                self.smooth_next = 0.0;
+            }
+            Event::Nurbs { loc, curve, feed } => self.nurbs(curve, *feed, loc),
+            Event::Smoothing {
+                on, tolerance_mm, ..
+            } => {
+                self.smoothing_mm = if *on && tolerance_mm.is_finite() {
+                    tolerance_mm.max(0.0)
+                } else {
+                    0.0
+                };
             }
             Event::Arc {
                 loc,

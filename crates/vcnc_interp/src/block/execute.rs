@@ -96,6 +96,7 @@ impl Interpreter<'_> {
             self.emit(|loc| Event::Coolant { loc, on });
         }
         let tool_moved = self.frame_codes(w)?;
+        self.smoothing_frame_change(w);
         self.comp_codes(w)?;
         let moves_before = self.moves;
         match w.axis_user {
@@ -143,6 +144,7 @@ impl Interpreter<'_> {
             GOp::Thread => m.motion = Motion::Thread,
             GOp::ThreadInch => m.motion = Motion::ThreadInch,
             GOp::ThreePointArc => m.motion = Motion::ThreePoint,
+            GOp::Nurbs => m.motion = Motion::Nurbs,
             GOp::RadiusMode => m.diameter = false,
             GOp::DiameterMode => m.diameter = true,
             GOp::PlaneXy => m.plane = Plane::Xy,
@@ -205,6 +207,7 @@ impl Interpreter<'_> {
                         ext |= ext_bit(Addr::CR);
                     }
                     Motion::ThreePoint => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
+                    Motion::Nurbs => allowed |= bit(b'K') | bit(b'R'),
                     _ => {}
                 }
             }
