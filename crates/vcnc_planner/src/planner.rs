@@ -262,13 +262,20 @@ impl<T: Timeline> Planner<T> {
             attr,
             v_max,
             kin,
+            corner_tolerance_mm: self.set.corner_tolerance_mm,
         })
     }
 
     /// Adds a segment to the window: corner cap, backward pass, commit.
-    fn push(&mut self, seg: Segment, end: End, settle_s: f64) {
+    fn push(&mut self, mut seg: Segment, end: End, settle_s: f64) {
         let u_start = seg.path.tangent(0.0);
         let u_end = seg.path.tangent(seg.path.len);
+        seg.corner_tolerance_mm =
+            if self.smooth_next > 0.0 && self.window.back().is_some_and(|p| p.smooth_mm > 0.0) {
+                self.smooth_next
+            } else {
+                self.set.corner_tolerance_mm
+            };
         let cap = self.corner_cap(&seg, &u_start).min(seg.v_max);
         let entry_max = seg.kin.reach_capped(0.0, seg.path.len, cap);
         self.window.push_back(Pending {
@@ -290,7 +297,7 @@ impl<T: Timeline> Planner<T> {
     /// the window and `seg`; decides how a G99 junction ends.
     fn corner_cap(&mut self, seg: &Segment, u_start: &Vector) -> f64 {
         // Between two smoothed G01 moves the corner tolerance is G05.1's E.
-        let smooth = self.smooth_next;
+        let tol = seg.corner_tolerance_mm;
         let lim = &self.lim;
         let Some(prev) = self.window.back_mut() else {
             return 0.0;
@@ -300,11 +307,6 @@ impl<T: Timeline> Planner<T> {
             prev.end = End::Stop;
             return 0.0;
         }
-        let tol = if smooth > 0.0 && prev.smooth_mm > 0.0 {
-            smooth
-        } else {
-            self.set.corner_tolerance_mm
-        };
         let v_cap = prev.seg.v_max.min(seg.v_max);
         let half_len = 0.5 * prev.seg.path.len.min(seg.path.len);
         let v = corner_speed(

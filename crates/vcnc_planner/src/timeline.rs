@@ -43,6 +43,9 @@ pub struct Segment {
     pub v_max: f64,
     /// Tangential acceleration and jerk along the path.
     pub kin: Kin,
+    /// The corner tolerance of the corner at its start: the machine's, a
+    /// G05 set's, or G05.1's E between two smoothed G01 moves, mm.
+    pub corner_tolerance_mm: f64,
 }
 
 /// A rapid whose axes each run at their own rate (parameter 411 = 1): one

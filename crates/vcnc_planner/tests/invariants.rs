@@ -48,6 +48,8 @@ struct Checker {
     tol: f64,
     prev: Option<(Segment, f64)>,
     exact_lines: Vec<u64>,
+    /// The largest G05.1 E of the program (0: none).
+    smoothing_mm: f64,
     failures: Vec<String>,
 }
 
@@ -104,7 +106,13 @@ impl Checker {
         let r = v_entry * v_entry / a;
         let half = theta / 2.0;
         let deviation = r * (1.0 - half.cos()) / half.cos();
-        if deviation > self.tol * (1.0 + 1e-6) {
+        // The tolerance in force is the machine's, or a G05 set's / G05.1's
+        // when the planner says so: never more than the checker's bound.
+        let tol = seg.corner_tolerance_mm;
+        if tol > self.tol.max(self.smoothing_mm) * (1.0 + 1e-12) {
+            self.fail(format!("line {}: corner tolerance {tol} mm", seg.attr.line));
+        }
+        if deviation > tol * (1.0 + 1e-6) {
             self.fail(format!(
                 "line {}: corner at {v_entry} mm/s deviates {deviation} mm",
                 seg.attr.line
@@ -194,6 +202,17 @@ fn exact_stop_lines(text: &str) -> Vec<u64> {
     out
 }
 
+/// The largest E of the program's `G5.1 Q1 E…` / `G05.1 Q1 E…` blocks.
+fn smoothing_e(text: &str) -> f64 {
+    text.lines()
+        .filter(|l| l.contains("G5.1 Q1") || l.contains("G05.1 Q1"))
+        .filter_map(|l| {
+            let e = l.split_whitespace().find(|w| w.starts_with('E'))?;
+            e[1..].parse::<f64>().ok()
+        })
+        .fold(0.0, f64::max)
+}
+
 fn run(path: &Path, m: &Machine, sink: &mut impl Sink) {
     let text = std::fs::read_to_string(path).unwrap();
     Interpreter::new(m, &Dialect::syntec(), Options::default()).run_str(&text, sink);
@@ -211,6 +230,7 @@ fn the_manual_examples_keep_every_limit() {
                 tol: m.motion.corner_tolerance_mm,
                 prev: None,
                 exact_lines: exact_stop_lines(&text),
+                smoothing_mm: smoothing_e(&text),
                 failures: Vec::new(),
             };
             let mut planner = Planner::with_profile(&m, shape, checker);
@@ -309,6 +329,7 @@ fn the_g05_example_keeps_the_p10000_tolerance() {
         tol,
         prev: None,
         exact_lines: Vec::new(),
+        smoothing_mm: 0.0,
         failures: Vec::new(),
     };
     let mut planner = Planner::new(&m, checker);
@@ -326,4 +347,102 @@ fn the_g05_example_keeps_the_p10000_tolerance() {
         p.into_timeline().cutting_s
     };
     assert!(time_of(&text) > time_of(&plain));
+}
+
+/// The manual's G05.1 examples: every corner between smoothed G01 moves has
+/// the example's E as its tolerance, every other corner the machine's, and
+/// no corner rounds off more than its own tolerance.
+#[test]
+fn the_g05_1_examples_round_corners_within_e() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for (name, e) in [
+        ("1.2.7_g05_1_ex1_absolute", 0.01),
+        ("1.2.7_g05_1_ex2_incremental", 0.01),
+        ("1.2.7_g05_1_ex3_g43", 0.1),
+        ("1.2.7_g05_1_ex4_g61", 0.05),
+    ] {
+        let path = root.join(format!("tests/fixtures/manual/{name}.nc"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(smoothing_e(&text), e);
+        let m = Machine::default_mill();
+        let checker = Checker {
+            m: m.clone(),
+            jerk: true,
+            tol: m.motion.corner_tolerance_mm,
+            prev: None,
+            exact_lines: exact_stop_lines(&text),
+            smoothing_mm: e,
+            failures: Vec::new(),
+        };
+        let mut planner = Planner::new(&m, Tolerances(checker, Vec::new()));
+        run(&path, &m, &mut planner);
+        let Tolerances(c, tols) = planner.into_timeline();
+        assert!(c.failures.is_empty(), "{name}: {:#?}", c.failures);
+        // Example 1 and 2: all ten corners of the chain are smoothed.
+        if e == 0.01 {
+            assert_eq!(
+                tols.iter().filter(|t| **t == e).count(),
+                10,
+                "{name}: {tols:?}"
+            );
+        }
+        assert!(tols.contains(&e), "{name}: {tols:?}");
+    }
+}
+
+/// Records each segment's corner tolerance and passes everything on.
+struct Tolerances(Checker, Vec<f64>);
+
+impl Timeline for Tolerances {
+    fn segment(&mut self, seg: &Segment, p: &Profile) {
+        self.1.push(seg.corner_tolerance_mm);
+        self.0.segment(seg, p);
+    }
+    fn axes(&mut self, mv: &AxesMove) {
+        self.0.axes(mv);
+    }
+    fn pause(&mut self, p: &Pause) {
+        self.0.pause(p);
+    }
+}
+
+/// The manual's NURBS example: the planned path follows the curve (every
+/// move's end lies within 1 µm of it, the curve's points within 1 µm of the
+/// moves) and keeps every limit.
+#[test]
+fn the_g06_2_example_follows_its_curve() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let path = root.join("tests/fixtures/manual/1.2.8_g06_2.nc");
+    let m = Machine::default_mill();
+    let mut ends = Vec::new();
+    {
+        let mut planner = Planner::new(&m, Ends(&mut ends));
+        run(&path, &m, &mut planner);
+        planner.flush();
+    }
+    // C(u) = (5u², 10u(1−u) + 5u²): the quadratic Bézier of the example.
+    let curve = |u: f64| (5.0 * u * u, 10.0 * u * (1.0 - u) + 5.0 * u * u);
+    let dist_to_curve = |x: f64, y: f64| {
+        (0..=20_000)
+            .map(|k| {
+                let (cx, cy) = curve(f64::from(k) / 20_000.0);
+                (cx - x).hypot(cy - y)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!(ends.len() > 20, "{}", ends.len());
+    for (x, y) in &ends {
+        assert!(dist_to_curve(*x, *y) < 1e-3, "{x} {y}");
+    }
+    assert_eq!(ends.last(), Some(&(5.0, 5.0)));
+}
+
+struct Ends<'a>(&'a mut Vec<(f64, f64)>);
+
+impl Timeline for Ends<'_> {
+    fn segment(&mut self, seg: &Segment, _: &Profile) {
+        self.0.push((seg.path.to.get(0), seg.path.to.get(1)));
+    }
+    fn axes(&mut self, _: &AxesMove) {}
+    fn pause(&mut self, _: &Pause) {}
 }
