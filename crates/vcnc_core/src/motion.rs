@@ -154,3 +154,68 @@ fn check_positive(v: f64, name: &str) -> Result<(), MachineError> {
         Err(MachineError(format!("{name} must be positive")))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::machine::{DEFAULT_LATHE_TOML, DEFAULT_MILL_TOML, Machine};
+    use crate::motion::Profile;
+
+    /// A machine file written before the planner: every motion key has its
+    /// default, the axes their default jerk and windows.
+    #[test]
+    fn an_old_machine_file_gets_the_defaults() {
+        let old = "name = \"old\"\n[[axes]]\nletter = \"x\"\nmin_mm = -10.0\nmax_mm = 10.0\n\
+                   rapid_mm_per_min = 6000.0\nmax_feed_mm_per_min = 3000.0\naccel_mm_s2 = 500.0\n";
+        let m = Machine::from_toml(old).unwrap();
+        assert_eq!(m.motion.profile, Profile::Trapezoid);
+        assert_eq!(m.motion.lookahead_blocks, 200);
+        assert_eq!(m.axes[0].jerk_mm_s3, 500.0 / 0.05);
+        assert_eq!(m.axes[0].in_position_mm, 0.01);
+        let set = m.motion.high_speed_set(10_000);
+        assert_eq!(
+            (set.lookahead_blocks, set.corner_tolerance_mm),
+            (1000, 0.005)
+        );
+    }
+
+    #[test]
+    fn the_built_in_machines_define_their_motion() {
+        let mill = Machine::from_toml(DEFAULT_MILL_TOML).unwrap();
+        assert_eq!(mill.motion.profile, Profile::Jerk);
+        assert_eq!(mill.motion.high_speed.len(), 6);
+        assert_eq!(mill.motion.high_speed_set(1).corner_tolerance_mm, 0.002);
+        let lathe = Machine::from_toml(DEFAULT_LATHE_TOML).unwrap();
+        assert_eq!(lathe.motion.tool_change_s, 2.0);
+    }
+
+    #[test]
+    fn bad_motion_settings_are_explained() {
+        let cases = [
+            (
+                "lookahead_blocks = 200",
+                "lookahead_blocks = 1",
+                "lookahead_blocks",
+            ),
+            (
+                "corner_tolerance_mm = 0.02",
+                "corner_tolerance_mm = -1.0",
+                "corner_tolerance_mm",
+            ),
+            (
+                "tool_change_s = 4.0",
+                "tool_change_s = -4.0",
+                "tool_change_s",
+            ),
+            ("p = 5\n", "p = 6\n", "high_speed"),
+            ("p = 5\n", "p = 4\n", "twice"),
+            ("jerk_mm_s3 = 40000.0", "jerk_mm_s3 = 0.0", "jerk_mm_s3"),
+            ("profile = \"jerk\"", "profile = \"bell\"", "profile"),
+        ];
+        for (from, to, says) in cases {
+            assert!(DEFAULT_MILL_TOML.contains(from), "{from}");
+            let bad = DEFAULT_MILL_TOML.replacen(from, to, 1);
+            let e = Machine::from_toml(&bad).unwrap_err();
+            assert!(e.0.contains(says), "{to}: {e}");
+        }
+    }
+}

@@ -446,3 +446,53 @@ impl Timeline for Ends<'_> {
     fn axes(&mut self, _: &AxesMove) {}
     fn pause(&mut self, _: &Pause) {}
 }
+
+/// The sampled trace (1 kHz, as `vcnc run --format trace` writes it) of
+/// every manual example: each sample keeps every axis within its rapid rate
+/// and acceleration, consecutive samples are no farther apart than the
+/// fastest axis can go in one period, and the trace ends at rest where the
+/// program ends.
+#[test]
+fn the_sampled_traces_keep_the_limits() {
+    let m = Machine::default_mill();
+    let n = m.axes.len();
+    for path in programs() {
+        let mut bad = Vec::new();
+        let mut prev: Option<vcnc_planner::Sample> = None;
+        let mut last_t = -1.0;
+        let sampler = vcnc_planner::Sampler::new(0.001, m.start, |s: &vcnc_planner::Sample| {
+            if s.t < last_t {
+                bad.push(format!("time goes back at {}", s.t));
+            }
+            last_t = s.t;
+            for i in 0..n {
+                let a = &m.axes[i];
+                if s.vel[i].abs() > a.rapid_mm_per_min / 60.0 * (1.0 + EPS) + EPS {
+                    bad.push(format!("t {}: axis {i} at {} mm/s", s.t, s.vel[i]));
+                }
+                if s.acc[i].abs() > a.accel_mm_s2 * (1.0 + EPS) + EPS {
+                    bad.push(format!("t {}: axis {i} at {} mm/s²", s.t, s.acc[i]));
+                }
+                if let Some(p) = &prev {
+                    let step = (s.pos.get(i) - p.pos.get(i)).abs();
+                    let dt = s.t - p.t;
+                    if step > a.rapid_mm_per_min / 60.0 * dt * (1.0 + 1e-6) + 1e-9 {
+                        bad.push(format!("t {}: axis {i} jumps {step} mm", s.t));
+                    }
+                }
+            }
+            prev = Some(*s);
+        });
+        let mut planner = Planner::new(&m, sampler);
+        run(&path, &m, &mut planner);
+        planner.flush();
+        let mut sampler = planner.into_timeline();
+        sampler.finish();
+        drop(sampler);
+        bad.truncate(10);
+        assert!(bad.is_empty(), "{}: {bad:#?}", path.display());
+        if let Some(p) = prev {
+            assert_eq!(p.speed, 0.0, "{}", path.display());
+        }
+    }
+}
