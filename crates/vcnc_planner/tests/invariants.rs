@@ -483,12 +483,11 @@ fn the_sampled_traces_keep_the_limits() {
             }
             prev = Some(*s);
         });
-        let mut planner = Planner::new(&m, sampler);
-        run(&path, &m, &mut planner);
-        planner.flush();
-        let mut sampler = planner.into_timeline();
-        sampler.finish();
-        drop(sampler);
+        {
+            let mut planner = Planner::new(&m, sampler);
+            run(&path, &m, &mut planner);
+            planner.into_timeline().finish();
+        }
         bad.truncate(10);
         assert!(bad.is_empty(), "{}: {bad:#?}", path.display());
         if let Some(p) = prev {
