@@ -96,6 +96,8 @@ pub struct Planner<T: Timeline> {
     tool: Option<u32>,
     dogleg: Option<(Attr, Pos, Pos)>,
     in_position_check: bool,
+    /// The direction (−1, 0, +1) of each axis on the last dog-leg leg.
+    last_leg: [i8; MAX_AXES],
     /// G05.1 tolerance the next G01 moves get (0: none).
     smoothing_mm: f64,
     /// The segment being pushed is a smoothed G01.
@@ -137,6 +139,7 @@ impl<T: Timeline> Planner<T> {
             tool: None,
             dogleg: None,
             in_position_check: false,
+            last_leg: [0; MAX_AXES],
             smoothing_mm: 0.0,
             smooth_next: 0.0,
             untimed_moves: 0,
@@ -379,20 +382,28 @@ impl<T: Timeline> Planner<T> {
     }
 
     /// A rapid under parameter 411 = 1: legs of one block join into one
-    /// move whose axes run each at its own rate.
+    /// move whose axes run each at its own rate. A leg continues the
+    /// dog-leg only if it comes from the same block and moves a strict
+    /// subset of the previous leg's axes the same way (an axis stops when it
+    /// arrives), so a block repeated by a subprogram's L count stays
+    /// separate moves.
     fn rapid_leg(&mut self, to: Pos, loc: &Loc) {
+        let leg = leg_signs(&self.pos, &to, self.lim.n);
         if let Some((attr, _, end)) = &mut self.dogleg
             && attr.line == loc.line
             && attr.file == loc.file
+            && continues(&self.last_leg, &leg)
         {
             *end = to;
             self.pos = to;
+            self.last_leg = leg;
             return;
         }
         self.finish_dogleg();
         self.flush();
         self.dogleg = Some((self.attr(loc), self.pos, to));
         self.pos = to;
+        self.last_leg = leg;
     }
 
     fn finish_dogleg(&mut self) {
@@ -500,6 +511,29 @@ impl<T: Timeline> Planner<T> {
             End::Blend
         }
     }
+}
+
+/// The direction of each axis from `a` to `b`.
+fn leg_signs(a: &Pos, b: &Pos, n: usize) -> [i8; MAX_AXES] {
+    let mut out = [0; MAX_AXES];
+    for (i, o) in out.iter_mut().enumerate().take(n) {
+        let d = b.get(i) - a.get(i);
+        *o = if d > vcnc_core::geometry::ZERO_MM {
+            1
+        } else if d < -vcnc_core::geometry::ZERO_MM {
+            -1
+        } else {
+            0
+        };
+    }
+    out
+}
+
+/// Whether leg `next` continues a dog-leg whose last leg was `prev`: it
+/// moves fewer axes, each of them the way it moved before.
+fn continues(prev: &[i8; MAX_AXES], next: &[i8; MAX_AXES]) -> bool {
+    let fewer = next.iter().filter(|d| **d != 0).count() < prev.iter().filter(|d| **d != 0).count();
+    fewer && next.iter().zip(prev).all(|(n, p)| *n == 0 || n == p)
 }
 
 fn cosine(a: &Vector, b: &Vector) -> f64 {

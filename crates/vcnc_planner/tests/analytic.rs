@@ -6,6 +6,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
+use vcnc_core::{Event, Loc, Pos, Sink};
 use vcnc_interp::{Dialect, Interpreter, Machine, Options};
 use vcnc_planner::{CycleTime, Planner};
 
@@ -156,6 +157,23 @@ fn a_dog_leg_rapid_times_each_axis_alone() {
     // 100 < 200: 2·√(L/a) = 0.2 s. The slower axis decides.
     assert!(close(t.rapid_s, 0.7), "{}", t.rapid_s);
     assert!(close(t.in_position_s, settle_one_axis()));
+    // The same block run twice in a row (a subprogram's L repeat) is two
+    // moves, not one dog-leg: the second leg moves the same axis again.
+    let rapid = |x: f64| Event::Rapid {
+        loc: Loc {
+            line: 7,
+            file: None,
+        },
+        to: Pos([x, 0.0, 0.0, 0.0, 0.0, 0.0]),
+        exact_stop: false,
+    };
+    let mut p = Planner::new(&m, CycleTime::new());
+    p.event(&rapid(50.0));
+    p.event(&rapid(100.0));
+    let twice = p.into_timeline();
+    // 50 mm at 200 mm/s: L/v + v/a = 0.45 s, twice, and two settlings.
+    assert!(close(twice.rapid_s, 0.9), "{}", twice.rapid_s);
+    assert!(close(twice.in_position_s, 2.0 * settle_one_axis()));
     // Interpolated (411 = 0) the line is limited by X's rate along it.
     let m0 = machine("g00_mode = 0", "trapezoid");
     let t0 = plan(&m0, "G0 X100. Y10.\nM30\n");
