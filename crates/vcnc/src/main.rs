@@ -10,6 +10,8 @@ mod check;
 mod cli;
 mod files;
 mod render;
+mod timing;
+mod trace;
 
 use clap::Parser;
 use cli::{Cli, Command, Format, Options, RunArgs};
@@ -34,6 +36,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check(args) => check::check(&args),
         Command::Run(args) => run_events(&args),
+        Command::Time(args) => timing::time(&args),
     }
 }
 
@@ -105,6 +108,11 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
         }
         Format::Gcode => {
             let sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            stream(args, &s, &input, sink)?
+        }
+        Format::Trace => {
+            let profile = args.profile.map(Into::into);
+            let sink = trace::TraceSink::new(out, &s.machine, args.period, profile);
             stream(args, &s, &input, sink)?
         }
     };

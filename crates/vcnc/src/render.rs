@@ -6,6 +6,7 @@ use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
 use std::io::{self, Write};
 use vcnc_interp::{Dialect, Machine, Outcome, Pos};
 use vcnc_output::Summary;
+use vcnc_planner::CycleTime;
 use vcnc_syntax::Diagnostic;
 
 /// The source line of a diagnostic, read back from its program, as raw
@@ -125,7 +126,7 @@ pub fn summary(
     name: &str,
     dialect: &Dialect,
     machine: &Machine,
-    s: &Summary,
+    (s, planned): (&Summary, &CycleTime),
     outcome: &Outcome,
     diameter_axis: Option<u8>,
 ) -> io::Result<()> {
@@ -150,8 +151,10 @@ pub fn summary(
         )?,
     }
     let mut time = format!(
-        "{} (distance/feed estimate, no acceleration)",
-        duration(s.cycle_time_s)
+        "{} (planned: {} profile, look-ahead {} blocks)",
+        duration(planned.total_s),
+        machine.motion.profile.as_str(),
+        machine.motion.lookahead_blocks
     );
     if s.untimed_moves > 0 {
         time.push_str(&format!(
@@ -167,6 +170,11 @@ pub fn summary(
         ));
     }
     writeln!(out, "cycle time {time}")?;
+    writeln!(
+        out,
+        "dist/feed  {} (distance/feed estimate, no acceleration)",
+        duration(s.cycle_time_s)
+    )?;
     writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
     writeln!(out, "cutting    {:.3} mm", s.cut_mm)?;
     match s.extents {

@@ -427,20 +427,45 @@ pub enum Event {
         /// What the machine file says it does.
         description: Arc<str>,
     },
-    /// A smoothing setting for the planner (Haas G187 P1–P3 E): `level`
-    /// 1 rough … 3 finish, `tolerance_mm` the corner tolerance when given.
+    /// A warning: the run goes on (`vcnc --deny-warnings` fails it).
+    Warning(Diagnostic),
+    /// Path smoothing takes effect (`on`, with its largest path error) or
+    /// stops, before the first move it concerns: G05.1 (Syntec 1.2.7) or
+    /// Haas G187.
     Smoothing {
         /// Source.
         loc: Loc,
-        /// 1 rough, 2 medium, 3 finish.
-        level: u8,
-        /// The allowed deviation at corners, mm.
-        tolerance_mm: Option<f64>,
+        /// Whether the following G01 moves are smoothed.
+        on: bool,
+        /// The largest allowed path error E, mm (0 when off).
+        tolerance_mm: f64,
     },
-    /// A warning: the run goes on (`vcnc --deny-warnings` fails it).
-    Warning(Diagnostic),
+    /// A NURBS curve (G06.2, Syntec 1.2.8): from the current position
+    /// along the curve its control points and knots define, ending at the
+    /// last control point.
+    Nurbs {
+        /// Source (the block that completed the definition).
+        loc: Loc,
+        /// The curve.
+        curve: Arc<Nurbs>,
+        /// Feed (the curve's F).
+        feed: Feed,
+    },
     /// An alarm; always the last event.
     Alarm(Diagnostic),
+}
+
+/// A NURBS curve in machine coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nurbs {
+    /// Order (degree + 1), 2 to 4.
+    pub order: u8,
+    /// Knot vector, non-decreasing, `points.len() + order` long.
+    pub knots: Vec<f64>,
+    /// Control points, machine coordinates.
+    pub points: Vec<Pos>,
+    /// Weights, one per control point, positive.
+    pub weights: Vec<f64>,
 }
 
 impl Event {
@@ -466,8 +491,9 @@ impl Event {
             Event::Wait { .. } => "wait",
             Event::Junction { .. } => "junction",
             Event::Aux { .. } => "aux",
-            Event::Smoothing { .. } => "smoothing",
             Event::Warning(_) => "warning",
+            Event::Smoothing { .. } => "smoothing",
+            Event::Nurbs { .. } => "nurbs",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -494,7 +520,8 @@ impl Event {
             | Event::Wait { loc, .. }
             | Event::Junction { loc, .. }
             | Event::Aux { loc, .. }
-            | Event::Smoothing { loc, .. } => Some(loc),
+            | Event::Smoothing { loc, .. }
+            | Event::Nurbs { loc, .. } => Some(loc),
             Event::Warning(_) | Event::Alarm(_) => None,
         }
     }
@@ -507,6 +534,7 @@ impl Event {
             | Event::Arc { to, .. }
             | Event::Thread { to, .. }
             | Event::Skip { to, .. } => Some(*to),
+            Event::Nurbs { curve, .. } => curve.points.last().copied(),
             _ => None,
         }
     }

@@ -127,6 +127,8 @@ pub struct Interpreter<'a> {
     pub(crate) max_feed: f64,
     /// Whether the machine has travel limits to check (E501).
     pub(crate) travel_limited: bool,
+    /// A G06.2 curve whose definition is still being read.
+    pub(crate) nurbs: Option<crate::codes::nurbs::NurbsBuild>,
 }
 
 impl<'a> Interpreter<'a> {
@@ -158,6 +160,7 @@ impl<'a> Interpreter<'a> {
             spindle_warned: false,
             max_feed: machine.max_feed_mm_per_min(),
             travel_limited: machine.has_travel_limits(),
+            nurbs: None,
         }
     }
 

@@ -235,6 +235,22 @@ impl Sink for Summary {
                 self.line_box(to);
                 self.pos = *to;
             }
+            Event::Nurbs { curve, feed, .. } => {
+                // The curve as chords within 1 µm, each at the feed capped
+                // by its own axes.
+                let mut untimed = false;
+                for p in curve.flatten(0.001) {
+                    let (d, cap) = self.line(&p);
+                    let before = self.untimed_moves;
+                    self.cut_mm += d;
+                    self.cycle_time_s += self.cut_time(d, *feed, cap);
+                    untimed |= self.untimed_moves > before;
+                    self.untimed_moves = before;
+                    self.line_box(&p);
+                    self.pos = p;
+                }
+                self.untimed_moves += u64::from(untimed);
+            }
             Event::Thread { to, lead_mm, .. } => {
                 let (d, cap) = self.line(to);
                 self.cut_mm += d;

@@ -52,6 +52,7 @@ impl Interpreter<'_> {
             GOp::Skip => self.skip(w, cmd),
             GOp::DwellSeconds => self.dwell_seconds(w),
             GOp::HighSpeed => self.high_speed(w, cmd),
+            GOp::PathSmoothing => self.path_smoothing(w, cmd),
             GOp::FeedUp => self.feed_step(1, cmd),
             GOp::FeedDown => self.feed_step(-1, cmd),
             GOp::OverrideCancel => {
@@ -205,6 +206,7 @@ impl Interpreter<'_> {
             ));
         }
         self.state.modal.high_speed = n != 0;
+        self.state.high_speed_p = n;
         self.emit(|loc| Event::HighSpeed {
             loc,
             on: n != 0,
