@@ -31,6 +31,8 @@ pub enum Command {
         #[arg(long, value_enum, default_value_t = Format::Jsonl)]
         format: Format,
     },
+    /// Draw the program's path: an SVG or PNG back-plot, or an HTML page with a 3D viewer.
+    Plot(crate::plot::PlotArgs),
 }
 
 /// Options every subcommand takes.

@@ -7,6 +7,7 @@
 
 mod cli;
 mod files;
+mod plot;
 mod render;
 
 use clap::Parser;
@@ -31,6 +32,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check { common } => check(&common),
         Command::Run { common, format } => run_events(&common, format),
+        Command::Plot(args) => plot::plot(&args),
     }
 }
 
