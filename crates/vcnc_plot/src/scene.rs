@@ -184,6 +184,8 @@ pub struct Scene {
     pub background: Rgb,
     /// Items, bottom to top.
     pub items: Vec<Item>,
+    /// Where plot space lands on the picture.
+    pub fit: Fit,
 }
 
 /// The plot area (width, height) of a picture, px: what a
@@ -201,9 +203,10 @@ fn area(width: f64, height: f64) -> (f64, f64, f64, f64) {
     (MARGIN_L, MARGIN_T, w, h)
 }
 
-/// Plot space → screen: `x = x0 + s·(u − u0)`, `y = y0 − s·(v − v0)`.
-#[derive(Debug, Clone, Copy)]
-struct Fit {
+/// Plot space → screen: `x = x0 + s·(u − u0)`, `y = y0 − s·(v − v0)`
+/// (one scale on both axes, so shapes keep their proportions).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fit {
     proj: Projection,
     s: f64,
     u0: f64,
@@ -213,7 +216,8 @@ struct Fit {
 }
 
 impl Fit {
-    fn xy(&self, p: P3) -> [f64; 2] {
+    /// The screen point of a plot-space point, px.
+    pub fn xy(&self, p: P3) -> [f64; 2] {
         let (u, v) = self.proj.uv(p);
         [
             self.x0 + self.s * (u - self.u0),
@@ -499,6 +503,7 @@ pub fn scene(
         height: look.height_px,
         background: pal.background,
         items,
+        fit,
     }
 }
 

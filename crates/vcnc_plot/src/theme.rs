@@ -61,7 +61,7 @@ pub struct Palette {
     pub contour: Rgb,
     /// The compared program's path.
     pub compare: Rgb,
-    /// Start point.
+    /// Start point (off every ramp, so a mark is never read as a cut).
     pub start: Rgb,
     /// Hole marks.
     pub hole: Rgb,
@@ -91,7 +91,7 @@ pub fn palette(theme: Theme) -> Palette {
             rapid: Rgb(214, 48, 39),
             contour: Rgb(156, 39, 176),
             compare: Rgb(255, 150, 0),
-            start: Rgb(0, 150, 60),
+            start: Rgb(28, 30, 36),
             hole: Rgb(20, 20, 20),
             tool_change: Rgb(0, 110, 200),
             alarm: Rgb(220, 0, 0),
@@ -125,7 +125,7 @@ pub fn palette(theme: Theme) -> Palette {
             rapid: Rgb(255, 95, 80),
             contour: Rgb(220, 120, 255),
             compare: Rgb(255, 190, 60),
-            start: Rgb(60, 220, 110),
+            start: Rgb(235, 235, 240),
             hole: Rgb(240, 240, 240),
             tool_change: Rgb(90, 180, 255),
             alarm: Rgb(255, 60, 60),

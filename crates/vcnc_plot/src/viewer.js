@@ -83,7 +83,7 @@
     if (file !== curFile) showFile(file);
     curLine = line;
     const top = (line - 1) * LH;
-    if (top < pane.scrollTop + 2 * LH || top > pane.scrollTop + pane.clientHeight - 3 * LH) {
+    if (line > 0 && (top < pane.scrollTop + 2 * LH || top > pane.scrollTop + pane.clientHeight - 3 * LH)) {
       pane.scrollTop = Math.max(0, top - pane.clientHeight / 2);
     }
     renderLines();
@@ -154,7 +154,8 @@
     for (const n of ["a_pos", "a_col", "a_dash"]) loc[n] = gl.getAttribLocation(prog, n);
     for (const n of ["u_mvp", "u_point", "u_dash", "u_alpha", "u_round"]) loc[n] = gl.getUniformLocation(prog, n);
     gl.enable(gl.BLEND);
-    gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
+    // Keep the canvas opaque: blend colours, never lower its alpha.
+    gl.blendFuncSeparate(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA, gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
   } else {
     $("nogl").hidden = false;
   }
@@ -304,7 +305,7 @@
     if (cmp && showCompare) lines_(cmp, 0, cmp.count, 0.8);
     const done = 2 * main.before[cur + 1];
     lines_(main, 0, done, 1);
-    lines_(main, done, main.count - done, 0.16);
+    lines_(main, done, main.count - done, 0.3);
     if (contour) lines_(contour, 0, contour.count, 0.9);
     lines_(origins, 0, origins.count, 1);
     bind(marks);
@@ -343,11 +344,12 @@
   }
   function update() {
     const f = P.file ? P.file[cur] : 0;
-    if (P.line[cur] > 0) highlight(f, P.line[cur]);
+    // Line 0: the power-on position, before any block; nothing is lit.
+    highlight(f, P.line[cur]);
     const t = P.tool[cur];
     const pos = [0, 1, 2].map((k) => (P.pos[3 * cur + k] + D.center[k]).toFixed(3));
     $("info").textContent =
-      "line " + P.line[cur] + (f ? " of " + D.files[f] : "") + " | " + (t ? "T" + D.tools[t - 1] : "no tool") +
+      (P.line[cur] ? "line " + P.line[cur] + (f ? " of " + D.files[f] : "") : "power-on position") + " | " + (t ? "T" + D.tools[t - 1] : "no tool") +
       " | X " + pos[0] + " Y " + pos[1] + " Z " + pos[2] +
       " | " + fmtTime(P.time[cur]) + " of " + fmtTime(D.totalTime) + " (" + D.timeLabel + ")";
     request();

@@ -1,0 +1,316 @@
+//! The HTML viewer page in a real browser: headless Chromium driven through
+//! chromedriver over the W3C WebDriver protocol (plain JSON over HTTP on
+//! the loopback interface).
+//!
+//! WebDriver rather than the DevTools protocol: it is request/response
+//! over HTTP, so a small blocking client (ureq) is all it takes — no
+//! WebSocket, no event stream, no async runtime — and Debian ships the
+//! matching driver beside the browser (`chromium-driver`). `.ci/run`
+//! installs both; without them this test fails and says how to install.
+//!
+//! The test plots a manual example to HTML, opens the file, checks that
+//! WebGL drew a picture (pixels other than the background, in several
+//! colours), clicks the slider (a real click, which moves it to the
+//! middle) and checks that the highlighted program line changed to the
+//! line of the block at that point, then presses Home and checks the start.
+//! It saves a screenshot (slider in the middle) in the test's target
+//! directory (`target/tmp/browser/viewer.png`) and prints the
+//! frame time it measured (no assertion on time: benchmarks hold speed).
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use base64::Engine;
+use serde_json::{Value, json};
+use std::net::TcpListener;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .expect("workspace root")
+}
+
+/// The file named by `var` in the environment, else the first of `paths`,
+/// that exists.
+fn find(var: &str, paths: &[&str]) -> Option<PathBuf> {
+    std::env::var_os(var)
+        .map(PathBuf::from)
+        .into_iter()
+        .chain(paths.iter().map(PathBuf::from))
+        .find(|p| p.is_file())
+}
+
+/// A WebDriver session on a chromedriver this test started; both end
+/// when it drops, pass or fail.
+struct Browser {
+    driver: Child,
+    base: String,
+    session: Option<String>,
+    agent: ureq::Agent,
+    profile: PathBuf,
+}
+
+impl Browser {
+    fn start(chromium: &Path, chromedriver: &Path) -> Browser {
+        // A free port on the loopback interface.
+        let port = TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let driver = Command::new(chromedriver)
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap_or_else(|e| panic!("cannot start {}: {e}", chromedriver.display()));
+        let agent: ureq::Agent = ureq::Agent::config_builder()
+            .timeout_global(Some(Duration::from_secs(60)))
+            .http_status_as_error(false)
+            .proxy(None)
+            .build()
+            .into();
+        let profile = std::env::temp_dir().join(format!("vcnc-browser-{}", std::process::id()));
+        let mut b = Browser {
+            driver,
+            base: format!("http://127.0.0.1:{port}"),
+            session: None,
+            agent,
+            profile,
+        };
+        let t0 = Instant::now();
+        loop {
+            let ready = b
+                .agent
+                .get(format!("{}/status", b.base))
+                .call()
+                .ok()
+                .and_then(|r| r.into_body().read_to_string().ok())
+                .and_then(|s| serde_json::from_str::<Value>(&s).ok())
+                .is_some_and(|v| v["value"]["ready"] == json!(true));
+            if ready {
+                break;
+            }
+            assert!(
+                t0.elapsed() < Duration::from_secs(20),
+                "chromedriver did not become ready"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        let caps = json!({"capabilities": {"alwaysMatch": {
+            "browserName": "chrome",
+            "goog:chromeOptions": {
+                "binary": chromium.to_str().unwrap(),
+                "args": [
+                    "--headless=new", "--no-sandbox", "--disable-gpu",
+                    "--disable-background-networking", "--disable-component-update",
+                    "--disable-sync", "--disable-quic", "--no-first-run",
+                    "--disable-default-apps", "--window-size=1400,900",
+                    format!("--user-data-dir={}", b.profile.display()),
+                ]
+            }
+        }}});
+        let v = b.post("/session", &caps);
+        let id = v["value"]["sessionId"]
+            .as_str()
+            .unwrap_or_else(|| panic!("no session: {v}"))
+            .to_string();
+        b.session = Some(id);
+        b
+    }
+
+    fn url(&self, path: &str) -> String {
+        match &self.session {
+            Some(id) => format!("{}/session/{id}{path}", self.base),
+            None => format!("{}{path}", self.base),
+        }
+    }
+
+    fn post(&self, path: &str, body: &Value) -> Value {
+        let r = self
+            .agent
+            .post(self.url(path))
+            .header("Content-Type", "application/json")
+            .send(body.to_string())
+            .unwrap_or_else(|e| panic!("POST {path}: {e}"));
+        let status = r.status();
+        let v: Value = serde_json::from_str(&r.into_body().read_to_string().unwrap()).unwrap();
+        assert!(status.is_success(), "POST {path}: {status} {v}");
+        v
+    }
+
+    fn get(&self, path: &str) -> Value {
+        let r = self.agent.get(self.url(path)).call().unwrap();
+        serde_json::from_str(&r.into_body().read_to_string().unwrap()).unwrap()
+    }
+
+    /// Runs `script` (a function body) in the page; its return value.
+    fn js(&self, script: &str) -> Value {
+        self.post("/execute/sync", &json!({"script": script, "args": []}))["value"].clone()
+    }
+
+    fn element(&self, css: &str) -> String {
+        let v = self.post("/element", &json!({"using": "css selector", "value": css}));
+        v["value"]
+            .as_object()
+            .and_then(|o| o.values().next())
+            .and_then(Value::as_str)
+            .unwrap_or_else(|| panic!("no element {css}: {v}"))
+            .to_string()
+    }
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        if self.session.is_some() {
+            let _ = self.agent.delete(self.url("")).call();
+        }
+        let _ = self.driver.kill();
+        let _ = self.driver.wait();
+        let _ = std::fs::remove_dir_all(&self.profile);
+    }
+}
+
+/// The highlighted line of the program text, if any.
+fn highlighted(b: &Browser) -> Value {
+    b.js("const d = document.querySelector('#lines .ln.cur'); \
+          return d ? [Number(d.dataset.line), d.textContent] : null;")
+}
+
+/// Pixels of the canvas that differ from its background, and how many
+/// distinct colours they have.
+fn drawn(b: &Browser) -> (u64, u64) {
+    let v = b.js(
+        "const c = document.getElementById('gl'); \
+         const t = document.createElement('canvas'); t.width = c.width; t.height = c.height; \
+         const g = t.getContext('2d'); g.drawImage(c, 0, 0); \
+         const d = g.getImageData(0, 0, t.width, t.height).data; \
+         const bg = [d[0], d[1], d[2]]; let n = 0; const colours = new Set(); \
+         for (let i = 0; i < d.length; i += 4) { \
+           if (Math.abs(d[i] - bg[0]) + Math.abs(d[i+1] - bg[1]) + Math.abs(d[i+2] - bg[2]) > 60) { \
+             n++; colours.add((d[i] >> 4) + ',' + (d[i+1] >> 4) + ',' + (d[i+2] >> 4)); } } \
+         return [n, colours.size];",
+    );
+    (v[0].as_u64().unwrap(), v[1].as_u64().unwrap())
+}
+
+#[test]
+fn the_viewer_page_draws_and_its_slider_follows_the_program() {
+    let chromium = find(
+        "VCNC_CHROMIUM",
+        &["/usr/bin/chromium", "/usr/bin/chromium-browser"],
+    );
+    let chromedriver = find("VCNC_CHROMEDRIVER", &["/usr/bin/chromedriver"]);
+    let (Some(chromium), Some(chromedriver)) = (chromium, chromedriver) else {
+        panic!(
+            "this test needs headless Chromium and its WebDriver: \
+             `apt-get install -y chromium chromium-driver` (Debian), or point \
+             VCNC_CHROMIUM and VCNC_CHROMEDRIVER at them"
+        );
+    };
+
+    let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("browser");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let page = out_dir.join("1.2.18_example.html");
+    let program = workspace().join("tests/fixtures/manual/1.2.18_example.nc");
+    let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args([
+            "plot",
+            program.to_str().unwrap(),
+            "-o",
+            page.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let source = std::fs::read_to_string(&program).unwrap();
+    let source_line = |n: u64| {
+        source
+            .lines()
+            .nth(usize::try_from(n).unwrap() - 1)
+            .unwrap()
+            .to_string()
+    };
+
+    let b = Browser::start(&chromium, &chromedriver);
+    b.post(
+        "/url",
+        &json!({"url": format!("file://{}", page.display())}),
+    );
+    let t0 = Instant::now();
+    while b.js("return !!(window.vcnc && window.vcnc.stats.frames > 0);") != json!(true) {
+        assert!(
+            t0.elapsed() < Duration::from_secs(20),
+            "the page never drew a frame"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    assert_eq!(
+        b.js("return window.vcnc.webgl;"),
+        json!(true),
+        "WebGL is available"
+    );
+
+    // A picture: the path, the contour, the marks — not a blank canvas.
+    let (pixels, colours) = drawn(&b);
+    assert!(pixels > 2000, "only {pixels} pixels drawn");
+    assert!(colours >= 3, "only {colours} colours drawn");
+
+    // Loaded at the end of the program: the last block that moved.
+    let end = highlighted(&b);
+    let end_line = end[0].as_u64().unwrap();
+    assert!(
+        end[1].as_str().unwrap().ends_with(&source_line(end_line)),
+        "{end}"
+    );
+
+    // A click on the slider moves it to the middle of the program.
+    let scrub = b.element("#scrub");
+    b.post(&format!("/element/{scrub}/click"), &json!({}));
+    let mid = highlighted(&b);
+    let mid_line = mid[0].as_u64().unwrap();
+    assert_ne!(
+        mid_line, end_line,
+        "the highlighted line follows the slider"
+    );
+    assert!(
+        mid[1].as_str().unwrap().ends_with(&source_line(mid_line)),
+        "{mid}"
+    );
+    let index = b.js("return window.vcnc.index();").as_u64().unwrap();
+    let count = b.js("return window.vcnc.count();").as_u64().unwrap();
+    assert!(
+        index > 0 && index < count - 1,
+        "slider at {index} of {count}"
+    );
+    // Half-way through the eight arcs of the outline (N006-N014).
+    assert!(
+        (7..=14).contains(&mid_line),
+        "line {mid_line} is not in the outline"
+    );
+    let (pixels_mid, _) = drawn(&b);
+    assert!(pixels_mid > 1000, "the page still draws: {pixels_mid}");
+    let shot = b.get("/screenshot")["value"].as_str().unwrap().to_string();
+    let png = base64::engine::general_purpose::STANDARD
+        .decode(shot)
+        .unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let shot_path = out_dir.join("viewer.png");
+    std::fs::write(&shot_path, png).unwrap();
+
+    // Home: back to the power-on position, before any block.
+    b.post(
+        &format!("/element/{scrub}/value"),
+        &json!({"text": "\u{E011}"}),
+    );
+    assert_eq!(b.js("return window.vcnc.index();"), json!(0));
+    assert_eq!(highlighted(&b), Value::Null, "no block has run yet");
+
+    let frame_ms = b.js("return window.vcnc.bench(10);").as_f64().unwrap();
+    println!("screenshot: {}", shot_path.display());
+    println!("frame time after loading: {frame_ms:.2} ms");
+    assert!(frame_ms.is_finite() && frame_ms > 0.0);
+}
