@@ -1,12 +1,7 @@
 //! The HTML viewer page in a real browser: headless Chromium driven through
-//! chromedriver over the W3C WebDriver protocol (plain JSON over HTTP on
-//! the loopback interface).
-//!
-//! WebDriver rather than the DevTools protocol: it is request/response
-//! over HTTP, so a small blocking client (ureq) is all it takes — no
-//! WebSocket, no event stream, no async runtime — and Debian ships the
-//! matching driver beside the browser (`chromium-driver`). `.ci/run`
-//! installs both; without them this test fails and says how to install.
+//! chromedriver over the W3C WebDriver protocol (`webdriver/mod.rs` says
+//! why that protocol). `.ci/run` installs both; without them this test
+//! fails and says how to install them.
 //!
 //! The test plots a manual example to HTML, opens the file, checks that
 //! WebGL drew a picture (pixels other than the background, in several
@@ -19,159 +14,20 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
+mod webdriver;
+
 use base64::Engine;
 use serde_json::{Value, json};
-use std::net::TcpListener;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
+use webdriver::Browser;
 
 fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .canonicalize()
         .expect("workspace root")
-}
-
-/// The file named by `var` in the environment, else the first of `paths`,
-/// that exists.
-fn find(var: &str, paths: &[&str]) -> Option<PathBuf> {
-    std::env::var_os(var)
-        .map(PathBuf::from)
-        .into_iter()
-        .chain(paths.iter().map(PathBuf::from))
-        .find(|p| p.is_file())
-}
-
-/// A WebDriver session on a chromedriver this test started; both end
-/// when it drops, pass or fail.
-struct Browser {
-    driver: Child,
-    base: String,
-    session: Option<String>,
-    agent: ureq::Agent,
-    profile: PathBuf,
-}
-
-impl Browser {
-    fn start(chromium: &Path, chromedriver: &Path) -> Browser {
-        // A free port on the loopback interface.
-        let port = TcpListener::bind("127.0.0.1:0")
-            .unwrap()
-            .local_addr()
-            .unwrap()
-            .port();
-        let driver = Command::new(chromedriver)
-            .arg(format!("--port={port}"))
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start {}: {e}", chromedriver.display()));
-        let agent: ureq::Agent = ureq::Agent::config_builder()
-            .timeout_global(Some(Duration::from_secs(60)))
-            .http_status_as_error(false)
-            .proxy(None)
-            .build()
-            .into();
-        let profile = std::env::temp_dir().join(format!("vcnc-browser-{}", std::process::id()));
-        let mut b = Browser {
-            driver,
-            base: format!("http://127.0.0.1:{port}"),
-            session: None,
-            agent,
-            profile,
-        };
-        let t0 = Instant::now();
-        loop {
-            let ready = b
-                .agent
-                .get(format!("{}/status", b.base))
-                .call()
-                .ok()
-                .and_then(|r| r.into_body().read_to_string().ok())
-                .and_then(|s| serde_json::from_str::<Value>(&s).ok())
-                .is_some_and(|v| v["value"]["ready"] == json!(true));
-            if ready {
-                break;
-            }
-            assert!(
-                t0.elapsed() < Duration::from_secs(20),
-                "chromedriver did not become ready"
-            );
-            std::thread::sleep(Duration::from_millis(100));
-        }
-        let caps = json!({"capabilities": {"alwaysMatch": {
-            "browserName": "chrome",
-            "goog:chromeOptions": {
-                "binary": chromium.to_str().unwrap(),
-                "args": [
-                    "--headless=new", "--no-sandbox", "--disable-gpu",
-                    "--disable-background-networking", "--disable-component-update",
-                    "--disable-sync", "--disable-quic", "--no-first-run",
-                    "--disable-default-apps", "--window-size=1400,900",
-                    format!("--user-data-dir={}", b.profile.display()),
-                ]
-            }
-        }}});
-        let v = b.post("/session", &caps);
-        let id = v["value"]["sessionId"]
-            .as_str()
-            .unwrap_or_else(|| panic!("no session: {v}"))
-            .to_string();
-        b.session = Some(id);
-        b
-    }
-
-    fn url(&self, path: &str) -> String {
-        match &self.session {
-            Some(id) => format!("{}/session/{id}{path}", self.base),
-            None => format!("{}{path}", self.base),
-        }
-    }
-
-    fn post(&self, path: &str, body: &Value) -> Value {
-        let r = self
-            .agent
-            .post(self.url(path))
-            .header("Content-Type", "application/json")
-            .send(body.to_string())
-            .unwrap_or_else(|e| panic!("POST {path}: {e}"));
-        let status = r.status();
-        let v: Value = serde_json::from_str(&r.into_body().read_to_string().unwrap()).unwrap();
-        assert!(status.is_success(), "POST {path}: {status} {v}");
-        v
-    }
-
-    fn get(&self, path: &str) -> Value {
-        let r = self.agent.get(self.url(path)).call().unwrap();
-        serde_json::from_str(&r.into_body().read_to_string().unwrap()).unwrap()
-    }
-
-    /// Runs `script` (a function body) in the page; its return value.
-    fn js(&self, script: &str) -> Value {
-        self.post("/execute/sync", &json!({"script": script, "args": []}))["value"].clone()
-    }
-
-    fn element(&self, css: &str) -> String {
-        let v = self.post("/element", &json!({"using": "css selector", "value": css}));
-        v["value"]
-            .as_object()
-            .and_then(|o| o.values().next())
-            .and_then(Value::as_str)
-            .unwrap_or_else(|| panic!("no element {css}: {v}"))
-            .to_string()
-    }
-}
-
-impl Drop for Browser {
-    fn drop(&mut self) {
-        if self.session.is_some() {
-            let _ = self.agent.delete(self.url("")).call();
-        }
-        let _ = self.driver.kill();
-        let _ = self.driver.wait();
-        let _ = std::fs::remove_dir_all(&self.profile);
-    }
 }
 
 /// The highlighted line of the program text, if any.
@@ -199,18 +55,8 @@ fn drawn(b: &Browser) -> (u64, u64) {
 
 #[test]
 fn the_viewer_page_draws_and_its_slider_follows_the_program() {
-    let chromium = find(
-        "VCNC_CHROMIUM",
-        &["/usr/bin/chromium", "/usr/bin/chromium-browser"],
-    );
-    let chromedriver = find("VCNC_CHROMEDRIVER", &["/usr/bin/chromedriver"]);
-    let (Some(chromium), Some(chromedriver)) = (chromium, chromedriver) else {
-        panic!(
-            "this test needs headless Chromium and its WebDriver: \
-             `apt-get install -y chromium chromium-driver` (Debian), or point \
-             VCNC_CHROMIUM and VCNC_CHROMEDRIVER at them"
-        );
-    };
+    let (chromium, chromedriver) =
+        webdriver::tools().unwrap_or_else(|e| panic!("this test fails: {e}"));
 
     let out_dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("browser");
     std::fs::create_dir_all(&out_dir).unwrap();

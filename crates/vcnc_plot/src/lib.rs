@@ -20,6 +20,7 @@
 
 mod collect;
 mod html;
+mod legend;
 pub mod path;
 mod png;
 pub mod scene;

@@ -32,8 +32,6 @@ const MARGIN_T: f64 = 24.0;
 const MARGIN_R: f64 = 16.0;
 /// Room kept inside the plot area so marks at the edge stay whole, px.
 const PAD: f64 = 12.0;
-/// Characters of 12 px text that fit a legend line.
-const LEGEND_CHARS: usize = 37;
 /// Most tool-change marks that get a label.
 const MAX_TOOL_LABELS: usize = 200;
 
@@ -191,8 +189,7 @@ pub struct Scene {
 /// The plot area (width, height) of a picture, px: what a
 /// [`crate::Space::Flat`] sink merges for.
 pub fn plot_area(width_px: u32, height_px: u32) -> (f64, f64) {
-    let (x, y, w, h) = area(f64::from(width_px), f64::from(height_px));
-    let _ = (x, y);
+    let (_, _, w, h) = area(f64::from(width_px), f64::from(height_px));
     ((w - 2.0 * PAD).max(1.0), (h - 2.0 * PAD).max(1.0))
 }
 
@@ -291,12 +288,12 @@ fn fit(plot: &Plot, compare: Option<&Plot>, proj: &Projection, look: &Look) -> F
 }
 
 /// What colours a cut: the ranges seen in the plot.
-struct Coloring {
-    by: ColorBy,
-    pal: Palette,
-    depth: (f64, f64),
-    feed: (f64, f64),
-    proj: Projection,
+pub(crate) struct Coloring {
+    pub(crate) by: ColorBy,
+    pub(crate) pal: Palette,
+    pub(crate) depth: (f64, f64),
+    pub(crate) feed: (f64, f64),
+    pub(crate) proj: Projection,
 }
 
 impl Coloring {
@@ -325,7 +322,7 @@ impl Coloring {
         }
     }
 
-    fn depth_color(&self, d: f64) -> Rgb {
+    pub(crate) fn depth_color(&self, d: f64) -> Rgb {
         ramp(
             &self.pal.depth,
             fraction(d, self.depth.0, self.depth.1),
@@ -367,7 +364,7 @@ impl Coloring {
     }
 }
 
-fn rapid_stroke(color: Rgb) -> Stroke {
+pub(crate) fn rapid_stroke(color: Rgb) -> Stroke {
     Stroke {
         color,
         width: 1.0,
@@ -375,7 +372,7 @@ fn rapid_stroke(color: Rgb) -> Stroke {
     }
 }
 
-fn cut_stroke(color: Rgb) -> Stroke {
+pub(crate) fn cut_stroke(color: Rgb) -> Stroke {
     Stroke {
         color,
         width: 1.5,
@@ -383,7 +380,7 @@ fn cut_stroke(color: Rgb) -> Stroke {
     }
 }
 
-fn contour_stroke(color: Rgb) -> Stroke {
+pub(crate) fn contour_stroke(color: Rgb) -> Stroke {
     Stroke {
         color,
         width: 1.0,
@@ -440,11 +437,11 @@ fn path_items(
 
 /// An arc of the view plane on the screen.
 fn screen_arc(fit: &Fit, arc: &vcnc_core::geometry::ArcPath, to: [f64; 2]) -> Seg {
-    let [a, b, n] = [arc.axes.a, arc.axes.b, arc.axes.n.unwrap_or(2)];
+    let (a, b) = (arc.axes.a, arc.axes.b);
+    // The centre in plot space: its normal coordinate is the start's.
     let mut c3 = [arc.from.get(0), arc.from.get(1), arc.from.get(2)];
     c3[a] = arc.center.0;
     c3[b] = arc.center.1;
-    let _ = n;
     let center = fit.xy(c3);
     let from = fit.xy([arc.from.get(0), arc.from.get(1), arc.from.get(2)]);
     // Orientation of the plane's (a, b) on the y-down screen.
@@ -497,7 +494,7 @@ pub fn scene(
     let contour = |_: usize, _: &Vertex| Some(contour_stroke(pal.contour));
     path_items(&plot.contour, &fit, &contour, &mut items);
     marks(plot, &fit, &pal, &mut items);
-    legend_items(plot, compare, &coloring, look, legend, &mut items);
+    crate::legend::panel(plot, &coloring, look, legend, &mut items);
     Scene {
         width: look.width_px,
         height: look.height_px,
@@ -663,7 +660,7 @@ fn centre_line(fit: &Fit, pal: &Palette, look: &Look, out: &mut Vec<Item>) {
     }
 }
 
-fn line_item(a: [f64; 2], b: [f64; 2], stroke: Stroke) -> Item {
+pub(crate) fn line_item(a: [f64; 2], b: [f64; 2], stroke: Stroke) -> Item {
     Item::Path {
         stroke,
         start: a,
@@ -671,7 +668,7 @@ fn line_item(a: [f64; 2], b: [f64; 2], stroke: Stroke) -> Item {
     }
 }
 
-fn text(at: [f64; 2], text: String, size: TextSize, color: Rgb, anchor: Anchor) -> Item {
+pub(crate) fn text(at: [f64; 2], text: String, size: TextSize, color: Rgb, anchor: Anchor) -> Item {
     Item::Text {
         at,
         text,
@@ -682,7 +679,7 @@ fn text(at: [f64; 2], text: String, size: TextSize, color: Rgb, anchor: Anchor) 
 }
 
 /// The shapes of each mark, centred on `c`.
-mod shapes {
+pub(crate) mod shapes {
     use super::*;
 
     pub fn start(c: [f64; 2], pal: &Palette, out: &mut Vec<Item>) {
@@ -851,301 +848,6 @@ fn marks(plot: &Plot, fit: &Fit, pal: &Palette, out: &mut Vec<Item>) {
     }
 }
 
-/// Splits `s` into lines of at most `width` characters at spaces.
-fn wrap(s: &str, width: usize) -> Vec<String> {
-    let mut lines = Vec::new();
-    let mut line = String::new();
-    for word in s.split_whitespace() {
-        let mut word = word.to_string();
-        while word.chars().count() > width {
-            let head: String = word.chars().take(width).collect();
-            if !line.is_empty() {
-                lines.push(std::mem::take(&mut line));
-            }
-            lines.push(head);
-            word = word.chars().skip(width).collect();
-        }
-        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
-            lines.push(std::mem::take(&mut line));
-        }
-        if !line.is_empty() {
-            line.push(' ');
-        }
-        line.push_str(&word);
-    }
-    if !line.is_empty() {
-        lines.push(line);
-    }
-    lines
-}
-
-/// The end of a long text, with an ellipsis in front.
-fn tail(s: &str, width: usize) -> String {
-    let n = s.chars().count();
-    if n <= width {
-        s.to_string()
-    } else {
-        let keep: String = s.chars().skip(n + 3 - width).collect();
-        format!("...{keep}")
-    }
-}
-
-/// The legend panel, written top to bottom.
-struct Panel<'a> {
-    x: f64,
-    y: f64,
-    pal: &'a Palette,
-    out: &'a mut Vec<Item>,
-}
-
-impl Panel<'_> {
-    fn line(&mut self, s: String, size: TextSize, color: Rgb) {
-        self.out
-            .push(text([self.x, self.y], s, size, color, Anchor::Start));
-        self.y += 17.0;
-    }
-
-    fn gap(&mut self) {
-        self.y += 8.0;
-    }
-
-    /// A line key: a short sample of `stroke` and a label.
-    fn key(&mut self, stroke: Stroke, label: &str) {
-        let y = self.y - 4.0;
-        self.out
-            .push(line_item([self.x, y], [self.x + 34.0, y], stroke));
-        self.out.push(text(
-            [self.x + 44.0, self.y],
-            label.into(),
-            TextSize::Normal,
-            self.pal.text,
-            Anchor::Start,
-        ));
-        self.y += 17.0;
-    }
-
-    /// A mark key: `draw` puts the mark at a point, then a label.
-    fn mark(&mut self, draw: fn([f64; 2], &Palette, &mut Vec<Item>), label: String) {
-        draw([self.x + 17.0, self.y - 4.0], self.pal, self.out);
-        self.out.push(text(
-            [self.x + 44.0, self.y],
-            label,
-            TextSize::Normal,
-            self.pal.text,
-            Anchor::Start,
-        ));
-        self.y += 19.0;
-    }
-
-    /// A ramp of `steps` colours with its two end labels.
-    fn ramp(&mut self, color: &dyn Fn(f64) -> Rgb, steps: u32, lo: String, hi: String) {
-        let w = 200.0;
-        let n = f64::from(steps);
-        for k in 0..steps {
-            let k = f64::from(k);
-            self.out.push(Item::Rect {
-                xywh: [self.x + w * k / n, self.y - 10.0, w / n + 0.5, 10.0],
-                fill: color(k / (n - 1.0)),
-            });
-        }
-        self.y += 14.0;
-        if lo == hi {
-            self.out.push(text(
-                [self.x, self.y],
-                format!("all at {lo}"),
-                TextSize::Small,
-                self.pal.muted,
-                Anchor::Start,
-            ));
-        } else {
-            self.out.push(text(
-                [self.x, self.y],
-                lo,
-                TextSize::Small,
-                self.pal.muted,
-                Anchor::Start,
-            ));
-            self.out.push(text(
-                [self.x + w, self.y],
-                hi,
-                TextSize::Small,
-                self.pal.muted,
-                Anchor::End,
-            ));
-        }
-        self.y += 18.0;
-    }
-}
-
-fn legend_items(
-    plot: &Plot,
-    compare: Option<&Plot>,
-    coloring: &Coloring,
-    look: &Look,
-    legend: &Legend,
-    out: &mut Vec<Item>,
-) {
-    let pal = &coloring.pal;
-    let x0 = f64::from(look.width_px) - PANEL_W;
-    out.push(Item::Rect {
-        xywh: [x0, 0.0, PANEL_W, f64::from(look.height_px)],
-        fill: pal.panel,
-    });
-    let mut p = Panel {
-        x: x0 + 16.0,
-        y: 28.0,
-        pal,
-        out,
-    };
-    p.line(tail(&legend.title, LEGEND_CHARS), TextSize::Bold, pal.text);
-    let view = match (coloring.proj.view, coloring.proj.diameter_up) {
-        (View::Xz, true) => "view XZ half-section (lathe)".to_string(),
-        (View::Xy, _) => "view XY (top)".into(),
-        (View::Xz, _) => "view XZ (front)".into(),
-        (View::Yz, _) => "view YZ (side)".into(),
-        (View::Iso, _) => "view isometric".into(),
-    };
-    p.line(view, TextSize::Normal, pal.muted);
-    p.gap();
-    p.key(rapid_stroke(pal.rapid), "rapid");
-    let cut_label = match look.color {
-        ColorBy::Depth => "cut, coloured by depth",
-        ColorBy::Tool => "cut, coloured by tool",
-        ColorBy::Feed => "cut, coloured by feed",
-    };
-    let sample = match look.color {
-        ColorBy::Tool => tool_color(pal, 1),
-        ColorBy::Depth => ramp(&pal.depth, 0.5, DEPTH_STEPS),
-        ColorBy::Feed => ramp(&pal.feed, 0.5, FEED_STEPS),
-    };
-    p.key(cut_stroke(sample), cut_label);
-    if plot.contour.vertices.len() > 1 {
-        p.key(contour_stroke(pal.contour), "programmed contour");
-    }
-    if let Some(name) = &legend.compare {
-        let _ = compare;
-        p.key(
-            Stroke {
-                color: pal.compare,
-                width: 2.5,
-                dash: None,
-            },
-            &tail(&format!("compare: {name}"), LEGEND_CHARS - 6),
-        );
-    }
-    p.gap();
-    color_scale(&mut p, plot, coloring, look);
-    p.mark(shapes::start, "start".into());
-    if plot.hole_count > 0 {
-        p.mark(shapes::hole, format!("holes ({})", plot.hole_count));
-    }
-    if !plot.tool_changes.is_empty() {
-        p.mark(shapes::tool_change, "tool change".into());
-    }
-    if !plot.origins.is_empty() {
-        p.mark(shapes::origin, "work origin".into());
-    }
-    if plot.alarm.is_some() {
-        p.mark(shapes::alarm, "alarm: stopped here".into());
-    }
-    p.gap();
-    for (k, v) in &legend.rows {
-        p.line(k.clone(), TextSize::Bold, pal.text);
-        for part in v.lines() {
-            for l in wrap(part, LEGEND_CHARS) {
-                p.line(l, TextSize::Normal, pal.text);
-            }
-        }
-    }
-    if let Some(a) = &plot.alarm {
-        p.gap();
-        p.line(
-            format!("alarm {} line {} column {}", a.code, a.line, a.column),
-            TextSize::Bold,
-            pal.alarm,
-        );
-        for l in wrap(&a.message, LEGEND_CHARS) {
-            p.line(l, TextSize::Normal, pal.alarm);
-        }
-    }
-}
-
-/// The colour scale of the cuts: depth or feed ramp, or tool swatches.
-fn color_scale(p: &mut Panel<'_>, plot: &Plot, c: &Coloring, look: &Look) {
-    let has_cuts = plot.path.vertices.iter().any(|v| v.kind == Kind::Cut);
-    if !has_cuts {
-        return;
-    }
-    match look.color {
-        ColorBy::Depth => {
-            let name = depth_name(&c.proj);
-            let (lo, hi) = c.depth;
-            let k = if c.proj.depth == [1.0, 0.0, 0.0] {
-                2.0
-            } else {
-                1.0
-            };
-            p.line(format!("depth {name}"), TextSize::Normal, p.pal.muted);
-            let ramp_at = |t: f64| ramp(&c.pal.depth, t, DEPTH_STEPS);
-            p.ramp(
-                &ramp_at,
-                DEPTH_STEPS,
-                format!("{:.3}", lo * k),
-                format!("{:.3}", hi * k),
-            );
-        }
-        ColorBy::Feed => {
-            let (lo, hi) = c.feed;
-            p.line("feed mm/min".into(), TextSize::Normal, p.pal.muted);
-            let ramp_at = |t: f64| ramp(&c.pal.feed, t, FEED_STEPS);
-            p.ramp(&ramp_at, FEED_STEPS, format!("{lo:.0}"), format!("{hi:.0}"));
-        }
-        ColorBy::Tool => {
-            let mut used: Vec<u16> = plot
-                .path
-                .vertices
-                .iter()
-                .filter(|v| v.kind == Kind::Cut)
-                .map(|v| v.tool)
-                .collect();
-            used.sort_unstable();
-            used.dedup();
-            for t in used.iter().take(12) {
-                let name = match usize::from(*t)
-                    .checked_sub(1)
-                    .and_then(|i| plot.tools.get(i))
-                {
-                    Some(n) => format!("T{n}"),
-                    None => "no tool".into(),
-                };
-                p.key(cut_stroke(tool_color(&c.pal, *t)), &name);
-            }
-            if used.len() > 12 {
-                p.line(
-                    format!("+{} more tools", used.len() - 12),
-                    TextSize::Normal,
-                    p.pal.muted,
-                );
-            }
-            p.gap();
-        }
-    }
-}
-
-/// The depth axis as the legend names it.
-fn depth_name(proj: &Projection) -> &'static str {
-    if proj.depth == [1.0, 0.0, 0.0] {
-        "X diameter, mm (deep .. high)"
-    } else {
-        "Z, mm (deep .. high)"
-    }
-}
-
-/// The picture's theme background, for writers that need it alone.
-pub fn background(theme: Theme) -> Rgb {
-    palette(theme).background
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1157,12 +859,5 @@ mod tests {
         assert_eq!(tick_step(30.0, 8.0), 5.0);
         assert_eq!(tick_label(-0.0001, 0.1), "0.0");
         assert_eq!(tick_label(12.5, 0.5), "12.5");
-    }
-
-    #[test]
-    fn long_text_wraps_and_long_titles_keep_their_end() {
-        assert_eq!(wrap("a bb ccc dddd", 6), vec!["a bb", "ccc", "dddd"]);
-        assert_eq!(wrap("abcdefgh", 3), vec!["abc", "def", "gh"]);
-        assert_eq!(tail("/a/long/path/prog.nc", 10), "...prog.nc");
     }
 }

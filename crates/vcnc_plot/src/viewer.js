@@ -128,7 +128,20 @@
 
   // ---- WebGL -------------------------------------------------------------
   const canvas = $("gl");
-  const gl = canvas.getContext("webgl", { antialias: true, preserveDrawingBuffer: true });
+  // A software renderer (no GPU: SwiftShader, llvmpipe) draws lines about
+  // three times faster without multisampling, so it gets none.
+  function softwareGL() {
+    const g = document.createElement("canvas").getContext("webgl");
+    if (!g) return false;
+    const info = g.getExtension("WEBGL_debug_renderer_info");
+    const name = String(info ? g.getParameter(info.UNMASKED_RENDERER_WEBGL) : g.getParameter(g.RENDERER));
+    const lose = g.getExtension("WEBGL_lose_context");
+    if (lose) lose.loseContext();
+    return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+  }
+  const software = softwareGL();
+  // preserveDrawingBuffer: the picture can be read back (screenshots, tests).
+  const gl = canvas.getContext("webgl", { antialias: !software, preserveDrawingBuffer: true });
   const VS = "attribute vec3 a_pos; attribute vec4 a_col; attribute float a_dash;" +
     "uniform mat4 u_mvp; uniform float u_point; varying vec4 v_col; varying float v_dash;" +
     "void main() { gl_Position = u_mvp * vec4(a_pos, 1.0); v_col = a_col; v_dash = a_dash; gl_PointSize = u_point; }";
@@ -465,6 +478,7 @@
     currentLine: () => curLine,
     setIndex,
     webgl: !!gl,
+    software,
     bench(n) {
       const t0 = performance.now();
       for (let k = 0; k < n; k++) { draw(); if (gl) gl.finish(); }
