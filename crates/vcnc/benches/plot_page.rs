@@ -38,6 +38,10 @@ fn main() {
     let n = b.js("return window.vcnc.count();");
     let webgl = b.js("return window.vcnc.webgl;");
     let frame_ms = b.js("return window.vcnc.bench(20);").as_f64().unwrap();
+    let moving_ms = b
+        .js("return window.vcnc.bench(20, true);")
+        .as_f64()
+        .unwrap();
     let scrub_ms = b
         .js("const t = performance.now(); \
              for (let k = 1; k <= 20; k++) { window.vcnc.setIndex(Math.floor(window.vcnc.count() * k / 21)); window.vcnc.bench(1); } \
@@ -55,5 +59,6 @@ fn main() {
         load.as_secs_f64()
     );
     println!("frame       {frame_ms:.1} ms (mean of 20 redraws, GPU finished)");
+    println!("drag frame  {moving_ms:.1} ms (the preview drawn while the view moves)");
     println!("slider move {scrub_ms:.1} ms (text pane and a redraw, mean of 20)");
 }

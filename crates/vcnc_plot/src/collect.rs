@@ -10,6 +10,7 @@
 
 use crate::path::{ArcRec, Kind, Metric, NO_ARC, Path, Vertex, arc_path};
 use crate::view::{AxisMap, P3, Projection};
+use std::collections::HashSet;
 use std::sync::Arc;
 use vcnc_core::{Cycle, EndCode, Event, Feed, Loc, Machine, Pos, Sink};
 
@@ -141,8 +142,8 @@ pub struct Plot {
     pub tools: Vec<u32>,
     /// Called programs: a vertex's `file` i > 0 is `files[i-1]`.
     pub files: Vec<Arc<str>>,
-    /// Holes marked (at most `max_marks`; neighbours closer than a merge
-    /// unit share one mark).
+    /// Holes marked (at most `max_marks`; holes closer than about a mark's
+    /// size share one mark).
     pub holes: Vec<HoleMark>,
     /// Holes drilled, marked or not.
     pub hole_count: u64,
@@ -164,6 +165,9 @@ pub struct Plot {
 
 /// Most work origins marked.
 const MAX_ORIGINS: usize = 64;
+/// Size of the cell, in merge units, in which holes share one mark (a hole
+/// mark is 12 px across).
+const HOLE_CELL: f64 = 8.0;
 /// Most points an arc is drawn with when it cannot stay a true arc.
 const MAX_ARC_POINTS: usize = 4096;
 
@@ -180,7 +184,7 @@ pub struct PlotSink<C: Clock = NoClock> {
     metric: Metric,
     /// Screen box (u, v) and depth range of what was drawn so far.
     uv: Option<([f64; 3], [f64; 3])>,
-    last_hole: Option<P3>,
+    hole_cells: HashSet<[i64; 3]>,
 }
 
 /// f64 → f32 for stored attributes (times, feeds): rounding is intended.
@@ -234,7 +238,7 @@ impl<C: Clock> PlotSink<C> {
                 visible: 3,
             },
             uv: None,
-            last_hole: None,
+            hole_cells: HashSet::new(),
         };
         sink.extend(start);
         let v = sink.vertex(start, Kind::Jump, &Loc::default(), 0.0);
@@ -421,26 +425,26 @@ impl<C: Clock> PlotSink<C> {
         let p = self.map.p3(at);
         self.plot.hole_count += 1;
         self.extend(p);
-        // A hole on the same merge unit as the last one shares its mark.
-        let m = self.metric;
-        let near = self.last_hole.is_some_and(|q| {
-            let d: f64 = (0..m.visible)
-                .map(|r| {
-                    let row = m.rows[r];
-                    let dd =
-                        row[0] * (p[0] - q[0]) + row[1] * (p[1] - q[1]) + row[2] * (p[2] - q[2]);
-                    dd * dd
-                })
-                .sum();
-            d < 1.0
-        });
-        if !near && self.plot.holes.len() < self.opts.max_marks {
+        if self.plot.holes.len() >= self.opts.max_marks {
+            return;
+        }
+        // Holes closer than a mark's size share one mark: one per cell of
+        // HOLE_CELL merge units (cells seen before the extents grew are
+        // finer, so a few more marks are kept, never fewer).
+        let m = self.metric.apply(p);
+        let mut cell = [0i64; 3];
+        for (c, v) in cell.iter_mut().zip(m).take(self.metric.visible) {
+            // Clamped far inside i64 before the conversion.
+            #[allow(clippy::cast_possible_truncation)]
+            let k = (v / HOLE_CELL).floor().clamp(-1e15, 1e15) as i64;
+            *c = k;
+        }
+        if self.hole_cells.insert(cell) {
             self.plot.holes.push(HoleMark {
                 at: p,
                 cycle,
                 line: line_of(loc),
             });
-            self.last_hole = Some(p);
         }
     }
 

@@ -15,9 +15,10 @@
 //!   colour merge while every point they replace lies within half a unit of
 //!   the merged chord (a flat view also keeps the depth within half a
 //!   colour step, so colours stay true).
-//! - A move shorter than half a unit on the screen merges into the next one
-//!   whatever its kind: it cannot be seen (a drill's plunge seen from the
-//!   top is a dot; the hole marker shows it).
+//! - A move that ends within half a unit (on the screen) of the last point
+//!   kept or pending is not drawn at all, whatever its kind: it cannot be
+//!   seen (a drill's plunge seen from the top is a dot; the hole mark shows
+//!   it). The pending point takes its source line and time.
 //! - An arc stays one vertex (a true arc) unless it is flatter and shorter
 //!   than half a unit; arcs are never merged with their neighbours.
 //! - When the path holds more than its budget of vertices, the tolerance
@@ -89,7 +90,8 @@ pub struct Metric {
 }
 
 impl Metric {
-    fn apply(&self, p: P3) -> P3 {
+    /// The point in merge units.
+    pub(crate) fn apply(&self, p: P3) -> P3 {
         self.rows.map(|r| r[0] * p[0] + r[1] * p[1] + r[2] * p[2])
     }
 
@@ -225,25 +227,29 @@ impl Path {
     }
 
     fn push(&mut self, v: Vertex, m: &Metric) {
-        let Some(p) = self.pending.take() else {
+        let Some(mut p) = self.pending.take() else {
             self.pending = Some(v);
             return;
         };
+        let tol = self.tolerance();
+        // A step too short to see is not drawn: the pending point stands
+        // for it (and takes its line and time, so the slider still steps
+        // through it). Steps are measured from the pending point, so many
+        // tiny steps never drift more than the tolerance.
+        if v.kind != Kind::Jump && v.arc == NO_ARC && m.visible_len(p.at, v.at) < tol {
+            if p.kind != Kind::Jump {
+                p.line = v.line;
+                p.file = v.file;
+                p.time_s = v.time_s;
+            }
+            self.pending = Some(p);
+            return;
+        }
         let Some(anchor) = self.vertices.last().map(|a| a.at) else {
             self.vertices.push(p);
             self.pending = Some(v);
             return;
         };
-        let tol = self.tolerance();
-        // A segment too short to see merges into the next whatever it is.
-        if p.kind != Kind::Jump && p.arc == NO_ARC && m.visible_len(anchor, p.at) < tol {
-            self.between.push(p.at);
-            if self.between.len() > MAX_RUN {
-                self.between.clear();
-            }
-            self.pending = Some(v);
-            return;
-        }
         if self.mergeable(&p, &v) && self.fits(anchor, &p, v.at, m) {
             self.between.push(p.at);
             self.pending = Some(v);
@@ -433,17 +439,33 @@ mod tests {
     }
 
     #[test]
-    fn a_move_too_short_to_see_merges_across_kinds() {
+    fn a_move_too_short_to_see_is_not_drawn_whatever_its_kind() {
         let m = unit_metric(1.0);
         let mut path = Path::new(1000, false);
         path.push_line(v(0.0, 0.0, Kind::Jump, 1), &m);
         path.push_line(v(10.0, 0.0, Kind::Rapid, 2), &m);
-        // A plunge seen from the top: no visible length.
+        // A plunge seen from the top: no visible length. The rapids on
+        // either side of it are one straight line.
         path.push_line(v(10.0, 0.0, Kind::Cut, 3), &m);
         path.push_line(v(20.0, 0.0, Kind::Rapid, 4), &m);
         path.finish();
-        let kinds: Vec<Kind> = path.vertices.iter().map(|v| v.kind).collect();
-        assert_eq!(kinds, vec![Kind::Jump, Kind::Rapid, Kind::Rapid]);
+        let kinds: Vec<(f64, Kind)> = path.vertices.iter().map(|v| (v.at[0], v.kind)).collect();
+        assert_eq!(kinds, vec![(0.0, Kind::Jump), (20.0, Kind::Rapid)]);
+    }
+
+    #[test]
+    fn tiny_steps_do_not_drift() {
+        // 100 steps of 0.1 unit: each too short to see, together 10 units.
+        let m = unit_metric(1.0);
+        let mut path = Path::new(1000, false);
+        path.push_line(v(0.0, 0.0, Kind::Jump, 1), &m);
+        for i in 1..=100u32 {
+            path.push_line(v(f64::from(i) * 0.1, 0.0, Kind::Cut, i + 1), &m);
+        }
+        path.finish();
+        let last = path.vertices.last().unwrap();
+        assert!((last.at[0] - 10.0).abs() <= 0.5, "{:?}", last.at);
+        assert_eq!(last.line, 101, "the slider reaches the last block");
     }
 
     #[test]
@@ -460,8 +482,9 @@ mod tests {
         path.finish();
         // Once the tolerance passes the zig-zag's height it is one band.
         assert!(path.tolerance() > 10.0, "{}", path.tolerance());
-        // The last point is kept exactly.
-        assert_eq!(path.vertices.last().map(|v| v.at[0]), Some(199_999.0));
+        // The path ends within the tolerance of the last point.
+        let end = path.vertices.last().map_or(0.0, |v| v.at[0]);
+        assert!((end - 199_999.0).abs() <= path.tolerance(), "{end}");
     }
 
     #[test]

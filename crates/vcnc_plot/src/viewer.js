@@ -208,10 +208,47 @@
     points.forEach((q, k) => { f.set([q[0], q[1], q[2], -1], k * 5); u.set(q[3], k * 20 + 16); });
     return upload(buf, points.length);
   }
-  let main = null, cmp = null, contour = null, marks = null, origins = null;
+  // While the view moves, a large path is drawn from a preview that keeps
+  // every k-th vertex (at most PREVIEW segments), so that turning and
+  // zooming stay fluid on a software renderer; the full path is drawn as
+  // soon as the motion stops.
+  const PREVIEW = 16384;
+  function previewBuffer(p, color) {
+    const stride = Math.ceil(p.n / PREVIEW);
+    const picks = [];
+    for (let i = 0; i < p.n; i += stride) picks.push(i);
+    if (picks[picks.length - 1] !== p.n - 1) picks.push(p.n - 1);
+    const buf = new ArrayBuffer(picks.length * 40), f = new Float32Array(buf), u = new Uint8Array(buf);
+    const ends = new Uint32Array(picks.length);
+    let s = 0;
+    for (let k = 1; k < picks.length; k++) {
+      const a = picks[k - 1], b = picks[k];
+      let jump = false;
+      for (let i = a + 1; i <= b && !jump; i++) jump = p.kind[i] === 0;
+      if (jump) continue;
+      const c = color(b);
+      for (let e = 0; e < 2; e++) {
+        const j = e === 0 ? a : b, o = (2 * s + e) * 5;
+        f[o] = p.pos[3 * j]; f[o + 1] = p.pos[3 * j + 1]; f[o + 2] = p.pos[3 * j + 2]; f[o + 3] = -1;
+        u.set(c, (o + 4) * 4);
+      }
+      ends[s++] = b;
+    }
+    const g = upload(buf, s * 2);
+    g.ends = ends.subarray(0, s);
+    return g;
+  }
+  let main = null, preview = null, cmp = null, contour = null, marks = null, origins = null;
+  let moving = false, still = 0;
+  function move() {
+    moving = true;
+    clearTimeout(still);
+    still = setTimeout(() => { moving = false; request(); }, 150);
+  }
   function build() {
     const p = pal();
     main = lineBuffer(P, segColor, true);
+    preview = main.count / 2 > 2 * PREVIEW ? previewBuffer(P, segColor) : null;
     if (K) cmp = lineBuffer(K, () => [...p.compare, 200], true);
     if (C) contour = lineBuffer(C, () => [...p.contour, 255], false);
     const pts = [];
@@ -316,9 +353,16 @@
     gl.uniform1f(loc.u_dash, (10 * (window.devicePixelRatio || 1)) / scale);
     gl.uniform1f(loc.u_point, 1);
     if (cmp && showCompare) lines_(cmp, 0, cmp.count, 0.8);
-    const done = 2 * main.before[cur + 1];
-    lines_(main, 0, done, 1);
-    lines_(main, done, main.count - done, 0.3);
+    if (moving && preview) {
+      let lo = 0, hi = preview.ends.length;
+      while (lo < hi) { const m = (lo + hi) >> 1; if (preview.ends[m] <= cur) lo = m + 1; else hi = m; }
+      lines_(preview, 0, 2 * lo, 1);
+      lines_(preview, 2 * lo, preview.count - 2 * lo, 0.3);
+    } else {
+      const done = 2 * main.before[cur + 1];
+      lines_(main, 0, done, 1);
+      lines_(main, done, main.count - done, 0.3);
+    }
     if (contour) lines_(contour, 0, contour.count, 0.9);
     lines_(origins, 0, origins.count, 1);
     bind(marks);
@@ -444,6 +488,7 @@
     if (!drag) return;
     const dpr = window.devicePixelRatio || 1, dx = e.clientX - drag.x, dy = e.clientY - drag.y;
     drag.x = e.clientX; drag.y = e.clientY;
+    move();
     if (drag.pan) { pan = [pan[0] + dx * dpr, pan[1] - dy * dpr]; request(); } else turn(dx, dy);
   });
   const endDrag = () => { drag = null; canvas.style.cursor = "grab"; };
@@ -457,6 +502,7 @@
     const k = Math.exp(-e.deltaY * 0.0015);
     pan = [sx - (sx - pan[0]) * k, sy - (sy - pan[1]) * k];
     scale *= k;
+    move();
     request();
   }, { passive: false });
 
@@ -479,9 +525,13 @@
     setIndex,
     webgl: !!gl,
     software,
-    bench(n) {
+    // Mean ms of n synchronous frames; `whileMoving`: as drawn during a drag.
+    bench(n, whileMoving) {
+      const was = moving;
+      moving = !!whileMoving;
       const t0 = performance.now();
       for (let k = 0; k < n; k++) { draw(); if (gl) gl.finish(); }
+      moving = was;
       if (gl) gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
       return (performance.now() - t0) / n;
     },
