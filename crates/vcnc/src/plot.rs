@@ -129,8 +129,8 @@ const PAGE_BUDGET: usize = 1 << 19;
 /// Merge units across the model in the page (about a pixel of a large
 /// screen at the zoom that fits the model).
 const PAGE_RESOLUTION: f64 = 2048.0;
-/// Program texts larger than this are left out of the page.
-const MAX_SOURCE_BYTES: u64 = 256 << 20;
+/// The page carries at most this much of each program text.
+const MAX_SOURCE_BYTES: u64 = 64 << 20;
 
 /// The check summary as the plot's clock: distance/feed estimate.
 struct Estimate(Summary);
@@ -204,6 +204,10 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
             }
         }
     };
+    // Created before the run, so that an output that cannot be written is
+    // known before a long program has run.
+    let file = std::fs::File::create(&args.output)
+        .map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
     let progress = Progress::start(&c.file, started);
     let sink = PlotSink::with_clock(&s.machine, options, Estimate(Summary::new(&s.machine)));
     let mut counted = Counted::new(sink, progress.bar());
@@ -225,6 +229,7 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     );
     let compare_ref = compare.as_ref().map(|p| (p, compare_name(args)));
     let written = write(
+        file,
         args,
         format,
         &plot,
@@ -319,6 +324,7 @@ fn legend(
 
 #[allow(clippy::too_many_arguments)]
 fn write(
+    file: std::fs::File,
     args: &PlotArgs,
     format: Format,
     plot: &Plot,
@@ -328,7 +334,6 @@ fn write(
     legend: &Legend,
     lathe: bool,
 ) -> std::io::Result<()> {
-    let file = std::fs::File::create(&args.output)?;
     let mut out = BufWriter::with_capacity(1 << 20, file);
     match format {
         Format::Svg | Format::Png => {
@@ -356,8 +361,8 @@ fn write(
 }
 
 /// The program texts the page shows: the main program, then the called
-/// programs in the plot's file order (a file that cannot be read again or
-/// is too large is left out, and the page says so).
+/// programs in the plot's file order (a file that cannot be read again is
+/// left out; a text over 64 MiB is cut there).
 fn sources(main: &Path, plot: &Plot) -> Vec<Source> {
     let read = |p: &Path| -> Vec<u8> {
         let Ok(f) = std::fs::File::open(p) else {
