@@ -126,6 +126,8 @@ fn format_of(path: &Path) -> Result<Format, String> {
 /// every vertex goes to the browser.
 const FLAT_BUDGET: usize = 1 << 20;
 const PAGE_BUDGET: usize = 1 << 19;
+/// Most hole and tool-change marks kept.
+const MAX_MARKS: usize = 100_000;
 /// Merge units across the model in the page (about a pixel of a large
 /// screen at the zoom that fits the model).
 const PAGE_RESOLUTION: f64 = 2048.0;
@@ -150,13 +152,18 @@ impl Clock for Estimate {
 /// What the times of the plot are, for the legend and the page.
 const TIME_LABEL: &str = "distance/feed estimate";
 
-/// `vcnc plot`.
-pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
-    let started = Instant::now();
-    let format = format_of(&args.output)?;
-    let c = &args.common;
-    let mut s = crate::setup(c)?;
-    let lathe = s.dialect.diameter.axis.is_some();
+/// What the options ask for, resolved once.
+struct Settings {
+    format: Format,
+    projection: Projection,
+    look: Look,
+    options: PlotOptions,
+    lathe: bool,
+}
+
+/// Resolves the view, colours, theme and merge space; `lathe` when the
+/// dialect programs an axis in diameters.
+fn settings(args: &PlotArgs, format: Format, lathe: bool) -> Settings {
     let view = match args.view {
         Some(ViewArg::Xy) => View::Xy,
         Some(ViewArg::Xz) => View::Xz,
@@ -172,49 +179,67 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
         (Some(ColorArg::Feed), _) => ColorBy::Feed,
         (None, _) => ColorBy::Depth,
     };
-    let look = Look {
-        theme: match args.theme {
-            ThemeArg::Light => Theme::Light,
-            ThemeArg::Dark => Theme::Dark,
-        },
-        color,
-        width_px: args.size.0,
-        height_px: args.size.1,
+    let theme = match args.theme {
+        ThemeArg::Light => Theme::Light,
+        ThemeArg::Dark => Theme::Dark,
     };
-    let options = match format {
-        Format::Html => PlotOptions {
-            space: Space::Volume {
+    let (width_px, height_px) = args.size;
+    let look = Look {
+        theme,
+        color,
+        width_px,
+        height_px,
+    };
+    let (space, max_vertices) = match format {
+        Format::Html => (
+            Space::Volume {
                 resolution: PAGE_RESOLUTION,
             },
-            color,
-            max_vertices: PAGE_BUDGET,
-            max_marks: 100_000,
-        },
-        _ => {
-            let (width_px, height_px) = vcnc_plot::plot_area(look.width_px, look.height_px);
-            PlotOptions {
-                space: Space::Flat {
-                    projection,
-                    width_px,
-                    height_px,
-                },
-                color,
-                max_vertices: FLAT_BUDGET,
-                max_marks: 100_000,
-            }
+            PAGE_BUDGET,
+        ),
+        Format::Svg | Format::Png => {
+            let (width_px, height_px) = vcnc_plot::plot_area(width_px, height_px);
+            let space = Space::Flat {
+                projection,
+                width_px,
+                height_px,
+            };
+            (space, FLAT_BUDGET)
         }
     };
+    let options = PlotOptions {
+        space,
+        color,
+        max_vertices,
+        max_marks: MAX_MARKS,
+    };
+    Settings {
+        format,
+        projection,
+        look,
+        options,
+        lathe,
+    }
+}
+
+/// `vcnc plot`.
+pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
+    let started = Instant::now();
+    let format = format_of(&args.output)?;
+    let c = &args.common;
+    let mut s = crate::setup(c)?;
+    let set = settings(args, format, s.dialect.diameter.axis.is_some());
     // Created before the run, so that an output that cannot be written is
     // known before a long program has run.
     let file = std::fs::File::create(&args.output)
         .map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
     let progress = Progress::start(&c.file, started);
-    let sink = PlotSink::with_clock(&s.machine, options, Estimate(Summary::new(&s.machine)));
+    let sink = PlotSink::with_clock(&s.machine, set.options, Estimate(Summary::new(&s.machine)));
     let mut counted = Counted::new(sink, progress.bar());
     let (outcome, diameter) = execute(c, &mut s, &mut counted)?;
     let (plot, Estimate(summary)) = counted.inner.into_parts();
     let compare = match &args.compare {
-        Some(other) => Some(run_compare(other, &s, options)?),
+        Some(other) => Some(run_compare(other, &s, set.options)?),
         None => None,
     };
     progress.phase(&format!("writing {}", args.output.display()));
@@ -227,18 +252,8 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
         diameter_axis,
         args.compare.as_deref(),
     );
-    let compare_ref = compare.as_ref().map(|p| (p, compare_name(args)));
-    let written = write(
-        file,
-        args,
-        format,
-        &plot,
-        compare_ref,
-        &projection,
-        &look,
-        &legend,
-        lathe,
-    );
+    let compare = compare.as_ref().map(|p| (p, compare_name(args)));
+    let written = write(file, args, &set, &plot, compare, &legend);
     progress.finish();
     written.map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
     report(c, &plot, &outcome);
@@ -322,34 +337,42 @@ fn legend(
     }
 }
 
-#[allow(clippy::too_many_arguments)]
 fn write(
     file: std::fs::File,
     args: &PlotArgs,
-    format: Format,
+    set: &Settings,
     plot: &Plot,
     compare: Option<(&Plot, &str)>,
-    projection: &Projection,
-    look: &Look,
     legend: &Legend,
-    lathe: bool,
 ) -> std::io::Result<()> {
     let mut out = BufWriter::with_capacity(1 << 20, file);
-    match format {
-        Format::Svg | Format::Png => {
-            let scene = vcnc_plot::scene(plot, compare.map(|c| c.0), projection, look, legend);
-            if format == Format::Svg {
-                vcnc_plot::write_svg(&scene, &mut out)?;
-            } else {
-                vcnc_plot::write_png(&scene, &mut out)?;
-            }
+    match set.format {
+        Format::Svg => {
+            let scene = vcnc_plot::scene(
+                plot,
+                compare.map(|c| c.0),
+                &set.projection,
+                &set.look,
+                legend,
+            );
+            vcnc_plot::write_svg(&scene, &mut out)?;
+        }
+        Format::Png => {
+            let scene = vcnc_plot::scene(
+                plot,
+                compare.map(|c| c.0),
+                &set.projection,
+                &set.look,
+                legend,
+            );
+            vcnc_plot::write_png(&scene, &mut out)?;
         }
         Format::Html => {
             let sources = sources(&args.common.file, plot);
             let page = Page {
-                theme: look.theme,
-                color: look.color,
-                lathe,
+                theme: set.look.theme,
+                color: set.look.color,
+                lathe: set.lathe,
                 legend,
                 time_label: TIME_LABEL,
                 sources: &sources,

@@ -405,6 +405,8 @@
     highlight(f, P.line[cur]);
     const t = P.tool[cur];
     const pos = [0, 1, 2].map((k) => (P.pos[3 * cur + k] + D.center[k]).toFixed(3));
+    // A lathe's X is a radius in the data and a diameter to its programmer.
+    if (D.lathe) pos[0] = "dia " + (2 * Number(pos[0])).toFixed(3);
     $("info").textContent =
       (P.line[cur] ? "line " + P.line[cur] + (f ? " of " + D.files[f] : "") : "power-on position") + " | " + (t ? "T" + D.tools[t - 1] : "no tool") +
       " | X " + pos[0] + " Y " + pos[1] + " Z " + pos[2] +
