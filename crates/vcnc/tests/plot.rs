@@ -487,3 +487,50 @@ fn base64_of(bytes: &[u8]) -> String {
     }
     s
 }
+
+/// The page's data object of a workspace program (or a written one).
+fn page_data(program: &Path) -> (Option<i32>, serde_json::Value) {
+    let dir = TempDir::new("data");
+    let out = dir.file("p.html");
+    let o = vcnc(&[
+        "plot",
+        program.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let html = std::fs::read_to_string(&out).unwrap();
+    let start = html.find("id=\"vcnc-data\">").unwrap() + "id=\"vcnc-data\">".len();
+    let end = start + html[start..].find("</script>").unwrap();
+    (
+        o.status.code(),
+        serde_json::from_str(&html[start..end]).expect("the page's data is JSON"),
+    )
+}
+
+/// The page carries the marks: the six holes of 1.2.47 and its G92 work
+/// origin (machine -500, -100), and the alarm of a program that alarms.
+#[test]
+fn the_page_carries_holes_origins_and_the_alarm() {
+    let (code, d) = page_data(&workspace().join("tests/fixtures/manual/1.2.47_g134.nc"));
+    assert_eq!(code, Some(0));
+    assert_eq!(d["holeCount"], 6);
+    let center = [
+        d["center"][0].as_f64().unwrap(),
+        d["center"][1].as_f64().unwrap(),
+    ];
+    let origin = &d["origins"][0][0];
+    assert_eq!(
+        [
+            origin[0].as_f64().unwrap() + center[0],
+            origin[1].as_f64().unwrap() + center[1]
+        ],
+        [-500.0, -100.0]
+    );
+    assert_eq!(d["alarm"], serde_json::Value::Null);
+    let dir = TempDir::new("alarm-page");
+    let prog = dir.write("a.nc", "G01 X10. F100.\nG02 X0 Y20. I-3. J-1.\n");
+    let (code, d) = page_data(&prog);
+    assert_eq!(code, Some(1));
+    assert_eq!(d["alarm"]["code"], "E303");
+    assert_eq!(d["alarm"]["line"], 2);
+}

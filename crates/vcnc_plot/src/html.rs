@@ -202,6 +202,61 @@ fn json_palette(out: &mut String, p: &Palette) {
     out.push('}');
 }
 
+/// The marks as JSON members (after `files`): holes as base64 Float32
+/// triples, tool changes, work origins and the alarm, relative to `center`.
+fn json_marks(o: &mut String, plot: &Plot, center: P3) {
+    let rel = |p: P3| [0, 1, 2].map(|k| p[k] - center[k]);
+    o.push_str("],\"holes\":\"");
+    let holes: Vec<u8> = plot
+        .holes
+        .iter()
+        .flat_map(|h| rel(h.at))
+        .flat_map(|v| f32_of(v).to_le_bytes())
+        .collect();
+    STANDARD.encode_string(&holes, o);
+    let _ = write!(o, "\",\"holeCount\":{},\"toolChanges\":[", plot.hole_count);
+    for (i, t) in plot.tool_changes.iter().enumerate() {
+        if i > 0 {
+            o.push(',');
+        }
+        let p = rel(t.at);
+        o.push('[');
+        for v in p {
+            json_num(o, v);
+            o.push(',');
+        }
+        let _ = write!(o, "{},{}]", t.tool, t.line);
+    }
+    o.push_str("],\"origins\":[");
+    for (i, g) in plot.origins.iter().enumerate() {
+        if i > 0 {
+            o.push(',');
+        }
+        o.push('[');
+        json_p3(o, rel(g.at));
+        o.push(',');
+        json_p3(o, g.x_dir);
+        o.push(',');
+        json_p3(o, g.y_dir);
+        o.push(']');
+    }
+    o.push_str("],\"alarm\":");
+    match &plot.alarm {
+        Some(a) => {
+            o.push_str("{\"at\":");
+            json_p3(o, rel(a.at));
+            let _ = write!(
+                o,
+                ",\"code\":\"{}\",\"line\":{},\"column\":{},\"message\":",
+                a.code, a.line, a.column
+            );
+            json_str(o, &a.message);
+            o.push('}');
+        }
+        None => o.push_str("null"),
+    }
+}
+
 /// The page's data object.
 fn data(plot: &Plot, compare: Option<(&Plot, &str)>, page: &Page<'_>) -> String {
     let (lo, hi) = plot.bounds;
@@ -267,55 +322,7 @@ fn data(plot: &Plot, compare: Option<(&Plot, &str)>, page: &Page<'_>) -> String 
         }
         json_str(&mut o, &s.name);
     }
-    o.push_str("],\"holes\":\"");
-    let holes: Vec<u8> = plot
-        .holes
-        .iter()
-        .flat_map(|h| rel(h.at))
-        .flat_map(|v| f32_of(v).to_le_bytes())
-        .collect();
-    STANDARD.encode_string(&holes, &mut o);
-    let _ = write!(o, "\",\"holeCount\":{},\"toolChanges\":[", plot.hole_count);
-    for (i, t) in plot.tool_changes.iter().enumerate() {
-        if i > 0 {
-            o.push(',');
-        }
-        let p = rel(t.at);
-        o.push('[');
-        for v in p {
-            json_num(&mut o, v);
-            o.push(',');
-        }
-        let _ = write!(o, "{},{}]", t.tool, t.line);
-    }
-    o.push_str("],\"origins\":[");
-    for (i, g) in plot.origins.iter().enumerate() {
-        if i > 0 {
-            o.push(',');
-        }
-        o.push('[');
-        json_p3(&mut o, rel(g.at));
-        o.push(',');
-        json_p3(&mut o, g.x_dir);
-        o.push(',');
-        json_p3(&mut o, g.y_dir);
-        o.push(']');
-    }
-    o.push_str("],\"alarm\":");
-    match &plot.alarm {
-        Some(a) => {
-            o.push_str("{\"at\":");
-            json_p3(&mut o, rel(a.at));
-            let _ = write!(
-                o,
-                ",\"code\":\"{}\",\"line\":{},\"column\":{},\"message\":",
-                a.code, a.line, a.column
-            );
-            json_str(&mut o, &a.message);
-            o.push('}');
-        }
-        None => o.push_str("null"),
-    }
+    json_marks(&mut o, plot, center);
     o.push_str(",\"rows\":[");
     for (i, (k, v)) in page.legend.rows.iter().enumerate() {
         if i > 0 {
