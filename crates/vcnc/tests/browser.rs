@@ -7,7 +7,9 @@
 //! WebGL drew a picture (pixels other than the background, in several
 //! colours), clicks the slider (a real click, which moves it to the
 //! middle) and checks that the highlighted program line changed to the
-//! line of the block at that point, then presses Home and checks the start.
+//! line of the block at that point, drags and scrolls the wheel on the
+//! canvas and checks that the picture turned and zoomed, then presses Home
+//! and checks the start.
 //! It saves a screenshot (slider in the middle) in the test's target
 //! directory (`target/tmp/browser/viewer.png`) and prints the
 //! frame time it measured (no assertion on time: benchmarks hold speed).
@@ -34,6 +36,20 @@ fn workspace() -> PathBuf {
 fn highlighted(b: &Browser) -> Value {
     b.js("const d = document.querySelector('#lines .ln.cur'); \
           return d ? [Number(d.dataset.line), d.textContent] : null;")
+}
+
+/// A fingerprint of the canvas's picture.
+fn picture(b: &Browser) -> Value {
+    b.js("const d = document.getElementById('gl').toDataURL(); \
+          let h = 0; for (let i = 0; i < d.length; i++) h = (h * 31 + d.charCodeAt(i)) | 0; \
+          return [d.length, h];")
+}
+
+/// Waits until the page has drawn the frame it asked for (and the full
+/// path again after a motion: 150 ms after it stops).
+fn wait_frame(b: &Browser) {
+    std::thread::sleep(Duration::from_millis(400));
+    b.js("return window.vcnc.stats.frames;");
 }
 
 /// Pixels of the canvas that differ from its background, and how many
@@ -146,6 +162,26 @@ fn the_viewer_page_draws_and_its_slider_follows_the_program() {
     assert_eq!(&png[1..4], b"PNG");
     let shot_path = out_dir.join("viewer.png");
     std::fs::write(&shot_path, png).unwrap();
+
+    // A drag turns the model and the wheel zooms it: the picture changes.
+    let canvas = b.element("#gl");
+    let before = picture(&b);
+    let drag = json!({"actions": [{"type": "pointer", "id": "mouse",
+        "parameters": {"pointerType": "mouse"}, "actions": [
+            {"type": "pointerMove", "duration": 0, "origin": {"element-6066-11e4-a52e-4f735466cecf": canvas}, "x": 0, "y": 0},
+            {"type": "pointerDown", "button": 0},
+            {"type": "pointerMove", "duration": 200, "origin": "pointer", "x": 120, "y": 40},
+            {"type": "pointerUp", "button": 0}]}]});
+    b.post("/actions", &drag);
+    wait_frame(&b);
+    let turned = picture(&b);
+    assert_ne!(turned, before, "dragging turns the model");
+    let wheel = json!({"actions": [{"type": "wheel", "id": "wheel", "actions": [
+        {"type": "scroll", "x": 0, "y": 0, "deltaX": 0, "deltaY": -400, "duration": 0,
+         "origin": {"element-6066-11e4-a52e-4f735466cecf": canvas}}]}]});
+    b.post("/actions", &wheel);
+    wait_frame(&b);
+    assert_ne!(picture(&b), turned, "the wheel zooms");
 
     // Home: back to the power-on position, before any block.
     b.post(
