@@ -23,6 +23,8 @@ pub enum Command {
     Run(RunArgs),
     /// Plan the motion on the machine model and print the cycle time and its split.
     Time(TimeArgs),
+    /// Draw the program's path: an SVG or PNG back-plot, or an HTML page with a 3D viewer.
+    Plot(crate::plot::PlotArgs),
 }
 
 /// `vcnc check`.

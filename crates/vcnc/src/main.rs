@@ -9,6 +9,7 @@
 mod check;
 mod cli;
 mod files;
+mod plot;
 mod render;
 mod timing;
 mod trace;
@@ -37,6 +38,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Check(args) => check::check(&args),
         Command::Run(args) => run_events(&args),
         Command::Time(args) => timing::time(&args),
+        Command::Plot(args) => plot::plot(&args),
     }
 }
 

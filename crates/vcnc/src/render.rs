@@ -106,7 +106,7 @@ fn io_is_terminal() -> bool {
 }
 
 /// `1h 02m 03.4s`-style duration.
-fn duration(s: f64) -> String {
+pub fn duration(s: f64) -> String {
     let total = s.max(0.0);
     let h = (total / 3600.0).floor();
     let m = ((total - h * 3600.0) / 60.0).floor();
@@ -247,7 +247,7 @@ pub fn summary(
 }
 
 /// `X lo .. hi   Y lo .. hi …` (a diameter axis shown as a diameter).
-fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) -> String {
+pub fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) -> String {
     let parts: Vec<String> = s
         .axis_letters()
         .iter()
