@@ -483,7 +483,13 @@ impl<'a> Interpreter<'a> {
     /// The current program ran out of blocks.
     fn end_of_program<S: Sink>(&mut self, sink: &mut S) -> Result<Option<EndCode>, Diagnostic> {
         let frame = self.flow.frame();
-        let last = frame.last;
+        // A called program that ran no block at all (its file or text ends
+        // right after its header) is located at the call that entered it.
+        let caller = self.flow.frames.len().checked_sub(2).and_then(|i| self.flow.frames.get(i));
+        let (last, frame) = match (frame.last, caller) {
+            (None, Some(c)) if c.last.is_some() => (c.last, *c),
+            _ => (frame.last, frame),
+        };
         let span = last.map_or(Span::new(0, 1), |(_, s)| s);
         match last {
             Some((line, _)) => self.flow.loc.line = line.number,
