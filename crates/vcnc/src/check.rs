@@ -105,14 +105,15 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
 /// One program: the summary block, warnings and the alarm on stderr.
 fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, String> {
     let mut summary = Summary::new(&s.machine);
-    let mut plan = timing::planner(&s.machine, None);
+    // One program: the planner on the second core.
+    let mut plan = timing::Background::start(&s.machine, None);
     let (outcome, diameter) = execute(
         &args.opts,
         s,
         input,
         &mut timing::Tee(&mut summary, &mut plan),
     )?;
-    let planned = plan.into_timeline();
+    let planned = plan.finish()?;
     eprint!("{}", render::warnings(&summary, input));
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, input));

@@ -36,6 +36,88 @@ pub fn planner(machine: &Machine, profile: Option<ProfileShape>) -> Planner<Cycl
     Planner::with_profile(machine, shape, CycleTime::new())
 }
 
+/// Events a chunk carries to the planner's thread.
+const CHUNK: usize = 4096;
+
+/// The planner beside the interpreter: on a machine with a second core it
+/// runs on its own thread and takes the events in chunks over a bounded
+/// channel (memory stays flat), so `check` plans in the time it interprets;
+/// on one core, or if no thread can be started, it runs in line.
+pub enum Background {
+    /// Planning on this thread.
+    Inline(Box<Planner<CycleTime>>),
+    /// Planning on another.
+    Thread {
+        chunk: Vec<Event>,
+        tx: std::sync::mpsc::SyncSender<Vec<Event>>,
+        worker: std::thread::JoinHandle<CycleTime>,
+    },
+}
+
+impl Background {
+    /// Starts the machine's planner (its own profile unless one is asked for).
+    pub fn start(machine: &Machine, profile: Option<ProfileShape>) -> Background {
+        let mut plan = planner(machine, profile);
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        if cores < 2 {
+            return Background::Inline(Box::new(plan));
+        }
+        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Event>>(4);
+        let spawned = std::thread::Builder::new()
+            .name("planner".into())
+            .spawn(move || {
+                for chunk in rx {
+                    for e in &chunk {
+                        plan.event(e);
+                    }
+                }
+                plan.into_timeline()
+            });
+        match spawned {
+            Ok(worker) => Background::Thread {
+                chunk: Vec::with_capacity(CHUNK),
+                tx,
+                worker,
+            },
+            // No thread: plan in line (the moved planner is lost with the
+            // closure, so start a new one).
+            Err(_) => Background::Inline(Box::new(planner(machine, profile))),
+        }
+    }
+
+    /// The planned time of everything sent.
+    pub fn finish(self) -> Result<CycleTime, String> {
+        match self {
+            Background::Inline(plan) => Ok(plan.into_timeline()),
+            Background::Thread { chunk, tx, worker } => {
+                if !chunk.is_empty() {
+                    tx.send(chunk)
+                        .map_err(|_| "the planner stopped".to_string())?;
+                }
+                drop(tx);
+                worker.join().map_err(|_| "the planner failed".to_string())
+            }
+        }
+    }
+}
+
+impl Sink for Background {
+    fn event(&mut self, event: &Event) {
+        match self {
+            Background::Inline(plan) => plan.event(event),
+            Background::Thread { chunk, tx, .. } => {
+                chunk.push(event.clone());
+                if chunk.len() >= CHUNK {
+                    let full = std::mem::replace(chunk, Vec::with_capacity(CHUNK));
+                    // A failed send means the worker panicked: `finish`
+                    // reports it.
+                    let _ = tx.send(full);
+                }
+            }
+        }
+    }
+}
+
 /// `vcnc time`.
 pub fn time(a: &TimeArgs) -> Result<ExitCode, String> {
     let mut worst = ExitCode::SUCCESS;

@@ -485,7 +485,12 @@ impl<'a> Interpreter<'a> {
         let frame = self.flow.frame();
         // A called program that ran no block at all (its file or text ends
         // right after its header) is located at the call that entered it.
-        let caller = self.flow.frames.len().checked_sub(2).and_then(|i| self.flow.frames.get(i));
+        let caller = self
+            .flow
+            .frames
+            .len()
+            .checked_sub(2)
+            .and_then(|i| self.flow.frames.get(i));
         let (last, frame) = match (frame.last, caller) {
             (None, Some(c)) if c.last.is_some() => (c.last, *c),
             _ => (frame.last, frame),
