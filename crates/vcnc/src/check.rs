@@ -373,9 +373,19 @@ fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
     })
 }
 
-/// A path as a SARIF artifact URI (relative paths stay relative).
+/// A path as a SARIF artifact URI reference (relative paths stay
+/// relative): `/` separators, and every byte but the unreserved characters
+/// of RFC 3986 and `/` percent-encoded (`my part.nc` → `my%20part.nc`).
 fn uri(name: &str) -> String {
-    name.replace('\\', "/")
+    let mut out = String::with_capacity(name.len());
+    for b in name.replace('\\', "/").bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~/".contains(&b) {
+            out.push(char::from(b));
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
 }
 
 fn sarif_result(d: &Diagnostic, main: &str) -> Value {
@@ -435,4 +445,13 @@ fn sarif_report(results: &[Checked]) -> Value {
             "results": out,
         }],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn sarif_uris_are_percent_encoded() {
+        assert_eq!(super::uri("parts\\my part#2.nc"), "parts/my%20part%232.nc");
+        assert_eq!(super::uri("é.nc"), "%C3%A9.nc");
+    }
 }

@@ -307,15 +307,24 @@ pub fn clock(seconds: f64) -> String {
     if seconds < 60.0 {
         return format!("{seconds:.3} s");
     }
-    // Whole seconds of a finite, positive time below 2^53.
+    // Tenths of a finite, positive time below 2^53, rounded as the
+    // figure in parentheses is (119.96 s is 2:00.0, never 1:59.9).
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let whole = seconds.floor().min(9.0e15) as u64;
-    let frac = seconds - seconds.floor();
-    let (h, m, s) = (whole / 3600, whole / 60 % 60, whole % 60);
-    let tenths = (frac * 10.0).floor();
+    let all = (seconds * 10.0).round().min(9.0e15) as u64;
+    let (h, m, s, tenths) = (all / 36_000, all / 600 % 60, all / 10 % 60, all % 10);
     if h > 0 {
         format!("{h}:{m:02}:{s:02}.{tenths} ({seconds:.1} s)")
     } else {
         format!("{m}:{s:02}.{tenths} ({seconds:.1} s)")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn clock_rounds_like_its_seconds() {
+        assert_eq!(super::clock(119.96), "2:00.0 (120.0 s)");
+        assert_eq!(super::clock(3725.26), "1:02:05.3 (3725.3 s)");
+        assert_eq!(super::clock(12.3456), "12.346 s");
     }
 }

@@ -709,6 +709,17 @@ pub fn too_many_holes(span: Span, max: u64) -> Diagnostic {
     )
 }
 
+/// E326: a peck depth so small against the hole depth that the block
+/// would peck more often than the bound.
+pub fn too_many_pecks(span: Span, max: u64) -> Diagnostic {
+    d(
+        Code::E326,
+        span,
+        format!("this block pecks more than {max} times over its holes"),
+        "use a larger peck depth Q or fewer holes per block",
+    )
+}
+
 /// E326: a pocket with more passes than the bound.
 pub fn too_many_passes(span: Span, max: u64) -> Diagnostic {
     d(
@@ -770,18 +781,18 @@ pub fn m_code_in_high_speed(span: Span) -> Diagnostic {
 // ---------------------------------------------------------------------------
 
 /// W101: a length without a decimal point where the program writes points.
-pub fn least_increment_trap(span: Span, l: u8, value: f64, mm: f64, inch: bool) -> Diagnostic {
-    let unit = if inch { "in" } else { "mm" };
-    let shown = if inch { mm / 25.4 } else { mm };
+/// `shown` is the value read, in `unit` (" mm", " in" or "°").
+pub fn least_increment_trap(span: Span, l: u8, value: f64, shown: f64, unit: &str) -> Diagnostic {
+    let shown = (shown * 1e6).round() / 1e6;
     d(
         Code::W101,
         span,
         format!(
-            "{}{value} has no decimal point: it is read as {shown} {unit} (least input increments), while this program writes its other lengths with a point",
+            "{}{value} has no decimal point: it is read as {shown}{unit} (least input increments), while this program writes its other values with a point",
             letter(l)
         ),
         &format!(
-            "write {}{value}. if {value} {unit} is meant, or run with --dialect grbl if the program counts whole units",
+            "write {}{value}. if {value}{unit} is meant, or run with --dialect grbl if the program counts whole units",
             letter(l)
         ),
     )

@@ -42,9 +42,13 @@ impl ProgramStore for NoPrograms {
     }
 }
 
-/// Most entries of each search cache (about 3 MB at most); a program with
+/// Most entries of each search cache (about 12 MB at most); a program with
 /// more labels than that is still searched correctly, only more slowly.
-const CACHE_LIMIT: usize = 65_536;
+const CACHE_LIMIT: usize = 262_144;
+/// Labels found by a search are kept even beyond `CACHE_LIMIT`, up to this
+/// many more, so that a loop back to the same far label does not rescan
+/// the file at every turn.
+const FOUND_LIMIT: usize = 65_536;
 /// Most open sources; beyond that an unused one is closed.
 const MAX_SOURCES: usize = 64;
 
@@ -291,6 +295,11 @@ impl Flow {
             }
             found.is_some()
         });
+        if let Some(at) = found
+            && sequences.len() < CACHE_LIMIT + FOUND_LIMIT
+        {
+            sequences.insert((src, start.offset, start.col, seq), at);
+        }
         self.sequences = sequences;
         if complete {
             bounded_insert(&mut self.label_scans, program, end);

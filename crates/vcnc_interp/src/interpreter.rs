@@ -107,6 +107,10 @@ pub struct Interpreter<'a> {
     /// so that only blocks run again count against the runaway limit.
     read_high: Vec<u64>,
     read_total: u64,
+    /// Whether the current line was read before (a loop or a repeat): its
+    /// blocks are then charged by the events they make, so that a loop
+    /// around a block of thousands of holes meets the limit as soon.
+    rereading: bool,
     /// Moves committed so far (a block compares it to know if it moved).
     pub(crate) moves: u64,
     /// The cutter compensation stage, and its copy taken before a block
@@ -149,6 +153,7 @@ impl<'a> Interpreter<'a> {
             axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask()),
             axis_words,
             executed: 0,
+            rereading: false,
             read_high: Vec::new(),
             read_total: 0,
             moves: 0,
@@ -292,11 +297,13 @@ impl<'a> Interpreter<'a> {
         if src >= self.read_high.len() {
             self.read_high.resize(src + 1, 0);
         }
+        self.rereading = true;
         if let Some(high) = self.read_high.get_mut(src)
             && offset + 1 > *high
         {
             self.read_total += offset + 1 - *high;
             *high = offset + 1;
+            self.rereading = false;
         }
     }
 
@@ -440,6 +447,11 @@ impl<'a> Interpreter<'a> {
         match &result {
             Ok(_) => {
                 self.tables.commit();
+                if self.rereading {
+                    self.executed = self
+                        .executed
+                        .saturating_add(self.pending.len().saturating_sub(1) as u64);
+                }
                 for e in &self.pending {
                     sink.event(e);
                 }
@@ -504,8 +516,14 @@ impl<'a> Interpreter<'a> {
         self.flow.loc.file = self.flow.source(frame.source).and_then(|s| s.name.clone());
         if self.flow.frames.len() == 1 {
             let mut w = alarms::no_program_end(span);
-            if let Some((line, _)) = last {
-                w = self.locate(w, frame.source, &line);
+            match last {
+                Some((line, _)) => w = self.locate(w, frame.source, &line),
+                None => {
+                    // An empty program: its first line, first column.
+                    w.line = 1;
+                    w.column = 1;
+                    w.file = self.flow.loc.file.as_deref().map(str::to_string);
+                }
             }
             self.pending.clear();
             self.pending.push(Event::Warning(w));

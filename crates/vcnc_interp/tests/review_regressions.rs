@@ -323,3 +323,166 @@ fn an_empty_subprogram_alarms_at_its_call() {
     let (_, out) = run(&Dialect::syntec(), "G00 X1.\n  M98 P2\nM30\nO0002\n");
     assert_eq!(alarm(&out), (Code::E406, 2, 3));
 }
+
+/// The warnings of a run.
+fn warnings(events: &[Event]) -> Vec<&vcnc_syntax::Diagnostic> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Warning(d) => Some(d),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_tiny_peck_over_a_deep_hole_alarms_instead_of_holding_millions_of_moves() {
+    // (1 + 1000) / 0.001 = 1,001,000 pecks in one block: beyond 100,000.
+    let p = "S1000 M03\nG00 X0 Y0 Z10.\nG83 X0 Y0 Z-1000. R1. Q0.001 F100.\nM30\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(alarm(&out), (Code::E326, 3, 1));
+    assert!(!ev.iter().any(|e| matches!(e, Event::Hole { .. })));
+    // 11 pecks × 9999 holes = 109,989: also beyond.
+    let p = "S1000 M03\nG00 X0 Y0 Z10.\nG91 G73 X0.1 Z-11. R-9. Q1. K9999 F100.\nM30\n";
+    let (_, out) = run(&Dialect::syntec(), p);
+    assert_eq!(alarm(&out), (Code::E326, 3, 5));
+    // 10 pecks × 9999 holes = 99,990 runs.
+    let p = "S1000 M03\nG00 X0 Y0 Z10.\nG91 G73 X0.1 Z-10. R-9. Q1. K9999 F100.\nM30\n";
+    let (_, out) = run(&Dialect::syntec(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+}
+
+#[test]
+fn a_loop_around_a_block_of_many_holes_meets_the_block_limit_as_soon() {
+    // Each pass of the subprogram drills 100 holes (4 moves each): counted
+    // by its events, a budget of 5000 stops it after a dozen passes, not
+    // after thousands.
+    let machine = Machine::from_toml(&vcnc_interp::machine::DEFAULT_MILL_TOML.replace(
+        "max_executed_blocks = 5000000",
+        "max_executed_blocks = 5000",
+    ))
+    .unwrap();
+    let (ev, out) = run_with(
+        &Dialect::syntec(),
+        &machine,
+        "S1000 M03\nG00 X0 Y0 Z10.\nM98 P2 L9999\nM30\n",
+        &[(2, "G91 G81 X1. Z-2. R-8. K100 F100.\nG90 G80\nM99\n")],
+    );
+    assert_eq!(alarm(&out).0, Code::E404);
+    let holes = ev
+        .iter()
+        .filter(|e| matches!(e, Event::Hole { .. }))
+        .count();
+    assert!(holes < 2000, "{holes} holes before the limit");
+}
+
+#[test]
+fn k0_stores_tapping_data_with_the_spindle_stopped() {
+    // K0 drills nothing, so the spindle need not turn yet (no E321); the
+    // holes after M03 tap.
+    let p = "G00 X0 Y0 Z10.\nG84 Z-5. R2. K0 F100.\nS500 M03\nX5.\nG80\nM30\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    assert_eq!(
+        ev.iter()
+            .filter(|e| matches!(e, Event::Hole { .. }))
+            .count(),
+        1
+    );
+}
+
+#[test]
+fn g88_feeding_per_revolution_alarms_at_its_cycle_word() {
+    // 1.2.41: the way out is G01 with the spindle stopped: under G95 that
+    // cannot move.
+    let p = "G95 S1000 M03\nG00 X0 Y0 Z10.\nF0.1\n  G88 X10. Y10. Z-5. R2. P1.\nM30\n";
+    let (ev, out) = run(&Dialect::fanuc(), p);
+    assert_eq!(alarm(&out), (Code::E342, 4, 3));
+    assert!(!ev.iter().any(|e| matches!(e, Event::Hole { .. })));
+}
+
+#[test]
+fn a_group_01_code_beside_a_cycle_code_cancels_it() {
+    // 1.2.31 condition 4: G00 wins, so R is read by nothing (E203) instead
+    // of a rapid to the hole bottom.
+    let p = "S1000 M03\nG00 X0 Y0 Z10.\nG00 G81 X5. Y5. Z-2. R1. F100.\nM30\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(alarm(&out), (Code::E203, 3, 22));
+    assert_eq!(ends(&ev, 3), vec![vec![0.0, 0.0, 10.0]]);
+    // Without cycle words it is an ordinary rapid, and the cycle is off.
+    let p = "S1000 M03\nG81 X0 Y0 Z-2. R1. F100.\nG00 G81 X5. Y5. Z3.\nX6.\nM30\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let tail: Vec<_> = ends(&ev, 3).into_iter().rev().take(2).collect();
+    assert_eq!(tail, vec![vec![6.0, 5.0, 3.0], vec![5.0, 5.0, 3.0]]);
+}
+
+#[test]
+fn eia_g82_needs_its_dwell_and_eia_arcs_take_r() {
+    let p = "G71 G90\nG00 X0 Y0 Z5.\nG82 X5. Y5. Z-2. R1. F100.\nM30\n";
+    let (_, out) = run(&Dialect::eia(), p);
+    assert_eq!(alarm(&out), (Code::E312, 3, 1));
+    // R = 5 from (0,0) to (10,0) clockwise: the centre is (5,0).
+    let p = "G71 G90\nG00 X0 Y0 Z0\nG02 X10. Y0 R5. F100.\nM30\n";
+    let (ev, out) = run(&Dialect::eia(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let center = ev.iter().find_map(|e| match e {
+        Event::Arc { center, .. } => Some((center.get(0), center.get(1))),
+        _ => None,
+    });
+    assert_eq!(center, Some((5.0, 0.0)));
+}
+
+#[test]
+fn w101_covers_arc_and_cycle_lengths_but_not_dwell_times() {
+    // A pointed program: I5000 of an arc is 5 mm, Q2000 of a peck 2 mm
+    // (both as meant, but written without a point); G04 X2 is a time.
+    let p = "G00 X0 Y0 Z10.\nG02 X10. Y0 I5000 F100.\nS1000 M03\nG83 X5. Y5. Z-2. R1. Q2000 F100.\nG80\nG04 X2\nM30\n";
+    let (ev, out) = run(&Dialect::syntec(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let w: Vec<_> = warnings(&ev)
+        .iter()
+        .filter(|d| d.code == Code::W101)
+        .map(|d| (d.line, d.column))
+        .collect();
+    assert_eq!(w, vec![(2, 13), (4, 22)]);
+}
+
+#[test]
+fn w101_names_degrees_for_a_rotary_word() {
+    let (ev, _) = run(&Dialect::fanuc(), "G00 X1. Y0\nG00 A90\nM30\n");
+    let w = warnings(&ev);
+    let w101 = w.iter().find(|d| d.code == Code::W101).expect("a W101");
+    assert!(w101.message.contains("0.09°"), "{}", w101.message);
+}
+
+#[test]
+fn g93_warns_on_a_clamped_rate_and_never_feeds_zero() {
+    // grbl G93: 10 mm at F1000 is 10,000 mm/min, above the built-in
+    // maximum; F itself is no rate and does not warn at the F word.
+    let d = Dialect::grbl();
+    let max = d.machine().max_feed_mm_per_min();
+    let p = format!(
+        "G21 G90 G93\nG01 X10 F{}\nG01 X10 F5\nM30\n",
+        max / 10.0 * 2.0
+    );
+    let (ev, out) = run(&d, &p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let w: Vec<_> = warnings(&ev)
+        .iter()
+        .filter(|d| d.code == Code::W102)
+        .map(|d| d.line)
+        .collect();
+    assert_eq!(w, vec![2]);
+    let feeds: Vec<f64> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed {
+                feed: vcnc_interp::Feed::PerMin(f),
+                ..
+            } => Some(*f),
+            _ => None,
+        })
+        .collect();
+    assert!(feeds.iter().all(|f| *f > 0.0), "{feeds:?}");
+}

@@ -34,12 +34,7 @@ const NURBS_CHORD_MM: f64 = 0.001;
 impl<W: Write> GcodeSink<W> {
     /// A sink writing the header and then one block per event.
     pub fn new(out: W, machine: &Machine) -> GcodeSink<W> {
-        // The name goes into a comment: no parentheses, no line breaks.
-        let name: String = machine
-            .name
-            .chars()
-            .filter(|c| !matches!(c, '(' | ')') && !c.is_control())
-            .collect();
+        let name = comment_text(&machine.name);
         let mut sink = GcodeSink {
             out,
             letters: machine.axes.iter().map(|a| char::from(a.letter)).collect(),
@@ -108,6 +103,14 @@ impl<W: Write> GcodeSink<W> {
     }
 
     fn arc(&mut self, to: &Pos, center: &Pos, plane: Plane, dir: ArcDir, feed: Feed) -> String {
+        // An arc shorter than the written precision would read back as a
+        // full circle (its end the same as its start): a line then.
+        let collapsed =
+            (0..self.letters.len()).all(|i| length(to.get(i)) == length(self.pos.get(i)));
+        let full = (0..self.letters.len()).all(|i| (to.get(i) - self.pos.get(i)).abs() < 1e-9);
+        if collapsed && !full {
+            return format!("G1{}{}", self.axes(to), self.feed_word(feed));
+        }
         let mut s = String::new();
         if plane != self.plane {
             self.plane = plane;
@@ -236,22 +239,31 @@ impl<W: Write> GcodeSink<W> {
             // The machine builder's codes mean nothing to grbl or LinuxCNC.
             Event::Aux {
                 code, description, ..
-            } => format!("(M{code}: {})", description.replace(['(', ')'], "")),
+            } => format!("(M{code}: {})", comment_text(description)),
             Event::Warning(d) => format!(
                 "(warning {} line {}: {})",
                 d.code.as_str(),
                 d.line,
-                d.message.replace(['(', ')'], "")
+                comment_text(&d.message)
             ),
             Event::Alarm(d) => format!(
                 "(ALARM {} line {}: {})\nM2",
                 d.code.as_str(),
                 d.line,
-                d.message.replace(['(', ')'], "")
+                comment_text(&d.message)
             ),
             _ => return None,
         })
     }
+}
+
+/// Text that can stand inside a `( )` comment on one line: no parentheses
+/// (they would end or nest it) and no control characters (a newline would
+/// make the rest a block).
+fn comment_text(text: &str) -> String {
+    text.chars()
+        .filter(|c| !matches!(c, '(' | ')') && !c.is_control())
+        .collect()
 }
 
 /// A comment for a G09 exact stop (plain G-code has no one-shot form).
@@ -259,17 +271,23 @@ fn g09(exact_stop: bool) -> &'static str {
     if exact_stop { " (G09 exact stop)" } else { "" }
 }
 
-/// Four decimals without trailing zeros: `5.5`, `-0.0125`, `10`.
-/// A length: like [`fmt`], always with a decimal point (`5.`), so that a
-/// Fanuc-style reader, where `X5` is 5 µm, reads the same millimetres as
-/// grbl and LinuxCNC.
+/// A length: six decimals (a nanometre, so that a tiny arc keeps its
+/// end apart from its start) without trailing zeros, always with a decimal
+/// point (`5.`), so that a Fanuc-style reader, where `X5` is 5 µm, reads
+/// the same millimetres as grbl and LinuxCNC.
 fn length(v: f64) -> String {
-    let s = fmt(v);
+    let s = decimals(v, 6);
     if s.contains('.') { s } else { s + "." }
 }
 
+/// Four decimals without trailing zeros (feeds, speeds, times): `5.5`,
+/// `-0.0125`, `10`.
 fn fmt(v: f64) -> String {
-    let s = format!("{:.4}", crate::num::round6(v));
+    decimals(v, 4)
+}
+
+fn decimals(v: f64, n: usize) -> String {
+    let s = format!("{:.n$}", crate::num::round6(v));
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".into() } else { s.to_string() }
 }
@@ -296,5 +314,77 @@ impl<W: Write> Sink for GcodeSink<W> {
             return Err(e);
         }
         self.out.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vcnc_core::{Loc, machine::DEFAULT_MILL_TOML};
+
+    fn flatten(events: &[Event]) -> String {
+        let machine = Machine::from_toml(DEFAULT_MILL_TOML).expect("built-in machine");
+        let mut sink = GcodeSink::new(Vec::new(), &machine);
+        for e in events {
+            sink.event(e);
+        }
+        sink.finish().expect("written to memory");
+        String::from_utf8(sink.into_inner()).expect("utf-8")
+    }
+
+    fn pos(x: f64, y: f64) -> Pos {
+        let mut p = Pos::default();
+        p.set(0, x);
+        p.set(1, y);
+        p
+    }
+
+    #[test]
+    fn an_arc_shorter_than_the_precision_is_a_line_not_a_full_circle() {
+        // From (10, 0) 30 nm along a circle of radius 10: both ends write
+        // as X10. Y0, which a reader would take for a full circle.
+        let arc = Event::Arc {
+            loc: Loc::default(),
+            to: pos(10.0, 3e-8),
+            center: pos(0.0, 0.0),
+            plane: Plane::Xy,
+            dir: ArcDir::Ccw,
+            feed: Feed::PerMin(100.0),
+            exact_stop: false,
+        };
+        let start = Event::Rapid {
+            loc: Loc::default(),
+            to: pos(10.0, 0.0),
+            exact_stop: false,
+        };
+        let text = flatten(&[start, arc]);
+        let last = text.lines().last().unwrap_or_default();
+        assert!(last.starts_with("G1 X10. Y0."), "{text}");
+    }
+
+    #[test]
+    fn a_micron_arc_keeps_its_end_apart_from_its_start() {
+        // 0.5 µm of arc: six decimals tell the ends apart (four would not).
+        let arc = Event::Arc {
+            loc: Loc::default(),
+            to: pos(10.0, 5e-4),
+            center: pos(0.0, 0.0),
+            plane: Plane::Xy,
+            dir: ArcDir::Ccw,
+            feed: Feed::PerMin(100.0),
+            exact_stop: false,
+        };
+        let start = Event::Rapid {
+            loc: Loc::default(),
+            to: pos(10.0, 0.0),
+            exact_stop: false,
+        };
+        let text = flatten(&[start, arc]);
+        assert!(text.contains("G3 X10. Y0.0005"), "{text}");
+    }
+
+    #[test]
+    fn comments_hold_no_parentheses_or_line_breaks() {
+        assert_eq!(comment_text("pallet (A)\nclamp\tnow"), "pallet Aclampnow");
     }
 }

@@ -8,10 +8,11 @@
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::IntegerWords;
+use crate::dialect::{IntegerWords, bit};
 use crate::events::Pos;
 use crate::interpreter::{AxisWord, Interpreter};
 use crate::machine::DecimalInput;
+use crate::state::Motion;
 use vcnc_syntax::{Diagnostic, Word};
 
 /// mm per inch.
@@ -97,12 +98,36 @@ impl Interpreter<'_> {
         if !self.points.active {
             return;
         }
-        // The common case costs two mask tests: no point-less length, and
+        // The common case costs a few mask tests: no point-less length, and
         // points already seen (or none in this block either).
-        let plain = w.plain_values() & self.axis_mask;
-        if plain == 0 && (self.points.seen_point || w.pointed() & self.axis_mask == 0) {
+        let extra = self.length_letters(w);
+        let mask = self.axis_mask | extra;
+        let plain = w.plain_values() & mask;
+        if plain == 0 && (self.points.seen_point || w.pointed() & mask == 0) {
             return;
         }
+        // A code that refuses axes reads its letters its own way (G04 X is
+        // a time).
+        if w.axis_user
+            .is_some_and(|u| u.def.axes == crate::dialect::AxisWords::Refuse)
+        {
+            return;
+        }
+        // Under G16 the plane's second axis word is an angle.
+        let polar_angle = if self.state.modal.polar {
+            let [_, lb, _] = self.state.modal.plane.letters();
+            self.machine.axis_of(lb)
+        } else {
+            None
+        };
+        let inch = self.state.modal.inch;
+        let length = |mm: f64| {
+            if inch {
+                (mm / MM_PER_INCH, " in")
+            } else {
+                (mm, " mm")
+            }
+        };
         for i in 0..self.axis_words.len() {
             let Some(a) = self.axis_words.get(i).copied() else {
                 continue;
@@ -110,35 +135,68 @@ impl Interpreter<'_> {
             let Some(word) = w.get(a.letter).or_else(|| a.inc.and_then(|l| w.get(l))) else {
                 continue;
             };
-            if word.value == 0.0 {
-                continue;
+            let shown = if a.rotary || polar_angle == Some(i) {
+                (self.angle_deg(&word), "°")
+            } else {
+                length(self.axis_mm(&a, &word))
+            };
+            self.note_point(word, shown);
+        }
+        for l in b'A'..=b'Z' {
+            if extra & bit(l) != 0
+                && let Some(word) = w.get(l)
+            {
+                self.note_point(word, length(self.length_mm(&word)));
             }
-            if word.point {
-                if !self.points.seen_point {
-                    self.points.seen_point = true;
-                    if let Some(d) = self.points.first_plain.take() {
-                        self.points.warned += 1;
-                        self.emit(|_| crate::events::Event::Warning(d));
-                    }
-                }
-            } else if self.points.warned < PointStyle::MAX_WARNINGS {
-                let d = alarms::least_increment_trap(
-                    word.span,
-                    word.addr.0,
-                    word.value,
-                    self.axis_mm(&a, &word),
-                    self.state.modal.inch,
-                );
-                if self.points.seen_point {
+        }
+    }
+
+    /// Letters other than axes that are lengths in this block (warning
+    /// W101): an arc's I, J, K and R, a cycle's R and Q, G10 L10–L13's R.
+    fn length_letters(&self, w: &Words<'_>) -> u32 {
+        let mut m = 0;
+        let arc = matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw);
+        if arc && w.axis_user.is_none() {
+            m |= bit(b'I') | bit(b'J') | bit(b'K') | bit(b'R');
+        }
+        if self.state.cycle.code.is_some() {
+            m |= bit(b'R') | bit(b'Q');
+        }
+        if w.once(crate::dialect::GOp::SetData).is_some()
+            && w.get(b'L')
+                .is_some_and(|l| (10.0..=13.0).contains(&l.value))
+        {
+            m |= bit(b'R');
+        }
+        m & !self.axis_mask
+    }
+
+    /// One length word for W101: a point marks the program's style (and
+    /// releases a warning held for an earlier plain word), a plain word
+    /// in a pointed program warns. `shown` is its value and unit.
+    fn note_point(&mut self, word: Word, (shown, unit): (f64, &str)) {
+        if word.value == 0.0 {
+            return;
+        }
+        if word.point {
+            if !self.points.seen_point {
+                self.points.seen_point = true;
+                if let Some(d) = self.points.first_plain.take() {
                     self.points.warned += 1;
-                    self.warn(d);
-                } else if self.points.first_plain.is_none() {
-                    let d = match self.cur_line {
-                        Some((src, line)) => self.locate(d, src, &line),
-                        None => d,
-                    };
-                    self.points.first_plain = Some(d);
+                    self.emit(|_| crate::events::Event::Warning(d));
                 }
+            }
+        } else if self.points.warned < PointStyle::MAX_WARNINGS {
+            let d = alarms::least_increment_trap(word.span, word.addr.0, word.value, shown, unit);
+            if self.points.seen_point {
+                self.points.warned += 1;
+                self.warn(d);
+            } else if self.points.first_plain.is_none() {
+                let d = match self.cur_line {
+                    Some((src, line)) => self.locate(d, src, &line),
+                    None => d,
+                };
+                self.points.first_plain = Some(d);
             }
         }
     }

@@ -89,7 +89,8 @@ impl Interpreter<'_> {
             self.state.refresh_origin(&self.tables);
         }
         let (allowed, ext) = self.allowed_letters(w);
-        w.check_used(allowed, ext)?;
+        w.check_used(allowed, ext)
+            .map_err(|d| cancelled_cycle_hint(d, w))?;
         if self.points.active {
             self.note_points(w);
         }
@@ -271,7 +272,9 @@ impl Interpreter<'_> {
             _ => {
                 self.state.feed = f.value;
                 let mm_per_min = f.value * self.unit_mm() * self.state.feed_factor;
-                if !self.state.modal.per_rev && mm_per_min > self.max_feed {
+                // Under G93 F is no rate: the move checks its own.
+                let rate = !self.state.modal.per_rev && !self.state.modal.inverse_time;
+                if rate && mm_per_min > self.max_feed {
                     self.warn(alarms::feed_clamped(f.span, mm_per_min, self.max_feed));
                 }
             }
@@ -350,8 +353,9 @@ impl Interpreter<'_> {
         };
         let max_rpm = self.machine.params.max_spindle_rpm;
         if max_rpm > 0.0 && rpm > max_rpm {
+            // The warning points at the speed asked for when there is one.
             self.warn(alarms::spindle_clamped(
-                why.unwrap_or(w.first),
+                s_word.map(|s| s.span).or(why).unwrap_or(w.first),
                 rpm,
                 max_rpm,
             ));
@@ -603,4 +607,17 @@ fn plane_offsets(plane: Plane) -> u32 {
 /// The bit of an extended address in `Words::ext_present`.
 fn ext_bit(a: Addr) -> u8 {
     a.extended_index().map_or(0, |i| 1 << i)
+}
+
+/// E203 in a block with a cycle code and a group-01 code: the help says
+/// that the group-01 code cancelled the cycle (Syntec 1.2.31).
+#[cold]
+fn cancelled_cycle_hint(mut d: Diagnostic, w: &Words<'_>) -> Diagnostic {
+    if let (Some(cycle), Some(_)) = (w.group(Group::Cycle), w.group(Group::Motion))
+        && matches!(cycle.def.op, GOp::Cycle(_))
+        && d.code.as_str() == "E203"
+    {
+        d.help = "a group-01 code (G00–G03) cancels the canned cycle in its block (Syntec 1.2.31): remove it to drill, or cancel the cycle in a block of its own".to_string();
+    }
+    d
 }

@@ -379,11 +379,15 @@ impl<'b> Words<'b> {
 
     /// Letters read by the one-shot and M codes of this block.
     pub fn code_letters(&self) -> u32 {
+        // A cycle code beside a group-01 code is cancelled by it (Syntec
+        // 1.2.31): its words are read by nothing.
+        let cancelled = self.group(Group::Motion).is_some();
         let g = self
             .once
             .iter()
             .chain(self.modal.iter())
             .flatten()
+            .filter(|a| !(cancelled && a.def.group == Group::Cycle))
             .fold(0, |m, a| m | a.def.letters);
         self.m.iter().flatten().fold(g, |m, a| m | a.def.letters)
     }

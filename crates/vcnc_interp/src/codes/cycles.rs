@@ -34,6 +34,9 @@ const EIA_BACK_OFF_MM: f64 = 0.254;
 /// Most holes one block may drill (a K count or a pattern).
 const MAX_HOLES: u64 = 10_000;
 
+/// Most pecks one block may ask for over all its holes.
+const MAX_PECKS: u64 = 100_000;
+
 /// Below this two levels or points are the same, mm.
 pub(crate) const SAME_MM: f64 = 1e-6;
 
@@ -100,9 +103,14 @@ impl Interpreter<'_> {
     /// Step 1 for the cycle codes: a cycle code enters the cycle mode (the
     /// initial level is latched when it is entered from the cancelled
     /// state); otherwise G80 and the group-01 codes cancel it and its data.
+    /// A group-01 code in the block of a cycle code wins (1.2.31 condition
+    /// 4: the cycle "will be cancel"): the block is an ordinary move.
     pub(crate) fn cycle_modes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let code = w.group(Group::Cycle);
-        if let Some(GOp::Cycle(c)) = code.map(|c| c.def.op) {
+        let motion = w.group(Group::Motion).is_some();
+        if let Some(GOp::Cycle(c)) = code.map(|c| c.def.op)
+            && !motion
+        {
             if self.state.cycle.code.is_none() {
                 let axes = self.cycle_axes(code.map_or(w.first, |c| c.span))?;
                 self.state.cycle = CycleData {
@@ -111,7 +119,7 @@ impl Interpreter<'_> {
                 };
             }
             self.state.cycle.code = Some(c);
-        } else if w.group(Group::Motion).is_some() || code.is_some() {
+        } else if motion || code.is_some() {
             self.state.cycle = CycleData::OFF;
         }
         Ok(())
@@ -154,6 +162,8 @@ impl Interpreter<'_> {
             return self.cycle_ready(cmd, w.get(drill_letter)).map(|_| ());
         }
         let c = self.cycle_ready(cmd, w.get(drill_letter))?;
+        self.spindle_ready(c, cmd)?;
+        self.check_pecks(c, count.into(), cmd)?;
         let suspended = self.suspend_comp()?;
         for _ in 0..count {
             let mut goal = self.target(w, self.state.modal.incremental);
@@ -220,7 +230,7 @@ impl Interpreter<'_> {
     }
 
     /// Checks that the stored data can drill: Z and R known, Z below R (above
-    /// for G87), Q for the pecking cycles, the spindle for tapping.
+    /// for G87), Q for the pecking cycles.
     fn cycle_ready(&self, cmd: Span, z_word: Option<Word>) -> Result<Cycle, Diagnostic> {
         let data = self.state.cycle;
         let c = data
@@ -247,6 +257,14 @@ impl Interpreter<'_> {
                 upward,
             ));
         }
+        // EIA G82/G89: the dwell is part of the cycle's data (§2).
+        if self.eia() && matches!(c, Cycle::G82 | Cycle::G89) && data.p_s.is_none() {
+            return Err(alarms::needs_word(
+                cmd,
+                c.as_str(),
+                "P (the dwell at the hole bottom)",
+            ));
+        }
         if self.pecks_with_q(c) && data.q.is_none_or(|q| q <= 0.0) {
             return Err(alarms::needs_word(
                 cmd,
@@ -254,6 +272,12 @@ impl Interpreter<'_> {
                 "Q (the depth of each peck)",
             ));
         }
+        Ok(c)
+    }
+
+    /// Checks that the spindle turns the way tapping cycle `c` needs
+    /// (only when it drills: K0 stores the data with the spindle stopped).
+    fn spindle_ready(&self, c: Cycle, cmd: Span) -> Result<(), Diagnostic> {
         let turning =
             matches!(self.state.spindle, SpindleDir::Cw | SpindleDir::Ccw) && self.state.rpm > 0.0;
         let wanted = match c {
@@ -269,7 +293,24 @@ impl Interpreter<'_> {
             let cw = dir.map(|d| d == SpindleDir::Cw);
             return Err(alarms::tapping_spindle(cmd, c.as_str(), cw));
         }
-        Ok(c)
+        Ok(())
+    }
+
+    /// Alarms when `holes` holes of cycle `c` would peck more than
+    /// `MAX_PECKS` times: a tiny Q over a deep hole would otherwise hold
+    /// millions of moves until the block succeeds.
+    fn check_pecks(&self, c: Cycle, holes: u64, cmd: Span) -> Result<(), Diagnostic> {
+        let data = self.state.cycle;
+        let pecking = self.pecks_with_q(c) || (c == Cycle::G84 && !self.eia());
+        let (Some(q), Some(z)) = (data.q.filter(|q| pecking && *q > 0.0), data.z) else {
+            return Ok(());
+        };
+        let r = data.r.unwrap_or(data.initial);
+        let per_hole = ((r - z).abs() / q).ceil();
+        if per_hole * holes as f64 > MAX_PECKS as f64 {
+            return Err(alarms::too_many_pecks(cmd, MAX_PECKS));
+        }
+        Ok(())
     }
 
     /// A step of a cycle or pocket: a move to program point `p` unless the
@@ -383,6 +424,11 @@ impl Interpreter<'_> {
                 return Ok(());
             }
             Cycle::G88 => {
+                // The way out is fed with the spindle stopped (1.2.41
+                // step 6): per revolution it cannot move.
+                if matches!(feed, Feed::PerRev(_)) {
+                    return Err(alarms::per_rev_spindle_stopped(cmd));
+                }
                 s.feed(self, zz, feed)?;
                 self.cycle_dwell(dwell);
                 self.cycle_spindle(SpindleDir::Stop);
@@ -621,6 +667,7 @@ impl Interpreter<'_> {
     /// pattern's positions, in the order of `docs/cycles-spec.md` §8.
     pub(crate) fn pattern(&mut self, op: GOp, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let c = self.cycle_ready(cmd, None)?;
+        self.spindle_ready(c, cmd)?;
         let axes = self.cycle_axes(cmd)?;
         let (x, y) = {
             let mut goal = self.target(w, self.state.modal.incremental);
@@ -628,6 +675,7 @@ impl Interpreter<'_> {
             (goal.prog.get(axes.a), goal.prog.get(axes.b))
         };
         let holes = self.pattern_holes(op, w, cmd, (x, y))?;
+        self.check_pecks(c, holes.len() as u64, cmd)?;
         let suspended = self.suspend_comp()?;
         for (a, b) in holes {
             self.hole(c, axes, a, b, w, cmd)?;

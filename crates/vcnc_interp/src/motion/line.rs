@@ -101,7 +101,7 @@ impl Interpreter<'_> {
     /// given in every cutting block; the feed is the path length times F
     /// (clamped to the machine's maximum).
     pub(crate) fn inverse_time_feed(
-        &self,
+        &mut self,
         w: &Words<'_>,
         cmd: Span,
         length_mm: f64,
@@ -112,7 +112,17 @@ impl Interpreter<'_> {
         if f.value <= 0.0 {
             return Err(alarms::zero_feed(f.span));
         }
-        Ok(Feed::PerMin((length_mm * f.value).min(self.max_feed)))
+        let rate = length_mm * f.value;
+        if rate > self.max_feed {
+            self.warn(alarms::feed_clamped(f.span, rate, self.max_feed));
+        }
+        // A move of no length takes no time: any feed will do, and a
+        // zero feed would stall a planner.
+        Ok(Feed::PerMin(if rate > 0.0 {
+            rate.min(self.max_feed)
+        } else {
+            self.max_feed
+        }))
     }
 
     /// G31: moves like G01 until the skip signal of the machine file fires.
