@@ -302,6 +302,11 @@ fn summary_json(s: &Summary, diameter: bool) -> Value {
         "spindle_rpm": s.spindle_rpm.map(|(lo, hi)| json!([lo, hi])),
         "waits": s.waits,
         "diameter_programming": diameter,
+        "unset_variables": s.unset_variables.iter().map(|v| json!({
+            "name": &*v.name,
+            "line": v.line,
+            "file": v.file.as_deref(),
+        })).collect::<Vec<_>>(),
     })
 }
 

@@ -247,6 +247,17 @@ pub struct FrameInfo {
     pub tool_offset: Pos,
 }
 
+/// A variable a macro program read before anything set it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnsetVariable {
+    /// `#101`, `@5`.
+    pub name: Arc<str>,
+    /// The line of its first read.
+    pub line: u64,
+    /// The file of that line, when not the main program.
+    pub file: Option<Arc<str>>,
+}
+
 /// One canonical event.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -437,6 +448,25 @@ pub enum Event {
         /// The allowed deviation at corners, mm.
         tolerance_mm: Option<f64>,
     },
+    /// A message for the operator from a macro program: Fanuc `#3006`
+    /// (`stop`: the program waits for cycle start), Syntec `MSG()` (no
+    /// stop).
+    Message {
+        /// Source.
+        loc: Loc,
+        /// The text.
+        text: Arc<str>,
+        /// Whether the program stops until the operator restarts it.
+        stop: bool,
+    },
+    /// The variables the program read while they had never been set, sent
+    /// once before the `end` (or the alarm) when there are any.
+    UnsetVariables {
+        /// Where the run ended.
+        loc: Loc,
+        /// Each variable and where it was first read.
+        variables: Arc<[UnsetVariable]>,
+    },
     /// A warning: the run goes on (`vcnc --deny-warnings` fails it).
     Warning(Diagnostic),
     /// An alarm; always the last event.
@@ -467,6 +497,8 @@ impl Event {
             Event::Junction { .. } => "junction",
             Event::Aux { .. } => "aux",
             Event::Smoothing { .. } => "smoothing",
+            Event::Message { .. } => "message",
+            Event::UnsetVariables { .. } => "unset_variables",
             Event::Warning(_) => "warning",
             Event::Alarm(_) => "alarm",
         }
@@ -494,7 +526,9 @@ impl Event {
             | Event::Wait { loc, .. }
             | Event::Junction { loc, .. }
             | Event::Aux { loc, .. }
-            | Event::Smoothing { loc, .. } => Some(loc),
+            | Event::Smoothing { loc, .. }
+            | Event::Message { loc, .. }
+            | Event::UnsetVariables { loc, .. } => Some(loc),
             Event::Warning(_) | Event::Alarm(_) => None,
         }
     }

@@ -18,7 +18,7 @@ mod span;
 pub use diagnostic::{Code, Diagnostic};
 pub use events::{
     ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, PathMode, Plane, Pos,
-    SpindleDir, StopCode, WaitReason,
+    SpindleDir, StopCode, UnsetVariable, WaitReason,
 };
 pub use machine::Machine;
 pub use sink::{NullSink, Sink, VecSink};

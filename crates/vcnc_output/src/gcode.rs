@@ -212,6 +212,15 @@ impl<W: Write> GcodeSink<W> {
             Event::Aux {
                 code, description, ..
             } => format!("(M{code}: {})", description.replace(['(', ')'], "")),
+            // A macro's message: a stop waits for cycle start (M0).
+            Event::Message { text, stop, .. } => {
+                let text = text.replace(['(', ')'], "");
+                if *stop {
+                    format!("M0 (message: {text})")
+                } else {
+                    format!("(message: {text})")
+                }
+            }
             Event::Warning(d) => format!(
                 "(warning {} line {}: {})",
                 d.code.as_str(),
