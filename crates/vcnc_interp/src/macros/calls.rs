@@ -201,12 +201,12 @@ impl Interpreter<'_> {
             return Value::Double(w.value);
         }
         let rotary = matches!(letter, b'A' | b'B' | b'C');
-        let increment = if rotary || !self.state.modal.inch {
-            0.001
+        let per_unit = if rotary || !self.state.modal.inch {
+            1000.0
         } else {
-            0.0001
+            10_000.0
         };
-        Value::Double(w.value * increment)
+        Value::Double(w.value / per_unit)
     }
 
     /// The locals a call starts with: each argument in its local.

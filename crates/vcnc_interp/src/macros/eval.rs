@@ -492,14 +492,15 @@ impl Interpreter<'_> {
             }
             _ => false,
         };
-        let increment = if rotary || !self.state.modal.inch {
-            0.001
+        let per_unit = if rotary || !self.state.modal.inch {
+            1000.0
         } else {
-            0.0001
+            10_000.0
         };
-        // Longs here come from program values: far below 2^53.
+        // Longs here come from program values: far below 2^53. A division
+        // rounds once (100 / 1000 is the double nearest 0.1).
         #[allow(clippy::cast_precision_loss)]
-        real(i as f64 * increment, span)
+        real(i as f64 / per_unit, span)
     }
 
     /// GETARG(letter): the argument the current macro call was given.

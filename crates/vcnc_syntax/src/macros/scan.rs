@@ -62,6 +62,9 @@ impl<'a> Scan<'a> {
                     self.pos += 2;
                     loop {
                         if self.pos + 1 >= self.end {
+                            // Stay before the comment: a caller that ignores
+                            // this error (`here`) must not skip the text.
+                            self.pos = open;
                             return Err(diag::unterminated_block_comment(Span::new(
                                 open,
                                 open + 2,
