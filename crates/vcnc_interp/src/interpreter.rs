@@ -137,6 +137,11 @@ pub struct Interpreter<'a> {
     pub(crate) max_feed: f64,
     /// Variables, compiled macro statements, macro calls.
     pub(crate) macros: Box<crate::macros::Macros>,
+    /// Checked for every block, so kept out of the box: the dialect reads
+    /// `%@MACRO` files, and a macro statement has run (the cache is worth
+    /// a look before lexing).
+    pub(crate) macro_files: bool,
+    pub(crate) macro_active: bool,
 }
 
 impl<'a> Interpreter<'a> {
@@ -168,6 +173,8 @@ impl<'a> Interpreter<'a> {
             spindle_warned: false,
             max_feed: machine.max_feed_mm_per_min(),
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
+            macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
+            macro_active: false,
         }
     }
 
@@ -230,9 +237,7 @@ impl<'a> Interpreter<'a> {
         loop {
             let src = self.flow.frames.last().map_or(0, |f| f.source);
             // Syntec `%@MACRO` files are read statement by statement.
-            if self.macros.rules.files != crate::dialect::MacroFiles::None
-                && self.is_macro_file(src)
-            {
+            if self.macro_files && self.is_macro_file(src) {
                 match self.run_macro_file(src, &mut col, &mut block, store, sink)? {
                     Some(end) => return Ok(end),
                     None => continue,
@@ -251,60 +256,61 @@ impl<'a> Interpreter<'a> {
                 let start = i;
                 let depth = self.flow.frames.len();
                 self.cur_line = Some((src, line));
-                // A macro statement compiled on an earlier pass runs as is.
-                let (step, first) =
-                    match self.macro_cached(src, &line, &mut i, &mut block, store, sink)? {
-                        Some(ran) => ran,
-                        None => {
-                            // Lex straight from the reader's buffer: no copy of the line.
-                            let lexed = match self.flow.source(src) {
-                                Some(s) if i < s.reader.bytes(&line).len() => {
-                                    lex_block(s.reader.bytes(&line), i, &lex, &mut block)
-                                }
-                                _ => break,
-                            };
-                            let located = |it: &mut Self, d| {
-                                let d = it.locate(d, src, &line);
-                                it.semicolon_hint(d, src, &line, start)
-                            };
-                            match lexed {
-                                Ok(n) => i = n,
-                                Err(d) => {
-                                    let ran = self.macro_block(
-                                        src, &line, start, d, &mut i, &mut block, store, sink,
-                                    );
-                                    match ran {
-                                        Ok(ran) => {
-                                            match self.after_block(
-                                                ran.0, depth, line, ran.1, &mut col, sink,
-                                            )? {
-                                                After::Next => continue,
-                                                After::Jumped => break,
-                                                After::Return(end) => return Ok(end),
-                                            }
+                // A macro statement compiled on an earlier pass runs as is
+                // (a program that never showed macro syntax skips the look).
+                let cached = if self.macro_active {
+                    self.macro_cached(src, &line, &mut i, &mut block, store, sink)?
+                } else {
+                    None
+                };
+                let (step, first) = match cached {
+                    Some(ran) => ran,
+                    None => {
+                        // Lex straight from the reader's buffer: no copy of the line.
+                        let lexed = match self.flow.source(src) {
+                            Some(s) if i < s.reader.bytes(&line).len() => {
+                                lex_block(s.reader.bytes(&line), i, &lex, &mut block)
+                            }
+                            _ => break,
+                        };
+                        match lexed {
+                            Ok(n) => i = n,
+                            Err(d) => {
+                                let ran = self.macro_block(
+                                    src, &line, start, d, &mut i, &mut block, store, sink,
+                                );
+                                match ran {
+                                    Ok(ran) => {
+                                        match self.after_block(
+                                            ran.0, depth, line, ran.1, &mut col, sink,
+                                        )? {
+                                            After::Next => continue,
+                                            After::Jumped => break,
+                                            After::Return(end) => return Ok(end),
                                         }
-                                        Err(d) => return Err(located(self, d)),
                                     }
+                                    Err(d) => return Err(self.located(d, src, &line, start)),
                                 }
                             }
-                            if block.is_empty() {
-                                continue;
-                            }
-                            let here = Cursor {
-                                offset: line.offset,
-                                line: line.number,
-                                col: clamp_u32(start),
-                            };
-                            let next = Cursor {
-                                col: clamp_u32(i),
-                                ..here
-                            };
-                            let step = self
-                                .block(&block, here, next, store, sink)
-                                .map_err(|d| located(self, d))?;
-                            (step, block.first_span())
                         }
-                    };
+                        if block.is_empty() {
+                            continue;
+                        }
+                        let here = Cursor {
+                            offset: line.offset,
+                            line: line.number,
+                            col: clamp_u32(start),
+                        };
+                        let next = Cursor {
+                            col: clamp_u32(i),
+                            ..here
+                        };
+                        let step = self
+                            .block(&block, here, next, store, sink)
+                            .map_err(|d| self.located(d, src, &line, start))?;
+                        (step, block.first_span())
+                    }
+                };
                 match self.after_block(step, depth, line, first, &mut col, sink)? {
                     After::Next => {}
                     After::Jumped => break,
@@ -419,6 +425,14 @@ impl<'a> Interpreter<'a> {
         d
     }
 
+    /// A diagnostic of the block at `start` of `line`, placed, with the
+    /// `;` hint when it applies.
+    #[cold]
+    fn located(&mut self, d: Diagnostic, src: usize, line: &Line, start: usize) -> Diagnostic {
+        let d = self.locate(d, src, line);
+        self.semicolon_hint(d, src, line, start)
+    }
+
     /// An alarm in the text after a `;` on the same line: the dialect ends
     /// the block there, so a grbl-style comment was read as words. The help
     /// says so.
@@ -449,8 +463,27 @@ impl<'a> Interpreter<'a> {
         d
     }
 
+    /// A block the macro front end evaluated: the same as [`block`], out
+    /// of line so that the run loop keeps its own inlined copy.
+    ///
+    /// [`block`]: Self::block
+    #[inline(never)]
+    pub(crate) fn macro_words_block<S: Sink>(
+        &mut self,
+        block: &Block,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        self.block(block, here, next, store, sink)
+    }
+
     /// One non-empty block: block delete, tape marks, headers, then execution.
-    pub(crate) fn block<S: Sink>(
+    /// Inlined into the run loop (its hot path); macro word blocks reach it
+    /// through [`macro_words_block`](Self::macro_words_block).
+    #[inline(always)]
+    fn block<S: Sink>(
         &mut self,
         block: &Block,
         here: Cursor,
@@ -543,6 +576,7 @@ impl<'a> Interpreter<'a> {
 
     /// Counts an executed block (or macro statement) against the runaway
     /// budget, which grows with the program text read.
+    #[inline]
     pub(crate) fn count_executed(&mut self, span: Span) -> Result<(), Diagnostic> {
         self.executed += 1;
         if self.executed

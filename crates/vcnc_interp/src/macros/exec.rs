@@ -214,11 +214,17 @@ impl Interpreter<'_> {
     }
 
     fn link_to(&self, c: &Compiled, src: usize) -> Result<Cursor, Diagnostic> {
-        match self.link(c, src)? {
-            Link::Exit(to) | Link::Back(to) | Link::Skip(to) => Ok(to),
-            Link::If(chain) => Ok(chain.end),
-            Link::Case(table) => Ok(table.end),
+        if let Some(to) = c.target.get() {
+            return Ok(to);
         }
+        let to = match self.link(c, src)? {
+            Link::Exit(to) | Link::Back(to) | Link::Skip(to) => to,
+            Link::If(chain) => chain.end,
+            Link::Case(table) => table.end,
+        };
+        // Links never change once found: the next pass jumps at once.
+        c.target.set(Some(to));
+        Ok(to)
     }
 
     /// Jumps where the statement's link says (a loop's end or head, a

@@ -46,6 +46,8 @@ pub(crate) struct Compiled {
     pub next: Cursor,
     /// The lines its text came from.
     pub lines: LineMap,
+    /// Where its loop or branch link jumps, once looked up.
+    pub target: std::cell::Cell<Option<Cursor>>,
 }
 
 impl Compiled {
@@ -123,9 +125,6 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Option<(Step, Span)>, Diagnostic> {
-        if !self.macros.active {
-            return Ok(None);
-        }
         let k: Key = (self.source_id(src), line.offset, vcnc_syntax::clamp_u32(*i));
         let Some(c) = self.macros.cached(k) else {
             return Ok(None);
@@ -178,10 +177,11 @@ impl Interpreter<'_> {
                 ..here
             },
             lines: Box::new([(0, *line)]),
+            target: std::cell::Cell::new(None),
         });
         let id = self.source_id(src);
         self.macros.remember(key(id, here), &c);
-        self.macros.active = true;
+        self.macro_active = true;
         // Before the first macro statement of a program runs, its loops are
         // paired (the scan moves the reader: the statement then re-reads).
         self.ensure_structure(src)?;
@@ -270,12 +270,12 @@ impl Interpreter<'_> {
                 if block.is_empty() {
                     return Ok(Step::Next);
                 }
-                self.block(block, c.here, c.next, store, sink)
+                self.macro_words_block(block, c.here, c.next, store, sink)
             }
             StmtKind::Percent => {
                 block.clear();
                 block.percent = true;
-                self.block(block, c.here, c.next, store, sink)
+                self.macro_words_block(block, c.here, c.next, store, sink)
             }
             _ => self.macro_statement(c, src, store, sink),
         }
@@ -498,6 +498,7 @@ impl Interpreter<'_> {
                     here,
                     next,
                     lines,
+                    target: std::cell::Cell::new(None),
                 };
                 return Err(self.locate_compiled(d, src, &c));
             }
@@ -508,6 +509,7 @@ impl Interpreter<'_> {
             here,
             next,
             lines,
+            target: std::cell::Cell::new(None),
         })))
     }
 }

@@ -111,9 +111,6 @@ pub(crate) struct Macros {
     pub vars: Vars,
     /// Compiled statements by where they start.
     pub cache: FastMap<Key, Rc<Compiled>>,
-    /// Whether any macro statement has run (the ISO path then looks into
-    /// the cache before lexing).
-    pub active: bool,
     /// The program has used variables, so an M99 in the main program may
     /// end its own loop (see `codes/calls.rs`).
     pub used: bool,
@@ -149,7 +146,6 @@ impl Macros {
             rules,
             vars: Vars::new(rules),
             cache: FastMap::default(),
-            active: false,
             used: false,
             structure: structure::Structure::default(),
             macro_files: FastMap::default(),

@@ -616,6 +616,7 @@ impl Interpreter<'_> {
                                             ..here
                                         },
                                         lines: Box::new([(0, line)]),
+                                        target: std::cell::Cell::new(None),
                                     }));
                                 }
                                 i = next;

@@ -166,33 +166,45 @@ impl Vars {
             .unwrap_or_default()
     }
 
-    fn local_index(&mut self, level: u32, i: usize) -> Option<usize> {
+    /// Makes the main program's level on first use.
+    #[cold]
+    fn first_level(&mut self) {
         if self.locals.is_empty() {
             self.locals.resize(self.size, Value::Null);
             self.local_set.resize(self.words, 0);
         }
-        let at = usize::try_from(level).ok()?.checked_mul(self.size)? + i;
-        (at < self.locals.len()).then_some(at)
     }
 
     /// Reads a local: its value and whether it was ever set.
     #[inline]
     pub fn local(&mut self, level: u32, i: usize) -> (Value, bool) {
-        let Some(at) = self.local_index(level, i) else {
-            return (Value::Null, false);
-        };
-        let set = bit(&self.local_set, at / self.size * self.words * 64 + i);
-        (self.locals[at], set)
+        let level = level as usize;
+        let at = level * self.size + i;
+        if at >= self.locals.len() {
+            self.first_level();
+            if at >= self.locals.len() {
+                return (Value::Null, false);
+            }
+        }
+        (
+            self.locals[at],
+            bit(&self.local_set, level * self.words * 64 + i),
+        )
     }
 
     /// Writes a local.
     #[inline]
     pub fn set_local(&mut self, level: u32, i: usize, v: Value) {
-        if let Some(at) = self.local_index(level, i) {
-            self.locals[at] = v;
-            let b = at / self.size * self.words * 64 + i;
-            set_bit(&mut self.local_set, b);
+        let level = level as usize;
+        let at = level * self.size + i;
+        if at >= self.locals.len() {
+            self.first_level();
+            if at >= self.locals.len() {
+                return;
+            }
         }
+        self.locals[at] = v;
+        set_bit(&mut self.local_set, level * self.words * 64 + i);
     }
 
     fn ensure_commons(&mut self) {
