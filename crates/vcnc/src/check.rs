@@ -70,6 +70,11 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
         single_file &= !path.is_dir();
         inputs.extend(found.into_iter().map(Input::File));
     }
+    if args.opts.variables.is_some() && inputs.len() > 1 {
+        return Err(
+            "--variables keeps the variables of one program: check one program at a time".into(),
+        );
+    }
     if single_file && args.format == CheckFormat::Text {
         return detailed(args, &s, &inputs[0]);
     }

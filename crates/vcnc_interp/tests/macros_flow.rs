@@ -10,6 +10,7 @@ use std::io;
 use vcnc_interp::{
     Dialect, EndCode, Event, Interpreter, Machine, Options, Outcome, ProgramStore, VecSink,
 };
+use vcnc_syntax::macros::Value;
 use vcnc_syntax::{Code, MemSource, TextSource};
 
 /// Programs by number (`O0010`) and by name (`G0200`, `M0123`).
@@ -525,16 +526,16 @@ fn kept_variables_survive_between_runs() {
     let dialect = Dialect::fanuc();
     let mut interp = Interpreter::new(&machine, &dialect, Options::default());
     let mut before = BTreeMap::new();
-    before.insert("#500".to_string(), 41.0);
+    before.insert("#500".to_string(), Value::Double(41.0));
     interp.restore_variables(&before).unwrap();
     let out = interp.run_str("#500 = #500 + 1\n#100 = 5\nM30\n", &mut VecSink::default());
     assert!(matches!(out, Outcome::Ended(_)));
     let kept = interp.kept_variables();
-    assert_eq!(kept.get("#500"), Some(&42.0));
+    assert_eq!(kept.get("#500"), Some(&Value::Double(42.0)));
     // #100 is common but not kept.
     assert_eq!(kept.get("#100"), None);
     let mut bad = BTreeMap::new();
-    bad.insert("#100".to_string(), 1.0);
+    bad.insert("#100".to_string(), Value::Double(1.0));
     assert!(interp.restore_variables(&bad).is_err());
 }
 

@@ -238,7 +238,7 @@ impl crate::interpreter::Interpreter<'_> {
 
     /// The variables kept between runs (Fanuc #500–#999; Syntec #401–#999,
     /// @656–@1999) that hold a number, by name.
-    pub fn kept_variables(&self) -> std::collections::BTreeMap<String, f64> {
+    pub fn kept_variables(&self) -> std::collections::BTreeMap<String, Value> {
         self.macros.vars.kept()
     }
 
@@ -248,7 +248,7 @@ impl crate::interpreter::Interpreter<'_> {
     /// [`run`]: crate::Interpreter::run
     pub fn restore_variables(
         &mut self,
-        values: &std::collections::BTreeMap<String, f64>,
+        values: &std::collections::BTreeMap<String, Value>,
     ) -> Result<(), String> {
         self.macros.vars.restore(values)
     }

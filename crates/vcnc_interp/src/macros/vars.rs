@@ -292,18 +292,18 @@ impl Vars {
     }
 
     /// The kept variables that hold a number, by name (`#500`, `@700`).
-    pub fn kept(&self) -> BTreeMap<String, f64> {
+    pub fn kept(&self) -> BTreeMap<String, Value> {
         let mut out = BTreeMap::new();
         for (i, v) in self.commons.iter().enumerate() {
             let n = u32::try_from(i).unwrap_or(0);
-            if let (true, Some(x)) = (self.retained(VarKind::Hash, n), v.number()) {
-                out.insert(format!("#{n}"), x);
+            if self.retained(VarKind::Hash, n) && *v != Value::Null {
+                out.insert(format!("#{n}"), *v);
             }
         }
         for (i, v) in self.globals.iter().enumerate() {
             let n = u32::try_from(i).unwrap_or(0);
-            if let (true, Some(x)) = (self.retained(VarKind::At, n), v.number()) {
-                out.insert(format!("@{n}"), x);
+            if self.retained(VarKind::At, n) && *v != Value::Null {
+                out.insert(format!("@{n}"), *v);
             }
         }
         out
@@ -311,7 +311,7 @@ impl Vars {
 
     /// Sets kept variables from a previous run; `Err` names one that is
     /// not kept on this controller.
-    pub fn restore(&mut self, values: &BTreeMap<String, f64>) -> Result<(), String> {
+    pub fn restore(&mut self, values: &BTreeMap<String, Value>) -> Result<(), String> {
         for (name, v) in values {
             let (kind, digits) = match name.as_bytes().first() {
                 Some(b'#') => (VarKind::Hash, &name[1..]),
@@ -321,12 +321,23 @@ impl Vars {
             let n: u32 = digits
                 .parse()
                 .map_err(|_| format!("{name} is not a variable name (#500, @700)"))?;
-            if !self.retained(kind, n) || !v.is_finite() {
+            if !self.retained(kind, n) {
                 return Err(format!(
                     "{name} is not a variable this controller keeps between runs"
                 ));
             }
-            let value = Value::Double(*v);
+            let value = match *v {
+                Value::Double(x) if !x.is_finite() => {
+                    return Err(format!("{name}: {x} is not a number"));
+                }
+                // Macro B has no Longs.
+                Value::Long(i) if self.table == VarTable::Fanuc => {
+                    // Kept values are program values: far below 2^53.
+                    #[allow(clippy::cast_precision_loss)]
+                    Value::Double(i as f64)
+                }
+                v => v,
+            };
             match self.slot(kind, n) {
                 Slot::Common(i) => self.set_common(i, value),
                 Slot::Global(g) => self.set_global(g, value),
