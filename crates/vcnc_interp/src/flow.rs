@@ -128,8 +128,9 @@ pub(crate) struct Flow {
     pub loops: HashMap<(usize, u64, u32), u32>,
     /// Location of the block being executed.
     pub loc: Loc,
-    /// The id the next installed source gets.
-    next_id: u32,
+    /// The id the next installed source gets (it changes whenever a
+    /// source is installed, so it also tells that the set changed).
+    pub next_id: u32,
 }
 
 impl Flow {

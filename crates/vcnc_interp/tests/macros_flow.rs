@@ -568,3 +568,88 @@ fn unset_variables_are_reported_once_before_the_end() {
     assert!(matches!(r.events[n - 2], Event::UnsetVariables { .. }));
     assert!(matches!(r.events[n - 1], Event::End { .. }));
 }
+
+#[test]
+fn macro_b_statements_share_a_line_and_take_block_delete() {
+    // `;` ends a block: three statements on one line; `/` skips one under
+    // block delete (off here: it runs).
+    let p = "#1 = 1; #2 = #1 + 1 ; #3 = #2 * 2\n/#4 = 9\n#[#1 + 9] = 5\nM30\n";
+    let r = run(
+        "fanuc",
+        p,
+        Store::default(),
+        &["#1", "#2", "#3", "#4", "#10"],
+    );
+    ended(&r);
+    assert_eq!(
+        r.values,
+        vec![Some(1.0), Some(2.0), Some(4.0), Some(9.0), Some(5.0)]
+    );
+}
+
+#[test]
+fn g65_arguments_may_be_expressions() {
+    let sub = "O9008\n#100 = #24 + #25\nM99\n";
+    let p = "#1 = 2.\nG65 P9008 X#1 Y[#1 * 3]\nM30\n";
+    let r = run("fanuc", p, Store::default().with(9008, sub), &["#100"]);
+    ended(&r);
+    assert_eq!(r.values, vec![Some(8.0)]);
+}
+
+#[test]
+fn syntec_indirect_variables_spellings_and_labels() {
+    // @[#1] and #[#1 + 1] write indirectly; `=` assigns like `:=`; ENDIF,
+    // ENDWHILE, ENDFOR and ENDCASE are accepted; a case label may carry a
+    // statement on its line; ELSEIF chains.
+    let p = "%@MACRO\n#1 := 5;\n@[#1] := 50;\n#[#1 + 1] := 60;\n#7 = 70;\n\
+             IF #1 = 1 THEN\n@1 := 1;\nELSEIF #1 = 2 THEN\n@1 := 2;\nELSEIF #1 = 5 THEN\n@1 := 5;\nELSE\n@1 := 9;\nENDIF;\n\
+             #8 := 0;\nWHILE #8 < 3 DO\n#8 := #8 + 1;\nENDWHILE;\n\
+             FOR #9 := 1 TO 2 DO\nENDFOR;\n\
+             CASE #1 OF\n5: @2 := 55;\nELSE\n@2 := 0;\nENDCASE;\nM30;\n";
+    let r = run(
+        "syntec",
+        p,
+        Store::default(),
+        &["@5", "#6", "#7", "@1", "#8", "#9", "@2"],
+    );
+    ended(&r);
+    assert_eq!(
+        r.values,
+        vec![
+            Some(50.0),
+            Some(60.0),
+            Some(70.0),
+            Some(5.0),
+            Some(3.0),
+            Some(3.0),
+            Some(55.0)
+        ]
+    );
+}
+
+#[test]
+fn syntec_long_registers_hold_longs() {
+    // @401–@655 mirror PLC R registers: a Double written there is truncated.
+    let p = "%@MACRO\n@401 := 7.9;\n@1 := @401 / 2;\nM30;\n";
+    let r = run("syntec", p, Store::default(), &["@401", "@1"]);
+    ended(&r);
+    // 7 / 2 = 3 (Long division).
+    assert_eq!(r.values, vec![Some(7.0), Some(3.0)]);
+}
+
+#[test]
+fn syntec_m98_shares_locals_and_m198_too() {
+    // The corpus's CALL_RUN programs: M98 and M198 subprograms write the
+    // caller's #27, G65 gets its own.
+    let sub = "%@MACRO\n#27 := 200;\nM99;\n";
+    for (call, want) in [
+        ("M98 P2001", 200.0),
+        ("M198 P2001", 200.0),
+        ("G65 P2001", 100.0),
+    ] {
+        let p = format!("%@MACRO\n#27 := 100;\n{call};\n@1 := #27;\nM30;\n");
+        let r = run("syntec", &p, Store::default().with(2001, sub), &["@1"]);
+        ended(&r);
+        assert_eq!(r.values, vec![Some(want)], "{call}");
+    }
+}

@@ -87,6 +87,18 @@ impl Interpreter<'_> {
         if self.macros.rules.files == MacroFiles::None {
             return false;
         }
+        // Asked before every line: the answer for the same source, with no
+        // source installed since, is the last one.
+        let (last_src, generation, answer) = self.macros.last_file;
+        if last_src == src && generation == self.flow.next_id {
+            return answer;
+        }
+        let answer = self.detect_macro_file(src);
+        self.macros.last_file = (src, self.flow.next_id, answer);
+        answer
+    }
+
+    fn detect_macro_file(&mut self, src: usize) -> bool {
         let id = self.source_id(src);
         if let Some(b) = self.macros.macro_files.get(&id) {
             return *b;

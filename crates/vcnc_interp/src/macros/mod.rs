@@ -118,6 +118,8 @@ pub(crate) struct Macros {
     pub structure: structure::Structure,
     /// Which sources are `%@MACRO` files, by source id.
     pub macro_files: FastMap<u32, bool>,
+    /// The last answer: (source index, `Flow::next_id` then, is a file).
+    pub last_file: (usize, u32, bool),
     /// The G66 call in force (`State::modal.macro_call` says whether).
     pub modal: Option<ModalCall>,
     /// The FOR statement an END_FOR jumped back to (it steps instead of
@@ -149,6 +151,7 @@ impl Macros {
             used: false,
             structure: structure::Structure::default(),
             macro_files: FastMap::default(),
+            last_file: (usize::MAX, 0, false),
             modal: None,
             for_resume: None,
             span_map: None,
