@@ -26,7 +26,6 @@ use super::{Compiled, key};
 use crate::Sink;
 use crate::alarms;
 use crate::events::Event;
-use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
 use vcnc_syntax::macros::{BinOp, Expr, Lang, StmtKind, Target, Value, VarKind};
@@ -38,10 +37,8 @@ impl Interpreter<'_> {
         &mut self,
         c: &Rc<Compiled>,
         src: usize,
-        store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        let _ = store;
         if let Some(f) = self.flow.frames.last_mut() {
             f.started = true;
         }

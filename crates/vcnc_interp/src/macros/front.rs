@@ -289,7 +289,7 @@ impl Interpreter<'_> {
                 block.percent = true;
                 self.macro_words_block(block, c.here, c.next, store, sink)
             }
-            _ => self.macro_statement(c, src, store, sink),
+            _ => self.macro_statement(c, src, sink),
         }
     }
 

@@ -956,3 +956,161 @@ fn is_address(s: &mut Scan<'_>) -> bool {
     let _ = s.trivia();
     s.at(0).is_ascii_alphabetic() && !(s.at(1).is_ascii_alphabetic() || s.at(1) == b'_')
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::macros::{BinOp, Func, OpCode};
+
+    const B: MacroSyntax = MacroSyntax {
+        lang: Lang::MacroB,
+        max_nesting: 5,
+        slash_comments: true,
+    };
+    const S: MacroSyntax = MacroSyntax {
+        lang: Lang::Syntec,
+        max_nesting: 32,
+        slash_comments: true,
+    };
+
+    fn codes(e: &Expr) -> Vec<OpCode> {
+        e.ops.iter().map(|o| o.code.clone()).collect()
+    }
+
+    fn iso(text: &str) -> Statement {
+        parse_iso_block(text.as_bytes(), 0, &B).unwrap().unwrap().0
+    }
+
+    #[test]
+    fn macro_b_compiles_to_postfix_in_precedence_order() {
+        let st = iso("N20 #21 = 1 + 2 * #3");
+        assert_eq!(st.seq, Some(20));
+        let StmtKind::Assign { target, value } = st.kind else {
+            panic!("{:?}", st.kind)
+        };
+        assert!(matches!(target, Target::Fixed(VarKind::Hash, 21, _)));
+        assert_eq!(
+            codes(&value),
+            vec![
+                OpCode::Num(Value::Double(1.0)),
+                OpCode::Num(Value::Double(2.0)),
+                OpCode::Var(VarKind::Hash, 3),
+                OpCode::Bin(BinOp::Mul),
+                OpCode::Bin(BinOp::Add),
+            ]
+        );
+        // The * spans its own byte: an alarm at it points there.
+        assert_eq!(value.ops[3].span, Span::new(16, 17));
+    }
+
+    #[test]
+    fn macro_b_statements_and_words() {
+        assert!(matches!(
+            iso("WHILE [#1 LT 3] DO 2").kind,
+            StmtKind::While { m: 2, .. }
+        ));
+        assert!(matches!(
+            iso("DO1").kind,
+            StmtKind::While { cond: None, m: 1 }
+        ));
+        assert!(matches!(iso("END 3").kind, StmtKind::End(3)));
+        assert!(matches!(
+            iso("IF [#1 EQ 0] GOTO10").kind,
+            StmtKind::IfGoto { .. }
+        ));
+        assert!(matches!(
+            iso("IF [#1 EQ 0] THEN #2 = 1").kind,
+            StmtKind::IfThen { .. }
+        ));
+        let st = iso("/2 G01 X-#1 Y[#2] F100. (CUT)");
+        assert_eq!(st.deleted, Some(2));
+        assert_eq!(st.comment.as_deref(), Some("CUT"));
+        let StmtKind::Words(w) = st.kind else {
+            panic!()
+        };
+        assert_eq!(w.len(), 4);
+        assert!(matches!(&w[1].value, MValue::Expr(e) if e.is_reference()));
+        assert!(matches!(
+            w[3].value,
+            MValue::Literal {
+                value: 100.0,
+                point: true
+            }
+        ));
+        // Nothing macro-like: the lexer's alarm stands.
+        assert_eq!(parse_iso_block(b"G X10", 0, &B).unwrap(), None);
+        // `;` ends the block: the next one starts after it.
+        let (_, next) = parse_iso_block(b"#1 = 1; #2 = 2", 0, &B).unwrap().unwrap();
+        assert_eq!(next, 7);
+        assert_eq!(
+            parse_iso_block(b"DO 4", 0, &B).unwrap_err().code,
+            crate::Code::E611
+        );
+    }
+
+    #[test]
+    fn fanuc_two_argument_arctangent() {
+        let StmtKind::Assign { value, .. } = iso("#1 = ATAN[#2]/[#3]").kind else {
+            panic!()
+        };
+        assert_eq!(value.ops.last().unwrap().code, OpCode::Call(Func::Atan, 2));
+    }
+
+    #[test]
+    fn syntec_statements_end_where_their_keywords_say() {
+        let text = b"IF #1 > 0 THEN #2 := 1; END_IF;";
+        let e = syntec_extent(text, 0);
+        assert_eq!((e.start, e.end, e.incomplete), (0, 14, false));
+        let e = syntec_extent(text, 14);
+        assert_eq!((e.start, e.end), (15, 23));
+        let e = syntec_extent(text, 23);
+        assert_eq!((e.start, e.end), (24, 31));
+        // No `;` yet: read another line.
+        assert!(syntec_extent(b"#1 := 1 +", 0).incomplete);
+        assert!(syntec_extent(b"(* open", 0).incomplete);
+        assert!(syntec_extent(b"  // only a comment", 0).empty);
+        let e = syntec_extent(b"3, 4: #1 := 2;", 0);
+        assert_eq!(e.end, 5);
+        let e = syntec_extent(b"UNTIL #1 > 3 END_REPEAT;", 0);
+        assert_eq!(e.end, 24);
+    }
+
+    #[test]
+    fn syntec_parses_longs_doubles_and_words() {
+        let text = b"#1 := 7 / 2. MOD 3;";
+        let st = parse_syntec_statement(text, 0, text.len(), &S).unwrap();
+        let StmtKind::Assign { value, .. } = st.kind else {
+            panic!()
+        };
+        assert_eq!(
+            codes(&value),
+            vec![
+                OpCode::Num(Value::Long(7)),
+                OpCode::Num(Value::Double(2.0)),
+                OpCode::Bin(BinOp::Div),
+                OpCode::Num(Value::Long(3)),
+                OpCode::Bin(BinOp::Mod),
+            ]
+        );
+        let text = b"G01 X(1. + #1) Y-5 F#9;";
+        let st = parse_syntec_statement(text, 0, text.len(), &S).unwrap();
+        let StmtKind::Words(w) = st.kind else {
+            panic!()
+        };
+        assert!(matches!(w[1].value, MValue::Expr(_)));
+        assert!(matches!(
+            w[2].value,
+            MValue::Literal {
+                value: -5.0,
+                point: false
+            }
+        ));
+        let text = b"ELSIF 1 THEN";
+        assert_eq!(
+            parse_syntec_statement(text, 0, text.len(), &S)
+                .unwrap_err()
+                .code,
+            crate::Code::E601
+        );
+    }
+}
