@@ -546,13 +546,13 @@ impl Interpreter<'_> {
 
     #[cold]
     fn note_unset(&mut self, kind: VarKind, n: u32) {
-        let name = format!("{}{n}", kind.sigil());
         let list = &mut self.macros.unset;
-        if list.len() >= UNSET_LIMIT || list.iter().any(|u| u.name == name) {
+        if list.len() >= UNSET_LIMIT || list.iter().any(|u| u.kind == kind && u.n == n) {
             return;
         }
         list.push(UnsetRead {
-            name,
+            kind,
+            n,
             line: self.flow.loc.line,
             file: self.flow.loc.file.clone(),
         });

@@ -149,6 +149,7 @@ impl Interpreter<'_> {
     /// compile it, remember it and run it; otherwise the lexer's
     /// diagnostic stands.
     #[cold]
+    #[inline(never)]
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn macro_block<S: Sink>(
         &mut self,

@@ -100,7 +100,8 @@ pub(crate) const UNSET_LIMIT: usize = 100;
 /// One variable read while it had never been set.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct UnsetRead {
-    pub name: String,
+    pub kind: vcnc_syntax::macros::VarKind,
+    pub n: u32,
     pub line: u64,
     pub file: Option<std::sync::Arc<str>>,
 }
@@ -190,21 +191,14 @@ impl crate::interpreter::Interpreter<'_> {
         let vars = &mut self.macros.vars;
         let variables: Vec<crate::events::UnsetVariable> = unset
             .into_iter()
-            .filter(|u| {
-                let (kind, digits) = match u.name.as_bytes().first() {
-                    Some(b'@') => (vcnc_syntax::macros::VarKind::At, &u.name[1..]),
-                    _ => (vcnc_syntax::macros::VarKind::Hash, &u.name[1..]),
-                };
-                let n: u32 = digits.parse().unwrap_or(0);
-                match vars.slot(kind, n) {
-                    vars::Slot::Common(i) => !vars.common(i).1,
-                    vars::Slot::Modal(i) => !vars.modal(i).1,
-                    vars::Slot::Global(g) => !vars.global(g).1,
-                    _ => true,
-                }
+            .filter(|u| match vars.slot(u.kind, u.n) {
+                vars::Slot::Common(i) => !vars.common(i).1,
+                vars::Slot::Modal(i) => !vars.modal(i).1,
+                vars::Slot::Global(g) => !vars.global(g).1,
+                _ => true,
             })
             .map(|u| crate::events::UnsetVariable {
-                name: u.name.into(),
+                name: format!("{}{}", u.kind.sigil(), u.n).into(),
                 line: u.line,
                 file: u.file,
             })
