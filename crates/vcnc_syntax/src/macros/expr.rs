@@ -195,7 +195,13 @@ impl<'s, 'a> ExprParser<'s, 'a> {
         let start = p.s.pos;
         p.expr()?;
         let mut out = std::mem::take(&mut p.out);
-        out.span = Span::new(start, p.s.pos);
+        // The blanks the parser looked past for an operator are not part
+        // of it.
+        let mut end = p.s.pos;
+        while end > start && p.s.text[end - 1].is_ascii_whitespace() {
+            end -= 1;
+        }
+        out.span = Span::new(start, end);
         Ok(out)
     }
 

@@ -914,14 +914,22 @@ fn syntec_words(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, Di
                 char::from(letter),
             ));
         }
+        let e_end = e.span.end;
         let value = match fold_literal(&e) {
             Some((value, point)) => MValue::Literal { value, point },
             None => MValue::Expr(e),
         };
+        let end = match &value {
+            MValue::Expr(e) => e.span.end,
+            MValue::Literal { .. } => e_end,
+        };
         words.push(MWord {
             addr: Addr::letter(letter),
             value,
-            span: Span::new(at, s.pos),
+            span: Span {
+                start: vcnc_core::clamp_u32(at),
+                end,
+            },
         });
     }
     Ok(StmtKind::Words(std::mem::take(words)))
