@@ -12,7 +12,7 @@
 
 use crate::cli::{CheckArgs, CheckFormat};
 use crate::files::{self, Input};
-use crate::{Setup, execute, render, setup};
+use crate::{Setup, execute, render, setup, timing};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde_json::{Value, json};
@@ -22,6 +22,7 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 use vcnc_interp::{Outcome, Pos};
 use vcnc_output::Summary;
+use vcnc_planner::CycleTime;
 use vcnc_syntax::{Code, Diagnostic};
 
 /// One program's result.
@@ -34,6 +35,8 @@ struct Checked {
 struct Ran {
     outcome: Outcome,
     summary: Summary,
+    /// The cycle time planned on the machine model.
+    planned: CycleTime,
     diameter: bool,
 }
 
@@ -107,7 +110,15 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
 /// One program: the summary block, warnings and the alarm on stderr.
 fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, String> {
     let mut summary = Summary::new(&s.machine);
-    let (outcome, diameter) = execute(&args.opts, s, input, &mut summary)?;
+    // One program: the planner on the second core.
+    let mut plan = timing::Background::start(&s.machine, None);
+    let (outcome, diameter) = execute(
+        &args.opts,
+        s,
+        input,
+        &mut timing::Tee(&mut summary, &mut plan),
+    )?;
+    let planned = plan.finish()?;
     eprint!("{}", render::warnings(&summary, input));
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, input));
@@ -119,7 +130,7 @@ fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, Stri
         &input.name(),
         &s.dialect,
         &s.machine,
-        &summary,
+        (&summary, &planned),
         &outcome,
         diameter_axis,
     )
@@ -143,12 +154,14 @@ fn check_all(args: &CheckArgs, s: &Setup, inputs: Vec<Input>) -> Result<Vec<Chec
             .into_par_iter()
             .map(|input| {
                 let mut summary = Summary::new(&s.machine);
-                let run =
-                    execute(&args.opts, s, &input, &mut summary).map(|(outcome, diameter)| Ran {
-                        outcome,
-                        summary,
-                        diameter,
-                    });
+                let mut plan = timing::planner(&s.machine, None);
+                let sink = &mut timing::Tee(&mut summary, &mut plan);
+                let run = execute(&args.opts, s, &input, sink).map(|(outcome, diameter)| Ran {
+                    outcome,
+                    summary,
+                    planned: plan.into_timeline(),
+                    diameter,
+                });
                 progress.tick();
                 Checked { input, run }
             })
@@ -251,7 +264,7 @@ fn text_report(out: &mut impl Write, results: &[Checked]) -> std::io::Result<()>
                     out,
                     "{name}: ended by {}, {:.1} s{warn_text}",
                     code.as_str(),
-                    ran.summary.cycle_time_s
+                    ran.planned.total_s
                 )?;
             }
             Outcome::Stopped => writeln!(out, "{name}: stopped{warn_text}")?,
@@ -295,10 +308,11 @@ fn pos_json(s: &Summary, p: &Pos) -> Value {
     Value::Object(m)
 }
 
-fn summary_json(s: &Summary, diameter: bool) -> Value {
+fn summary_json(s: &Summary, planned: &CycleTime, diameter: bool) -> Value {
     let holes: u64 = s.holes.iter().map(|(_, n)| n).sum();
     json!({
-        "cycle_time_s": s.cycle_time_s,
+        "cycle_time_s": planned.total_s,
+        "distance_feed_s": s.cycle_time_s,
         "rapid_mm": s.rapid_mm,
         "cut_mm": s.cut_mm,
         "extents": s.extents.map(|(lo, hi)| json!({"min": pos_json(s, &lo), "max": pos_json(s, &hi)})),
@@ -342,7 +356,10 @@ fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
                         ran.summary.warnings.iter().map(diagnostic_json).collect();
                     obj.insert("warnings".into(), json!(warnings));
                     obj.insert("warning_count".into(), json!(ran.summary.warning_total()));
-                    obj.insert("summary".into(), summary_json(&ran.summary, ran.diameter));
+                    obj.insert(
+                        "summary".into(),
+                        summary_json(&ran.summary, &ran.planned, ran.diameter),
+                    );
                 }
             }
             v

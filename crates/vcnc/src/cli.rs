@@ -21,6 +21,10 @@ pub enum Command {
     Check(CheckArgs),
     /// Run the program and print its event stream.
     Run(RunArgs),
+    /// Plan the motion on the machine model and print the cycle time and its split.
+    Time(TimeArgs),
+    /// Draw the program's path: an SVG or PNG back-plot, or an HTML page with a 3D viewer.
+    Plot(crate::plot::PlotArgs),
 }
 
 /// `vcnc check`.
@@ -51,12 +55,62 @@ pub struct RunArgs {
     /// Program and machine options.
     #[command(flatten)]
     pub opts: Options,
-    /// Output format: JSON lines (the event contract), CSV, or a flattened plain G-code program.
+    /// Output format: JSON lines (the event contract), CSV, a flattened plain G-code program, or the planned trajectory sampled every --period seconds.
     #[arg(long, value_enum, default_value_t = Format::Jsonl)]
     pub format: Format,
     /// Warnings fail the run (exit 1), as alarms do.
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Sampling period of --format trace, seconds.
+    #[arg(long, default_value_t = 0.001)]
+    pub period: f64,
+    /// Speed profile of --format trace (default: the machine file's).
+    #[arg(long, value_enum)]
+    pub profile: Option<ProfileArg>,
+}
+
+/// `vcnc time FILE…`.
+#[derive(Debug, Args)]
+pub struct TimeArgs {
+    /// The programs (`-`: standard input).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Program and machine options.
+    #[command(flatten)]
+    pub opts: Options,
+    /// Output: text for people, or one JSON object per program.
+    #[arg(long, value_enum, default_value_t = TimeFormat::Text)]
+    pub format: TimeFormat,
+    /// Speed profile (default: the machine file's).
+    #[arg(long, value_enum)]
+    pub profile: Option<ProfileArg>,
+}
+
+/// Output formats of `vcnc time`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum TimeFormat {
+    /// For people.
+    Text,
+    /// One JSON object per program.
+    Json,
+}
+
+/// Speed profile shapes.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ProfileArg {
+    /// Constant acceleration ramps.
+    Trapezoid,
+    /// Jerk-limited S-curve ramps.
+    Jerk,
+}
+
+impl From<ProfileArg> for vcnc_planner::ProfileShape {
+    fn from(p: ProfileArg) -> Self {
+        match p {
+            ProfileArg::Trapezoid => vcnc_planner::ProfileShape::Trapezoid,
+            ProfileArg::Jerk => vcnc_planner::ProfileShape::Jerk,
+        }
+    }
 }
 
 /// Options every subcommand takes.
@@ -91,6 +145,8 @@ pub enum Format {
     Csv,
     /// A flattened plain program for grbl or LinuxCNC.
     Gcode,
+    /// The planned trajectory as CSV samples (docs/planner.md).
+    Trace,
 }
 
 /// Report formats of `vcnc check`.

@@ -9,7 +9,10 @@
 mod check;
 mod cli;
 mod files;
+mod plot;
 mod render;
+mod timing;
+mod trace;
 mod variables;
 
 use clap::Parser;
@@ -35,6 +38,8 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check(args) => check::check(&args),
         Command::Run(args) => run_events(&args),
+        Command::Time(args) => timing::time(&args),
+        Command::Plot(args) => plot::plot(&args),
     }
 }
 
@@ -115,6 +120,11 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
         }
         Format::Gcode => {
             let sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
+            stream(args, &s, &input, sink)?
+        }
+        Format::Trace => {
+            let profile = args.profile.map(Into::into);
+            let sink = trace::TraceSink::new(out, &s.machine, args.period, profile);
             stream(args, &s, &input, sink)?
         }
     };

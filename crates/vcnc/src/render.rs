@@ -6,6 +6,7 @@ use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
 use std::io::{self, Write};
 use vcnc_interp::{Dialect, Machine, Outcome, Pos};
 use vcnc_output::Summary;
+use vcnc_planner::CycleTime;
 use vcnc_syntax::Diagnostic;
 
 /// The source line of a diagnostic, read back from its program, as raw
@@ -105,7 +106,7 @@ fn io_is_terminal() -> bool {
 }
 
 /// `1h 02m 03.4s`-style duration.
-fn duration(s: f64) -> String {
+pub fn duration(s: f64) -> String {
     let total = s.max(0.0);
     let h = (total / 3600.0).floor();
     let m = ((total - h * 3600.0) / 60.0).floor();
@@ -125,7 +126,7 @@ pub fn summary(
     name: &str,
     dialect: &Dialect,
     machine: &Machine,
-    s: &Summary,
+    (s, planned): (&Summary, &CycleTime),
     outcome: &Outcome,
     diameter_axis: Option<u8>,
 ) -> io::Result<()> {
@@ -150,8 +151,10 @@ pub fn summary(
         )?,
     }
     let mut time = format!(
-        "{} (distance/feed estimate, no acceleration)",
-        duration(s.cycle_time_s)
+        "{} (planned: {} profile, look-ahead {} blocks)",
+        duration(planned.total_s),
+        machine.motion.profile.as_str(),
+        machine.motion.lookahead_blocks
     );
     if s.untimed_moves > 0 {
         time.push_str(&format!(
@@ -167,6 +170,11 @@ pub fn summary(
         ));
     }
     writeln!(out, "cycle time {time}")?;
+    writeln!(
+        out,
+        "dist/feed  {} (distance/feed estimate, no acceleration)",
+        duration(s.cycle_time_s)
+    )?;
     writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
     writeln!(out, "cutting    {:.3} mm", s.cut_mm)?;
     match s.extents {
@@ -260,7 +268,7 @@ fn unset_text(s: &Summary) -> String {
 }
 
 /// `X lo .. hi   Y lo .. hi …` (a diameter axis shown as a diameter).
-fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) -> String {
+pub fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) -> String {
     let parts: Vec<String> = s
         .axis_letters()
         .iter()

@@ -438,15 +438,29 @@ pub enum Event {
         /// What the machine file says it does.
         description: Arc<str>,
     },
-    /// A smoothing setting for the planner (Haas G187 P1–P3 E): `level`
-    /// 1 rough … 3 finish, `tolerance_mm` the corner tolerance when given.
+    /// A warning: the run goes on (`vcnc --deny-warnings` fails it).
+    Warning(Diagnostic),
+    /// Path smoothing takes effect (`on`, with its largest path error) or
+    /// stops, before the first move it concerns: G05.1 (Syntec 1.2.7) or
+    /// Haas G187.
     Smoothing {
         /// Source.
         loc: Loc,
-        /// 1 rough, 2 medium, 3 finish.
-        level: u8,
-        /// The allowed deviation at corners, mm.
-        tolerance_mm: Option<f64>,
+        /// Whether the following G01 moves are smoothed.
+        on: bool,
+        /// The largest allowed path error E, mm (0 when off).
+        tolerance_mm: f64,
+    },
+    /// A NURBS curve (G06.2, Syntec 1.2.8): from the current position
+    /// along the curve its control points and knots define, ending at the
+    /// last control point.
+    Nurbs {
+        /// Source (the block that completed the definition).
+        loc: Loc,
+        /// The curve.
+        curve: Arc<Nurbs>,
+        /// Feed (the curve's F).
+        feed: Feed,
     },
     /// A message for the operator from a macro program: Fanuc `#3006`
     /// (`stop`: the program waits for cycle start), Syntec `MSG()` (no
@@ -467,10 +481,21 @@ pub enum Event {
         /// Each variable and where it was first read.
         variables: Arc<[UnsetVariable]>,
     },
-    /// A warning: the run goes on (`vcnc --deny-warnings` fails it).
-    Warning(Diagnostic),
     /// An alarm; always the last event.
     Alarm(Diagnostic),
+}
+
+/// A NURBS curve in machine coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nurbs {
+    /// Order (degree + 1), 2 to 4.
+    pub order: u8,
+    /// Knot vector, non-decreasing, `points.len() + order` long.
+    pub knots: Vec<f64>,
+    /// Control points, machine coordinates.
+    pub points: Vec<Pos>,
+    /// Weights, one per control point, positive.
+    pub weights: Vec<f64>,
 }
 
 impl Event {
@@ -496,10 +521,11 @@ impl Event {
             Event::Wait { .. } => "wait",
             Event::Junction { .. } => "junction",
             Event::Aux { .. } => "aux",
+            Event::Warning(_) => "warning",
             Event::Smoothing { .. } => "smoothing",
+            Event::Nurbs { .. } => "nurbs",
             Event::Message { .. } => "message",
             Event::UnsetVariables { .. } => "unset_variables",
-            Event::Warning(_) => "warning",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -527,6 +553,7 @@ impl Event {
             | Event::Junction { loc, .. }
             | Event::Aux { loc, .. }
             | Event::Smoothing { loc, .. }
+            | Event::Nurbs { loc, .. }
             | Event::Message { loc, .. }
             | Event::UnsetVariables { loc, .. } => Some(loc),
             Event::Warning(_) | Event::Alarm(_) => None,
@@ -541,6 +568,7 @@ impl Event {
             | Event::Arc { to, .. }
             | Event::Thread { to, .. }
             | Event::Skip { to, .. } => Some(*to),
+            Event::Nurbs { curve, .. } => curve.points.last().copied(),
             _ => None,
         }
     }

@@ -12,12 +12,14 @@ pub mod diagnostic;
 pub mod events;
 pub mod geometry;
 pub mod machine;
+pub mod motion;
+pub mod nurbs;
 mod sink;
 mod span;
 
 pub use diagnostic::{Code, Diagnostic};
 pub use events::{
-    ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, PathMode, Plane, Pos,
+    ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Nurbs, PathMode, Plane, Pos,
     SpindleDir, StopCode, UnsetVariable, WaitReason,
 };
 pub use machine::Machine;

@@ -10,6 +10,7 @@
 //! plotter) needs the same axes, rates and limits as the interpreter.
 
 use crate::events::{MAX_AXES, Pos};
+use crate::motion::Motion;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -43,6 +44,12 @@ pub struct Axis {
     pub max_feed_mm_per_min: f64,
     /// Acceleration.
     pub accel_mm_s2: f64,
+    /// Jerk (rate of change of acceleration), for jerk-limited profiles.
+    pub jerk_mm_s3: f64,
+    /// In-position window of cutting moves (Syntec 421–440).
+    pub in_position_mm: f64,
+    /// In-position window of rapids (Syntec 461–480).
+    pub in_position_rapid_mm: f64,
 }
 
 /// How words without a decimal point are read (Fanuc parameter DPI).
@@ -193,6 +200,8 @@ pub struct Machine {
     /// The machine builder's M codes (auxiliary functions) and what each
     /// does: they pass through as `aux` events.
     pub m_codes: BTreeMap<u32, std::sync::Arc<str>>,
+    /// Motion planning: profile, look-ahead, corner tolerance, times.
+    pub motion: Motion,
     /// M codes that call a macro program (Syntec's registered M codes,
     /// Fanuc parameters 6080–6089): the program's name (`M0123`, `O9020`).
     pub m_macros: BTreeMap<u32, std::sync::Arc<str>>,
@@ -224,11 +233,28 @@ struct FileAxis {
     max_feed_mm_per_min: f64,
     #[serde(default = "default_accel")]
     accel_mm_s2: f64,
+    jerk_mm_s3: Option<f64>,
+    #[serde(default = "default_in_position")]
+    in_position_mm: f64,
+    #[serde(default = "default_in_position_rapid")]
+    in_position_rapid_mm: f64,
 }
 
 fn default_accel() -> f64 {
     1000.0
 }
+
+fn default_in_position() -> f64 {
+    0.01
+}
+
+fn default_in_position_rapid() -> f64 {
+    0.02
+}
+
+/// Without `jerk_mm_s3`, an axis reaches its acceleration in this time
+/// (jerk = acceleration / 0.05 s), a common bell-shaped time constant.
+pub const DEFAULT_JERK_TIME_S: f64 = 0.05;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -258,6 +284,8 @@ struct File {
     skip: Vec<FileSkip>,
     #[serde(default)]
     m_codes: BTreeMap<String, String>,
+    #[serde(default)]
+    motion: Motion,
     #[serde(default)]
     m_macros: BTreeMap<String, String>,
 }
@@ -348,6 +376,7 @@ impl Machine {
             limits: f.limits,
             skip: Vec::new(),
             m_codes: BTreeMap::new(),
+            motion: f.motion,
             m_macros: BTreeMap::new(),
         };
         for (i, a) in f.axes.into_iter().enumerate() {
@@ -441,6 +470,14 @@ impl Machine {
                 a.letter
             )));
         }
+        let jerk_mm_s3 = a.jerk_mm_s3.unwrap_or(a.accel_mm_s2 / DEFAULT_JERK_TIME_S);
+        let positive = [jerk_mm_s3, a.in_position_mm, a.in_position_rapid_mm];
+        if positive.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(MachineError(format!(
+                "axis {}: jerk_mm_s3, in_position_mm and in_position_rapid_mm must be positive",
+                a.letter
+            )));
+        }
         self.axes.push(Axis {
             letter,
             min_mm,
@@ -448,6 +485,9 @@ impl Machine {
             rapid_mm_per_min: a.rapid_mm_per_min,
             max_feed_mm_per_min: a.max_feed_mm_per_min,
             accel_mm_s2: a.accel_mm_s2,
+            jerk_mm_s3,
+            in_position_mm: a.in_position_mm,
+            in_position_rapid_mm: a.in_position_rapid_mm,
         });
         Ok(())
     }
@@ -517,6 +557,7 @@ impl Machine {
                     .into(),
             ));
         }
+        self.motion.check()?;
         // Every level may hold an open program file (64 KiB each): 50
         // levels keep memory bounded (Fanuc 0i allows 10).
         if self.limits.max_call_depth == 0 || self.limits.max_call_depth > 50 {

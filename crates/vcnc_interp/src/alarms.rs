@@ -853,6 +853,36 @@ pub fn main_program_repeats(span: Span) -> Diagnostic {
     )
 }
 
+/// E327: G05.1 Q1 under G61 or G63 (Syntec 1.2.7, condition 1).
+pub fn smoothing_in_exact_stop(span: Span) -> Diagnostic {
+    d(
+        Code::E327,
+        span,
+        "path smoothing (G05.1 Q1) cannot start under G61 exact stop or G63 tapping mode".into(),
+        "give G64 first, or start smoothing before G61/G63 (it is then suspended until G64)",
+    )
+}
+
+/// E328: G06.2 outside G05 P10000 (Syntec 1.2.8).
+pub fn nurbs_outside_high_speed(span: Span) -> Diagnostic {
+    d(
+        Code::E328,
+        span,
+        "NURBS interpolation (G06.2) runs only in high-speed high-precision mode".into(),
+        "give G05 P10000 before the G06.2 blocks and G05 P0 after them",
+    )
+}
+
+/// E329: a NURBS definition that cannot be a curve.
+pub fn bad_nurbs(span: Span, why: &str) -> Diagnostic {
+    d(
+        Code::E329,
+        span,
+        format!("NURBS definition: {why}"),
+        "a curve of order P has n control points (K X Y Z R blocks) and n + P non-decreasing knots (the K-only blocks end it)",
+    )
+}
+
 // Macros (docs/macros.md): Custom Macro B and the Syntec MACRO language.
 
 /// E204: an argument letter twice in a macro call (Fanuc's argument

@@ -142,6 +142,10 @@ pub struct Interpreter<'a> {
     /// a look before lexing).
     pub(crate) macro_files: bool,
     pub(crate) macro_active: bool,
+    /// Whether the machine has travel limits to check (E501).
+    pub(crate) travel_limited: bool,
+    /// A G06.2 curve whose definition is still being read.
+    pub(crate) nurbs: Option<crate::codes::nurbs::NurbsBuild>,
 }
 
 impl<'a> Interpreter<'a> {
@@ -175,6 +179,8 @@ impl<'a> Interpreter<'a> {
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
             macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
             macro_active: false,
+            travel_limited: machine.has_travel_limits(),
+            nurbs: None,
         }
     }
 
@@ -400,6 +406,14 @@ impl<'a> Interpreter<'a> {
         }
     }
 
+    /// The bytes of `line` of source `src`, read again (cold paths only).
+    fn line_text(&mut self, src: usize, line: &Line) -> Vec<u8> {
+        self.flow
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default()
+    }
+
     /// Fills in line, column and file of a diagnostic raised in `line` of
     /// source `src` (cold path: the line is read again for the column).
     pub(crate) fn locate(&mut self, d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
@@ -410,11 +424,7 @@ impl<'a> Interpreter<'a> {
         // A macro statement spanning lines maps its offsets to their line.
         let (mut d, line) = self.macro_line_of(d, *line);
         let line = &line;
-        let text = self
-            .flow
-            .source(src)
-            .map(|s| s.reader.reread(line))
-            .unwrap_or_default();
+        let text = self.line_text(src, line);
         d.line = line.number;
         d.column = column_of(&text, d.span.start);
         d.line_offset = line.offset;
@@ -448,11 +458,7 @@ impl<'a> Interpreter<'a> {
         if !reading || start == 0 || d.line != line.number {
             return d;
         }
-        let text = self
-            .flow
-            .source(src)
-            .map(|s| s.reader.reread(line))
-            .unwrap_or_default();
+        let text = self.line_text(src, line);
         let before = text.get(..start).unwrap_or_default().trim_ascii_end();
         if before.ends_with(b";") {
             d.help = format!(
@@ -622,7 +628,18 @@ impl<'a> Interpreter<'a> {
         sink: &mut S,
     ) -> Result<Option<EndCode>, Diagnostic> {
         let frame = self.flow.frame();
-        let last = frame.last;
+        // A called program that ran no block at all (its file or text ends
+        // right after its header) is located at the call that entered it.
+        let caller = self
+            .flow
+            .frames
+            .len()
+            .checked_sub(2)
+            .and_then(|i| self.flow.frames.get(i));
+        let (last, frame) = match (frame.last, caller) {
+            (None, Some(c)) if c.last.is_some() => (c.last, *c),
+            _ => (frame.last, frame),
+        };
         let span = last.map_or(Span::new(0, 1), |(_, s)| s);
         match last {
             Some((line, _)) => self.flow.loc.line = line.number,

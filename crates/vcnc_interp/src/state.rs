@@ -76,6 +76,8 @@ pub enum Motion {
     ThreadInch,
     /// Lathe G05 (arc through a middle point).
     ThreePoint,
+    /// Syntec G06.2: NURBS interpolation (blocks of K, control points, R).
+    Nurbs,
 }
 
 /// Cutter radius compensation (group 07).
@@ -220,6 +222,10 @@ pub struct State {
     pub(crate) magnification_pct: f64,
     /// `(1 + 0.1·feed_steps) · magnification_pct / 100`, kept current.
     pub(crate) feed_factor: f64,
+    /// G05 parameter set in force (0: off).
+    pub(crate) high_speed_p: u32,
+    /// G05.1 path smoothing (Syntec 1.2.7).
+    pub(crate) smoothing: crate::codes::smoothing::Smoothing,
 }
 
 impl State {
@@ -259,6 +265,8 @@ impl State {
             feed_steps: 0,
             magnification_pct: 100.0,
             feed_factor: 1.0,
+            high_speed_p: 0,
+            smoothing: crate::codes::smoothing::Smoothing::OFF,
         };
         s.frame.origin = machine.work_offsets[0];
         s.prog = s.frame.program_of(s.pos);

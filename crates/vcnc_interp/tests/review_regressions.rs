@@ -314,3 +314,12 @@ fn labels_passed_by_one_search_are_found_by_the_next_and_duplicates_resolve_to_t
         ]
     );
 }
+
+/// Regression (found by a random program): a called program that ends right
+/// after its header ran no block, so its E406 had no place (line 0). It is
+/// located at the call.
+#[test]
+fn an_empty_subprogram_alarms_at_its_call() {
+    let (_, out) = run(&Dialect::syntec(), "G00 X1.\n  M98 P2\nM30\nO0002\n");
+    assert_eq!(alarm(&out), (Code::E406, 2, 3));
+}

@@ -6,7 +6,7 @@
 //!
 //! Header: `type,line,file,<axes>,<center_axes>,plane,dir,feed,feed_per_rev,
 //! lead_mm,seconds,tool,spindle,rpm,on,mode,code,column,message,triggered,
-//! exact_stop,p,surface_m_per_min,help,linear,<tool_offset_axes>` (those
+//! exact_stop,p,surface_m_per_min,help,linear,<tool_offset_axes>,tolerance_mm` (those
 //! after `message` were added later: columns are only ever appended). A
 //! `frame` row has its origin in the axis columns, its linear part as nine
 //! space-separated numbers (rows x, y, z) in `linear` and the tool length
@@ -14,7 +14,10 @@
 //! point in the axis columns and its cycle (`G81`) in `code`; a `wait` row
 //! its reason in `mode`; a `junction` row whether it blends in `on`; an
 //! `aux` row its M code in `code` and its description in `message`; a
-//! `warning` row is laid out like an `alarm` row.
+//! `warning` row is laid out like an `alarm` row; a `smoothing` row `on`
+//! and its `tolerance_mm` (the last column, appended after the tool
+//! offsets); a `nurbs` row its end point, feed and order in `p` (its
+//! definition is in the JSON-lines output).
 
 use crate::jsonl::{path_mode, spindle_dir};
 use crate::num::push_f64;
@@ -74,6 +77,7 @@ impl<W: Write> CsvSink<W> {
         header.push("message".into());
         header.extend(EXTRA.iter().map(|s| s.to_string()));
         header.extend(letters.iter().map(|l| format!("tool_offset_{l}")));
+        header.push("tolerance_mm".into());
         let error = writeln!(out, "{}", header.join(",")).err();
         let cols = header.len();
         let shown = letters
@@ -103,6 +107,7 @@ impl<W: Write> CsvSink<W> {
             "line" => 1,
             "file" => 2,
             "message" => base + TAIL.len(),
+            "tolerance_mm" => self.row.len() - 1,
             _ if EXTRA.contains(&col) => {
                 base + TAIL.len() + 1 + EXTRA.iter().position(|c| *c == col).unwrap_or(0)
             }
@@ -232,6 +237,22 @@ impl<W: Write> Sink for CsvSink<W> {
             }
             Event::Wait { reason, .. } => self.set("mode", reason.as_str().into()),
             Event::Junction { blend, .. } => self.set("on", blend.to_string()),
+            Event::Smoothing {
+                on, tolerance_mm, ..
+            } => {
+                self.set("on", on.to_string());
+                if *on {
+                    let t = self.num(*tolerance_mm);
+                    self.set("tolerance_mm", t);
+                }
+            }
+            Event::Nurbs { curve, feed, .. } => {
+                if let Some(end) = curve.points.last() {
+                    self.pos(end, 0);
+                }
+                self.feed(*feed);
+                self.set("p", curve.order.to_string());
+            }
             Event::Contour { to, arc, .. } => {
                 self.pos(to, 0);
                 if let Some((center, plane, dir)) = arc {

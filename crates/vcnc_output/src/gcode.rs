@@ -28,6 +28,9 @@ pub struct GcodeSink<W: Write> {
     error: Option<io::Error>,
 }
 
+/// How far the flattened program's chords may pass from a NURBS curve, mm.
+const NURBS_CHORD_MM: f64 = 0.001;
+
 impl<W: Write> GcodeSink<W> {
     /// A sink writing the header and then one block per event.
     pub fn new(out: W, machine: &Machine) -> GcodeSink<W> {
@@ -203,6 +206,28 @@ impl<W: Write> GcodeSink<W> {
             Event::Wait { reason, .. } => format!("M0 (wait: {})", reason.as_str()),
             Event::Junction { blend, .. } => {
                 format!("(junction {})", if *blend { "blends" } else { "stops" })
+            }
+            Event::Smoothing {
+                on, tolerance_mm, ..
+            } => {
+                if *on {
+                    format!("(G05.1 path smoothing on, E{})", fmt(*tolerance_mm))
+                } else {
+                    "(G05.1 path smoothing off)".into()
+                }
+            }
+            // grbl and LinuxCNC have no NURBS: chords within 1 µm of the curve.
+            Event::Nurbs { curve, feed, .. } => {
+                let mut out = format!("(G06.2 NURBS of order {}, as chords)", curve.order);
+                let f = self.feed_word(*feed);
+                for (i, p) in curve.flatten(NURBS_CHORD_MM).iter().enumerate() {
+                    out.push_str(&format!(
+                        "\nG1{}{}",
+                        self.axes(p),
+                        if i == 0 { &f } else { "" }
+                    ));
+                }
+                out
             }
             // Positions are machine coordinates already: the frame is a comment.
             Event::Frame { frame, .. } => {

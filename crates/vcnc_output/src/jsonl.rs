@@ -239,6 +239,33 @@ pub fn write_event(out: &mut Vec<u8>, axes: &mut EventAxes, event: &Event) {
             j.head("junction", loc);
             j.boolean("blend", *blend);
         }
+        Event::Smoothing {
+            loc,
+            on,
+            tolerance_mm,
+        } => {
+            j.head("smoothing", loc);
+            j.boolean("on", *on);
+            if *on {
+                j.num("tolerance_mm", *tolerance_mm);
+            }
+        }
+        Event::Nurbs { loc, curve, feed } => {
+            j.head("nurbs", loc);
+            j.int("order", u64::from(curve.order));
+            j.nums("knots", &curve.knots);
+            j.key("points");
+            j.out.push(b'[');
+            for (i, p) in curve.points.iter().enumerate() {
+                if i > 0 {
+                    j.out.push(b',');
+                }
+                j.point(p);
+            }
+            j.out.push(b']');
+            j.nums("weights", &curve.weights);
+            j.feed(*feed);
+        }
         Event::Contour { loc, from, to, arc } => {
             j.head("contour", loc);
             j.pos("from", from);
@@ -257,17 +284,6 @@ pub fn write_event(out: &mut Vec<u8>, axes: &mut EventAxes, event: &Event) {
             j.head("aux", loc);
             j.int("code", u64::from(*code));
             j.str("description", description);
-        }
-        Event::Smoothing {
-            loc,
-            level,
-            tolerance_mm,
-        } => {
-            j.head("smoothing", loc);
-            j.int("level", u64::from(*level));
-            if let Some(t) = tolerance_mm {
-                j.num("tolerance_mm", *t);
-            }
         }
         Event::Message { loc, text, stop } => {
             j.head("message", loc);
@@ -359,8 +375,22 @@ impl Obj<'_> {
         self.out.extend_from_slice(k.as_bytes());
         self.out.extend_from_slice(b"\":");
     }
+    fn nums(&mut self, k: &str, v: &[f64]) {
+        self.key(k);
+        self.out.push(b'[');
+        for (i, x) in v.iter().enumerate() {
+            if i > 0 {
+                self.out.push(b',');
+            }
+            push_f64(self.out, *x);
+        }
+        self.out.push(b']');
+    }
     fn pos(&mut self, k: &str, p: &Pos) {
         self.key(k);
+        self.point(p);
+    }
+    fn point(&mut self, p: &Pos) {
         self.out.push(b'{');
         self.axes.note(p);
         let mut first = true;

@@ -11,6 +11,19 @@ use std::collections::BTreeMap;
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_core::{ArcDir, Code, Diagnostic, Event, Feed, Machine, Plane, Pos, Sink};
 
+/// One value per axis slot from the machine's axes, `unused` beyond them.
+fn per_axis(
+    machine: &Machine,
+    f: impl Fn(&vcnc_core::machine::Axis) -> f64,
+    unused: f64,
+) -> [f64; vcnc_core::MAX_AXES] {
+    let mut out = [unused; vcnc_core::MAX_AXES];
+    for (slot, a) in out.iter_mut().zip(&machine.axes) {
+        *slot = f(a);
+    }
+    out
+}
+
 /// Warnings kept whole (with their text and place) by a summary; beyond,
 /// they are only counted.
 pub const KEPT_WARNINGS: usize = 100;
@@ -18,8 +31,9 @@ pub const KEPT_WARNINGS: usize = 100;
 /// Accumulates the summary of a run.
 #[derive(Debug, Clone)]
 pub struct Summary {
-    rapid_rates: Vec<f64>,
-    max_feeds: Vec<f64>,
+    /// Per axis, in event order (unused slots: infinite rate, no feed cap).
+    rapid_rates: [f64; vcnc_core::MAX_AXES],
+    max_feeds: [f64; vcnc_core::MAX_AXES],
     letters: Vec<u8>,
     pos: Pos,
     rpm: f64,
@@ -65,12 +79,8 @@ impl Summary {
     /// An empty summary for `machine`, starting at its power-on position.
     pub fn new(machine: &Machine) -> Summary {
         Summary {
-            rapid_rates: machine
-                .axes
-                .iter()
-                .map(|a| a.rapid_mm_per_min / 60.0)
-                .collect(),
-            max_feeds: machine.axes.iter().map(|a| a.max_feed_mm_per_min).collect(),
+            rapid_rates: per_axis(machine, |a| a.rapid_mm_per_min / 60.0, f64::INFINITY),
+            max_feeds: per_axis(machine, |a| a.max_feed_mm_per_min, f64::INFINITY),
             letters: machine.axes.iter().map(|a| a.letter).collect(),
             pos: machine.start,
             rpm: 0.0,
@@ -116,9 +126,14 @@ impl Summary {
 
     fn extend(&mut self, lo: Pos, hi: Pos) {
         let (mut a, mut b) = self.extents.unwrap_or((lo, hi));
-        for i in 0..self.letters.len() {
-            a.0[i] = a.0[i].min(lo.0[i]);
-            b.0[i] = b.0[i].max(hi.0[i]);
+        // Every slot: the unused ones stay 0 on both sides.
+        for i in 0..vcnc_core::MAX_AXES {
+            if lo.0[i] < a.0[i] {
+                a.0[i] = lo.0[i];
+            }
+            if hi.0[i] > b.0[i] {
+                b.0[i] = hi.0[i];
+            }
         }
         self.extents = Some((a, b));
     }
@@ -135,18 +150,26 @@ impl Summary {
     /// Length of the straight move to `to`, and the fastest path feed it
     /// allows: each moving axis stays within its own maximum feed.
     fn line(&self, to: &Pos) -> (f64, f64) {
-        let n = self.letters.len();
         let mut d = [0.0f64; vcnc_core::MAX_AXES];
-        for (di, (t, p)) in d.iter_mut().zip(to.0.iter().zip(self.pos.0)).take(n) {
+        let mut sq = 0.0;
+        for ((di, t), p) in d.iter_mut().zip(&to.0).zip(&self.pos.0) {
             *di = (t - p).abs();
+            sq += *di * *di;
         }
-        let len = d.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let cap = d
-            .iter()
-            .zip(&self.max_feeds)
-            .filter(|(di, _)| **di > 1e-12)
-            .map(|(di, max)| max * len / di)
-            .fold(f64::INFINITY, f64::min);
+        let len = sq.sqrt();
+        // The axis that reaches its cap first: max·len/d smallest, i.e.
+        // d/max largest.
+        let mut worst = 0.0f64;
+        for (di, max) in d.iter().zip(&self.max_feeds) {
+            if *di > 1e-12 {
+                worst = worst.max(di / max);
+            }
+        }
+        let cap = if worst > 0.0 {
+            len / worst
+        } else {
+            f64::INFINITY
+        };
         (len, cap)
     }
 
@@ -203,9 +226,10 @@ impl Sink for Summary {
         self.events += 1;
         match event {
             Event::Rapid { to, .. } => {
-                let t = (0..self.letters.len())
-                    .map(|i| (to.get(i) - self.pos.get(i)).abs() / self.rapid_rates[i])
-                    .fold(0.0, f64::max);
+                let mut t = 0.0f64;
+                for i in 0..vcnc_core::MAX_AXES {
+                    t = t.max((to.0[i] - self.pos.0[i]).abs() / self.rapid_rates[i]);
+                }
                 self.cycle_time_s += t;
                 self.rapid_mm += self.distance(to);
                 self.line_box(to);
@@ -217,6 +241,22 @@ impl Sink for Summary {
                 self.cycle_time_s += self.cut_time(d, *feed, cap);
                 self.line_box(to);
                 self.pos = *to;
+            }
+            Event::Nurbs { curve, feed, .. } => {
+                // The curve as chords within 1 µm, each at the feed capped
+                // by its own axes.
+                let mut untimed = false;
+                for p in curve.flatten(0.001) {
+                    let (d, cap) = self.line(&p);
+                    let before = self.untimed_moves;
+                    self.cut_mm += d;
+                    self.cycle_time_s += self.cut_time(d, *feed, cap);
+                    untimed |= self.untimed_moves > before;
+                    self.untimed_moves = before;
+                    self.line_box(&p);
+                    self.pos = p;
+                }
+                self.untimed_moves += u64::from(untimed);
             }
             Event::Thread { to, lead_mm, .. } => {
                 let (d, cap) = self.line(to);

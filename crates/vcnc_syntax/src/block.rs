@@ -77,6 +77,11 @@ pub struct Block {
     letters: [u8; 26],
     /// Letters present, other than G and M (bit 0 = 'A').
     present: u32,
+    /// Letters whose word has no decimal point and is not zero (the
+    /// least-increment trap, warning W101, is looked for only there).
+    plain_values: u32,
+    /// Letters whose word has a decimal point.
+    pointed: u32,
     /// G, M and extended-address words, and repeated letters, counted: a
     /// block without any is plain axis words the interpreter need not sort.
     special: u8,
@@ -95,6 +100,8 @@ impl Default for Block {
             len: 0,
             letters: [0; 26],
             present: 0,
+            plain_values: 0,
+            pointed: 0,
             special: 0,
             span: Span::default(),
             deleted: None,
@@ -118,6 +125,8 @@ impl Block {
         self.len = 0;
         self.letters = [0; 26];
         self.present = 0;
+        self.plain_values = 0;
+        self.pointed = 0;
         self.special = 0;
         self.deleted = None;
         self.percent = false;
@@ -132,6 +141,11 @@ impl Block {
         match w.addr.letter_index() {
             Some(i) if w.addr.0 != b'G' && w.addr.0 != b'M' && self.present & (1 << i) == 0 => {
                 self.present |= 1 << i;
+                if w.point {
+                    self.pointed |= 1 << i;
+                } else if w.value != 0.0 {
+                    self.plain_values |= 1 << i;
+                }
                 // len ≤ MAX_WORDS (48), so it fits a u8.
                 self.letters[i] = u8::try_from(self.len).unwrap_or(0);
             }
@@ -150,6 +164,16 @@ impl Block {
     /// Letters present other than G and M (bit 0 = 'A').
     pub fn present(&self) -> u32 {
         self.present
+    }
+
+    /// Letters (not G or M) whose word is not zero and has no decimal point.
+    pub fn plain_values(&self) -> u32 {
+        self.plain_values
+    }
+
+    /// Letters (not G or M) whose word has a decimal point.
+    pub fn pointed(&self) -> u32 {
+        self.pointed
     }
 
     /// Whether the block holds only single letters other than G and M (no

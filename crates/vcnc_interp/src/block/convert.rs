@@ -97,6 +97,12 @@ impl Interpreter<'_> {
         if !self.points.active {
             return;
         }
+        // The common case costs two mask tests: no point-less length, and
+        // points already seen (or none in this block either).
+        let plain = w.plain_values() & self.axis_mask;
+        if plain == 0 && (self.points.seen_point || w.pointed() & self.axis_mask == 0) {
+            return;
+        }
         for i in 0..self.axis_words.len() {
             let Some(a) = self.axis_words.get(i).copied() else {
                 continue;

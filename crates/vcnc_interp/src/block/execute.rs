@@ -107,6 +107,7 @@ impl Interpreter<'_> {
         }
         self.other_m_codes(w);
         let tool_moved = self.frame_codes(w)?;
+        self.smoothing_frame_change(w);
         self.comp_codes(w)?;
         self.setting_codes(w);
         let moves_before = self.moves;
@@ -162,6 +163,7 @@ impl Interpreter<'_> {
             GOp::Thread => m.motion = Motion::Thread,
             GOp::ThreadInch => m.motion = Motion::ThreadInch,
             GOp::ThreePointArc => m.motion = Motion::ThreePoint,
+            GOp::Nurbs => m.motion = Motion::Nurbs,
             GOp::RadiusMode => m.diameter = false,
             GOp::DiameterMode => m.diameter = true,
             GOp::PlaneXy => m.plane = Plane::Xy,
@@ -237,6 +239,7 @@ impl Interpreter<'_> {
                         ext |= ext_bit(Addr::CR);
                     }
                     Motion::ThreePoint => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
+                    Motion::Nurbs => allowed |= bit(b'K') | bit(b'R'),
                     _ => {}
                 }
             }
@@ -448,21 +451,31 @@ impl Interpreter<'_> {
                     self.tables.set_shift(crate::events::Pos::default());
                     self.state.refresh_origin(&self.tables);
                 }
-                GOp::Smoothing => {
-                    let level = w.get(b'P').map_or(1.0, |p| p.value.clamp(1.0, 3.0));
-                    // P1–P3: whole and in range after the clamp.
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                    let level = level as u8;
-                    let tolerance_mm = w.get(b'E').map(|e| self.length_mm(&e));
-                    self.emit(|loc| Event::Smoothing {
-                        loc,
-                        level,
-                        tolerance_mm,
-                    });
-                }
+                GOp::Smoothing => self.haas_smoothing(w),
                 _ => {}
             }
         }
+    }
+
+    /// Haas G187: P1 rough, P2 medium, P3 finish with a corner tolerance
+    /// E (else the level's: 0.05, 0.02, 0.005 mm); G187 alone returns to
+    /// the machine's own setting (smoothing off). One `smoothing` event for
+    /// the planner, as G05.1's.
+    fn haas_smoothing(&mut self, w: &Words<'_>) {
+        let level = w.get(b'P').map(|p| p.value);
+        let tolerance_mm = match (w.get(b'E'), level) {
+            (Some(e), _) => self.length_mm(&e),
+            (None, Some(p)) if p >= 3.0 => 0.005,
+            (None, Some(p)) if p >= 2.0 => 0.02,
+            (None, Some(_)) => 0.05,
+            (None, None) => 0.0,
+        };
+        let on = level.is_some() || w.get(b'E').is_some();
+        self.emit(|loc| Event::Smoothing {
+            loc,
+            on,
+            tolerance_mm,
+        });
     }
 
     /// Step 5b: the machine builder's M codes pass through as `aux`

@@ -342,6 +342,16 @@ impl<'b> Words<'b> {
         self.block.present()
     }
 
+    /// Letters whose word is not zero and has no decimal point.
+    pub fn plain_values(&self) -> u32 {
+        self.block.plain_values()
+    }
+
+    /// Letters whose word has a decimal point.
+    pub fn pointed(&self) -> u32 {
+        self.block.pointed()
+    }
+
     /// Whether any letter of `mask` is present.
     pub fn any(&self, mask: u32) -> bool {
         self.block.present() & mask != 0

@@ -272,6 +272,23 @@ impl Interpreter<'_> {
         Ok(c)
     }
 
+    /// A step of a cycle or pocket: a move to program point `p` unless the
+    /// tool is there already (steps that would not move are not reported).
+    pub(crate) fn step_to(
+        &mut self,
+        kind: MoveKind,
+        p: Pos,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let here = self.state.prog;
+        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
+        if same {
+            return Ok(());
+        }
+        self.straight(kind, Target::Program(p), w, cmd)
+    }
+
     /// Cutter compensation is suspended for a cycle's holes (Fanuc): the
     /// held move ends square to its path.
     pub(crate) fn suspend_comp(&mut self) -> Result<bool, Diagnostic> {
@@ -787,14 +804,8 @@ impl Steps<'_, '_> {
         p
     }
 
-    /// A move to `p` unless the tool is there already.
     fn go(&self, it: &mut Interpreter<'_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
-        let here = it.state.prog;
-        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
-        if same {
-            return Ok(());
-        }
-        it.straight(kind, Target::Program(p), self.w, self.cmd)
+        it.step_to(kind, p, self.w, self.cmd)
     }
 
     fn rapid(&mut self, it: &mut Interpreter<'_>, z: f64) -> Result<(), Diagnostic> {

@@ -340,12 +340,7 @@ impl PocketSteps<'_, '_> {
     }
 
     fn go(&self, it: &mut Interpreter<'_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
-        let here = it.state.prog;
-        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
-        if same {
-            return Ok(());
-        }
-        it.straight(kind, Target::Program(p), self.w, self.cmd)
+        it.step_to(kind, p, self.w, self.cmd)
     }
 
     fn rapid(

@@ -52,6 +52,7 @@ impl Interpreter<'_> {
             GOp::Skip => self.skip(w, cmd),
             GOp::DwellSeconds => self.dwell_seconds(w),
             GOp::HighSpeed => self.high_speed(w, cmd),
+            GOp::PathSmoothing => self.path_smoothing(w, cmd),
             GOp::FeedUp => self.feed_step(1, cmd),
             GOp::FeedDown => self.feed_step(-1, cmd),
             GOp::OverrideCancel => {
@@ -129,7 +130,13 @@ impl Interpreter<'_> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G4", "P (the dwell in seconds)"))?;
-        let seconds = self.seconds(&p);
+        self.dwell_p_seconds(&p)
+    }
+
+    /// A dwell of P seconds (milliseconds without a point in least-increment
+    /// dialects), 0 to 9999.999 s.
+    fn dwell_p_seconds(&mut self, p: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
+        let seconds = self.seconds(p);
         if !(0.0..=9_999.999).contains(&seconds) {
             return Err(alarms::value_out_of_range(
                 p.span,
@@ -180,17 +187,7 @@ impl Interpreter<'_> {
             });
             return Ok(());
         };
-        let seconds = self.seconds(&p);
-        if !(0.0..=9_999.999).contains(&seconds) {
-            return Err(alarms::value_out_of_range(
-                p.span,
-                b'P',
-                p.value,
-                "a dwell is 0 to 9999.999 s",
-            ));
-        }
-        self.emit(|loc| Event::Dwell { loc, seconds });
-        Ok(())
+        self.dwell_p_seconds(&p)
     }
 
     /// Syntec G05 P10000 / P1–P5 (on) and P0 (off), manual 1.2.6: recorded
@@ -209,6 +206,7 @@ impl Interpreter<'_> {
             ));
         }
         self.state.modal.high_speed = n != 0;
+        self.state.high_speed_p = n;
         self.emit(|loc| Event::HighSpeed {
             loc,
             on: n != 0,

@@ -22,6 +22,10 @@ const MILL_G: &[GRow] = &[
     g(50, GOp::HighSpeed, Group::NonModal)
         .reads(bit(b'P'))
         .refuses_axes(),
+    g(51, GOp::PathSmoothing, Group::NonModal)
+        .reads(bit(b'Q') | bit(b'E'))
+        .refuses_axes(),
+    g(62, GOp::Nurbs, Group::Motion).reads(bit(b'P') | bit(b'K') | bit(b'R')),
     g(90, GOp::ExactStopOnce, Group::NonModal),
     g(100, GOp::SetData, Group::NonModal)
         .reads(bit(b'L') | bit(b'P') | bit(b'R'))
@@ -165,10 +169,7 @@ const MILL_LEX: LexRules = LexRules {
 };
 
 /// Codes of the Syntec G-code list (manual 1.1) that later work will run.
-const SYNTEC_LATER: &[(u16, &str)] = &[
-    (51, "G05.1 path smoothing is not implemented yet"),
-    (62, "G06.2 NURBS interpolation is not implemented yet"),
-];
+const SYNTEC_LATER: &[(u16, &str)] = &[];
 
 /// Haas's codes beyond Fanuc's that its programs use (Haas mill operator's
 /// manual, G- and M-code chapters).

@@ -120,6 +120,10 @@ pub enum GOp {
     SurfaceSpeed,
     SpindleRpm,
     HighSpeed,
+    /// Syntec G05.1 Q1 E / Q0: path smoothing of G01 chains.
+    PathSmoothing,
+    /// Syntec G06.2: NURBS interpolation (modal, group 01).
+    Nurbs,
     // Lathe (seed 003).
     CancelOffsets,
     ThreadInch,

@@ -127,13 +127,15 @@ impl Interpreter<'_> {
         let m = &self.state.modal;
         let code = |c: i64| Ok(Value::Long(c));
         match n {
-            1000 => code(match m.motion {
-                Motion::Rapid => 0,
-                Motion::Linear => 1,
-                Motion::ArcCw => 2,
-                Motion::ArcCcw => 3,
-                Motion::Thread | Motion::ThreadInch => 33,
-                Motion::ThreePoint => 5,
+            1000 => Ok(match m.motion {
+                Motion::Rapid => Value::Long(0),
+                Motion::Linear => Value::Long(1),
+                Motion::ArcCw => Value::Long(2),
+                Motion::ArcCcw => Value::Long(3),
+                Motion::Thread | Motion::ThreadInch => Value::Long(33),
+                Motion::ThreePoint => Value::Long(5),
+                // G06.2 has no whole code.
+                Motion::Nurbs => Value::Double(6.2),
             }),
             1003 | 1004 => code(if m.incremental { 91 } else { 90 }),
             1015 => code(match m.comp {
@@ -208,6 +210,7 @@ impl Interpreter<'_> {
                 Motion::Thread => 33.0,
                 Motion::ThreadInch => 32.0,
                 Motion::ThreePoint => 5.0,
+                Motion::Nurbs => 6.2,
             },
             2 => match m.plane {
                 crate::events::Plane::Xy => 17.0,

@@ -23,6 +23,7 @@ impl Interpreter<'_> {
         match motion {
             Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
             Motion::ThreePoint => self.three_point_arc(w, cmd),
+            Motion::Nurbs => self.nurbs_block(w, cmd),
             _ if !w.any(self.axis_mask) => Ok(()),
             Motion::Rapid => {
                 let goal = self.target(w, self.state.modal.incremental);
@@ -30,6 +31,7 @@ impl Interpreter<'_> {
                 self.straight(MoveKind::Rapid, to, w, cmd)
             }
             Motion::Linear => {
+                self.smoothing_before_linear();
                 let goal = self.target(w, self.state.modal.incremental);
                 let feed = if self.state.modal.inverse_time {
                     let from = self.state.prog;

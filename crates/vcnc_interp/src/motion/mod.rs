@@ -130,7 +130,17 @@ impl Interpreter<'_> {
     /// changed unless every stage accepts it (and the block as a whole).
     pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
         if self.state.rpm <= 0.0 {
-            self.stopped_spindle(&mv)?;
+            // Once W104 is given only a per-revolution move needs a look.
+            let per_rev = match mv.kind {
+                MoveKind::Thread { .. } => true,
+                MoveKind::Feed(f) | MoveKind::Arc { feed: f, .. } => {
+                    matches!(f, Feed::PerRev(_))
+                }
+                _ => false,
+            };
+            if per_rev || !self.spindle_warned {
+                self.stopped_spindle(&mv, per_rev)?;
+            }
         } else if let MoveKind::Thread { lead_mm } = mv.kind {
             // Syntec 1.2.17: 1 <= S <= maximum feed / lead.
             if self.state.rpm * lead_mm > self.max_feed {
@@ -175,18 +185,11 @@ impl Interpreter<'_> {
         self.release(mm, &at, Some(w))
     }
 
-    /// Warning W104, once until the spindle turns again: a cut with the
-    /// spindle stopped.
     /// A move with the spindle stopped: a thread or a feed per revolution
     /// cannot move at all (E342); another cut warns once (W104) until the
     /// spindle turns again.
     #[cold]
-    fn stopped_spindle(&mut self, mv: &Move) -> Result<(), Diagnostic> {
-        let per_rev = match mv.kind {
-            MoveKind::Thread { .. } => true,
-            MoveKind::Feed(f) | MoveKind::Arc { feed: f, .. } => matches!(f, Feed::PerRev(_)),
-            _ => false,
-        };
+    fn stopped_spindle(&mut self, mv: &Move, per_rev: bool) -> Result<(), Diagnostic> {
         if per_rev {
             return Err(alarms::per_rev_spindle_stopped(mv.cmd));
         }
@@ -194,6 +197,32 @@ impl Interpreter<'_> {
         if cut && !self.spindle_warned {
             self.spindle_warned = true;
             self.warn(alarms::cut_spindle_stopped(mv.cmd));
+        }
+        Ok(())
+    }
+
+    /// Stage 3: the soft limits on the path the tool really follows (arcs
+    /// included); an alarm points at the axis word of `w` when the move is
+    /// the current block's, else at `at`'s command.
+    fn check_travel(
+        &mut self,
+        mm: &MachineMove,
+        at: &comp::Origin,
+        w: Option<&Words<'_>>,
+    ) -> Result<(), Diagnostic> {
+        let arc = match mm.kind {
+            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, at.cmd)?),
+            _ => None,
+        };
+        if let Err(out) = travel::check(self.machine, mm, arc.as_ref()) {
+            let span = w
+                .and_then(|w| self.axis_span(w, out.axis))
+                .unwrap_or(at.cmd);
+            let d = out.alarm(self.machine, span);
+            return Err(match at.line {
+                Some(line) => self.locate(d, at.src, &line),
+                None => d,
+            });
         }
         Ok(())
     }
@@ -211,19 +240,9 @@ impl Interpreter<'_> {
             from: self.state.pos,
             ..mm
         };
-        let arc = match mm.kind {
-            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, at.cmd)?),
-            _ => None,
-        };
-        if let Err(out) = travel::check(self.machine, &mm, arc.as_ref()) {
-            let span = w
-                .and_then(|w| self.axis_span(w, out.axis))
-                .unwrap_or(at.cmd);
-            let d = out.alarm(self.machine, span);
-            return Err(match at.line {
-                Some(line) => self.locate(d, at.src, &line),
-                None => d,
-            });
+        // 3 travel: nothing to check on a machine without limits.
+        if self.travel_limited {
+            self.check_travel(&mm, at, w)?;
         }
         self.report_frame();
         match self.emit_motion(&mm, &at.loc) {
@@ -419,21 +438,5 @@ impl Interpreter<'_> {
                 hit.map(|_| to)
             }
         }
-    }
-}
-#[cfg(test)]
-mod size_probe {
-    #[test]
-    fn sizes() {
-        eprintln!(
-            "State {} Frame {} Move {} MachineMove {} Event {} Words {} Modal {}",
-            std::mem::size_of::<crate::state::State>(),
-            std::mem::size_of::<super::frame::Frame>(),
-            std::mem::size_of::<super::Move>(),
-            std::mem::size_of::<super::MachineMove>(),
-            std::mem::size_of::<crate::events::Event>(),
-            std::mem::size_of::<crate::block::words::Words<'static>>(),
-            std::mem::size_of::<crate::state::Modal>(),
-        );
     }
 }

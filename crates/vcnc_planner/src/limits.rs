@@ -1,0 +1,263 @@
+//! Per-axis limits turned into limits along a path: the highest speed,
+//! acceleration and jerk of a move whose axes move in given proportions,
+//! the speed limit of an arc from its centripetal acceleration, and the
+//! speed at which a corner may be passed within the corner tolerance.
+//!
+//! Corners follow the junction-deviation model (Sonny Jeon, grbl, 2011;
+//! here derived afresh): a corner of deflection θ between the unit tangents
+//! u₁ and u₂ is taken as if rounded by the circle tangent to both paths that
+//! passes at distance δ (the corner tolerance) from the corner point:
+//!
+//! ```text
+//!        u₁ ───────────●╮ corner         R = δ·cos(θ/2) / (1 − cos(θ/2)),
+//!                   δ ┆  ╲ ╮               at most (L/2)/tan(θ/2)
+//!                      ╰──╮╲             v² = a_c·R   (centripetal limit)
+//!                      ╰──╮╲             v³ = j_c·R²  (jerk limit, S-curve)
+//!                   circle ╲ u₂
+//! ```
+//!
+//! L is the shorter of the two moves: the rounding must fit in half of each,
+//! which on a chain of short chords (a curve a CAM system flattened) limits
+//! the speed to the curve's own centripetal limit. a_c and j_c are the
+//! smallest axis limits scaled by how much of the
+//! corner's plane each axis spans, so no axis exceeds its own limit
+//! anywhere on that circle. The commanded path still goes through the
+//! corner point (the interpolator's path); the servo's rounding stays within
+//! δ because the speed is the circle's. Fanuc 0i calls this corner
+//! deceleration by the allowable speed difference; the tolerance is the
+//! more readable parameter, as on Syntec's and LinuxCNC's controllers.
+
+use crate::path::Vector;
+use crate::ramp::Kin;
+use vcnc_core::{MAX_AXES, Machine};
+
+/// An arc uses at most this share of the acceleration for the centripetal
+/// part, leaving 0.6 for speeding up and slowing down (0.8² + 0.6² = 1, so
+/// no axis exceeds its limit when both act).
+pub const ARC_NORMAL_SHARE: f64 = 0.8;
+/// The tangential share on an arc.
+pub const ARC_TANGENT_SHARE: f64 = 0.6;
+
+/// Below this a direction component is zero.
+const TINY: f64 = 1e-12;
+
+/// The machine's axis limits in mm and seconds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisLimits {
+    /// Number of axes.
+    pub n: usize,
+    /// Rapid rate, mm/s.
+    pub rapid: Vector,
+    /// Highest cutting feed, mm/s.
+    pub max_feed: Vector,
+    /// Acceleration, mm/s².
+    pub accel: Vector,
+    /// Jerk, mm/s³ (infinite under the trapezoid profile).
+    pub jerk: Vector,
+    /// In-position window of cutting moves, mm.
+    pub in_position: Vector,
+    /// In-position window of rapids, mm.
+    pub in_position_rapid: Vector,
+    /// Axis letters.
+    pub letters: Vec<u8>,
+    /// The smallest acceleration of any axis.
+    pub min_accel: f64,
+    /// The smallest jerk of any axis.
+    pub min_jerk: f64,
+}
+
+impl AxisLimits {
+    /// The limits of `machine`, jerk-limited or not.
+    pub fn new(machine: &Machine, jerk_limited: bool) -> AxisLimits {
+        let mut l = AxisLimits {
+            n: machine.axes.len().min(MAX_AXES),
+            rapid: [f64::INFINITY; MAX_AXES],
+            max_feed: [f64::INFINITY; MAX_AXES],
+            accel: [f64::INFINITY; MAX_AXES],
+            jerk: [f64::INFINITY; MAX_AXES],
+            in_position: [f64::INFINITY; MAX_AXES],
+            in_position_rapid: [f64::INFINITY; MAX_AXES],
+            letters: machine.axes.iter().map(|a| a.letter).collect(),
+            min_accel: f64::INFINITY,
+            min_jerk: f64::INFINITY,
+        };
+        for (i, a) in machine.axes.iter().enumerate().take(MAX_AXES) {
+            l.rapid[i] = a.rapid_mm_per_min / 60.0;
+            l.max_feed[i] = a.max_feed_mm_per_min / 60.0;
+            l.accel[i] = a.accel_mm_s2;
+            if jerk_limited {
+                l.jerk[i] = a.jerk_mm_s3;
+            }
+            l.in_position[i] = a.in_position_mm;
+            l.in_position_rapid[i] = a.in_position_rapid_mm;
+        }
+        l.min_accel = l.n_min(&l.accel);
+        l.min_jerk = l.n_min(&l.jerk);
+        l
+    }
+
+    /// The smallest of `v` over the machine's axes.
+    pub fn n_min(&self, v: &Vector) -> f64 {
+        v.iter().take(self.n).fold(f64::INFINITY, |a, b| a.min(*b))
+    }
+
+    /// The smallest `limit[i] / share[i]` over the axes that move.
+    pub fn along(&self, limit: &Vector, share: &Vector) -> f64 {
+        let mut best = f64::INFINITY;
+        for i in 0..self.n {
+            if share[i] > TINY {
+                best = best.min(limit[i] / share[i]);
+            }
+        }
+        best
+    }
+
+    /// Acceleration and jerk along a path whose axes move at most `share`
+    /// of the path speed.
+    pub fn kin_along(&self, share: &Vector) -> Kin {
+        Kin {
+            accel: self.along(&self.accel, share),
+            jerk: self.along(&self.jerk, share),
+        }
+    }
+}
+
+/// Speed limit and tangential limits of an arc of curvature `kappa` in the
+/// plane of the axes `a` and `b`: the centripetal part stays within
+/// [`ARC_NORMAL_SHARE`] of the plane axes' acceleration (and, with jerk,
+/// v³κ² within that share of their jerk).
+pub fn arc_limits(l: &AxisLimits, kappa: f64, a: usize, b: usize, kin: Kin) -> (f64, Kin) {
+    let plane_accel = l.accel[a].min(l.accel[b]);
+    let plane_jerk = l.jerk[a].min(l.jerk[b]);
+    let mut v = f64::INFINITY;
+    if kappa > TINY {
+        v = (ARC_NORMAL_SHARE * plane_accel / kappa).sqrt();
+        if plane_jerk.is_finite() {
+            v = v.min((ARC_NORMAL_SHARE * plane_jerk / (kappa * kappa)).cbrt());
+        }
+    }
+    let kin = Kin {
+        accel: kin.accel.min(ARC_TANGENT_SHARE * plane_accel),
+        jerk: kin.jerk.min(ARC_TANGENT_SHARE * plane_jerk),
+    };
+    (v, kin)
+}
+
+/// The speed at which the corner from direction `u1` to `u2` may be passed
+/// with corner tolerance `tol_mm`, a rounding that stays within `half_len`
+/// of the corner on either move, and the per-axis speed limits `vlim` in
+/// the corner's plane; infinite when it is at least `v_cap` (the moves' own
+/// limit), which a cheap bound often shows.
+pub fn corner_speed(
+    l: &AxisLimits,
+    u1: &Vector,
+    u2: &Vector,
+    tol_mm: f64,
+    half_len: f64,
+    vlim: &Vector,
+    v_cap: f64,
+) -> f64 {
+    let (mut n1, mut n2) = (0.0, 0.0);
+    for i in 0..l.n {
+        n1 += u1[i] * u1[i];
+        n2 += u2[i] * u2[i];
+    }
+    let (n1, n2) = (n1.sqrt(), n2.sqrt());
+    if !(n1 > TINY && n2 > TINY) {
+        return 0.0;
+    }
+    // e1, e2: the unit tangents; |e2 − e1| = 2·sin(θ/2), |e2 + e1| = 2·cos(θ/2).
+    let mut e1 = [0.0; MAX_AXES];
+    let mut e2 = [0.0; MAX_AXES];
+    let (mut chord, mut sum, mut dot) = (0.0, 0.0, 0.0);
+    for i in 0..l.n {
+        e1[i] = u1[i] / n1;
+        e2[i] = u2[i] / n2;
+        chord += (e2[i] - e1[i]) * (e2[i] - e1[i]);
+        sum += (e2[i] + e1[i]) * (e2[i] + e1[i]);
+        dot += e1[i] * e2[i];
+    }
+    let (sh, ch) = (0.5 * chord.sqrt(), 0.5 * sum.sqrt());
+    if sh < 1e-9 {
+        return f64::INFINITY; // tangent: only the moves' own limits
+    }
+    // R = δ·cos(θ/2) / (1 − cos(θ/2)), with 1 − cos = sin²/(1 + cos): no
+    // cancellation at small angles, no trigonometry.
+    // The rounding must also fit in half of the shorter move: the circle
+    // tangent to both at `half_len` from the corner has r = half_len/tan(θ/2).
+    // On a chain of short chords this is the curve's own radius, so the
+    // chain runs at its centripetal limit.
+    let radius = (tol_mm * ch * (1.0 + ch) / (sh * sh)).min(half_len * ch / sh);
+    // Every axis spans at most all of the plane: with the smallest limits
+    // of all axes the corner is already faster than either move may go.
+    if l.min_accel * radius >= v_cap * v_cap
+        && (!l.min_jerk.is_finite() || l.min_jerk * radius * radius >= v_cap * v_cap * v_cap)
+        && l.n_min(vlim) >= v_cap
+    {
+        return f64::INFINITY;
+    }
+    // The corner's plane: e1 and the unit part of e2 orthogonal to it.
+    let mut w = [0.0; MAX_AXES];
+    let mut wn = 0.0;
+    for i in 0..l.n {
+        w[i] = e2[i] - dot * e1[i];
+        wn += w[i] * w[i];
+    }
+    let wn = wn.sqrt();
+    let mut span = [0.0; MAX_AXES];
+    for i in 0..l.n {
+        let wi = if wn > TINY { w[i] / wn } else { 0.0 };
+        span[i] = (e1[i] * e1[i] + wi * wi).sqrt();
+    }
+    let accel = l.along(&l.accel, &span);
+    let jerk = l.along(&l.jerk, &span);
+    let mut v = (accel * radius).sqrt();
+    if jerk.is_finite() && v * v * v > jerk * radius * radius {
+        v = (jerk * radius * radius).cbrt();
+    }
+    v.min(l.along(vlim, &span))
+}
+
+/// The time the following error takes to settle into the in-position
+/// window after a stop: a type-1 position loop of gain K that decelerated
+/// at `a_i` lags a_i/K² behind, and the lag decays as e^(−K·t).
+pub fn settle_time(gain: f64, accel_along: f64, share: &Vector, window: &Vector, n: usize) -> f64 {
+    let mut t: f64 = 0.0;
+    for i in 0..n {
+        let lag = accel_along * share[i] / (gain * gain);
+        if lag > window[i] && window[i] > 0.0 {
+            t = t.max((lag / window[i]).ln() / gain);
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn limits() -> AxisLimits {
+        AxisLimits::new(&Machine::default_mill(), false)
+    }
+
+    #[test]
+    fn a_right_angle_corner_in_xy_follows_the_closed_form() {
+        let l = limits();
+        let u1 = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        let u2 = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+        let v = corner_speed(&l, &u1, &u2, 0.02, 10.0, &l.max_feed, f64::INFINITY);
+        // θ = 90°: R = δ·cos45°/(1 − cos45°) = 2.4142·δ; v = √(a·R).
+        let c = std::f64::consts::FRAC_1_SQRT_2;
+        let r = 0.02 * c / (1.0 - c);
+        assert!((v - (2000.0 * r).sqrt()).abs() < 1e-9, "{v}");
+    }
+
+    #[test]
+    fn straight_on_is_unlimited_and_a_reversal_stops() {
+        let l = limits();
+        let u = [0.6, 0.8, 0.0, 0.0, 0.0, 0.0];
+        let back = u.map(|x| -x);
+        assert!(corner_speed(&l, &u, &u, 0.02, 10.0, &l.max_feed, 1e9).is_infinite());
+        assert!(corner_speed(&l, &u, &back, 0.02, 10.0, &l.max_feed, 1e9) < 1e-6);
+    }
+}

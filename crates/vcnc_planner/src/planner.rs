@@ -1,0 +1,655 @@
+//! The look-ahead planner: a [`Sink`] of events that turns moves into
+//! timed segments on the machine model and hands them, in order, to a
+//! [`Timeline`].
+//!
+//! ```text
+//!  events ─▶ segment (limits along the path, corner speed cap with the
+//!            previous move, how it ends: stop / blend / G99 tangent)
+//!        ─▶ window of at most N segments (the look-ahead)
+//!            backward pass on every push: entry_max[i] = min(cap[i],
+//!              reach(entry_max[i+1], len[i]))   — stop where nothing changes
+//!            the newest segment is assumed to end at rest (the unknown future)
+//!        ─▶ commit the oldest when the window is full (forward pass, one
+//!            segment at a time): exit = min(entry_max[next], reach(entry, len)),
+//!            profile = ramp up / cruise / ramp down  ─▶ Timeline
+//!  aux events (dwell, M06, spindle start/stop, M00, M30, coolant) flush the
+//!  window: the last move ends at rest, then the pause follows.
+//! ```
+//!
+//! Because a segment's entry bound only grows as more segments arrive, the
+//! backward pass is amortised: it walks back only over segments whose bound
+//! changed, and the forward pass is done once per segment at commit time.
+//! Memory is the window (at most `MAX_LOOKAHEAD_BLOCKS` segments) whatever
+//! the program length. The look-ahead follows grbl's planner and Klipper's
+//! `toolhead.py` in idea (both read, neither copied); the S-curve ramps are
+//! in [`crate::ramp`].
+
+use crate::limits::{AxisLimits, arc_limits, corner_speed, settle_time};
+use crate::path::{Path, Vector, plane_axes};
+use crate::ramp::{Kin, Profile};
+use crate::timeline::{Attr, AxesMove, MoveKind, Pause, PauseKind, Segment, Timeline};
+use std::collections::VecDeque;
+use std::sync::Arc;
+use vcnc_core::motion::Profile as ProfileShape;
+use vcnc_core::{Event, Feed, Loc, MAX_AXES, Machine, PathMode, Plane, Pos, Sink, SpindleDir};
+
+/// Two tangents closer than this (1°) make a tangent junction for G99.
+const TANGENT_COS: f64 = 0.999_847_695;
+/// G99 blends only between feeds within this ratio.
+const FEED_RATIO: f64 = 1.1;
+/// How far the chords a NURBS curve is followed by may pass from it, mm.
+pub const NURBS_CHORD_MM: f64 = 0.001;
+
+/// How a segment ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum End {
+    /// At rest (exact stop, rapid, G63, skip).
+    Stop,
+    /// Passed at the corner speed (G64, G62).
+    Blend,
+    /// At rest unless the next move is tangent with a close feed (EIA G99).
+    Tangent,
+}
+
+/// A segment in the look-ahead window.
+#[derive(Debug, Clone)]
+struct Pending {
+    seg: Segment,
+    end: End,
+    settle_s: f64,
+    /// Highest entry speed from the corner before it.
+    entry_cap: f64,
+    /// Highest entry speed from which everything after it can still stop
+    /// in time (the backward pass).
+    entry_max: f64,
+    u_end: Vector,
+    /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
+    smooth_mm: f64,
+}
+
+/// Settings from the machine file and G05.
+#[derive(Debug, Clone)]
+struct Settings {
+    lookahead: usize,
+    corner_tolerance_mm: f64,
+    gain: f64,
+    tool_change_s: f64,
+    spindle_start_s: f64,
+    spindle_stop_s: f64,
+    independent_rapids: bool,
+}
+
+/// The planner; see the module documentation.
+#[derive(Debug)]
+pub struct Planner<T: Timeline> {
+    lim: AxisLimits,
+    set: Settings,
+    normal: (usize, f64),
+    machine_motion: vcnc_core::motion::Motion,
+    out: T,
+    window: VecDeque<Pending>,
+    v_entry: f64,
+    pos: Pos,
+    rpm: f64,
+    spindle: SpindleDir,
+    mode: PathMode,
+    tool: Option<u32>,
+    dogleg: Option<(Attr, Pos, Pos)>,
+    in_position_check: bool,
+    /// The direction (−1, 0, +1) of each axis on the last dog-leg leg.
+    last_leg: [i8; MAX_AXES],
+    /// G05.1 tolerance the next G01 moves get (0: none).
+    smoothing_mm: f64,
+    /// The segment being pushed is a smoothed G01.
+    smooth_next: f64,
+    /// Moves that could not be timed.
+    pub untimed_moves: u64,
+}
+
+impl<T: Timeline> Planner<T> {
+    /// A planner for `machine` with its own profile shape, feeding `out`.
+    pub fn new(machine: &Machine, out: T) -> Planner<T> {
+        Planner::with_profile(machine, machine.motion.profile, out)
+    }
+
+    /// A planner for `machine` with the given profile shape.
+    pub fn with_profile(machine: &Machine, shape: ProfileShape, out: T) -> Planner<T> {
+        let m = &machine.motion;
+        let lookahead = usize::try_from(m.lookahead_blocks).unwrap_or(200).max(2);
+        Planner {
+            lim: AxisLimits::new(machine, shape == ProfileShape::Jerk),
+            set: Settings {
+                lookahead,
+                corner_tolerance_mm: m.corner_tolerance_mm,
+                gain: m.servo_gain_per_s,
+                tool_change_s: m.tool_change_s,
+                spindle_start_s: m.spindle_start_s,
+                spindle_stop_s: m.spindle_stop_s,
+                independent_rapids: machine.params.g00_mode == 1,
+            },
+            normal: (lookahead, m.corner_tolerance_mm),
+            machine_motion: m.clone(),
+            out,
+            window: VecDeque::with_capacity(lookahead + 1),
+            v_entry: 0.0,
+            pos: machine.start,
+            rpm: 0.0,
+            spindle: SpindleDir::Stop,
+            mode: PathMode::Cutting,
+            tool: None,
+            dogleg: None,
+            in_position_check: false,
+            last_leg: [0; MAX_AXES],
+            smoothing_mm: 0.0,
+            smooth_next: 0.0,
+            untimed_moves: 0,
+        }
+    }
+
+    /// The consumer.
+    pub fn timeline(&self) -> &T {
+        &self.out
+    }
+
+    /// The consumer, to change.
+    pub fn timeline_mut(&mut self) -> &mut T {
+        &mut self.out
+    }
+
+    /// Flushes and returns the consumer.
+    pub fn into_timeline(mut self) -> T {
+        self.flush();
+        self.out
+    }
+
+    /// Ends every planned move at rest and hands it on.
+    pub fn flush(&mut self) {
+        self.finish_dogleg();
+        if let Some(last) = self.window.back_mut() {
+            if last.end == End::Blend {
+                last.settle_s = 0.0;
+            }
+            last.end = End::Stop;
+        }
+        while !self.window.is_empty() {
+            self.commit();
+        }
+    }
+
+    fn attr(&self, loc: &Loc) -> Attr {
+        Attr {
+            line: loc.line,
+            file: loc.file.as_ref().map(Arc::clone),
+            tool: self.tool,
+        }
+    }
+
+    /// Path speed of a feed, mm/s; `None` when it cannot move.
+    fn feed_speed(&self, feed: Feed) -> Option<f64> {
+        let turning = matches!(self.spindle, SpindleDir::Cw | SpindleDir::Ccw);
+        let v = match feed {
+            Feed::PerMin(f) => f / 60.0,
+            Feed::PerRev(f) if turning => f * self.rpm / 60.0,
+            Feed::PerRev(_) => 0.0,
+        };
+        (v.is_finite() && v > 0.0).then_some(v)
+    }
+
+    fn plane_of(&self, plane: Plane) -> Option<vcnc_core::geometry::PlaneAxes> {
+        plane_axes(plane, &self.lim.letters)
+    }
+
+    /// A motion to `path` (or an untimed jump when `speed` is `None`).
+    fn motion(
+        &mut self,
+        path: Option<Path>,
+        to: Pos,
+        kind: MoveKind,
+        speed: Option<f64>,
+        end: End,
+        loc: &Loc,
+    ) {
+        let from = self.pos;
+        self.pos = to;
+        let Some(path) = path else { return };
+        let attr = self.attr(loc);
+        let Some(seg) = self.segment(path, kind, speed, attr.clone()) else {
+            self.flush();
+            self.untimed_moves += 1;
+            self.out.untimed(from, to, &attr);
+            return;
+        };
+        let window = if kind == MoveKind::Rapid {
+            self.lim.in_position_rapid
+        } else {
+            self.lim.in_position
+        };
+        // Rapids and exact stops (G09, G61) wait for the in-position
+        // window; G63 and skips stop without the check.
+        let settle_s = match end {
+            End::Stop if kind == MoveKind::Rapid || self.in_position_check => settle_time(
+                self.set.gain,
+                seg.kin.accel,
+                &seg.path.axis_share(),
+                &window,
+                self.lim.n,
+            ),
+            _ => 0.0,
+        };
+        self.push(seg, end, settle_s);
+    }
+
+    /// The segment of `path` with its limits; `None` if it cannot move.
+    fn segment(
+        &self,
+        path: Path,
+        kind: MoveKind,
+        speed: Option<f64>,
+        attr: Attr,
+    ) -> Option<Segment> {
+        let share = path.axis_share();
+        let mut kin = self.lim.kin_along(&share);
+        let mut v_max = match kind {
+            MoveKind::Rapid => self.lim.along(&self.lim.rapid, &share),
+            MoveKind::Cut => speed?.min(self.lim.along(&self.lim.max_feed, &share)),
+        };
+        if let Some(p) = path.plane() {
+            let (v_arc, k) = arc_limits(&self.lim, path.curvature_magnitude(), p.a, p.b, kin);
+            v_max = v_max.min(v_arc);
+            kin = k;
+        }
+        let ok = v_max.is_finite() && v_max > 0.0 && kin.accel.is_finite() && kin.accel > 0.0;
+        ok.then_some(Segment {
+            path,
+            kind,
+            attr,
+            v_max,
+            kin,
+            corner_tolerance_mm: self.set.corner_tolerance_mm,
+        })
+    }
+
+    /// Adds a segment to the window: corner cap, backward pass, commit.
+    fn push(&mut self, mut seg: Segment, end: End, settle_s: f64) {
+        let u_start = seg.path.tangent(0.0);
+        let u_end = seg.path.tangent(seg.path.len);
+        seg.corner_tolerance_mm =
+            if self.smooth_next > 0.0 && self.window.back().is_some_and(|p| p.smooth_mm > 0.0) {
+                self.smooth_next
+            } else {
+                self.set.corner_tolerance_mm
+            };
+        let cap = self.corner_cap(&seg, &u_start).min(seg.v_max);
+        let entry_max = seg.kin.reach_capped(0.0, seg.path.len, cap);
+        self.window.push_back(Pending {
+            seg,
+            end,
+            settle_s,
+            entry_cap: cap,
+            entry_max,
+            u_end,
+            smooth_mm: self.smooth_next,
+        });
+        self.backward();
+        while self.window.len() > self.set.lookahead {
+            self.commit();
+        }
+    }
+
+    /// The highest speed at the junction between the newest segment in
+    /// the window and `seg`; decides how a G99 junction ends.
+    fn corner_cap(&mut self, seg: &Segment, u_start: &Vector) -> f64 {
+        // Between two smoothed G01 moves the corner tolerance is G05.1's E.
+        let tol = seg.corner_tolerance_mm;
+        let lim = &self.lim;
+        let Some(prev) = self.window.back_mut() else {
+            return 0.0;
+        };
+        if prev.end == End::Stop || seg.kind == MoveKind::Rapid || prev.seg.kind == MoveKind::Rapid
+        {
+            prev.end = End::Stop;
+            return 0.0;
+        }
+        let v_cap = prev.seg.v_max.min(seg.v_max);
+        let half_len = 0.5 * prev.seg.path.len.min(seg.path.len);
+        let v = corner_speed(
+            lim,
+            &prev.u_end,
+            u_start,
+            tol,
+            half_len,
+            &lim.max_feed,
+            v_cap,
+        )
+        .min(v_cap);
+        if prev.end == End::Tangent {
+            let tangent = cosine(&prev.u_end, u_start) >= TANGENT_COS;
+            let (a, b) = (prev.seg.v_max, seg.v_max);
+            if tangent && a.max(b) <= FEED_RATIO * a.min(b) {
+                prev.end = End::Blend;
+                prev.settle_s = 0.0;
+                return v;
+            }
+            prev.end = End::Stop;
+            return 0.0;
+        }
+        v
+    }
+
+    fn backward(&mut self) {
+        let n = self.window.len();
+        let mut i = n - 1;
+        while i > 0 {
+            i -= 1;
+            let exit = self.window[i + 1].entry_max;
+            let p = &mut self.window[i];
+            let new = p.seg.kin.reach_capped(exit, p.seg.path.len, p.entry_cap);
+            if new == p.entry_max {
+                break;
+            }
+            p.entry_max = new;
+        }
+    }
+
+    /// Plans the oldest segment for good and hands it on.
+    fn commit(&mut self) {
+        let Some(p) = self.window.pop_front() else {
+            return;
+        };
+        let len = p.seg.path.len;
+        let v0 = self.v_entry.min(p.seg.v_max);
+        let stops = p.end == End::Stop;
+        let v1 = if stops {
+            0.0
+        } else {
+            let next = self.window.front().map_or(0.0, |n| n.entry_max);
+            p.seg.kin.reach_capped(v0, len, next)
+        };
+        let profile = Profile::plan(v0, v1, p.seg.v_max, len, p.seg.kin);
+        self.out.segment(&p.seg, &profile);
+        self.v_entry = v1;
+        if stops && p.settle_s > 0.0 {
+            self.pause(PauseKind::InPosition, p.settle_s, p.seg.attr);
+        }
+    }
+
+    fn pause(&mut self, kind: PauseKind, seconds: f64, attr: Attr) {
+        self.out.pause(&Pause {
+            kind,
+            seconds,
+            attr,
+        });
+    }
+
+    /// A rapid under parameter 411 = 1: legs of one block join into one
+    /// move whose axes run each at its own rate. A leg continues the
+    /// dog-leg only if it comes from the same block and moves a strict
+    /// subset of the previous leg's axes the same way (an axis stops when it
+    /// arrives), so a block repeated by a subprogram's L count stays
+    /// separate moves.
+    fn rapid_leg(&mut self, to: Pos, loc: &Loc) {
+        let leg = leg_signs(&self.pos, &to, self.lim.n);
+        if let Some((attr, _, end)) = &mut self.dogleg
+            && attr.line == loc.line
+            && attr.file == loc.file
+            && continues(&self.last_leg, &leg)
+        {
+            *end = to;
+            self.pos = to;
+            self.last_leg = leg;
+            return;
+        }
+        self.finish_dogleg();
+        self.flush();
+        self.dogleg = Some((self.attr(loc), self.pos, to));
+        self.pos = to;
+        self.last_leg = leg;
+    }
+
+    fn finish_dogleg(&mut self) {
+        let Some((attr, from, to)) = self.dogleg.take() else {
+            return;
+        };
+        let mut profiles = [None; MAX_AXES];
+        let (mut duration, mut settle): (f64, f64) = (0.0, 0.0);
+        for (i, slot) in profiles.iter_mut().enumerate().take(self.lim.n) {
+            let d = (to.get(i) - from.get(i)).abs();
+            if d <= vcnc_core::geometry::ZERO_MM {
+                continue;
+            }
+            let kin = Kin {
+                accel: self.lim.accel[i],
+                jerk: self.lim.jerk[i],
+            };
+            let prof = Profile::plan(0.0, 0.0, self.lim.rapid[i], d, kin);
+            duration = duration.max(prof.duration());
+            let mut one = [0.0; MAX_AXES];
+            one[i] = 1.0;
+            let window = self.lim.in_position_rapid;
+            settle = settle.max(settle_time(
+                self.set.gain,
+                kin.accel,
+                &one,
+                &window,
+                self.lim.n,
+            ));
+            *slot = Some(prof);
+        }
+        if duration <= 0.0 {
+            return;
+        }
+        self.out.axes(&AxesMove {
+            from,
+            to,
+            profiles,
+            duration_s: duration,
+            attr: attr.clone(),
+        });
+        if settle > 0.0 {
+            self.pause(PauseKind::InPosition, settle, attr);
+        }
+    }
+
+    fn high_speed(&mut self, on: bool, p: u32) {
+        let (n, tol) = if on {
+            let s = self.machine_motion.high_speed_set(p);
+            (
+                usize::try_from(s.lookahead_blocks).unwrap_or(1000),
+                s.corner_tolerance_mm,
+            )
+        } else {
+            self.normal
+        };
+        self.set.lookahead = n.max(2);
+        self.set.corner_tolerance_mm = tol;
+        while self.window.len() > self.set.lookahead {
+            self.commit();
+        }
+    }
+
+    fn spindle_event(&mut self, dir: SpindleDir, rpm: f64, loc: &Loc) {
+        let running = |d| matches!(d, SpindleDir::Cw | SpindleDir::Ccw);
+        let seconds = match (running(self.spindle), running(dir)) {
+            (false, true) => self.set.spindle_start_s,
+            (true, true) if dir != self.spindle => self.set.spindle_start_s,
+            (true, false) => self.set.spindle_stop_s,
+            _ => 0.0,
+        };
+        self.spindle = dir;
+        self.rpm = if rpm.is_finite() { rpm.max(0.0) } else { 0.0 };
+        if seconds > 0.0 {
+            self.flush();
+            let attr = self.attr(loc);
+            self.pause(PauseKind::Spindle, seconds, attr);
+        }
+    }
+
+    /// A NURBS curve: its chords within [`NURBS_CHORD_MM`], blended
+    /// into each other, the last one ending as the block's mode says.
+    fn nurbs(&mut self, curve: &vcnc_core::Nurbs, feed: Feed, loc: &Loc) {
+        let points = curve.flatten(NURBS_CHORD_MM);
+        let v = self.feed_speed(feed);
+        let last = points.len().saturating_sub(1);
+        for (i, to) in points.into_iter().enumerate() {
+            let end = if i == last {
+                self.cut_end(false)
+            } else {
+                End::Blend
+            };
+            let path = Path::line(self.pos, to, self.lim.n);
+            self.motion(path, to, MoveKind::Cut, v, end, loc);
+        }
+    }
+
+    /// How a cutting move ends, and whether it checks the in-position
+    /// window (G09, G61; G63 stops without the check).
+    fn cut_end(&mut self, exact_stop: bool) -> End {
+        self.in_position_check = exact_stop || self.mode == PathMode::ExactStop;
+        if self.in_position_check || self.mode == PathMode::Tapping {
+            End::Stop
+        } else {
+            End::Blend
+        }
+    }
+}
+
+/// The direction of each axis from `a` to `b`.
+fn leg_signs(a: &Pos, b: &Pos, n: usize) -> [i8; MAX_AXES] {
+    let mut out = [0; MAX_AXES];
+    for (i, o) in out.iter_mut().enumerate().take(n) {
+        let d = b.get(i) - a.get(i);
+        *o = if d > vcnc_core::geometry::ZERO_MM {
+            1
+        } else if d < -vcnc_core::geometry::ZERO_MM {
+            -1
+        } else {
+            0
+        };
+    }
+    out
+}
+
+/// Whether leg `next` continues a dog-leg whose last leg was `prev`: it
+/// moves fewer axes, each of them the way it moved before.
+fn continues(prev: &[i8; MAX_AXES], next: &[i8; MAX_AXES]) -> bool {
+    let fewer = next.iter().filter(|d| **d != 0).count() < prev.iter().filter(|d| **d != 0).count();
+    fewer && next.iter().zip(prev).all(|(n, p)| *n == 0 || n == p)
+}
+
+fn cosine(a: &Vector, b: &Vector) -> f64 {
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for i in 0..MAX_AXES {
+        ab += a[i] * b[i];
+        aa += a[i] * a[i];
+        bb += b[i] * b[i];
+    }
+    let d = (aa * bb).sqrt();
+    if d > 0.0 { ab / d } else { 1.0 }
+}
+
+impl<T: Timeline> Sink for Planner<T> {
+    fn event(&mut self, event: &Event) {
+        if !matches!(event, Event::Rapid { .. }) {
+            self.finish_dogleg();
+        }
+        let n = self.lim.n;
+        match event {
+            Event::Rapid { loc, to, .. } => {
+                if self.set.independent_rapids {
+                    self.rapid_leg(*to, loc);
+                } else {
+                    let path = Path::line(self.pos, *to, n);
+                    self.motion(path, *to, MoveKind::Rapid, None, End::Stop, loc);
+                }
+            }
+            Event::Feed {
+                loc,
+                to,
+                feed,
+                exact_stop,
+            } => {
+                let path = Path::line(self.pos, *to, n);
+                let end = self.cut_end(*exact_stop);
+                let v = self.feed_speed(*feed);
+                self.smooth_next = self.smoothing_mm;
+                self.motion(path, *to, MoveKind::Cut, v, end, loc);
+                self.smooth_next = 0.0;
+            }
+            Event::Nurbs { loc, curve, feed } => self.nurbs(curve, *feed, loc),
+            Event::Smoothing {
+                on, tolerance_mm, ..
+            } => {
+                self.smoothing_mm = if *on && tolerance_mm.is_finite() {
+                    tolerance_mm.max(0.0)
+                } else {
+                    0.0
+                };
+            }
+            Event::Arc {
+                loc,
+                to,
+                center,
+                plane,
+                dir,
+                feed,
+                exact_stop,
+            } => {
+                let path = match self.plane_of(*plane) {
+                    Some(axes) => Path::arc(self.pos, *to, *center, axes, *dir),
+                    None => Path::line(self.pos, *to, n),
+                };
+                let end = self.cut_end(*exact_stop);
+                let v = self.feed_speed(*feed);
+                self.motion(path, *to, MoveKind::Cut, v, end, loc);
+            }
+            Event::Thread { loc, to, lead_mm } => {
+                let path = Path::line(self.pos, *to, n);
+                let end = self.cut_end(false);
+                let v = self.feed_speed(Feed::PerRev(*lead_mm));
+                self.motion(path, *to, MoveKind::Cut, v, end, loc);
+            }
+            Event::Skip { loc, to, feed, .. } => {
+                let path = Path::line(self.pos, *to, n);
+                let v = self.feed_speed(*feed);
+                self.in_position_check = false;
+                self.motion(path, *to, MoveKind::Cut, v, End::Stop, loc);
+            }
+            Event::Dwell { loc, seconds } => {
+                self.flush();
+                let attr = self.attr(loc);
+                if seconds.is_finite() && *seconds > 0.0 {
+                    self.pause(PauseKind::Dwell, *seconds, attr);
+                }
+            }
+            Event::ToolChange { loc, tool } => {
+                self.flush();
+                self.tool = Some(*tool);
+                let attr = self.attr(loc);
+                self.pause(PauseKind::ToolChange, self.set.tool_change_s, attr);
+            }
+            Event::Spindle { loc, dir, rpm, .. } => self.spindle_event(*dir, *rpm, loc),
+            Event::PathMode { mode, .. } => self.mode = *mode,
+            Event::HighSpeed { on, p, .. } => self.high_speed(*on, *p),
+            Event::Junction { blend: true, .. } => {
+                if let Some(last) = self.window.back_mut()
+                    && last.end == End::Stop
+                    && last.seg.kind == MoveKind::Cut
+                {
+                    last.end = End::Tangent;
+                }
+            }
+            Event::Coolant { .. }
+            | Event::Stop { .. }
+            | Event::Message { stop: true, .. }
+            | Event::End { .. }
+            | Event::Wait { .. }
+            | Event::Alarm(_) => self.flush(),
+            _ => {}
+        }
+    }
+
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.flush();
+        Ok(())
+    }
+}

@@ -1,0 +1,186 @@
+//! Sampling a planned timeline at a fixed period: position, velocity,
+//! acceleration and jerk of every axis at t = 0, T, 2T, … — the
+//! commanded trajectory at the interpolator (`vcnc run --format trace`).
+//!
+//! Each piece is evaluated in closed form at the sample times that fall in
+//! it: distance s(t), speed, tangential acceleration and jerk from its
+//! profile, then per axis `p(s)`, `v·t̂`, `a·t̂ + v²·κ` (κ the curvature
+//! vector). A corner passed at speed shows as a change of direction between
+//! two samples: the commanded path goes through the corner point, at the
+//! speed a rounding within the corner tolerance allows (`limits.rs`).
+
+use crate::ramp::Profile;
+use crate::timeline::{Attr, AxesMove, Pause, Segment, Timeline};
+use vcnc_core::{MAX_AXES, Pos};
+
+/// One sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// Time since the start, s.
+    pub t: f64,
+    /// Position, machine mm.
+    pub pos: Pos,
+    /// Velocity per axis, mm/s.
+    pub vel: [f64; MAX_AXES],
+    /// Acceleration per axis, mm/s².
+    pub acc: [f64; MAX_AXES],
+    /// Path speed, mm/s.
+    pub speed: f64,
+    /// Jerk along the path, mm/s³ (0 on pauses).
+    pub path_jerk: f64,
+    /// Source line of the piece.
+    pub line: u64,
+}
+
+/// Receives samples.
+pub trait SampleSink {
+    /// One sample, in time order.
+    fn sample(&mut self, s: &Sample);
+}
+
+impl<F: FnMut(&Sample)> SampleSink for F {
+    fn sample(&mut self, s: &Sample) {
+        self(s);
+    }
+}
+
+/// Hands every sample of the timeline to `f`.
+#[derive(Debug)]
+pub struct Sampler<F: SampleSink> {
+    period: f64,
+    /// Start time of the next piece.
+    t0: f64,
+    /// Index of the next sample.
+    k: u64,
+    pos: Pos,
+    f: F,
+}
+
+impl<F: SampleSink> Sampler<F> {
+    /// The receiver of the samples.
+    pub fn sink(&self) -> &F {
+        &self.f
+    }
+
+    /// The receiver of the samples, to change.
+    pub fn sink_mut(&mut self) -> &mut F {
+        &mut self.f
+    }
+
+    /// Samples every `period_s` seconds (at least 1 µs), starting at `start`.
+    pub fn new(period_s: f64, start: Pos, f: F) -> Sampler<F> {
+        Sampler {
+            period: if period_s.is_finite() {
+                period_s.max(1e-6)
+            } else {
+                1e-3
+            },
+            t0: 0.0,
+            k: 0,
+            pos: start,
+            f,
+        }
+    }
+
+    /// The end time of what was sampled so far.
+    pub fn elapsed_s(&self) -> f64 {
+        self.t0
+    }
+
+    /// Emits one last sample at rest at the end of the timeline.
+    pub fn finish(&mut self) {
+        let s = Sample {
+            t: self.t0,
+            pos: self.pos,
+            vel: [0.0; MAX_AXES],
+            acc: [0.0; MAX_AXES],
+            speed: 0.0,
+            path_jerk: 0.0,
+            line: 0,
+        };
+        self.f.sample(&s);
+    }
+
+    /// Samples the piece of `duration` from the current time with `eval`.
+    fn piece(&mut self, duration: f64, mut eval: impl FnMut(f64) -> Sample) {
+        let end = self.t0 + duration;
+        loop {
+            #[allow(clippy::cast_precision_loss)] // sample counts stay far below 2^52
+            let t = self.k as f64 * self.period;
+            if t >= end {
+                break;
+            }
+            let mut s = eval((t - self.t0).max(0.0));
+            s.t = t;
+            self.f.sample(&s);
+            self.k += 1;
+        }
+        self.t0 = end;
+    }
+}
+
+fn at_rest(pos: Pos, line: u64) -> Sample {
+    Sample {
+        t: 0.0,
+        pos,
+        vel: [0.0; MAX_AXES],
+        acc: [0.0; MAX_AXES],
+        speed: 0.0,
+        path_jerk: 0.0,
+        line,
+    }
+}
+
+impl<F: SampleSink> Timeline for Sampler<F> {
+    fn segment(&mut self, seg: &Segment, profile: &Profile) {
+        let path = seg.path;
+        let line = seg.attr.line;
+        self.piece(profile.duration(), |t| {
+            let [s, v, a, j] = profile.at(t);
+            let s = s.clamp(0.0, path.len);
+            let tan = path.tangent(s);
+            let curv = path.curvature(s);
+            let mut out = at_rest(path.point(s), line);
+            for i in 0..MAX_AXES {
+                out.vel[i] = v * tan[i];
+                out.acc[i] = a * tan[i] + v * v * curv[i];
+            }
+            out.speed = v;
+            out.path_jerk = j;
+            out
+        });
+        self.pos = path.to;
+    }
+
+    fn axes(&mut self, mv: &AxesMove) {
+        let line = mv.attr.line;
+        let (from, to) = (mv.from, mv.to);
+        let profiles = mv.profiles;
+        self.piece(mv.duration_s, |t| {
+            let mut out = at_rest(from, line);
+            let mut v2 = 0.0;
+            for (i, p) in profiles.iter().enumerate() {
+                let Some(p) = p else { continue };
+                let sign = if to.get(i) >= from.get(i) { 1.0 } else { -1.0 };
+                let [s, v, a, _] = p.at(t);
+                out.pos.set(i, from.get(i) + sign * s);
+                out.vel[i] = sign * v;
+                out.acc[i] = sign * a;
+                v2 += v * v;
+            }
+            out.speed = v2.sqrt();
+            out
+        });
+        self.pos = to;
+    }
+
+    fn pause(&mut self, p: &Pause) {
+        let pos = self.pos;
+        let line = p.attr.line;
+        self.piece(p.seconds, |_| at_rest(pos, line));
+    }
+
+    fn untimed(&mut self, _from: Pos, to: Pos, _attr: &Attr) {
+        self.pos = to;
+    }
+}
