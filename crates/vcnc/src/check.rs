@@ -73,6 +73,11 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
         single_file &= !path.is_dir();
         inputs.extend(found.into_iter().map(Input::File));
     }
+    if args.opts.variables.is_some() && inputs.len() > 1 {
+        return Err(
+            "--variables keeps the variables of one program: check one program at a time".into(),
+        );
+    }
     if single_file && args.format == CheckFormat::Text {
         return detailed(args, &s, &inputs[0]);
     }
@@ -316,6 +321,11 @@ fn summary_json(s: &Summary, planned: &CycleTime, diameter: bool) -> Value {
         "spindle_rpm": s.spindle_rpm.map(|(lo, hi)| json!([lo, hi])),
         "waits": s.waits,
         "diameter_programming": diameter,
+        "unset_variables": s.unset_variables.iter().map(|v| json!({
+            "name": &*v.name,
+            "line": v.line,
+            "file": v.file.as_deref(),
+        })).collect::<Vec<_>>(),
     })
 }
 

@@ -131,6 +131,9 @@ pub struct Options {
     /// Optional stop switch on: stop at M01.
     #[arg(long)]
     pub optional_stop: bool,
+    /// Keep the macro variables a controller keeps across power-off (Fanuc #500-#999; Syntec #401-#999, @656-@1999) in FILE: read before the run when it exists, written after it. One program at a time.
+    #[arg(long, value_name = "FILE")]
+    pub variables: Option<PathBuf>,
 }
 
 /// Output formats of `vcnc run`.

@@ -192,4 +192,16 @@ impl vcnc_interp::ProgramStore for DirStore {
         let name = path.display().to_string();
         Some(File::open(&path).map(|f| (Box::new(FileSource(f)) as Box<dyn TextSource>, name)))
     }
+
+    /// Syntec's extended G-code and M-code macros: `G0200`, `M0123` (the
+    /// controller's files have no extension; `.nc` is accepted too).
+    fn open_named(&mut self, name: &str) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
+        let names = [name.to_string(), format!("{name}.nc"), format!("{name}.NC")];
+        let path = names
+            .iter()
+            .map(|n| self.dir.join(n))
+            .find(|p| p.is_file())?;
+        let shown = path.display().to_string();
+        Some(File::open(&path).map(|f| (Box::new(FileSource(f)) as Box<dyn TextSource>, shown)))
+    }
 }

@@ -13,6 +13,7 @@ mod plot;
 mod render;
 mod timing;
 mod trace;
+mod variables;
 
 use clap::Parser;
 use cli::{Cli, Command, Format, Options, RunArgs};
@@ -89,7 +90,16 @@ pub(crate) fn execute<S: Sink>(
     let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
     let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
+    if let Some(path) = &c.variables {
+        let kept = variables::read(path)?;
+        interp
+            .restore_variables(&kept)
+            .map_err(|e| format!("variables file {}: {e}", path.display()))?;
+    }
     let outcome = interp.run(main, &mut store, sink);
+    if let Some(path) = &c.variables {
+        variables::write(path, &interp.kept_variables())?;
+    }
     Ok((outcome, interp.state().modal.diameter))
 }
 

@@ -226,6 +226,9 @@ pub fn summary(
         Some((lo, hi)) => writeln!(out, "spindle    {lo:.0} .. {hi:.0} rpm")?,
         None => writeln!(out, "spindle    not started")?,
     }
+    if !s.unset_variables.is_empty() {
+        writeln!(out, "unset vars {}", unset_text(s))?;
+    }
     if s.warning_total() > 0 {
         let by_code: Vec<String> = s
             .warning_counts
@@ -246,6 +249,24 @@ pub fn summary(
         )?;
     }
     Ok(())
+}
+
+/// `#101 (line 5), #24 (O9010.nc line 3)`: variables read but never set.
+fn unset_text(s: &Summary) -> String {
+    let parts: Vec<String> = s
+        .unset_variables
+        .iter()
+        .map(|v| match &v.file {
+            Some(f) => {
+                let name = std::path::Path::new(&**f)
+                    .file_name()
+                    .map_or_else(|| f.to_string(), |n| n.to_string_lossy().into_owned());
+                format!("{} ({name} line {})", v.name, v.line)
+            }
+            None => format!("{} (line {})", v.name, v.line),
+        })
+        .collect();
+    format!("{} read but never set: {}", parts.len(), parts.join(", "))
 }
 
 /// `X lo .. hi   Y lo .. hi …` (a diameter axis shown as a diameter).

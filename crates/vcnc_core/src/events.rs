@@ -247,6 +247,17 @@ pub struct FrameInfo {
     pub tool_offset: Pos,
 }
 
+/// A variable a macro program read before anything set it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnsetVariable {
+    /// `#101`, `@5`.
+    pub name: Arc<str>,
+    /// The line of its first read.
+    pub line: u64,
+    /// The file of that line, when not the main program.
+    pub file: Option<Arc<str>>,
+}
+
 /// One canonical event.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -451,6 +462,25 @@ pub enum Event {
         /// Feed (the curve's F).
         feed: Feed,
     },
+    /// A message for the operator from a macro program: Fanuc `#3006`
+    /// (`stop`: the program waits for cycle start), Syntec `MSG()` (no
+    /// stop).
+    Message {
+        /// Source.
+        loc: Loc,
+        /// The text.
+        text: Arc<str>,
+        /// Whether the program stops until the operator restarts it.
+        stop: bool,
+    },
+    /// The variables the program read while they had never been set, sent
+    /// once before the `end` (or the alarm) when there are any.
+    UnsetVariables {
+        /// Where the run ended.
+        loc: Loc,
+        /// Each variable and where it was first read.
+        variables: Arc<[UnsetVariable]>,
+    },
     /// An alarm; always the last event.
     Alarm(Diagnostic),
 }
@@ -494,6 +524,8 @@ impl Event {
             Event::Warning(_) => "warning",
             Event::Smoothing { .. } => "smoothing",
             Event::Nurbs { .. } => "nurbs",
+            Event::Message { .. } => "message",
+            Event::UnsetVariables { .. } => "unset_variables",
             Event::Alarm(_) => "alarm",
         }
     }
@@ -521,7 +553,9 @@ impl Event {
             | Event::Junction { loc, .. }
             | Event::Aux { loc, .. }
             | Event::Smoothing { loc, .. }
-            | Event::Nurbs { loc, .. } => Some(loc),
+            | Event::Nurbs { loc, .. }
+            | Event::Message { loc, .. }
+            | Event::UnsetVariables { loc, .. } => Some(loc),
             Event::Warning(_) | Event::Alarm(_) => None,
         }
     }

@@ -20,7 +20,7 @@ mod span;
 pub use diagnostic::{Code, Diagnostic};
 pub use events::{
     ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Nurbs, PathMode, Plane, Pos,
-    SpindleDir, StopCode, WaitReason,
+    SpindleDir, StopCode, UnsetVariable, WaitReason,
 };
 pub use machine::Machine;
 pub use sink::{NullSink, Sink, VecSink};

@@ -202,6 +202,9 @@ pub struct Machine {
     pub m_codes: BTreeMap<u32, std::sync::Arc<str>>,
     /// Motion planning: profile, look-ahead, corner tolerance, times.
     pub motion: Motion,
+    /// M codes that call a macro program (Syntec's registered M codes,
+    /// Fanuc parameters 6080–6089): the program's name (`M0123`, `O9020`).
+    pub m_macros: BTreeMap<u32, std::sync::Arc<str>>,
 }
 
 /// Why a machine file was rejected.
@@ -283,6 +286,33 @@ struct File {
     m_codes: BTreeMap<String, String>,
     #[serde(default)]
     motion: Motion,
+    #[serde(default)]
+    m_macros: BTreeMap<String, String>,
+}
+
+/// Validates one `[m_macros]` entry: an M code the controller does not
+/// keep for itself, and a program name of letters and digits.
+fn m_macro_code(key: &str, program: &str) -> Result<u32, MachineError> {
+    let n: u32 = key
+        .parse()
+        .ok()
+        .filter(|n| *n < 1000)
+        .ok_or_else(|| MachineError(format!("m_macros.{key}: an M code is 0 to 999")))?;
+    // Program flow and the call codes cannot be taken over (Syntec's §5.3.3).
+    if matches!(n, 0 | 1 | 2 | 30 | 96 | 97 | 98 | 99 | 198) {
+        return Err(MachineError(format!(
+            "m_macros.{key}: M{n} is a program-flow code of the controller and cannot call a macro"
+        )));
+    }
+    let ok = !program.is_empty()
+        && program.len() <= 16
+        && program.bytes().all(|b| b.is_ascii_alphanumeric());
+    if !ok {
+        return Err(MachineError(format!(
+            "m_macros.{key}: {program:?} is not a program name (letters and digits, e.g. \"M0123\")"
+        )));
+    }
+    Ok(n)
 }
 
 impl Machine {
@@ -347,6 +377,7 @@ impl Machine {
             skip: Vec::new(),
             m_codes: BTreeMap::new(),
             motion: f.motion,
+            m_macros: BTreeMap::new(),
         };
         for (i, a) in f.axes.into_iter().enumerate() {
             m.add_axis(i, a)?;
@@ -386,6 +417,10 @@ impl Machine {
                 .filter(|n| *n < 1000)
                 .ok_or_else(|| MachineError(format!("m_codes.{key}: an M code is 0 to 999")))?;
             m.m_codes.insert(n, what.into());
+        }
+        for (key, program) in f.m_macros {
+            let n = m_macro_code(&key, &program)?;
+            m.m_macros.insert(n, program.into());
         }
         for s in f.skip {
             let axis = m.letter_index(&s.axis, "skip.axis")?;

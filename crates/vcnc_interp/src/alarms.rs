@@ -893,3 +893,163 @@ pub fn bad_nurbs(span: Span, why: &str) -> Diagnostic {
         "a curve of order P has n control points (K X Y Z R blocks) and n + P non-decreasing knots (the K-only blocks end it)",
     )
 }
+
+// Macros (docs/macros.md): Custom Macro B and the Syntec MACRO language.
+
+/// E204: an argument letter twice in a macro call (Fanuc's argument
+/// specification II, I J K repeated, is not supported).
+pub fn duplicate_argument(span: Span, l: u8) -> Diagnostic {
+    d(
+        Code::E204,
+        span,
+        format!("argument {} is given twice in this call", letter(l)),
+        "give each argument letter once (argument specification II, repeated I J K, is not supported)",
+    )
+}
+
+/// E401: the file of an extended G-code or an M-code macro is missing.
+pub fn macro_file_not_found(span: Span, name: &str) -> Diagnostic {
+    let mut diag = d(
+        Code::E401,
+        span,
+        format!("macro program {name} not found"),
+        "",
+    );
+    diag.help = format!("put the file {name} (no extension, or {name}.nc) in the --program-dir");
+    diag
+}
+
+/// E603: a Syntec statement that never ends.
+pub fn statement_too_long(span: Span, lines: usize, bytes: usize) -> Diagnostic {
+    d(
+        Code::E603,
+        span,
+        format!("this statement runs over more than {lines} lines or {bytes} bytes without ending"),
+        "end statements with `;` (a missing `;` joins the next line)",
+    )
+}
+
+/// E605: a variable number the controller does not have.
+pub fn no_such_variable(span: Span, sigil: char, n: f64) -> Diagnostic {
+    d(
+        Code::E605,
+        span,
+        format!("{sigil}{n} is not a variable of this controller"),
+        "check the number against the variable table (docs/macros.md)",
+    )
+}
+
+/// E605: a system variable that exists but cannot be used as written.
+pub fn no_such_variable_why(span: Span, n: u32, why: &str) -> Diagnostic {
+    d(
+        Code::E605,
+        span,
+        format!("#{n} cannot be read or written here: {why}"),
+        "check the number against the variable table (docs/macros.md)",
+    )
+}
+
+/// E605: a system variable vcnc does not provide (I/O signals, the date,
+/// the real machine's data).
+pub fn system_variable_missing(span: Span, n: u32) -> Diagnostic {
+    d(
+        Code::E605,
+        span,
+        format!(
+            "system variable #{n} is not available: it is not a variable of this controller or needs the real machine"
+        ),
+        "see the system variables vcnc provides in docs/macros.md",
+    )
+}
+
+/// E606: a write to a read-only variable.
+pub fn read_only_variable(span: Span, sigil: char, n: u32) -> Diagnostic {
+    d(
+        Code::E606,
+        span,
+        format!("{sigil}{n} is read-only"),
+        "write to a local or common variable instead",
+    )
+}
+
+/// E607: a vacant value where a number is required.
+pub fn vacant_value(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E607,
+        span,
+        format!("{what} is vacant (#0): a number is required"),
+        "give the variable a value before this statement",
+    )
+}
+
+/// E608: division by zero.
+pub fn division_by_zero(span: Span) -> Diagnostic {
+    d(
+        Code::E608,
+        span,
+        "division by zero".to_string(),
+        "check the divisor before dividing (IF [#2 EQ 0] GOTO …)",
+    )
+}
+
+/// E609: a function outside its domain.
+pub fn macro_domain(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E609,
+        span,
+        what.to_string(),
+        "check the argument's range before the call",
+    )
+}
+
+/// E609: a result out of range.
+pub fn macro_range(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E609,
+        span,
+        what.to_string(),
+        "check the magnitudes the expression works with",
+    )
+}
+
+/// E610: an operator that needs whole numbers (Syntec Longs) got a Double.
+pub fn type_mismatch(span: Span, op: &str) -> Diagnostic {
+    d(
+        Code::E610,
+        span,
+        format!(
+            "{op} works on Longs (numbers written without a decimal point), and an operand is a Double"
+        ),
+        "convert with ROUND(…) or FLOOR(…), or write the number without a decimal point",
+    )
+}
+
+/// E611: loops or branches that do not pair.
+pub fn bad_structure(span: Span, what: String, help: &str) -> Diagnostic {
+    d(Code::E611, span, what, help)
+}
+
+/// E612: an alarm the program raises (#3000, ALARM()).
+pub fn program_alarm(span: Span, id: f64, text: &str) -> Diagnostic {
+    let message = if text.is_empty() {
+        format!("program alarm {id}")
+    } else {
+        format!("program alarm {id}: {text}")
+    };
+    d(
+        Code::E612,
+        span,
+        message,
+        "the program stopped itself here: read its message",
+    )
+}
+
+/// E613: the PUSH stack is full.
+pub fn macro_stack_full(span: Span, max: usize) -> Diagnostic {
+    d(
+        Code::E613,
+        span,
+        format!("more than {max} values pushed on the macro stack"),
+        "POP what is no longer needed",
+    )
+}

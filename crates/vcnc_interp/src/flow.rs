@@ -18,6 +18,7 @@
 //! are opened only through the [`ProgramStore`] trait the caller provides.
 
 use crate::events::Loc;
+pub(crate) use crate::macros::CallKind;
 use std::collections::HashMap;
 use std::io;
 use std::sync::Arc;
@@ -30,6 +31,14 @@ pub trait ProgramStore {
     /// Opens program `number` (e.g. `O0010.nc` in a directory); `None` when
     /// there is no such program. The string names it in events and alarms.
     fn open(&mut self, number: u32) -> Option<io::Result<(Box<dyn TextSource>, String)>>;
+
+    /// Opens a program by file name without extension: Syntec's extended
+    /// G-code macros (`G0200`) and registered M-code macros (`M0123`).
+    /// A store that has none returns `None`.
+    fn open_named(&mut self, name: &str) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
+        let _ = name;
+        None
+    }
 }
 
 /// A store with no programs: every call must be satisfied by the main file.
@@ -56,6 +65,9 @@ pub(crate) struct Source {
     pub reader: LineReader<Box<dyn TextSource>>,
     pub name: Option<Arc<str>>,
     pub number: Option<u32>,
+    /// Unique for the run (a slot reused for another program gets a new
+    /// one), so caches keyed by it never mix two programs.
+    pub id: u32,
 }
 
 /// One level of the call stack.
@@ -78,6 +90,11 @@ pub(crate) struct Frame {
     pub started: bool,
     /// The code that ends this level: `"M99"`, or `"G24"` for a lathe G20.
     pub returns_with: &'static str,
+    /// The level of macro locals this program reads and writes (a
+    /// subprogram shares its caller's; a macro call has its own).
+    pub locals: u32,
+    /// How this level was entered.
+    pub call: CallKind,
 }
 
 impl Frame {
@@ -92,6 +109,8 @@ impl Frame {
             runs_left: 1,
             started: false,
             returns_with: "M99",
+            locals: 0,
+            call: CallKind::Sub,
         }
     }
 }
@@ -113,6 +132,9 @@ pub(crate) struct Flow {
     pub loops: HashMap<(usize, u64, u32), u32>,
     /// Location of the block being executed.
     pub loc: Loc,
+    /// The id the next installed source gets (it changes whenever a
+    /// source is installed, so it also tells that the set changed).
+    pub next_id: u32,
 }
 
 impl Flow {
@@ -121,6 +143,7 @@ impl Flow {
             reader: LineReader::new(main),
             name: None,
             number: None,
+            id: 0,
         };
         Flow {
             sources: vec![Some(main)],
@@ -133,6 +156,7 @@ impl Flow {
             jumps: 0,
             loops: HashMap::new(),
             loc: Loc::default(),
+            next_id: 1,
         }
     }
 
@@ -189,13 +213,16 @@ impl Flow {
                     reader: LineReader::new(text),
                     name: Some(name.into()),
                     number: Some(number),
+                    id: 0,
                 };
                 Ok(Some((self.install(src), Cursor::default())))
             }
         }
     }
 
-    fn install(&mut self, src: Source) -> usize {
+    pub(crate) fn install(&mut self, mut src: Source) -> usize {
+        src.id = self.next_id;
+        self.next_id = self.next_id.wrapping_add(1);
         if let Some(i) = self.sources.iter().position(Option::is_none) {
             self.sources[i] = Some(src);
             return i;
@@ -336,8 +363,13 @@ impl Flow {
             let mut i = std::mem::take(&mut col);
             while i < bytes.len() {
                 let start = i;
-                i = match lex_block(bytes, i, lex, &mut block) {
+                let lexed = lex_block(bytes, i, lex, &mut block);
+                let broken = lexed.is_err();
+                i = match lexed {
                     Ok(next) => next,
+                    // The words before the error still count: a macro
+                    // block `N400 #20 = #20 + 1` is labelled N400.
+                    Err(_) if !block.words().is_empty() => bytes.len(),
                     Err(_) => continue 'lines,
                 };
                 let at = Cursor {
@@ -359,6 +391,9 @@ impl Flow {
                 if visit(&block, at, after) {
                     resume = Some(after);
                     break 'lines;
+                }
+                if broken {
+                    continue 'lines;
                 }
             }
         }

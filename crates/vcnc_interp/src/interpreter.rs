@@ -78,6 +78,16 @@ pub enum Outcome {
     Stopped,
 }
 
+/// Where the run loop goes after a block's step.
+pub(crate) enum After {
+    /// On in this line.
+    Next,
+    /// The reader moved: read the next line.
+    Jumped,
+    /// The run is over (`None`: the sink is done).
+    Return(Option<EndCode>),
+}
+
 /// What the run loop does after a block.
 pub(crate) enum Step {
     Next,
@@ -129,6 +139,13 @@ pub struct Interpreter<'a> {
     pub(crate) spindle_warned: bool,
     /// The highest cutting feed, mm/min (the control's clamp).
     pub(crate) max_feed: f64,
+    /// Variables, compiled macro statements, macro calls.
+    pub(crate) macros: Box<crate::macros::Macros>,
+    /// Checked for every block, so kept out of the box: the dialect reads
+    /// `%@MACRO` files, and a macro statement has run (the cache is worth
+    /// a look before lexing).
+    pub(crate) macro_files: bool,
+    pub(crate) macro_active: bool,
     /// Whether the machine has travel limits to check (E501).
     pub(crate) travel_limited: bool,
     /// A G06.2 curve whose definition is still being read.
@@ -164,6 +181,9 @@ impl<'a> Interpreter<'a> {
             points: crate::block::convert::PointStyle::new(machine, dialect),
             spindle_warned: false,
             max_feed: machine.max_feed_mm_per_min(),
+            macros: Box::new(crate::macros::Macros::new(dialect.macros)),
+            macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
+            macro_active: false,
             travel_limited: machine.has_travel_limits(),
             nurbs: None,
         }
@@ -202,6 +222,9 @@ impl<'a> Interpreter<'a> {
             Ok(Some(code)) => Outcome::Ended(code),
             Ok(None) => Outcome::Stopped,
             Err(d) => {
+                if let Some(e) = self.unset_report() {
+                    sink.event(&e);
+                }
                 sink.event(&Event::Alarm(d.clone()));
                 Outcome::Alarm(d)
             }
@@ -224,6 +247,13 @@ impl<'a> Interpreter<'a> {
         let mut col = 0usize;
         loop {
             let src = self.flow.frames.last().map_or(0, |f| f.source);
+            // Syntec `%@MACRO` files are read statement by statement.
+            if self.macro_files && self.is_macro_file(src) {
+                match self.run_macro_file(src, &mut col, &mut block, store, sink)? {
+                    Some(end) => return Ok(end),
+                    None => continue,
+                }
+            }
             let Some(line) = self.next_line(src)? else {
                 match self.end_of_program(sink)? {
                     Some(code) => return Ok(Some(code)),
@@ -234,66 +264,113 @@ impl<'a> Interpreter<'a> {
             self.note_read(src, line.offset);
             let mut i = std::mem::take(&mut col);
             loop {
-                // Lex straight from the reader's buffer: no copy of the line.
-                let lexed = match self.flow.source(src) {
-                    Some(s) if i < s.reader.bytes(&line).len() => {
-                        lex_block(s.reader.bytes(&line), i, &lex, &mut block)
-                    }
-                    _ => break,
-                };
                 let start = i;
-                i = lexed.map_err(|d| {
-                    let d = self.locate(d, src, &line);
-                    self.semicolon_hint(d, src, &line, start)
-                })?;
-                if block.is_empty() {
-                    continue;
-                }
-                let here = Cursor {
-                    offset: line.offset,
-                    line: line.number,
-                    col: clamp_u32(start),
-                };
-                let next = Cursor {
-                    col: clamp_u32(i),
-                    ..here
-                };
                 let depth = self.flow.frames.len();
                 self.cur_line = Some((src, line));
-                let step = self.block(&block, here, next, store, sink).map_err(|d| {
-                    let d = self.locate(d, src, &line);
-                    self.semicolon_hint(d, src, &line, start)
-                })?;
-                if sink.is_done() {
-                    return Ok(None);
-                }
-                if !matches!(step, Step::ProgramEnd) {
-                    // Remembered by the level that ran it (a call's caller,
-                    // not a return's callee), for alarms at its end.
-                    if let Some(f) = self.flow.frames.get_mut(depth.wrapping_sub(1)) {
-                        f.last = Some((line, block.first_span()));
+                // A macro statement compiled on an earlier pass runs as is
+                // (a program that never showed macro syntax skips the look).
+                let cached = if self.macro_active {
+                    self.macro_cached(src, &line, &mut i, &mut block, store, sink)?
+                } else {
+                    None
+                };
+                let (step, first) = match cached {
+                    Some(ran) => ran,
+                    None => {
+                        // Lex straight from the reader's buffer: no copy of the line.
+                        let lexed = match self.flow.source(src) {
+                            Some(s) if i < s.reader.bytes(&line).len() => {
+                                lex_block(s.reader.bytes(&line), i, &lex, &mut block)
+                            }
+                            _ => break,
+                        };
+                        match lexed {
+                            Ok(n) => i = n,
+                            Err(d) => {
+                                let ran = self.macro_block(
+                                    src, &line, start, d, &mut i, &mut block, store, sink,
+                                );
+                                match ran {
+                                    Ok(ran) => {
+                                        match self.after_block(
+                                            ran.0, depth, line, ran.1, &mut col, sink,
+                                        )? {
+                                            After::Next => continue,
+                                            After::Jumped => break,
+                                            After::Return(end) => return Ok(end),
+                                        }
+                                    }
+                                    Err(d) => return Err(self.located(d, src, &line, start)),
+                                }
+                            }
+                        }
+                        if block.is_empty() {
+                            continue;
+                        }
+                        let here = Cursor {
+                            offset: line.offset,
+                            line: line.number,
+                            col: clamp_u32(start),
+                        };
+                        let next = Cursor {
+                            col: clamp_u32(i),
+                            ..here
+                        };
+                        let step = self
+                            .block(&block, here, next, store, sink)
+                            .map_err(|d| self.located(d, src, &line, start))?;
+                        (step, block.first_span())
                     }
-                }
-                match step {
-                    Step::Next => {}
-                    Step::Jump(to) => {
-                        self.flow.seek_current(to);
-                        col = to.col as usize;
-                        break;
-                    }
-                    Step::End(code) => return Ok(Some(code)),
-                    Step::ProgramEnd => match self.end_of_program(sink)? {
-                        Some(code) => return Ok(Some(code)),
-                        None => break,
-                    },
+                };
+                match self.after_block(step, depth, line, first, &mut col, sink)? {
+                    After::Next => {}
+                    After::Jumped => break,
+                    After::Return(end) => return Ok(end),
                 }
             }
         }
     }
 
+    /// What follows a block's step: the sink's wish to stop, the level's
+    /// last block (for alarms at its end), and the jump or the end.
+    #[inline]
+    pub(crate) fn after_block<S: Sink>(
+        &mut self,
+        step: Step,
+        depth: usize,
+        line: Line,
+        first: Span,
+        col: &mut usize,
+        sink: &mut S,
+    ) -> Result<After, Diagnostic> {
+        if sink.is_done() {
+            return Ok(After::Return(None));
+        }
+        if !matches!(step, Step::ProgramEnd) {
+            // Remembered by the level that ran it (a call's caller,
+            // not a return's callee), for alarms at its end.
+            if let Some(f) = self.flow.frames.get_mut(depth.wrapping_sub(1)) {
+                f.last = Some((line, first));
+            }
+        }
+        match step {
+            Step::Next => Ok(After::Next),
+            Step::Jump(to) => {
+                self.flow.seek_current(to);
+                *col = to.col as usize;
+                Ok(After::Jumped)
+            }
+            Step::End(code) => Ok(After::Return(Some(code))),
+            Step::ProgramEnd => match self.end_of_program(sink)? {
+                Some(code) => Ok(After::Return(Some(code))),
+                None => Ok(After::Jumped),
+            },
+        }
+    }
+
     /// Counts text read for the first time towards the block budget.
     #[inline]
-    fn note_read(&mut self, src: usize, offset: u64) {
+    pub(crate) fn note_read(&mut self, src: usize, offset: u64) {
         if src >= self.read_high.len() {
             self.read_high.resize(src + 1, 0);
         }
@@ -346,11 +423,14 @@ impl<'a> Interpreter<'a> {
 
     /// Fills in line, column and file of a diagnostic raised in `line` of
     /// source `src` (cold path: the line is read again for the column).
-    pub(crate) fn locate(&mut self, mut d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
+    pub(crate) fn locate(&mut self, d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
         if d.is_located() {
             // Raised about an earlier block (a move compensation held).
             return d;
         }
+        // A macro statement spanning lines maps its offsets to their line.
+        let (mut d, line) = self.macro_line_of(d, *line);
+        let line = &line;
         let text = self.line_text(src, line);
         d.line = line.number;
         d.column = column_of(&text, d.span.start);
@@ -360,6 +440,14 @@ impl<'a> Interpreter<'a> {
             .source(src)
             .and_then(|s| s.name.as_deref().map(str::to_string));
         d
+    }
+
+    /// A diagnostic of the block at `start` of `line`, placed, with the
+    /// `;` hint when it applies.
+    #[cold]
+    fn located(&mut self, d: Diagnostic, src: usize, line: &Line, start: usize) -> Diagnostic {
+        let d = self.locate(d, src, line);
+        self.semicolon_hint(d, src, line, start)
     }
 
     /// An alarm in the text after a `;` on the same line: the dialect ends
@@ -388,7 +476,26 @@ impl<'a> Interpreter<'a> {
         d
     }
 
+    /// A block the macro front end evaluated: the same as [`block`], out
+    /// of line so that the run loop keeps its own inlined copy.
+    ///
+    /// [`block`]: Self::block
+    #[inline(never)]
+    pub(crate) fn macro_words_block<S: Sink>(
+        &mut self,
+        block: &Block,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        self.block(block, here, next, store, sink)
+    }
+
     /// One non-empty block: block delete, tape marks, headers, then execution.
+    /// Inlined into the run loop (its hot path); macro word blocks reach it
+    /// through [`macro_words_block`](Self::macro_words_block).
+    #[inline(always)]
     fn block<S: Sink>(
         &mut self,
         block: &Block,
@@ -407,21 +514,30 @@ impl<'a> Interpreter<'a> {
         if let Some(f) = self.flow.frames.last_mut() {
             f.started = true;
         }
-        self.executed += 1;
-        if self.executed
-            > self
-                .machine
-                .limits
-                .max_executed_blocks
-                .saturating_add(self.read_total)
-        {
-            return Err(alarms::block_limit(
-                block.first_span(),
-                self.machine.limits.max_executed_blocks,
-            ));
-        }
+        self.count_executed(block.first_span())?;
         let mut words = Words::new(block);
-        words.fill(self.dialect, self.machine, self.axis_mask)?;
+        if let Err(d) = words.fill(self.dialect, self.machine, self.axis_mask) {
+            // Syntec's G200–G999 call macro files of the program directory.
+            if d.code == vcnc_syntax::Code::E201
+                && self.macros.rules.extended_g == crate::dialect::ExtendedG::Files
+                && let Some(step) = self.extended_g_call(block, next, store)?
+            {
+                return Ok(step);
+            }
+            return Err(d);
+        }
+        if let Some(call) = words.macro_call {
+            return self.macro_call_block(block, call, next, store);
+        }
+        if !self.machine.m_macros.is_empty()
+            && let Some(m) = words
+                .other_m
+                .iter()
+                .flatten()
+                .find(|m| self.machine.m_macros.contains_key(&m.def))
+        {
+            return self.m_macro_call(block, *m, next, store);
+        }
         for a in self.axis_words.iter().filter(|a| a.inc.is_some()) {
             if let (Some(_), Some(inc)) = (words.get(a.letter), a.inc.and_then(|l| words.get(l))) {
                 return Err(alarms::absolute_and_incremental(
@@ -444,6 +560,9 @@ impl<'a> Interpreter<'a> {
         } else {
             self.execute(&words, here, next, store)
         };
+        // Under G66 a block that moves calls the macro after its move.
+        let modal_call =
+            self.state.modal.macro_call && words.any(self.axis_mask) && words.axis_user.is_none();
         match &result {
             Ok(_) => {
                 self.tables.commit();
@@ -467,7 +586,30 @@ impl<'a> Interpreter<'a> {
                 }
             }
         }
+        if modal_call && matches!(result, Ok(Step::Next)) {
+            return self.modal_macro_call(next, store);
+        }
         result
+    }
+
+    /// Counts an executed block (or macro statement) against the runaway
+    /// budget, which grows with the program text read.
+    #[inline]
+    pub(crate) fn count_executed(&mut self, span: Span) -> Result<(), Diagnostic> {
+        self.executed += 1;
+        if self.executed
+            > self
+                .machine
+                .limits
+                .max_executed_blocks
+                .saturating_add(self.read_total)
+        {
+            return Err(alarms::block_limit(
+                span,
+                self.machine.limits.max_executed_blocks,
+            ));
+        }
+        Ok(())
     }
 
     /// `%` or an `O` header: the start of this program, or the end of it.
@@ -493,7 +635,10 @@ impl<'a> Interpreter<'a> {
     }
 
     /// The current program ran out of blocks.
-    fn end_of_program<S: Sink>(&mut self, sink: &mut S) -> Result<Option<EndCode>, Diagnostic> {
+    pub(crate) fn end_of_program<S: Sink>(
+        &mut self,
+        sink: &mut S,
+    ) -> Result<Option<EndCode>, Diagnostic> {
         let frame = self.flow.frame();
         // A called program that ran no block at all (its file or text ends
         // right after its header) is located at the call that entered it.
@@ -533,6 +678,15 @@ impl<'a> Interpreter<'a> {
             Ok(_) => Ok(None),
             Err(d) => Err(match last {
                 Some((line, _)) => self.locate(d, frame.source, &line),
+                // A program without a block (an empty subprogram): its start.
+                None if !d.is_located() => {
+                    let mut d = d;
+                    d.line = frame.program.line.max(1);
+                    d.column = 1;
+                    d.line_offset = frame.program.offset;
+                    d.file = self.flow.loc.file.as_deref().map(str::to_string);
+                    d
+                }
                 None => d,
             }),
         }
@@ -548,6 +702,9 @@ impl<'a> Interpreter<'a> {
         // (after the warning that the program has no end code).
         self.comp_finish()?;
         self.report_frame();
+        if let Some(e) = self.unset_report() {
+            self.pending.push(e);
+        }
         for e in self.pending.drain(..) {
             sink.event(&e);
         }

@@ -25,6 +25,7 @@ mod codes;
 pub mod dialect;
 mod flow;
 mod interpreter;
+mod macros;
 mod motion;
 pub mod state;
 
@@ -34,5 +35,5 @@ pub use interpreter::{Interpreter, Options, Outcome};
 pub use state::{State, Tables};
 pub use vcnc_core::{
     ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode,
-    Plane, Pos, Sink, SpindleDir, StopCode, VecSink, WaitReason, events, machine,
+    Plane, Pos, Sink, SpindleDir, StopCode, UnsetVariable, VecSink, WaitReason, events, machine,
 };

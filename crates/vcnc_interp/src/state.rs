@@ -55,6 +55,8 @@ pub struct Modal {
     pub arc_absolute: bool,
     /// G05 P1–P5/P10000 high-speed mode (Syntec 1.2.6) when true.
     pub high_speed: bool,
+    /// Group 12: G66 modal macro call when true, G67 when false.
+    pub macro_call: bool,
 }
 
 /// The modal motion (group 01).
@@ -121,6 +123,7 @@ impl Modal {
             inverse_time: false,
             arc_absolute: false,
             high_speed: false,
+            macro_call: false,
         }
     }
 }

@@ -278,6 +278,17 @@ impl<W: Write> Sink for CsvSink<W> {
                 self.set("code", format!("M{code}"));
                 self.set("message", quote(description));
             }
+            Event::Message { text, stop, .. } => {
+                self.set("on", stop.to_string());
+                self.set("message", quote(text));
+            }
+            Event::UnsetVariables { variables, .. } => {
+                let names: Vec<String> = variables
+                    .iter()
+                    .map(|v| format!("{}@{}", v.name, v.line))
+                    .collect();
+                self.set("message", quote(&names.join(" ")));
+            }
             Event::Alarm(d) | Event::Warning(d) => {
                 self.set("line", d.line.to_string());
                 self.set("file", d.file.as_deref().map(quote).unwrap_or_default());

@@ -240,6 +240,15 @@ impl<W: Write> GcodeSink<W> {
             Event::Aux {
                 code, description, ..
             } => format!("(M{code}: {})", comment_text(description)),
+            // A macro's message: a stop waits for cycle start (M0).
+            Event::Message { text, stop, .. } => {
+                let text = comment_text(text);
+                if *stop {
+                    format!("M0 (message: {text})")
+                } else {
+                    format!("(message: {text})")
+                }
+            }
             Event::Warning(d) => format!(
                 "(warning {} line {}: {})",
                 d.code.as_str(),

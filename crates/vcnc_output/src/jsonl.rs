@@ -285,6 +285,29 @@ pub fn write_event(out: &mut Vec<u8>, axes: &mut EventAxes, event: &Event) {
             j.int("code", u64::from(*code));
             j.str("description", description);
         }
+        Event::Message { loc, text, stop } => {
+            j.head("message", loc);
+            j.str("text", text);
+            j.boolean("stop", *stop);
+        }
+        Event::UnsetVariables { loc, variables } => {
+            j.head("unset_variables", loc);
+            j.key("variables");
+            j.out.push(b'[');
+            for (k, v) in variables.iter().enumerate() {
+                if k > 0 {
+                    j.out.push(b',');
+                }
+                j.out.extend_from_slice(b"{\"name\":");
+                push_json_str(j.out, &v.name);
+                j.int("line", v.line);
+                if let Some(f) = &v.file {
+                    j.str("file", f);
+                }
+                j.out.push(b'}');
+            }
+            j.out.push(b']');
+        }
         Event::Warning(d) => j.diagnostic("warning", d),
         Event::Alarm(d) => j.diagnostic("alarm", d),
         // The contract is additive: an event type this writer does not know

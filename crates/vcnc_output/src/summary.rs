@@ -67,6 +67,11 @@ pub struct Summary {
     pub warnings: Vec<Diagnostic>,
     /// Auxiliary (machine-builder) M codes passed to the machine.
     pub aux_codes: u64,
+    /// Messages of macro programs (#3006 stops, MSG).
+    pub messages: u64,
+    /// Variables the program read while nothing had set them (name, line,
+    /// file).
+    pub unset_variables: Vec<vcnc_core::UnsetVariable>,
     tool: Option<u32>,
 }
 
@@ -93,6 +98,8 @@ impl Summary {
             warning_counts: BTreeMap::new(),
             warnings: Vec::new(),
             aux_codes: 0,
+            messages: 0,
+            unset_variables: Vec::new(),
             tool: None,
         }
     }
@@ -315,6 +322,14 @@ impl Sink for Summary {
             },
             Event::Wait { .. } => self.waits += 1,
             Event::Aux { .. } => self.aux_codes += 1,
+            Event::Message { stop, .. } => {
+                self.messages += 1;
+                // A #3006 stop waits for the operator like M00.
+                self.waits += u64::from(*stop);
+            }
+            Event::UnsetVariables { variables, .. } => {
+                self.unset_variables.extend(variables.iter().cloned());
+            }
             Event::Warning(d) => {
                 *self.warning_counts.entry(d.code).or_insert(0) += 1;
                 if self.warnings.len() < KEPT_WARNINGS {

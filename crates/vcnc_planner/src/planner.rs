@@ -640,6 +640,7 @@ impl<T: Timeline> Sink for Planner<T> {
             }
             Event::Coolant { .. }
             | Event::Stop { .. }
+            | Event::Message { stop: true, .. }
             | Event::End { .. }
             | Event::Wait { .. }
             | Event::Alarm(_) => self.flush(),

@@ -218,3 +218,27 @@ fn tool_changes_are_timed_and_split_per_tool() {
     assert!(close(t.per_tool[0].1, 3.0 + 1.1));
     assert!(close(t.per_tool[1].1, 3.0 + 1.1));
 }
+
+#[test]
+fn a_stopping_macro_message_stops_the_motion_like_m00() {
+    let m = machine("", "trapezoid");
+    // #3006 waits for cycle start: the move before it ends at rest, as
+    // before an M00. Two 50 mm trapezoids: 2 · (50/100 + 100/1000) = 1.2 s,
+    // where the one 100 mm line takes 1.1 s.
+    let message = plan(&m, "G1 X50. F6000\n#3006 = 1 (CHECK)\nX100.\nM30\n");
+    let m00 = plan(&m, "G1 X50. F6000\nM00\nX100.\nM30\n");
+    assert!(
+        close(message.cutting_s, m00.cutting_s),
+        "{}",
+        message.cutting_s
+    );
+    assert!(close(message.cutting_s, 1.2), "{}", message.cutting_s);
+    // Syntec's MSG() only shows its text: one 100 mm line, 1.1 s.
+    let mut planner = Planner::new(&m, CycleTime::new());
+    Interpreter::new(&m, &Dialect::syntec(), Options::default()).run_str(
+        "%@MACRO\nG1 X50. F6000;\nMSG(\"CHECK\");\nX100.;\nM30;\n",
+        &mut planner,
+    );
+    let shown = planner.into_timeline();
+    assert!(close(shown.cutting_s, 1.1), "{}", shown.cutting_s);
+}

@@ -119,7 +119,9 @@ impl Block {
     pub fn is_empty(&self) -> bool {
         self.len == 0 && !self.percent
     }
-    pub(crate) fn clear(&mut self) {
+    /// Empties the block for reuse (the lexer's first step; the macro
+    /// front end fills a block with evaluated words the same way).
+    pub fn clear(&mut self) {
         self.len = 0;
         self.letters = [0; 26];
         self.present = 0;
@@ -130,7 +132,7 @@ impl Block {
         self.percent = false;
     }
     /// Appends a word; `false` when the block is full.
-    pub(crate) fn push(&mut self, w: Word) -> bool {
+    pub fn push(&mut self, w: Word) -> bool {
         let Some(slot) = self.words.get_mut(self.len) else {
             return false;
         };

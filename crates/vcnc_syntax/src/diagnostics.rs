@@ -143,3 +143,96 @@ pub fn too_many_words(span: Span, max: usize) -> Diagnostic {
         "split it into several blocks",
     )
 }
+
+// Macro statements (Custom Macro B, Syntec MACRO): E1xx reading errors
+// shared with the lexer, and the E6xx range.
+
+/// E105: a Syntec `(*` comment that the file does not close.
+pub fn unterminated_block_comment(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E105,
+        span,
+        "`(*` comment is not closed".to_string(),
+        "end the comment with `*)`",
+    )
+}
+
+/// E103: a number in a macro expression with too many digits.
+pub fn macro_number_out_of_range(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E103,
+        span,
+        "this number has too many digits".to_string(),
+        "use at most 9 digits before the decimal point and 15 significant digits in all",
+    )
+}
+
+/// E601: a macro statement or expression that does not parse; `what` says
+/// what was expected and found.
+pub fn macro_syntax(span: Span, what: &str, help: &str) -> Diagnostic {
+    Diagnostic::new(Code::E601, span, what.to_string(), help)
+}
+
+/// E602: an expression of more than `max` operations.
+pub fn macro_too_complex(span: Span, max: usize) -> Diagnostic {
+    Diagnostic::new(
+        Code::E602,
+        span,
+        format!("this expression is too complex (more than {max} operations or values)"),
+        "split it into several assignments",
+    )
+}
+
+/// E602: brackets nested deeper than the control allows.
+pub fn macro_nesting(span: Span, max: u8) -> Diagnostic {
+    Diagnostic::new(
+        Code::E602,
+        span,
+        format!("brackets are nested more than {max} deep (function brackets count)"),
+        "compute part of the expression into a variable first",
+    )
+}
+
+/// E604: a function the language does not have, or one that needs the
+/// machine (I/O, files, the PLC).
+pub fn unknown_function(span: Span, name: &str, unavailable: bool) -> Diagnostic {
+    if unavailable {
+        return Diagnostic::new(
+            Code::E604,
+            span,
+            format!(
+                "{name} needs the real machine (its I/O, files, parameters or PLC): vcnc cannot evaluate it"
+            ),
+            "run this part of the program on the machine, or give the value as a number",
+        );
+    }
+    Diagnostic::new(
+        Code::E604,
+        span,
+        format!("{name} is not a function or operator of this macro language"),
+        "check the spelling against the function list (docs/macros.md)",
+    )
+}
+
+/// E604: a Syntec statement word that is neither a keyword, a function nor
+/// an address (robot commands such as MOVL).
+pub fn unknown_statement(span: Span, name: &str) -> Diagnostic {
+    Diagnostic::new(
+        Code::E604,
+        span,
+        format!(
+            "{name} is not a statement vcnc runs (robot and coordinate-system commands are not supported)"
+        ),
+        "check the spelling; addresses are single letters (G01 X10.)",
+    )
+}
+
+/// E611: a DO/END loop number other than 1, 2 or 3.
+pub fn loop_number(span: Span, keyword: &str) -> Diagnostic {
+    Diagnostic::new(
+        Code::E611,
+        span,
+        format!("{keyword} takes a loop number 1, 2 or 3"),
+        "number nested loops 1 to 3 (DO 1 … END 1)",
+    )
+}

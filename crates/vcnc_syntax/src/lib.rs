@@ -12,6 +12,7 @@
 mod block;
 pub mod diagnostics;
 mod lexer;
+pub mod macros;
 mod number;
 mod reader;
 

@@ -56,6 +56,9 @@ pub struct Number {
 /// let n = vcnc_syntax::parse_number(b"-12.50 Y", 0).unwrap();
 /// assert_eq!((n.value, n.point, n.end), (-12.5, true, 6));
 /// ```
+// Inlined into the lexer's word loop (its hot path) even now that the macro
+// parser calls it too.
+#[inline(always)]
 pub fn parse_number(bytes: &[u8], start: usize) -> Result<Number, NumberError> {
     fast_number(bytes, start).map_or_else(|| slow_number(bytes, start), Ok)
 }
@@ -63,7 +66,7 @@ pub fn parse_number(bytes: &[u8], start: usize) -> Result<Number, NumberError> {
 /// The common case in one tight loop: `[-+]digits[.digits]` with no spaces
 /// inside and at most 15 digits. `None` sends anything else to the careful
 /// path, which gives the same answer for these forms.
-#[inline]
+#[inline(always)]
 fn fast_number(bytes: &[u8], start: usize) -> Option<Number> {
     let rest = bytes.get(start..)?;
     let (negative, mut i) = match rest.first() {

@@ -204,6 +204,7 @@ impl Interpreter<'_> {
             GOp::PathCutting => m.path = PathMode::Cutting,
             GOp::ReturnInitial => m.return_r = false,
             GOp::ReturnR => m.return_r = true,
+            GOp::MacroModalCancel => m.macro_call = false,
             _ => {}
         }
     }
@@ -525,6 +526,9 @@ impl Interpreter<'_> {
     pub(crate) fn end_program(&mut self, code: EndCode) -> Result<Step, Diagnostic> {
         self.comp_finish()?;
         self.report_frame();
+        if let Some(e) = self.unset_report() {
+            self.emit(|_| e);
+        }
         self.emit(|loc| Event::End { loc, code });
         Ok(Step::End(code))
     }

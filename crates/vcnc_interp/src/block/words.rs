@@ -59,6 +59,9 @@ pub struct Words<'b> {
     /// Whether any G code other than a motion code, or any M code, is written
     /// (lets the common "axis words only" block skip most steps).
     pub has_codes: bool,
+    /// G65 or G66: the block is a macro call whose words are its P, L and
+    /// arguments; validation stops there and `macros/calls.rs` takes over.
+    pub macro_call: Option<At<GDef>>,
 }
 
 impl<'b> Words<'b> {
@@ -78,6 +81,7 @@ impl<'b> Words<'b> {
             other_m: [None; MAX_OTHER_M],
             first: block.first_span(),
             has_codes: false,
+            macro_call: None,
         }
     }
 
@@ -99,7 +103,12 @@ impl<'b> Words<'b> {
         let mut seen = 0u32;
         for (k, word) in block.words().iter().enumerate() {
             match word.addr.as_letter() {
-                Some(b'G') => self.add_g(word, dialect, same_group)?,
+                Some(b'G') => {
+                    self.add_g(word, dialect, same_group)?;
+                    if self.macro_call.is_some() {
+                        return Ok(());
+                    }
+                }
                 Some(b'M') => self.add_m(word, dialect, machine)?,
                 Some(l) => {
                     let bit = 1 << (l - b'A');
@@ -187,6 +196,10 @@ impl<'b> Words<'b> {
             def,
             span: word.span,
         };
+        if matches!(def.op, GOp::MacroCall | GOp::MacroModal) {
+            self.macro_call = Some(at);
+            return Ok(());
+        }
         self.has_codes |= def.group != Group::Motion;
         if def.takes_axes() {
             // G28 X0, G92 X0, G51 X0 P2., G68 X0 R90.: the code's own arguments.
@@ -269,7 +282,8 @@ impl<'b> Words<'b> {
         machine: &Machine,
     ) -> Result<(), Diagnostic> {
         let code = u32::try_from(whole_m(word.value)).ok();
-        let known = code.is_some_and(|c| machine.m_codes.contains_key(&c));
+        let known = code
+            .is_some_and(|c| machine.m_codes.contains_key(&c) || machine.m_macros.contains_key(&c));
         if !known && machine.params.strict_m_codes {
             return Err(alarms::unknown_m(word.span, word.value, dialect.name));
         }

@@ -92,6 +92,9 @@ impl Interpreter<'_> {
             runs_left: runs,
             started: seq.is_some(),
             returns_with: "M99",
+            // A subprogram shares its caller's locals.
+            locals: caller.locals,
+            call: crate::flow::CallKind::Sub,
         });
         Ok(Step::Jump(start))
     }
@@ -116,10 +119,12 @@ impl Interpreter<'_> {
                     .ok_or_else(|| alarms::sequence_not_found(span, n))?,
                 None => frame.start,
             };
-            if (to.offset, to.col) <= (here.offset, here.col) {
+            if (to.offset, to.col) <= (here.offset, here.col) && !self.macros.used {
                 // Back to an earlier block: nothing in a program without
                 // variables can end the loop, so a machine runs it for
-                // ever (a bar feeder); one pass is the run.
+                // ever (a bar feeder); one pass is the run. A program that
+                // uses variables can count its passes: it loops, bounded
+                // by the runaway limits.
                 self.warn(alarms::main_program_repeats(m));
                 return self.end_program(EndCode::M99);
             }
@@ -144,7 +149,8 @@ impl Interpreter<'_> {
                 .ok_or_else(|| alarms::sequence_not_found(span, n))?,
             None => frame.ret,
         };
-        flow.frames.pop();
+        let left = flow.frames.pop();
+        self.leave_level(left);
         Ok(Step::Jump(to))
     }
 }
@@ -194,6 +200,8 @@ impl Interpreter<'_> {
             runs_left: 1,
             started: true,
             returns_with: "G24",
+            locals: caller.locals,
+            call: crate::flow::CallKind::Sub,
         });
         Ok(Step::Jump(start))
     }
@@ -204,8 +212,9 @@ impl Interpreter<'_> {
             return Err(alarms::return_without_call(cmd));
         }
         self.count_jump(cmd)?;
-        let frame = self.flow().frames.pop().map(|f| f.ret).unwrap_or_default();
-        Ok(Step::Jump(frame))
+        let left = self.flow().frames.pop();
+        self.leave_level(left);
+        Ok(Step::Jump(left.map(|f| f.ret).unwrap_or_default()))
     }
 
     /// G25 L: continue at `N L`.

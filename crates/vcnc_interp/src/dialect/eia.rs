@@ -91,5 +91,6 @@ pub(super) fn eia() -> Dialect {
         l20: G10L20::Unsupported,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
+        macros: super::MacroRules::NONE,
     }
 }

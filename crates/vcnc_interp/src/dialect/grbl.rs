@@ -116,5 +116,6 @@ pub(super) fn grbl() -> Dialect {
         l20: G10L20::FromPosition,
         program_stop: ProgramStop::Pause,
         tool_length_change: ToolLengthChange::AtNextMove,
+        macros: super::MacroRules::NONE,
     }
 }

@@ -75,6 +75,13 @@ const MILL_G: &[GRow] = &[
     g(620, GOp::PathSurface, Group::Path),
     g(630, GOp::PathTapping, Group::Path),
     g(640, GOp::PathCutting, Group::Path),
+    // G65/G66 take every letter as the call's P, L and arguments.
+    g(650, GOp::MacroCall, Group::NonModal)
+        .reads(ALL_LETTERS)
+        .refuses_axes(),
+    g(660, GOp::MacroModal, Group::MacroModal)
+        .reads(ALL_LETTERS)
+        .refuses_axes(),
     g(670, GOp::MacroModalCancel, Group::MacroModal),
     g(680, GOp::RotateOn, Group::Rotation)
         .reads(bit(b'R'))
@@ -115,6 +122,9 @@ const MILL_G: &[GRow] = &[
     g(980, GOp::ReturnInitial, Group::ReturnLevel),
     g(990, GOp::ReturnR, Group::ReturnLevel),
 ];
+
+/// Every letter (the arguments of G65/G66).
+const ALL_LETTERS: u32 = (1 << 26) - 1;
 
 /// Syntec 900M: inch/metric are G70/G71 (manual 1.1, 1.2.29).
 const SYNTEC_UNITS: &[GRow] = &[
@@ -159,10 +169,7 @@ const MILL_LEX: LexRules = LexRules {
 };
 
 /// Codes of the Syntec G-code list (manual 1.1) that later work will run.
-const SYNTEC_LATER: &[(u16, &str)] = &[
-    (650, "G65 macro call is not implemented yet"),
-    (660, "G66 macro modal call is not implemented yet"),
-];
+const SYNTEC_LATER: &[(u16, &str)] = &[];
 
 /// Haas's codes beyond Fanuc's that its programs use (Haas mill operator's
 /// manual, G- and M-code chapters).
@@ -203,12 +210,29 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         l20: G10L20::Unsupported,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
+        macros: super::MacroRules::FANUC,
     }
 }
 
+/// Syntec's M198: a subprogram call like M98 (its MACRO manual §2.3; the
+/// controller re-reads the file, which vcnc always does).
+const SYNTEC_M: &[MRow] = &[(
+    198,
+    MOp::Call,
+    MGroup::Flow,
+    bit(b'P') | bit(b'H') | bit(b'L'),
+)];
+
 /// Syntec 900M mill.
 pub(super) fn syntec() -> Dialect {
-    mill("syntec", SYNTEC_UNITS)
+    let rows: Vec<MRow> = MILL_M.iter().chain(SYNTEC_M).copied().collect();
+    let (g, m) = Dialect::tables(&[MILL_G, SYNTEC_UNITS], &rows);
+    Dialect {
+        g,
+        m,
+        macros: super::MacroRules::SYNTEC,
+        ..mill("syntec", SYNTEC_UNITS)
+    }
 }
 
 /// Fanuc 0i mill.

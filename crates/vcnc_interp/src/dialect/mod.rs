@@ -13,7 +13,10 @@
 mod eia;
 mod grbl;
 mod lathe;
+mod macro_rules;
 mod mill;
+
+pub use macro_rules::{ExtendedG, IsoMacros, MacroFiles, MacroRules, ModalLocals, VarTable};
 
 use crate::events::Plane;
 use vcnc_syntax::LexRules;
@@ -184,6 +187,9 @@ pub enum GOp {
     CompCancel,
     CompLeft,
     CompRight,
+    // Macro calls (Syntec 1.2.26, 1.2.27).
+    MacroCall,
+    MacroModal,
     // Cancels of modes later work adds: nothing to cancel yet.
     CycleCancel,
     MacroModalCancel,
@@ -474,6 +480,8 @@ pub struct Dialect {
     pub program_stop: ProgramStop,
     /// G43/G44/G49 without a move.
     pub tool_length_change: ToolLengthChange,
+    /// Macros: languages, variables, calls.
+    pub macros: MacroRules,
 }
 
 impl std::fmt::Debug for Dialect {

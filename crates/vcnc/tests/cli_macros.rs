@@ -1,0 +1,161 @@
+//! CLI behaviour of macro programs: `--format gcode` flattens them to plain
+//! moves that grbl runs, `check` lists the variables read but never set,
+//! and `--variables FILE` keeps the power-off variables between runs.
+//! Expected text is written from the documents (`docs/cli.md`,
+//! `docs/macros.md`), not captured from a run.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .canonicalize()
+        .unwrap()
+}
+
+fn vcnc(args: &[&str], stdin: Option<&str>) -> Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(args)
+        .current_dir(workspace())
+        .env("NO_COLOR", "1")
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut input = child.stdin.take().unwrap();
+    input.write_all(stdin.unwrap_or("").as_bytes()).unwrap();
+    drop(input);
+    child.wait_with_output().unwrap()
+}
+
+fn text(o: &[u8]) -> String {
+    String::from_utf8(o.to_vec()).unwrap()
+}
+
+/// End points of the motion lines of JSON-lines output, rounded to 1 µm.
+fn ends(jsonl: &str) -> Vec<(String, [i64; 3])> {
+    jsonl
+        .lines()
+        .filter_map(|l| {
+            let v: serde_json::Value = serde_json::from_str(l).unwrap();
+            let kind = v["type"].as_str()?.to_string();
+            let to = v.get("to")?;
+            // Machine coordinates of a test program: far within i64.
+            #[allow(clippy::cast_possible_truncation)]
+            let r = |k: &str| (to[k].as_f64().unwrap_or(0.0) * 1000.0).round() as i64;
+            Some((kind, [r("x"), r("y"), r("z")]))
+        })
+        .collect()
+}
+
+#[test]
+fn a_macro_program_flattens_to_plain_moves_that_grbl_runs() {
+    let program = "corpus/mill-fanuc/jobline-macro-bolt-circle.nc";
+    let events = vcnc(&["run", "--dialect", "fanuc", program], None);
+    assert_eq!(events.status.code(), Some(0), "{}", text(&events.stderr));
+    let flat = vcnc(
+        &["run", "--dialect", "fanuc", "--format", "gcode", program],
+        None,
+    );
+    assert_eq!(flat.status.code(), Some(0));
+    let flat = text(&flat.stdout);
+    assert!(!flat.contains('#') && !flat.contains('['), "{flat}");
+    // Loops, cycles and variables are gone: only plain codes (the holes
+    // stay as comments).
+    assert!(!flat.contains("WHILE"), "{flat}");
+    assert!(!flat.lines().any(|l| l.starts_with("G83")), "{flat}");
+    // The flattened program run by the grbl dialect moves the same way
+    // (its first line is a rapid to the power-on position).
+    let again = vcnc(&["run", "--dialect", "grbl", "-"], Some(&flat));
+    assert_eq!(again.status.code(), Some(0), "{}", text(&again.stderr));
+    let want = ends(&text(&events.stdout));
+    let got: Vec<(String, [i64; 3])> = ends(&text(&again.stdout)).into_iter().skip(1).collect();
+    assert_eq!(got, want);
+}
+
+#[test]
+fn check_lists_the_variables_read_but_never_set() {
+    let program = "G90\n#1 = #101 + 1\nIF [#24 EQ #0] GOTO 10\nN10 #102 = 5\n#2 = #102\nM30\n";
+    let out = vcnc(&["check", "--dialect", "fanuc", "-"], Some(program));
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("unset vars 2 read but never set: #101 (line 2), #24 (line 3)\n"),
+        "{stdout}"
+    );
+    let out = vcnc(
+        &["check", "--format", "json", "--dialect", "fanuc", "-"],
+        Some(program),
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let unset = &doc["files"][0]["summary"]["unset_variables"];
+    assert_eq!(unset[0]["name"], "#101");
+    assert_eq!(unset[0]["line"], 2);
+    assert_eq!(unset[1]["name"], "#24");
+}
+
+#[test]
+fn kept_variables_survive_between_runs_in_a_file() {
+    let dir = std::env::temp_dir().join(format!("vcnc-vars-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let vars = dir.join("vars.txt");
+    let _ = std::fs::remove_file(&vars);
+    let program = dir.join("count.nc");
+    std::fs::write(&program, "#500 = #500 + 1\n#100 = 7\nM30\n").unwrap();
+    let args = |v: &Path, p: &Path| {
+        vec![
+            "run".to_string(),
+            "--dialect".into(),
+            "fanuc".into(),
+            "--variables".into(),
+            v.display().to_string(),
+            p.display().to_string(),
+        ]
+    };
+    for _ in 0..3 {
+        let a = args(&vars, &program);
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let out = vcnc(&a, None);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    }
+    // Three runs counted to 3; #100 is common but not kept.
+    let kept = std::fs::read_to_string(&vars).unwrap();
+    assert_eq!(
+        kept,
+        "// vcnc kept macro variables (--variables)\n#500 = 3.0\n"
+    );
+    // A variable this controller does not keep is a usage error.
+    std::fs::write(&vars, "#100 = 1.0\n").unwrap();
+    let a = args(&vars, &program);
+    let a: Vec<&str> = a.iter().map(String::as_str).collect();
+    let out = vcnc(&a, None);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("#100"), "{}", text(&out.stderr));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn messages_reach_the_event_stream() {
+    let out = vcnc(
+        &["run", "--dialect", "fanuc", "-"],
+        Some("#3006 = 1 (TURN THE PART)\nM30\n"),
+    );
+    assert_eq!(
+        text(&out.stdout),
+        "{\"type\":\"message\",\"line\":1,\"text\":\"TURN THE PART\",\"stop\":true}\n{\"type\":\"end\",\"line\":2,\"code\":\"M30\"}\n"
+    );
+    let out = vcnc(
+        &["run", "--dialect", "fanuc", "--format", "gcode", "-"],
+        Some("#3006 = 1 (TURN THE PART)\nM30\n"),
+    );
+    assert!(
+        text(&out.stdout).contains("M0 (message: TURN THE PART)\n"),
+        "{}",
+        text(&out.stdout)
+    );
+}

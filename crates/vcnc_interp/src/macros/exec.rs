@@ -1,0 +1,353 @@
+//! Macro statements: assignments, jumps, loops, branches and calls of
+//! procedures, run with the guarantees of a block.
+//!
+//! A statement counts as an executed block (the runaway budget), every
+//! backward jump and every GOTO counts against `limits.max_jumps`, and its
+//! events (messages, a frame changed by a work-offset variable) wait in the
+//! block's `pending` list until it has succeeded. An alarm leaves the
+//! variables as they were: an assignment writes last, after everything that
+//! can fail.
+//!
+//! ```text
+//!   Macro B   WHILE [c] DO m   c holds: next block; else after END m
+//!             END m            back to the WHILE (it tests again)
+//!             IF [c] GOTO n    GOTO n: the first N n of the program
+//!   Syntec    IF/ELSEIF        the first clause whose condition holds; a
+//!                              clause's end skips to after END_IF
+//!             CASE e OF        the label holding e, else ELSE, else END_CASE
+//!             FOR v := a TO b BY s   v := a, then v += s at END_FOR, while
+//!                              v <= b (s > 0) or v >= b (s < 0)
+//!             REPEAT … UNTIL c END_REPEAT   again while c fails
+//!             EXIT             after the innermost loop
+//! ```
+
+use super::structure::Link;
+use super::{Compiled, key};
+use crate::Sink;
+use crate::alarms;
+use crate::events::Event;
+use crate::interpreter::{Interpreter, Step};
+use std::rc::Rc;
+use vcnc_syntax::macros::{BinOp, Expr, Lang, StmtKind, Target, Value, VarKind};
+use vcnc_syntax::{Cursor, Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// Runs a statement that is not a word block, all or nothing.
+    pub(crate) fn macro_statement<S: Sink>(
+        &mut self,
+        c: &Rc<Compiled>,
+        src: usize,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        if let Some(f) = self.flow.frames.last_mut() {
+            f.started = true;
+        }
+        self.count_executed(c.st.first)?;
+        self.pending.clear();
+        let jumps = self.flow.jumps;
+        let result = self.statement(c, src);
+        match &result {
+            Ok(_) => {
+                self.tables.commit();
+                self.report_frame();
+                for e in &self.pending {
+                    sink.event(e);
+                }
+                self.pending.clear();
+            }
+            Err(_) => {
+                self.tables.rollback();
+                self.flow.jumps = jumps;
+            }
+        }
+        result
+    }
+
+    fn statement(&mut self, c: &Rc<Compiled>, src: usize) -> Result<Step, Diagnostic> {
+        let lang = c.lang;
+        let first = c.st.first;
+        match &c.st.kind {
+            StmtKind::Assign { target, value } => {
+                self.assign(target, value, lang, c.st.comment.as_deref())?;
+                Ok(Step::Next)
+            }
+            StmtKind::Goto(target) => self.goto(target, lang),
+            StmtKind::IfGoto { cond, target } => {
+                if self.holds(cond, lang)? {
+                    self.goto(target, lang)
+                } else {
+                    Ok(Step::Next)
+                }
+            }
+            StmtKind::IfThen { cond, then } => {
+                if self.holds(cond, lang)?
+                    && let StmtKind::Assign { target, value } = then.as_ref()
+                {
+                    self.assign(target, value, lang, c.st.comment.as_deref())?;
+                }
+                Ok(Step::Next)
+            }
+            StmtKind::While { cond, .. } => {
+                let go_on = match cond {
+                    Some(e) => self.holds(e, lang)?,
+                    None => true,
+                };
+                if go_on {
+                    return Ok(Step::Next);
+                }
+                self.follow(c, src, first)
+            }
+            StmtKind::WhileDo(cond) => {
+                if self.holds(cond, lang)? {
+                    return Ok(Step::Next);
+                }
+                self.follow(c, src, first)
+            }
+            StmtKind::Until(cond) => {
+                if self.holds(cond, lang)? {
+                    return Ok(Step::Next);
+                }
+                self.follow(c, src, first)
+            }
+            StmtKind::End(_)
+            | StmtKind::EndWhile
+            | StmtKind::Exit
+            | StmtKind::ElseIf(_)
+            | StmtKind::Else
+            | StmtKind::CaseLabel(_) => self.follow(c, src, first),
+            StmtKind::EndFor => {
+                let to = self.link_to(c, src)?;
+                self.macros.for_resume = Some(key(self.source_id(src), to));
+                self.count_jump(first)?;
+                Ok(Step::Jump(to))
+            }
+            StmtKind::If(cond) => {
+                if self.holds(cond, lang)? {
+                    return Ok(Step::Next);
+                }
+                self.else_branch(c, src, first)
+            }
+            StmtKind::Case(selector) => self.case(c, src, selector),
+            StmtKind::For { var, from, to, by } => {
+                self.for_loop(c, src, var, from, to, by.as_ref())
+            }
+            StmtKind::Call(e) => {
+                self.eval(e, lang)?;
+                Ok(Step::Next)
+            }
+            StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
+            StmtKind::Words(_) | StmtKind::Percent => Ok(Step::Next),
+        }
+    }
+
+    /// Whether a condition holds: a number other than 0 (vacant: no).
+    pub(crate) fn holds(&mut self, e: &Expr, lang: Lang) -> Result<bool, Diagnostic> {
+        Ok(self.eval(e, lang)?.number().is_some_and(|x| x != 0.0))
+    }
+
+    /// The variable an assignment writes: (kind, number).
+    fn target_var(&mut self, t: &Target, lang: Lang) -> Result<(VarKind, u32), Diagnostic> {
+        match t {
+            Target::Fixed(kind, n, _) => Ok((*kind, *n)),
+            Target::Indirect(kind, e, span) => {
+                let v = self.eval(e, lang)?;
+                Ok((*kind, self.var_number(*kind, v, *span)?))
+            }
+        }
+    }
+
+    fn assign(
+        &mut self,
+        t: &Target,
+        value: &Expr,
+        lang: Lang,
+        comment: Option<&str>,
+    ) -> Result<(), Diagnostic> {
+        let (kind, n) = self.target_var(t, lang)?;
+        let v = self.eval(value, lang)?;
+        self.write_var(kind, n, v, t.span(), comment)
+    }
+
+    /// GOTO n: the first block `N n` of the current program.
+    fn goto(&mut self, target: &Expr, lang: Lang) -> Result<Step, Diagnostic> {
+        let span = target.span;
+        let v = self.eval(target, lang)?;
+        let Some(x) = v.number() else {
+            return Err(alarms::vacant_value(span, "the sequence number of a GOTO"));
+        };
+        if x.fract() != 0.0 || !(0.0..=99_999_999.0).contains(&x) {
+            return Err(alarms::macro_domain(
+                span,
+                &format!("GOTO {x}: a sequence number is a whole number 0 to 99999999"),
+            ));
+        }
+        // Whole and in range, checked above.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let n = x as u32;
+        let lex = self.dialect.lex;
+        let frame = self.flow.frame();
+        let to = self
+            .flow
+            .find_sequence(frame.source, frame.program, n, &lex)
+            .ok_or_else(|| alarms::sequence_not_found(span, n))?;
+        self.count_jump(span)?;
+        Ok(Step::Jump(to))
+    }
+
+    /// The statement's link, found by the structure scan.
+    fn link(&self, c: &Compiled, src: usize) -> Result<Link, Diagnostic> {
+        self.macros
+            .structure
+            .links
+            .get(&key(self.source_id(src), c.here))
+            .cloned()
+            .ok_or_else(|| {
+                alarms::bad_structure(
+                    c.st.first,
+                    "this statement has no matching loop or branch statement".into(),
+                    "check the pairing of the program's loops and branches",
+                )
+            })
+    }
+
+    fn link_to(&self, c: &Compiled, src: usize) -> Result<Cursor, Diagnostic> {
+        if let Some(to) = c.target.get() {
+            return Ok(to);
+        }
+        let to = match self.link(c, src)? {
+            Link::Exit(to) | Link::Back(to) | Link::Skip(to) => to,
+            Link::If(chain) => chain.end,
+            Link::Case(table) => table.end,
+        };
+        // Links never change once found: the next pass jumps at once.
+        c.target.set(Some(to));
+        Ok(to)
+    }
+
+    /// Jumps where the statement's link says (a loop's end or head, a
+    /// branch's end), counting the jump.
+    fn follow(&mut self, c: &Compiled, src: usize, span: Span) -> Result<Step, Diagnostic> {
+        let to = self.link_to(c, src)?;
+        self.count_jump(span)?;
+        Ok(Step::Jump(to))
+    }
+
+    /// An IF whose condition failed: the first ELSEIF that holds, the ELSE,
+    /// or after END_IF.
+    fn else_branch(&mut self, c: &Compiled, src: usize, span: Span) -> Result<Step, Diagnostic> {
+        let Link::If(chain) = self.link(c, src)? else {
+            return self.follow(c, src, span);
+        };
+        let mut to = chain.end;
+        for clause in &chain.clauses {
+            match &clause.cond {
+                None => {
+                    to = clause.body;
+                    break;
+                }
+                Some(cond) => {
+                    let StmtKind::ElseIf(e) = &cond.st.kind else {
+                        continue;
+                    };
+                    let holds = self
+                        .holds(e, cond.lang)
+                        .map_err(|d| self.locate_compiled(d, src, cond))?;
+                    if holds {
+                        to = clause.body;
+                        break;
+                    }
+                }
+            }
+        }
+        self.count_jump(span)?;
+        Ok(Step::Jump(to))
+    }
+
+    fn case(&mut self, c: &Compiled, src: usize, selector: &Expr) -> Result<Step, Diagnostic> {
+        let v = self.eval(selector, c.lang)?;
+        let Some(x) = v.number() else {
+            return Err(alarms::vacant_value(
+                selector.span,
+                "the selector of a CASE",
+            ));
+        };
+        let Link::Case(table) = self.link(c, src)? else {
+            return self.follow(c, src, c.st.first);
+        };
+        let hit = (x.fract() == 0.0)
+            .then(|| {
+                table
+                    .labels
+                    .iter()
+                    .find(|(values, _)| values.iter().any(|v| *v as f64 == x))
+            })
+            .flatten()
+            .map(|(_, body)| *body);
+        let to = hit.or(table.otherwise).unwrap_or(table.end);
+        self.count_jump(c.st.first)?;
+        Ok(Step::Jump(to))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn for_loop(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        var: &Target,
+        from: &Expr,
+        to: &Expr,
+        by: Option<&Expr>,
+    ) -> Result<Step, Diagnostic> {
+        let lang = c.lang;
+        let here = key(self.source_id(src), c.here);
+        let stepping = self.macros.for_resume == Some(here);
+        let (kind, n) = self.target_var(var, lang)?;
+        let step = match by {
+            Some(e) => {
+                let v = self.eval(e, lang)?;
+                if v.number().is_none() {
+                    return Err(alarms::vacant_value(e.span, "the step of a FOR"));
+                }
+                v
+            }
+            None => Value::Long(1),
+        };
+        let s = step.number().unwrap_or(1.0);
+        if s == 0.0 {
+            let span = by.map_or(c.st.first, |e| e.span);
+            return Err(alarms::macro_domain(
+                span,
+                "a FOR step of 0 never ends the loop",
+            ));
+        }
+        let value = if stepping {
+            let cur = self.read_var(kind, n, var.span())?;
+            super::eval::binary(lang, BinOp::Add, cur, step, var.span())?
+        } else {
+            let v = self.eval(from, lang)?;
+            if v.number().is_none() {
+                return Err(alarms::vacant_value(from.span, "the start of a FOR"));
+            }
+            v
+        };
+        let end = self.eval(to, lang)?;
+        let Some(last) = end.number() else {
+            return Err(alarms::vacant_value(to.span, "the end of a FOR"));
+        };
+        self.write_var(kind, n, value, var.span(), None)?;
+        self.macros.for_resume = None;
+        let x = value.number().unwrap_or(0.0);
+        let go_on = if s > 0.0 { x <= last } else { x >= last };
+        if go_on {
+            Ok(Step::Next)
+        } else {
+            self.follow(c, src, c.st.first)
+        }
+    }
+
+    /// A message for the operator: `stop` when the program waits (#3006).
+    pub(crate) fn message(&mut self, text: String, stop: bool) {
+        let text: std::sync::Arc<str> = text.into();
+        self.emit(|loc| Event::Message { loc, text, stop });
+    }
+}
