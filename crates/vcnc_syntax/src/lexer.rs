@@ -98,6 +98,9 @@ pub fn lex_block(
                 return finish(out, start, i + 1, line.len());
             }
             b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, i, rules, out)?,
+            // `,C` and `,R` (Fanuc chamfer and corner rounding) when the
+            // dialect has them.
+            b',' if is_extended(line, i, rules) => i = lex_word(line, i, rules, out)?,
             0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
                 return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
             }
@@ -212,6 +215,14 @@ fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
         }
     }
     (Addr::letter(line[at].to_ascii_uppercase()), at + 1)
+}
+
+/// Whether one of the dialect's extended addresses starts at `at`.
+fn is_extended(line: &[u8], at: usize, rules: &LexRules) -> bool {
+    rules.extended.iter().any(|(text, _)| {
+        line.get(at..at + text.len())
+            .is_some_and(|here| here.eq_ignore_ascii_case(text.as_bytes()))
+    })
 }
 
 /// A grbl system command (`$H`, `$X`, `$$`) in a program.
