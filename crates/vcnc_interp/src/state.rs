@@ -74,6 +74,12 @@ pub enum Motion {
     ThreadInch,
     /// Lathe G05 (arc through a middle point).
     ThreePoint,
+    /// Fanuc lathe G90: the turning cycle, modal.
+    TurnCycle,
+    /// Fanuc lathe G92: the threading cycle, modal.
+    ThreadingCycle,
+    /// Fanuc lathe G94: the facing cycle, modal.
+    FaceCycle,
 }
 
 /// Cutter radius compensation (group 07).
@@ -106,7 +112,7 @@ impl Modal {
             motion: Motion::Rapid,
             plane: dialect.plane,
             incremental: false,
-            per_rev: false,
+            per_rev: dialect.feed_at_power_on == crate::dialect::FeedAtPowerOn::PerRevolution,
             inch: false,
             comp: CompSide::Off,
             tool_length: ToolLength::Off,
@@ -217,6 +223,8 @@ pub struct State {
     pub(crate) magnification_pct: f64,
     /// `(1 + 0.1·feed_steps) · magnification_pct / 100`, kept current.
     pub(crate) feed_factor: f64,
+    /// Fanuc lathe: turret offset, cycle data, a pending chamfer.
+    pub(crate) lathe: crate::codes::lathe_data::LatheData,
 }
 
 impl State {
@@ -256,6 +264,7 @@ impl State {
             feed_steps: 0,
             magnification_pct: 100.0,
             feed_factor: 1.0,
+            lathe: crate::codes::lathe_data::LatheData::power_on(machine),
         };
         s.frame.origin = machine.work_offsets[0];
         s.prog = s.frame.program_of(s.pos);

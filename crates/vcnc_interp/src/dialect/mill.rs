@@ -3,8 +3,9 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
-    LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, ToolLengthChange, bit, g,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow,
+    Group, IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -201,6 +202,9 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         l20: G10L20::Unsupported,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
+        feed_at_power_on: FeedAtPowerOn::PerMinute,
+        surface_speed: SurfaceSpeedOn::ToolDiameter,
+        tool_words: ToolWords::Select,
     }
 }
 
