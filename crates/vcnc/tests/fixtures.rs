@@ -222,6 +222,15 @@ fn haas_dialect_differences_match_their_hand_worked_traces() {
     assert!(n >= 10, "only {n} haas fixtures found");
 }
 
+/// `--dialect fanuc-lathe` (Fanuc 0i-TF): single cycles, G70–G76,
+/// turret offsets, G96 on the work diameter, chamfers, nose radius
+/// compensation, bad input (`tests/fixtures/fanuc_lathe/README.md`).
+#[test]
+fn fanuc_lathe_programs_match_their_hand_worked_traces() {
+    let n = check_folder("fanuc_lathe", "fanuc-lathe", 1e-6);
+    assert!(n >= 14, "only {n} fanuc-lathe fixtures found");
+}
+
 /// The seed-by-seed audit's fixes (M00, G04, G05, G33, G95, lathe CR=/D)
 /// and the warnings, each from the manual.
 #[test]

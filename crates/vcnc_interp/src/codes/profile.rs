@@ -108,6 +108,12 @@ impl Interpreter<'_> {
             .flow
             .find_sequence(src, frame.program, ns, &lex)
             .ok_or_else(|| alarms::sequence_not_found(p.span, ns))?;
+        // The last block must exist after the first: checked before any
+        // block is read, so that a missing Q is said as such.
+        let end = self.flow.find_sequence(src, frame.program, nf, &lex);
+        if end.is_none_or(|e| (e.offset, e.col) < (start.offset, start.col)) {
+            return Err(alarms::profile_end_missing(q.span, nf));
+        }
         let axes = self.lathe_axes(p.span)?;
         let mut at = self.here_xz(axes);
         let mut profile = Profile {
@@ -132,7 +138,6 @@ impl Interpreter<'_> {
             };
             let mut i = std::mem::take(&mut col);
             while i < bytes.len() {
-                let begin = i;
                 i = lex_block(&bytes, i, &lex, &mut block)
                     .map_err(|d| self.locate(d, src, &line))?;
                 if block.is_empty() {
@@ -194,7 +199,6 @@ impl Interpreter<'_> {
                         let d = alarms::corner_fault(word, "the profile ends at this corner");
                         return Err(self.locate(d, src, &held_at));
                     }
-                    let _ = begin;
                     return Ok(profile);
                 }
             }

@@ -184,9 +184,10 @@ impl USeg {
     fn min_u(&self) -> f64 {
         let mut m = self.a.0.min(self.b.0);
         if let Some((c, r, t0, sweep)) = self.arc
-            && sweeps_through(t0, sweep, std::f64::consts::PI) {
-                m = m.min(c.0 - r);
-            }
+            && sweeps_through(t0, sweep, std::f64::consts::PI)
+        {
+            m = m.min(c.0 - r);
+        }
         m
     }
 }

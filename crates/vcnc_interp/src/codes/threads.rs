@@ -353,6 +353,9 @@ mod tests {
         let d = thread_depths(0.3, 0.2, 1.0, 0.0).unwrap();
         let want = [0.3, 0.5, 0.7, 0.9, 1.0];
         assert_eq!(d.len(), want.len());
-        assert!(d.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12), "{d:?}");
+        assert!(
+            d.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{d:?}"
+        );
     }
 }
