@@ -211,64 +211,58 @@ pub(crate) struct Unfit {
 }
 
 /// Checks the monotonicity a cycle needs on the profile (not the approach
-/// from A): v never increases, and for type I u never decreases.
+/// from A): v never increases, and for type I u never decreases, each
+/// within a micrometre (an arc that starts a hair past the vertical is
+/// monotone for any tool).
 pub(crate) fn check_monotone(segs: &[Seg], f: &Frame, type_one: bool) -> Result<(), Unfit> {
+    const TOL: f64 = 1e-6;
     for (k, s) in segs.iter().enumerate() {
         let u = USeg::of(s, f);
-        let (dv_up, du_down) = match u.arc {
-            None => (u.b.1 - u.a.1 > 1e-6, u.b.0 - u.a.0 < -1e-6),
-            Some((_, r, t0, sweep)) => {
-                // dv/ds ∝ sign(sweep)·cos θ, du/ds ∝ −sign(sweep)·sin θ.
-                let dir = sweep.signum();
-                let mut probe = vec![t0, t0 + sweep];
-                for th in [
-                    0.0,
-                    std::f64::consts::FRAC_PI_2,
-                    std::f64::consts::PI,
-                    -std::f64::consts::FRAC_PI_2,
-                ] {
-                    if sweeps_through(t0, sweep, th) {
-                        probe.push(th);
-                    }
+        // The points where u or v may turn: the ends and, on an arc, the
+        // angles where u or v is extreme, in the order of the path.
+        let mut pts = vec![u.a];
+        if let Some((c, r, t0, sweep)) = u.arc {
+            let tau = std::f64::consts::TAU;
+            let mut turns: Vec<f64> = [
+                0.0,
+                std::f64::consts::FRAC_PI_2,
+                std::f64::consts::PI,
+                -std::f64::consts::FRAC_PI_2,
+            ]
+            .iter()
+            .filter(|th| sweeps_through(t0, sweep, **th))
+            .map(|th| {
+                if sweep >= 0.0 {
+                    (th - t0).rem_euclid(tau)
+                } else {
+                    (t0 - th).rem_euclid(tau)
                 }
-                // Probe just inside the ends as well (the ends themselves
-                // may be where the derivative is zero).
-                probe.push(t0 + sweep * 1e-6);
-                probe.push(t0 + sweep * (1.0 - 1e-6));
-                let v_up = probe
-                    .iter()
-                    .any(|th| dir * th.cos() * r > 1e-6 && sweeps_or_end(t0, sweep, *th));
-                let u_down = probe
-                    .iter()
-                    .any(|th| -dir * th.sin() * r < -1e-6 && sweeps_or_end(t0, sweep, *th));
-                (v_up, u_down)
+            })
+            .collect();
+            turns.sort_by(f64::total_cmp);
+            for d in turns {
+                let th = t0 + d * sweep.signum();
+                pts.push((c.0 + r * th.cos(), c.1 + r * th.sin()));
             }
-        };
-        if dv_up {
-            return Err(Unfit {
-                elem: k,
-                why: "the profile turns back along the cut direction (it must be monotone along the cutting axis)",
-            });
         }
-        if type_one && du_down {
-            return Err(Unfit {
-                elem: k,
-                why: "the profile is not monotone across the cuts, which type I needs (give the first block both X and Z for type II)",
-            });
+        pts.push(u.b);
+        for w in pts.windows(2) {
+            let (p, q) = (w[0], w[1]);
+            if q.1 - p.1 > TOL {
+                return Err(Unfit {
+                    elem: k,
+                    why: "the profile turns back along the cut direction (it must be monotone along the cutting axis)",
+                });
+            }
+            if type_one && q.0 - p.0 < -TOL {
+                return Err(Unfit {
+                    elem: k,
+                    why: "the profile is not monotone across the cuts, which type I needs (give the first block both X and Z for type II)",
+                });
+            }
         }
     }
     Ok(())
-}
-
-/// Whether `th` is on the sweep (ends included).
-fn sweeps_or_end(t0: f64, sweep: f64, th: f64) -> bool {
-    let tau = std::f64::consts::TAU;
-    let d = if sweep >= 0.0 {
-        (th - t0).rem_euclid(tau)
-    } else {
-        (t0 - th).rem_euclid(tau)
-    };
-    d <= sweep.abs() + 1e-9 || (tau - d) < 1e-9
 }
 
 /// How a rough pass step moves.
