@@ -67,7 +67,9 @@ pub fn lex_block(
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
-        if b.is_ascii_alphabetic() {
+        // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
+        // the dialect has them (one call site keeps `lex_word` inlined).
+        if b.is_ascii_alphabetic() || (b == b',' && is_extended(line, i, rules)) {
             i = lex_word(line, i, rules, out)?;
             first = false;
             continue;
@@ -98,9 +100,6 @@ pub fn lex_block(
                 return finish(out, start, i + 1, line.len());
             }
             b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, i, rules, out)?,
-            // `,C` and `,R` (Fanuc chamfer and corner rounding) when the
-            // dialect has them.
-            b',' if is_extended(line, i, rules) => i = lex_word(line, i, rules, out)?,
             0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
                 return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
             }
