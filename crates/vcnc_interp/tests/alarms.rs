@@ -639,19 +639,41 @@ fn e346_zero_depth_of_cut() {
 
 #[test]
 fn e347_chamfer_without_a_g01_after_it() {
-    check_lathe(
-        "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C1. F0.1\nN7 G00 Z5.\n",
-        Code::E347,
-        (4, 4),
-        4,
-    );
-    // A chamfer longer than the next line.
-    check_lathe(
-        "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C3. F0.1\nN7 G01 Z-2.\n",
-        Code::E347,
-        (4, 4),
-        4,
-    );
+    let lathe = Dialect::fanuc_lathe().machine();
+    let run = |text: &str| {
+        run_with(
+            &lathe,
+            "fanuc-lathe",
+            Options::default(),
+            text.as_bytes(),
+            &mut NoPrograms,
+        )
+    };
+    // The G01 with the chamfer is held (it moves nothing by itself), so the
+    // lines before it are the state to compare with: neither it nor the
+    // block that alarms moved.
+    let before = run("G97 S1000 M03\nG00 X0. Z2.\n");
+    for (program, at) in [
+        // The next block is a rapid.
+        (
+            "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C1. F0.1\nN7 G00 Z5.\n",
+            (4, 4),
+        ),
+        // A chamfer longer than the next line.
+        (
+            "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C3. F0.1\nN7 G01 Z-2.\n",
+            (4, 4),
+        ),
+        // The program ends at the corner: the alarm points at the ,C word.
+        (
+            "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C1. F0.1\n",
+            (3, 14),
+        ),
+    ] {
+        let r = run(program);
+        assert_alarm(&r, Code::E347, at.0, at.1);
+        assert_eq!(motions(&r.events), motions(&before.events), "{program}");
+    }
 }
 
 #[test]

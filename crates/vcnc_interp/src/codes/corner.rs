@@ -210,6 +210,18 @@ impl Interpreter<'_> {
         out
     }
 
+    /// At the end of the program (its last block being the G01 with the
+    /// corner): the move it waits for never comes.
+    pub(crate) fn check_corner_at_end(&self) -> Result<(), Diagnostic> {
+        match self.state.lathe.corner {
+            Some(held) => Err(alarms::corner_fault(
+                held.word,
+                "the program ends after this ,C or ,R",
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// After a block's motion: a corner held by an earlier block that
     /// this block did not cut (it did not move with G01) alarms.
     pub(crate) fn check_corner_cut(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
