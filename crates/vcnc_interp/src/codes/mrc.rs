@@ -227,43 +227,8 @@ impl Interpreter<'_> {
             ));
         }
         let feed = self.feed(cmd)?;
-        let shift = self.allowance(w);
-        let Some((first, rest)) = profile.elems.split_first() else {
-            return Err(self.profile_alarm(profile, 0, "the profile has no moves"));
-        };
-        let (names_across, names_along) = match across {
-            Across::X => profile.first_names,
-            Across::Z => (profile.first_names.1, profile.first_names.0),
-        };
-        if !names_across {
-            let why = match across {
-                Across::X => "the first block must give X (or U)",
-                Across::Z => "the first block must give Z (or W)",
-            };
-            return Err(self.profile_alarm(profile, 0, why));
-        }
-        let type_one = !names_along;
-        let frame = self.rough_frame(profile, a, across)?;
-        let segs: Vec<Seg> = rest.iter().map(|e| e.seg.shifted(shift)).collect();
-        rough::check_monotone(&segs, &frame, type_one)
-            .map_err(|u| self.profile_alarm(profile, u.elem + 1, u.why))?;
-        let start = (first.seg.to.0 + shift.0, first.seg.to.1 + shift.1);
-        let (ua, va) = frame.uv(a);
-        let approach = if frame.uv(start).1 >= va {
-            Seg {
-                from: frame.xz((ua, frame.uv(start).1)),
-                to: start,
-                arc: None,
-            }
-        } else {
-            Seg {
-                from: a,
-                to: start,
-                arc: None,
-            }
-        };
-        let mut chain = vec![approach];
-        chain.extend(segs);
+        let (frame, chain) = self.rough_chain(profile, a, across, self.allowance(w))?;
+        let (ua, _) = frame.uv(a);
         let lowest = chain
             .iter()
             .flat_map(|s| [frame.uv(s.from).0, frame.uv(s.to).0])
@@ -278,7 +243,8 @@ impl Interpreter<'_> {
         };
         let moves =
             rough::rough_passes(a, &chain, &r).ok_or_else(|| alarms::too_many_cycle_moves(cmd))?;
-        let approach_how = if first.rapid {
+        let first_rapid = profile.elems.first().is_some_and(|e| e.rapid);
+        let approach_how = if first_rapid {
             How::Rapid
         } else {
             How::Cut(feed)
@@ -292,6 +258,53 @@ impl Interpreter<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The frame of G71/G72 and the chain its levels are cut against: the
+    /// profile shifted by the allowance, after the approach from A (from
+    /// the stock top when the profile starts in front of the stock, else
+    /// A's own line to the profile's start). Checks what the type needs.
+    fn rough_chain(
+        &mut self,
+        profile: &Profile,
+        a: Xz,
+        across: Across,
+        shift: Xz,
+    ) -> Result<(Frame, Vec<Seg>), Diagnostic> {
+        let Some((first, rest)) = profile.elems.split_first() else {
+            return Err(self.profile_alarm(profile, 0, "the profile has no moves"));
+        };
+        let (names_across, names_along) = match across {
+            Across::X => profile.first_names,
+            Across::Z => (profile.first_names.1, profile.first_names.0),
+        };
+        if !names_across {
+            let why = match across {
+                Across::X => "the first block must give X (or U)",
+                Across::Z => "the first block must give Z (or W)",
+            };
+            return Err(self.profile_alarm(profile, 0, why));
+        }
+        let frame = self.rough_frame(profile, a, across)?;
+        let segs: Vec<Seg> = rest.iter().map(|e| e.seg.shifted(shift)).collect();
+        // Type I (the first block names only the level axis) is monotone
+        // both ways, type II along the cuts.
+        rough::check_monotone(&segs, &frame, !names_along)
+            .map_err(|u| self.profile_alarm(profile, u.elem + 1, u.why))?;
+        let start = (first.seg.to.0 + shift.0, first.seg.to.1 + shift.1);
+        let (ua, va) = frame.uv(a);
+        let from = if frame.uv(start).1 >= va {
+            frame.xz((ua, frame.uv(start).1))
+        } else {
+            a
+        };
+        let mut chain = vec![Seg {
+            from,
+            to: start,
+            arc: None,
+        }];
+        chain.extend(segs);
+        Ok((frame, chain))
     }
 
     /// The normalised frame of G71/G72: the profile lies on one side of A

@@ -61,6 +61,21 @@ pub(crate) struct Profile {
     pub follows: bool,
 }
 
+/// What reading a profile keeps from block to block.
+struct Reading {
+    profile: Profile,
+    /// Where the profile is so far (X radius, Z).
+    at: Xz,
+    /// The modal motion within the profile.
+    motion: Option<GOp>,
+    /// F and S written since the last element.
+    carry: (Option<f64>, Option<f64>),
+    /// A `,C`/`,R` waiting for the next element, its word and line.
+    pending: Option<(CornerKind, Span, Line)>,
+    /// Blocks read.
+    blocks: usize,
+}
+
 /// What a profile block says, after validation.
 struct Move {
     motion: Option<GOp>,
@@ -115,19 +130,21 @@ impl Interpreter<'_> {
             return Err(alarms::profile_end_missing(q.span, nf));
         }
         let axes = self.lathe_axes(p.span)?;
-        let mut at = self.here_xz(axes);
-        let mut profile = Profile {
-            elems: Vec::new(),
-            first_names: (false, false),
-            src,
-            after: start,
-            follows: (start.offset, start.col) > (here.offset, here.col),
+        let mut r = Reading {
+            profile: Profile {
+                elems: Vec::new(),
+                first_names: (false, false),
+                src,
+                after: start,
+                follows: (start.offset, start.col) > (here.offset, here.col),
+            },
+            at: self.here_xz(axes),
+            motion: None,
+            carry: (None, None),
+            pending: None,
+            blocks: 0,
         };
-        let mut motion: Option<GOp> = None;
-        let mut carry: (Option<f64>, Option<f64>) = (None, None);
-        let mut pending: Option<(CornerKind, Span, Line)> = None;
         let mut block = Block::default();
-        let mut blocks = 0usize;
         if let Some(s) = self.flow.source(src) {
             s.reader.seek(Cursor { col: 0, ..start });
         }
@@ -140,69 +157,83 @@ impl Interpreter<'_> {
             while i < bytes.len() {
                 i = lex_block(&bytes, i, &lex, &mut block)
                     .map_err(|d| self.locate(d, src, &line))?;
-                if block.is_empty() {
+                if block.is_empty() || (block.deleted.is_some() && self.opts.block_delete) {
                     continue;
                 }
                 if block.percent || first_value(&block, b'O').is_some() {
                     return Err(alarms::profile_end_missing(q.span, nf));
                 }
-                if block.deleted.is_some() && self.opts.block_delete {
-                    continue;
-                }
-                blocks += 1;
-                if blocks > MAX_BLOCKS {
+                r.blocks += 1;
+                if r.blocks > MAX_BLOCKS {
                     return Err(alarms::profile_too_long(q.span, MAX_BLOCKS));
                 }
+                self.profile_take(&mut r, &block, line, axes)?;
                 let last = block
                     .words()
                     .iter()
                     .any(|w| w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(nf));
-                let mv = self
-                    .profile_block(&block, axes, at, &mut motion, blocks == 1)
-                    .map_err(|d| self.locate(d, src, &line))?;
-                if blocks == 1 {
-                    profile.first_names = mv.named;
-                }
-                carry = (mv.feed.or(carry.0), mv.speed.or(carry.1));
-                if let Some(elem) = self
-                    .profile_elem(&mv, at, line, blocks == 1)
-                    .map_err(|d| self.locate(d, src, &line))?
-                {
-                    let elem = Elem {
-                        feed: carry.0,
-                        speed: carry.1,
-                        ..elem
-                    };
-                    carry = (None, None);
-                    if let Some((kind, word, held_at)) = pending.take() {
-                        let prev = profile.elems.pop();
-                        self.push_corner(&mut profile.elems, prev, elem, kind)
-                            .map_err(|why| {
-                                let d = alarms::corner_fault(word, why);
-                                self.locate(d, src, &held_at)
-                            })?;
-                    } else {
-                        profile.elems.push(elem);
-                    }
-                    at = elem.seg.to;
-                }
-                if let Some((kind, word)) = mv.corner {
-                    pending = Some((kind, word, line));
-                }
                 if last {
-                    profile.after = Cursor {
+                    if let Some((_, word, held_at)) = r.pending {
+                        let d = alarms::corner_fault(word, "the profile ends at this corner");
+                        return Err(self.locate(d, src, &held_at));
+                    }
+                    r.profile.after = Cursor {
                         offset: line.offset,
                         line: line.number,
                         col: vcnc_syntax::clamp_u32(i),
                     };
-                    if let Some((_, word, held_at)) = pending {
-                        let d = alarms::corner_fault(word, "the profile ends at this corner");
-                        return Err(self.locate(d, src, &held_at));
-                    }
-                    return Ok(profile);
+                    return Ok(r.profile);
                 }
             }
         }
+    }
+
+    /// One profile block: its element (with the F and S written since the
+    /// last one), a chamfer or round the block before asked for, and the
+    /// corner this block asks for.
+    fn profile_take(
+        &mut self,
+        r: &mut Reading,
+        block: &Block,
+        line: Line,
+        axes: (usize, usize),
+    ) -> Result<(), Diagnostic> {
+        let src = r.profile.src;
+        let first = r.blocks == 1;
+        let mv = self
+            .profile_block(block, axes, r.at, &mut r.motion, first)
+            .map_err(|d| self.locate(d, src, &line))?;
+        if first {
+            r.profile.first_names = mv.named;
+        }
+        r.carry = (mv.feed.or(r.carry.0), mv.speed.or(r.carry.1));
+        let elem = self
+            .profile_elem(&mv, r.at, line, first)
+            .map_err(|d| self.locate(d, src, &line))?;
+        if let Some(elem) = elem {
+            let elem = Elem {
+                feed: r.carry.0,
+                speed: r.carry.1,
+                ..elem
+            };
+            r.carry = (None, None);
+            match r.pending.take() {
+                Some((kind, word, held_at)) => {
+                    let prev = r.profile.elems.pop();
+                    self.push_corner(&mut r.profile.elems, prev, elem, kind)
+                        .map_err(|why| {
+                            let d = alarms::corner_fault(word, why);
+                            self.locate(d, src, &held_at)
+                        })?;
+                }
+                None => r.profile.elems.push(elem),
+            }
+            r.at = elem.seg.to;
+        }
+        if let Some((kind, word)) = mv.corner {
+            r.pending = Some((kind, word, line));
+        }
+        Ok(())
     }
 
     /// The next line of source `src`, copied (the reader is shared).

@@ -294,74 +294,105 @@ pub(crate) const MAX_MOVES: usize = 200_000;
 /// element the approach from A), or `None` when they would be more than
 /// [`MAX_MOVES`].
 pub(crate) fn rough_passes(a: Xz, segs: &[Seg], r: &Rough) -> Option<Vec<(Step, Xz)>> {
-    let f = &r.frame;
-    let useg: Vec<USeg> = segs.iter().map(|s| USeg::of(s, f)).collect();
-    let (ua, va) = f.uv(a);
+    let useg: Vec<USeg> = segs.iter().map(|s| USeg::of(s, &r.frame)).collect();
+    let (ua, va) = r.frame.uv(a);
     let u_min = useg.iter().map(USeg::min_u).fold(f64::INFINITY, f64::min);
-    let mut out: Vec<(Step, Xz)> = Vec::new();
-    let mut pos = (ua, va);
+    let mut p = Passes {
+        r,
+        ua,
+        va,
+        pos: (ua, va),
+        out: Vec::new(),
+    };
     let mut prev_level = ua;
-    let mut k = 1u32;
-    loop {
+    for k in 1u32.. {
         let level = ua - f64::from(k) * r.depth;
         if level <= u_min + 1e-7 {
             break;
         }
         let spans = below(&useg, level, va);
-        let single_at_face = spans.len() == 1 && spans.first().is_some_and(|s| s.0 >= va - 1e-7);
-        for (j, &(v_in, v_out)) in spans.iter().enumerate() {
-            if j == 0 && v_in >= va - 1e-7 {
-                out.push((Step::Approach, f.xz((level, va))));
-            } else {
-                if (pos.0 - ua).abs() > EPS {
-                    out.push((Step::Rapid, f.xz((ua, pos.1))));
-                }
-                out.push((Step::Rapid, f.xz((ua, v_in))));
-                out.push((Step::Rapid, f.xz((prev_level, v_in))));
-                out.push((Step::Feed, f.xz((level, v_in))));
-            }
-            out.push((Step::Feed, f.xz((level, v_out))));
-            let back = (v_out + r.retract).min(v_in);
-            pos = (level + r.retract, back);
-            out.push((Step::Rapid, f.xz(pos)));
-            if out.len() > MAX_MOVES {
-                return None;
-            }
-        }
         if spans.is_empty() {
             // Nothing below this level inside the stock (the chain's lowest
             // point is in front of it), so nothing below the next either.
             break;
         }
-        if single_at_face {
-            pos = (pos.0, va);
-            out.push((Step::Rapid, f.xz(pos)));
-        } else {
-            out.push((Step::Rapid, f.xz((ua, pos.1))));
-            pos = (ua, va);
-            out.push((Step::Rapid, f.xz(pos)));
+        p.level(level, prev_level, &spans);
+        if p.out.len() > MAX_MOVES {
+            return None;
         }
         prev_level = level;
-        k += 1;
     }
-    // The last pass along the chain: into its first point, then along it.
-    let Some(first) = segs.first() else {
-        return Some(out);
-    };
-    let start = f.uv(first.to);
-    if start.1 >= va - 1e-7 {
-        out.push((Step::Approach, first.to));
-    } else {
-        out.push((Step::Rapid, a));
-        out.push((Step::Approach, first.to));
+    p.last_pass(a, segs);
+    (p.out.len() <= MAX_MOVES).then_some(p.out)
+}
+
+/// The moves of G71/G72 being written, in the normalised frame.
+struct Passes<'r> {
+    r: &'r Rough,
+    ua: f64,
+    va: f64,
+    /// Where the tool is, (u, v).
+    pos: (f64, f64),
+    out: Vec<(Step, Xz)>,
+}
+
+impl Passes<'_> {
+    fn push(&mut self, step: Step, uv: (f64, f64)) {
+        self.out.push((step, self.r.frame.xz(uv)));
     }
-    for s in segs.iter().skip(1) {
-        out.push((Step::Along(*s), s.to));
+
+    /// One level: every interval cut, then back towards the face.
+    fn level(&mut self, level: f64, prev_level: f64, spans: &[(f64, f64)]) {
+        let (ua, va) = (self.ua, self.va);
+        for (j, &(v_in, v_out)) in spans.iter().enumerate() {
+            if j == 0 && v_in >= va - 1e-7 {
+                // From the face, with the profile's first move.
+                self.push(Step::Approach, (level, va));
+            } else {
+                // A pocket: over the stock top to it, down to the level
+                // above (already cut there), feed in.
+                if (self.pos.0 - ua).abs() > EPS {
+                    self.push(Step::Rapid, (ua, self.pos.1));
+                }
+                self.push(Step::Rapid, (ua, v_in));
+                self.push(Step::Rapid, (prev_level, v_in));
+                self.push(Step::Feed, (level, v_in));
+            }
+            self.push(Step::Feed, (level, v_out));
+            // The 45° retract by e (not past where the cut began).
+            let e = self.r.retract;
+            self.pos = (level + e, (v_out + e).min(v_in));
+            self.push(Step::Rapid, self.pos);
+        }
+        let single_at_face = spans.len() == 1 && spans.first().is_some_and(|s| s.0 >= va - 1e-7);
+        if single_at_face {
+            self.pos = (self.pos.0, va);
+            self.push(Step::Rapid, self.pos);
+        } else {
+            self.push(Step::Rapid, (ua, self.pos.1));
+            self.pos = (ua, va);
+            self.push(Step::Rapid, self.pos);
+        }
     }
-    let end = segs.last().map_or(a, |s| f.uv(s.to));
-    out.push((Step::Rapid, f.xz((ua, end.1))));
-    out.push((Step::Rapid, a));
-    (out.len() <= MAX_MOVES).then_some(out)
+
+    /// The last pass along the chain, then back to A (across, then along).
+    fn last_pass(&mut self, a: Xz, segs: &[Seg]) {
+        let f = self.r.frame;
+        let Some(first) = segs.first() else {
+            return;
+        };
+        if f.uv(first.to).1 < self.va - 1e-7 {
+            // The chain starts inside the stock: in along its approach from A.
+            self.out.push((Step::Rapid, a));
+        }
+        self.out.push((Step::Approach, first.to));
+        for s in segs.iter().skip(1) {
+            self.out.push((Step::Along(*s), s.to));
+        }
+        let end = segs.last().map_or(self.va, |s| f.uv(s.to).1);
+        self.push(Step::Rapid, (self.ua, end));
+        self.out.push((Step::Rapid, a));
+    }
 }
 
 /// The intervals (v_in ≥ v_out) where the chain is below `level`, within
