@@ -676,6 +676,31 @@ fn e347_chamfer_without_a_g01_after_it() {
     }
 }
 
+/// Regression: an alarm about a move G70 makes along its profile (here
+/// over-travel) names the profile block's line and column, not a column
+/// of the G70 line.
+#[test]
+fn regression_g70_alarms_point_at_the_profile_block() {
+    let d = Dialect::fanuc_lathe();
+    let text = d
+        .default_machine
+        .replace(
+            "letter = \"x\"\n",
+            "letter = \"x\"\nmin_mm = -5.0\nmax_mm = 28.0\n",
+        )
+        .replace("start_mm = { x = 125.0", "start_mm = { x = 25.0");
+    let m = Machine::from_toml(&text).unwrap();
+    let r = run_with(
+        &m,
+        "fanuc-lathe",
+        Options::default(),
+        b"G97 S1000 M03\nG00 X50. Z2.\nG70 P10 Q20\nM30\nN10 G00 X20.\nG01 Z-10. F0.1\nN20 G01 X60.\n",
+        &mut NoPrograms,
+    );
+    // X60. is radius 30, beyond 28: the alarm is at N20's G01 (column 5).
+    assert_last_alarm(&r, Code::E501, 7, 5);
+}
+
 #[test]
 fn e348_surface_speed_at_the_centre_without_a_clamp() {
     let d = Dialect::fanuc_lathe();

@@ -132,6 +132,7 @@ impl Interpreter<'_> {
             word: word.span,
             line: self.flow.loc.line,
             block_at: w.first.start,
+            source_line: self.cur_line,
         });
         self.state.prog = goal.prog;
         Ok(())
@@ -173,8 +174,9 @@ impl Interpreter<'_> {
             pos.set(axes.b, q.1);
             pos
         };
-        // The held block's moves carry its line.
+        // The held block's moves carry its line (and its alarms its place).
         let line = std::mem::replace(&mut self.flow.loc.line, held.line);
+        let cur_line = std::mem::replace(&mut self.cur_line, held.source_line);
         self.state.prog = held.start;
         let first = Move {
             kind: MoveKind::Feed(held.feed),
@@ -207,6 +209,11 @@ impl Interpreter<'_> {
             out = self.commit(round, w);
         }
         self.flow.loc.line = line;
+        let out = match (out, held.source_line) {
+            (Err(d), Some((src, l))) => Err(self.locate(d, src, &l)),
+            (out, _) => out,
+        };
+        self.cur_line = cur_line;
         out
     }
 

@@ -115,4 +115,6 @@ pub(crate) struct PendingCorner {
     /// The line of the G01 block and where in it the block starts.
     pub line: u64,
     pub block_at: u32,
+    /// Its source and line, to place alarms about its moves.
+    pub source_line: Option<(usize, vcnc_syntax::Line)>,
 }

@@ -452,9 +452,10 @@ impl Interpreter<'_> {
     fn finish(&mut self, profile: &Profile, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
         let a = self.here_xz(axes);
-        let line = self.flow.loc.line;
+        let (line, cur_line) = (self.flow.loc.line, self.cur_line);
         let out = self.finish_moves(profile, axes, w);
         self.flow.loc.line = line;
+        self.cur_line = cur_line;
         out?;
         self.return_to(a, axes, w, cmd)
     }
@@ -466,31 +467,42 @@ impl Interpreter<'_> {
         w: &Words<'_>,
     ) -> Result<(), Diagnostic> {
         for e in &profile.elems {
+            // The moves, warnings and alarms of an element are its block's.
             self.flow.loc.line = e.line.number;
-            if let Some(f) = e.feed {
-                self.state.feed = f;
-            }
-            if let Some(s) = e.speed {
-                self.profile_speed(s, e.span)?;
-            }
-            let here = self.here_xz(axes);
-            if (e.seg.to.0 - here.0).abs() < 1e-9
-                && (e.seg.to.1 - here.1).abs() < 1e-9
-                && e.seg.arc.is_none()
-            {
-                continue;
-            }
-            if e.rapid {
-                let mut to: Pos = self.state.prog;
-                to.set(axes.0, e.seg.to.0);
-                to.set(axes.1, e.seg.to.1);
-                self.straight(MoveKind::Rapid, Target::Program(to), w, e.span)?;
-            } else {
-                let feed = self.feed(e.span)?;
-                self.along(&e.seg, axes, feed, w, e.span)?;
-            }
+            self.cur_line = Some((profile.src, e.line));
+            self.finish_elem(e, axes, w)
+                .map_err(|d| self.locate(d, profile.src, &e.line))?;
         }
         Ok(())
+    }
+
+    /// One profile element under G70.
+    fn finish_elem(
+        &mut self,
+        e: &Elem,
+        axes: (usize, usize),
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        if let Some(f) = e.feed {
+            self.state.feed = f;
+        }
+        if let Some(s) = e.speed {
+            self.profile_speed(s, e.span)?;
+        }
+        let here = self.here_xz(axes);
+        let still = (e.seg.to.0 - here.0).abs() < 1e-9 && (e.seg.to.1 - here.1).abs() < 1e-9;
+        if still && e.seg.arc.is_none() {
+            return Ok(());
+        }
+        if e.rapid {
+            let mut to: Pos = self.state.prog;
+            to.set(axes.0, e.seg.to.0);
+            to.set(axes.1, e.seg.to.1);
+            self.straight(MoveKind::Rapid, Target::Program(to), w, e.span)
+        } else {
+            let feed = self.feed(e.span)?;
+            self.along(&e.seg, axes, feed, w, e.span)
+        }
     }
 
     /// An S word in a profile block run by G70: the new speed, as the
