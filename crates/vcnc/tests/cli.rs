@@ -690,6 +690,33 @@ fn an_alarm_in_a_called_program_names_its_file() {
     assert!(err.contains("  |       ^^^^^^ E501\n"), "{err}");
 }
 
+/// The twelve lathe programs of `examples/fanuc-lathe/` (Haas safe-start
+/// line, G50 S, G96, T0101, G71 P Q, G70, G76 …) run to their M30 with no
+/// alarm and no warning.
+#[test]
+fn the_fanuc_lathe_examples_run_to_the_end() {
+    let o = vcnc(&[
+        "check",
+        "--dialect",
+        "fanuc-lathe",
+        "--deny-warnings",
+        "examples/fanuc-lathe",
+    ]);
+    assert_eq!(
+        code(&o),
+        0,
+        "stdout: {}\nstderr: {}",
+        stdout(&o),
+        stderr(&o)
+    );
+    let out = stdout(&o);
+    assert_eq!(out.matches(": ended by M30").count(), 12, "{out}");
+    assert!(
+        out.contains("12 programs: 12 ran to the end, 0 stopped by an alarm, 0 with warnings"),
+        "{out}"
+    );
+}
+
 // ---------------------------------------------------------------------------
 // Usage errors: exit 2, a message on stderr, nothing on stdout
 // ---------------------------------------------------------------------------
@@ -708,7 +735,8 @@ fn unknown_dialect_is_a_usage_error() {
     let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "heidenhain"]);
     assert_usage_error(&o, "invalid value 'heidenhain' for '--dialect");
     assert!(
-        stderr(&o).contains("[possible values: syntec, fanuc, lathe, eia, grbl, haas]"),
+        stderr(&o)
+            .contains("[possible values: syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe]"),
         "{}",
         stderr(&o)
     );

@@ -222,6 +222,15 @@ fn haas_dialect_differences_match_their_hand_worked_traces() {
     assert!(n >= 10, "only {n} haas fixtures found");
 }
 
+/// `--dialect fanuc-lathe` (Fanuc 0i-TF): single cycles, G70–G76,
+/// turret offsets, G96 on the work diameter, chamfers, nose radius
+/// compensation, bad input (`tests/fixtures/fanuc_lathe/README.md`).
+#[test]
+fn fanuc_lathe_programs_match_their_hand_worked_traces() {
+    let n = check_folder("fanuc_lathe", "fanuc-lathe", 1e-6);
+    assert!(n >= 14, "only {n} fanuc-lathe fixtures found");
+}
+
 /// The seed-by-seed audit's fixes (M00, G04, G05, G33, G95, lathe CR=/D)
 /// and the warnings, each from the manual.
 #[test]
@@ -252,6 +261,75 @@ fn linuxcnc_grbl_style_programs_match_rs274() {
 fn linuxcnc_canned_cycle_programs_match_rs274() {
     let n = check_folder("linuxcnc_cycles", "fanuc", 1e-4);
     assert!(n >= 80, "only {n} LinuxCNC canned-cycle fixtures found");
+}
+
+/// `linuxcnc_lathe`: the moves (rapid, feed, arc, thread) and the end of
+/// random turning programs under `--dialect fanuc-lathe` equal those of
+/// LinuxCNC's `rs274` on the same programs spelled for it (G7 diameters,
+/// G95, G91 for U/W, G33 K, G92, G96 D, G70 with an O-sub): what both
+/// define alike (`tests/fixtures/linuxcnc_lathe/README.md`). Spindle and
+/// frame events are not compared, nor moves that do not move.
+#[test]
+fn linuxcnc_lathe_moves_match_rs274() {
+    let dir = fixtures_dir("linuxcnc_lathe");
+    let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("fixture folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+        .collect();
+    programs.sort();
+    let moves = |events: Vec<Value>| -> Vec<Value> {
+        let mut at: Option<Value> = None;
+        events
+            .into_iter()
+            .filter(|e| {
+                matches!(
+                    e["type"].as_str(),
+                    Some("rapid" | "feed" | "arc" | "thread" | "end")
+                )
+            })
+            .filter(|e| {
+                if e["type"] == "end" {
+                    return true;
+                }
+                let same = at.as_ref().is_some_and(|a| close(a, &e["to"], 1e-9, "to"));
+                at = Some(e["to"].clone());
+                !same
+            })
+            .collect()
+    };
+    let mut failures = Vec::new();
+    for p in &programs {
+        let expected: Vec<Value> = std::fs::read_to_string(p.with_extension("expected.jsonl"))
+            .expect("expected trace")
+            .lines()
+            .filter(|l| !l.trim().is_empty())
+            .map(|l| serde_json::from_str(l).expect("JSON"))
+            .collect();
+        let got = moves(run(p, "fanuc-lathe"));
+        let diff =
+            (0..expected.len().max(got.len())).find(|&i| match (expected.get(i), got.get(i)) {
+                (Some(a), Some(b)) => !close(a, b, 1e-4, ""),
+                _ => true,
+            });
+        if let Some(i) = diff {
+            failures.push(format!(
+                "{}: move {} differs\n  rs274: {}\n  vcnc:  {}",
+                p.display(),
+                i + 1,
+                expected.get(i).map_or("(none)".into(), Value::to_string),
+                got.get(i).map_or("(none)".into(), Value::to_string)
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} programs differ:\n{}",
+        failures.len(),
+        programs.len(),
+        failures.join("\n")
+    );
+    assert!(programs.len() >= 40, "only {} programs", programs.len());
 }
 
 /// `linuxcnc_comp`: the tool-centre points that both LinuxCNC and a Fanuc

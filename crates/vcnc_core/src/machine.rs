@@ -24,6 +24,10 @@ pub const DEFAULT_HAAS_TOML: &str = include_str!("default_haas.toml");
 /// The embedded 2-axis lathe of the seed-003 dialect.
 pub const DEFAULT_LATHE_TOML: &str = include_str!("default_lathe.toml");
 
+/// The embedded turning centre of the fanuc-lathe dialect (X radius, Z,
+/// a turret tool table).
+pub const DEFAULT_FANUC_LATHE_TOML: &str = include_str!("default_fanuc_lathe.toml");
+
 /// Number of work coordinate systems (G54–G59, G59.1–G59.9).
 pub const WORK_SYSTEMS: usize = 15;
 
@@ -107,6 +111,11 @@ pub struct Params {
     /// An M code neither the dialect nor `[m_codes]` knows: alarm E202
     /// (`true`) or warning W105 and ignored (`false`).
     pub strict_m_codes: bool,
+    /// Fanuc 5130: the chamfer at the end of a G92/G76 thread, in tenths
+    /// of the lead (0: none; G76's P sets it for both).
+    pub thread_chamfer_tenths: u8,
+    /// Fanuc 5131: the angle of that chamfer from the Z axis, degrees.
+    pub thread_chamfer_deg: f64,
 }
 
 impl Default for Params {
@@ -124,6 +133,8 @@ impl Default for Params {
             pocket_stepover_pct: 50.0,
             max_spindle_rpm: 0.0,
             strict_m_codes: false,
+            thread_chamfer_tenths: 10,
+            thread_chamfer_deg: 45.0,
         }
     }
 }
@@ -152,7 +163,8 @@ impl Default for Limits {
     }
 }
 
-/// One tool of the tool table.
+/// One tool of the tool table (one offset register: a mill's H and D, a
+/// lathe's geometry and wear offsets).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Tool {
@@ -164,6 +176,20 @@ pub struct Tool {
     pub d_mm: f64,
     /// Radius wear (D).
     pub d_wear_mm: f64,
+    /// Lathe X geometry offset (a radius: machine X is the radius).
+    pub x_mm: f64,
+    /// Lathe X wear offset (radius).
+    pub x_wear_mm: f64,
+    /// Lathe Z geometry offset.
+    pub z_mm: f64,
+    /// Lathe Z wear offset.
+    pub z_wear_mm: f64,
+    /// Tool nose radius (geometry).
+    pub nose_radius_mm: f64,
+    /// Tool nose radius wear.
+    pub nose_radius_wear_mm: f64,
+    /// Imaginary tool tip direction, 0–9 (0 and 9: the nose centre).
+    pub tip: u8,
 }
 
 /// Where the skip signal of G31 fires: when `axis` crosses `at_mm`.
@@ -408,6 +434,11 @@ impl Machine {
             let n: u32 = key
                 .parse()
                 .map_err(|_| MachineError(format!("tools.{key}: a tool number is an integer")))?;
+            if tool.tip > 9 {
+                return Err(MachineError(format!(
+                    "tools.{key}.tip: the tip direction is 0 to 9"
+                )));
+            }
             m.tools.insert(n, tool);
         }
         for (key, what) in f.m_codes {
@@ -551,6 +582,13 @@ impl Machine {
                 "parameters.max_spindle_rpm is a speed >= 0 (0: no limit)".into(),
             ));
         }
+        if !(p.thread_chamfer_deg > 0.0 && p.thread_chamfer_deg < 90.0)
+            || p.thread_chamfer_tenths > 99
+        {
+            return Err(MachineError(
+                "parameters.thread_chamfer_tenths is 0..99 and thread_chamfer_deg is more than 0 and less than 90".into(),
+            ));
+        }
         if !(p.pocket_stepover_pct > 0.0 && p.pocket_stepover_pct <= 100.0) {
             return Err(MachineError(
                 "parameters.pocket_stepover_pct is a percentage, more than 0 and at most 100"
@@ -604,6 +642,11 @@ mod tests {
             Some("chip conveyor forward")
         );
         assert!(Machine::from_toml(DEFAULT_LATHE_TOML).is_ok());
+        let fl = Machine::from_toml(DEFAULT_FANUC_LATHE_TOML).unwrap();
+        assert!(!fl.has_travel_limits());
+        assert_eq!(fl.tools.get(&1).map(|t| t.tip), Some(3));
+        let bad = DEFAULT_FANUC_LATHE_TOML.replacen("tip = 3", "tip = 10", 1);
+        assert!(Machine::from_toml(&bad).unwrap_err().0.contains("tip"));
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //! of `tools/bench/gen_surfacing.py`) interpreted from memory into a sink
 //! that drops every event, plain and under rotation + scaling + tool length
 //! (issue #6: ≥ 3 M blocks/s), a contour under cutter compensation
-//! (issue #7: ≥ 3 M blocks/s), a turning program under the seed lathe, and
+//! (issue #7: ≥ 3 M blocks/s), a turning program under the seed lathe and
+//! the same passes under the Fanuc lathe (issue #11: its speed), and
 //! 100,000 G83 holes (issue #8; counted in events, about ten a hole).
 //! Run with `cargo bench -p vcnc_interp`; figures in docs/performance.md.
 
@@ -168,6 +169,50 @@ fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
         bencher,
         blocks,
         turning(blocks),
+        &dialect.machine(),
+        &dialect,
+        "M30",
+    );
+}
+
+/// The passes of [`turning`] spelled for a Fanuc lathe (decimal points,
+/// feed per revolution at a constant speed), the shape of
+/// `tools/bench/gen_fanuc_turning.py`.
+fn fanuc_turning(blocks: usize) -> String {
+    let mut s = String::with_capacity(blocks * 24);
+    s.push_str("G00 G18 G21 G40 G80 G99\nG97 S1000 M03\nG00 X120. Z5.\n");
+    let mut n = 3;
+    let mut pass = 0usize;
+    while n < blocks - 1 {
+        let d = 118.0 - (pass % 50) as f64 * 2.0;
+        let lines = [
+            format!("G00 X{d:.3} Z2."),
+            "G01 Z-80. F0.2".to_string(),
+            "G02 U4. W-2. R2.".to_string(),
+            "G01 U2.".to_string(),
+            "G00 Z2.".to_string(),
+        ];
+        for line in lines {
+            s.push_str(&line);
+            s.push('\n');
+            n += 1;
+            if n >= blocks - 1 {
+                break;
+            }
+        }
+        pass += 1;
+    }
+    s.push_str("M30\n");
+    s
+}
+
+#[divan::bench(args = [100_000])]
+fn interpret_fanuc_turning_to_null_sink(bencher: Bencher, blocks: usize) {
+    let dialect = Dialect::fanuc_lathe();
+    bench_program(
+        bencher,
+        blocks,
+        fanuc_turning(blocks),
         &dialect.machine(),
         &dialect,
         "M30",

@@ -730,6 +730,16 @@ pub fn too_many_passes(span: Span, max: u64) -> Diagnostic {
     )
 }
 
+/// E326: a lathe cycle with more passes or moves than the bound.
+pub fn too_many_cycle_moves(span: Span) -> Diagnostic {
+    d(
+        Code::E326,
+        span,
+        "this cycle needs more passes or moves than one block may make (10,000 passes, 200,000 moves)".to_string(),
+        "use a larger depth of cut, peck or step",
+    )
+}
+
 /// E340: a probing move that never tripped.
 pub fn probe_not_tripped(span: Span) -> Diagnostic {
     d(
@@ -1051,5 +1061,79 @@ pub fn macro_stack_full(span: Span, max: usize) -> Diagnostic {
         span,
         format!("more than {max} values pushed on the macro stack"),
         "POP what is no longer needed",
+    )
+}
+
+/// E343: the profile (P..Q) of a turning cycle cannot be cut: not
+/// monotone where the cycle needs it, a first block the cycle does not
+/// accept, a start point on the wrong side.
+pub fn profile_not_cut(span: Span, why: &str) -> Diagnostic {
+    d(
+        Code::E343,
+        span,
+        format!("this profile cannot be cut by the cycle: {why}"),
+        "check the profile blocks between P and Q and the cycle's start point",
+    )
+}
+
+/// E344: a code or word a profile block may not carry.
+pub fn profile_word(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E344,
+        span,
+        format!("{what} is not allowed in a profile block (between P and Q)"),
+        "a profile holds G00/G01/G02/G03 moves with X/Z/U/W, I/K or R, ,C/,R, F and S only",
+    )
+}
+
+/// E345: the profile's last block (N of Q) is not found after its first.
+pub fn profile_end_missing(span: Span, nf: u32) -> Diagnostic {
+    d(
+        Code::E345,
+        span,
+        format!(
+            "the profile's last block N{nf} (Q) does not follow its first block (P) in this program"
+        ),
+        "number the profile's last block with the Q value, after the block P names",
+    )
+}
+
+/// E345: a profile longer than the bound.
+pub fn profile_too_long(span: Span, max: usize) -> Diagnostic {
+    d(
+        Code::E345,
+        span,
+        format!("the profile between P and Q has more than {max} blocks"),
+        "check that Q names the profile's last block",
+    )
+}
+
+/// E346: a depth of cut, step or pass count of zero.
+pub fn zero_amount(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::E346,
+        span,
+        format!("{what} is zero: the cycle would never advance"),
+        "give it a positive value (the cycle's first block sets the depth of cut)",
+    )
+}
+
+/// E347: a chamfer or corner R (`,C`/`,R`) that cannot be made.
+pub fn corner_fault(span: Span, why: &str) -> Diagnostic {
+    d(
+        Code::E347,
+        span,
+        format!("the chamfer or corner R cannot be made: {why}"),
+        "a ,C or ,R needs a G01 in the next block, at an angle to this one, and both moves longer than the chamfer or round",
+    )
+}
+
+/// E348: G96 at diameter 0 with no clamp and no spindle maximum.
+pub fn css_at_center_unclamped(span: Span) -> Diagnostic {
+    d(
+        Code::E348,
+        span,
+        "under G96 the tool reaches the spindle axis (diameter 0), where the surface speed asks for an infinite spindle speed".to_string(),
+        "clamp the spindle with G50 S before G96, or give the machine a parameters.max_spindle_rpm",
     )
 }

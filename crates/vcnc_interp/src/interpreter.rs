@@ -698,6 +698,8 @@ impl<'a> Interpreter<'a> {
             let code = self.flow().frame().returns_with;
             return Err(alarms::sub_without_return(span, code));
         }
+        // A G01 whose `,C`/`,R` waits for a move that never comes.
+        self.check_corner_at_end()?;
         // Compensation ends with the program: its last move leaves first
         // (after the warning that the program has no end code).
         self.comp_finish()?;

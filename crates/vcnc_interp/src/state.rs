@@ -78,6 +78,12 @@ pub enum Motion {
     ThreePoint,
     /// Syntec G06.2: NURBS interpolation (blocks of K, control points, R).
     Nurbs,
+    /// Fanuc lathe G90: the turning cycle, modal.
+    TurnCycle,
+    /// Fanuc lathe G92: the threading cycle, modal.
+    ThreadingCycle,
+    /// Fanuc lathe G94: the facing cycle, modal.
+    FaceCycle,
 }
 
 /// Cutter radius compensation (group 07).
@@ -110,7 +116,7 @@ impl Modal {
             motion: Motion::Rapid,
             plane: dialect.plane,
             incremental: false,
-            per_rev: false,
+            per_rev: dialect.feed_at_power_on == crate::dialect::FeedAtPowerOn::PerRevolution,
             inch: false,
             comp: CompSide::Off,
             tool_length: ToolLength::Off,
@@ -226,6 +232,8 @@ pub struct State {
     pub(crate) high_speed_p: u32,
     /// G05.1 path smoothing (Syntec 1.2.7).
     pub(crate) smoothing: crate::codes::smoothing::Smoothing,
+    /// Fanuc lathe: turret offset, cycle data, a pending chamfer.
+    pub(crate) lathe: crate::codes::lathe_data::LatheData,
 }
 
 impl State {
@@ -267,6 +275,7 @@ impl State {
             feed_factor: 1.0,
             high_speed_p: 0,
             smoothing: crate::codes::smoothing::Smoothing::OFF,
+            lathe: crate::codes::lathe_data::LatheData::power_on(machine),
         };
         s.frame.origin = machine.work_offsets[0];
         s.prog = s.frame.program_of(s.pos);

@@ -533,6 +533,191 @@ fn e312_code_without_the_axis_words_it_needs() {
 }
 
 // ---------------------------------------------------------------------------
+// E343–E348 — the Fanuc lathe's cycles, chamfers and surface speed
+// ---------------------------------------------------------------------------
+
+/// Runs a fanuc-lathe program on `machine` (default: its built-in lathe)
+/// and checks the alarm, and that the machine is left as the lines before
+/// `block_line` (the block that alarms, which may be a cycle whose profile
+/// block the alarm points at) left it.
+fn check_lathe_on(
+    machine: &Machine,
+    program: &str,
+    code: Code,
+    (line, column): (u64, u32),
+    block_line: u64,
+) -> Run {
+    let run = |text: &str| {
+        run_with(
+            machine,
+            "fanuc-lathe",
+            Options::default(),
+            text.as_bytes(),
+            &mut NoPrograms,
+        )
+    };
+    let r = run(program);
+    assert_last_alarm(&r, code, line, column);
+    let prefix: String = program
+        .lines()
+        .take(usize::try_from(block_line - 1).unwrap())
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let before = run(&prefix);
+    assert!(
+        matches!(before.outcome, Outcome::Ended(_)),
+        "{:?}",
+        before.outcome
+    );
+    assert_same_state(&r.state, &before.state);
+    assert_eq!(
+        motions(&r.events),
+        motions(&before.events),
+        "the alarming block moved"
+    );
+    r
+}
+
+fn check_lathe(program: &str, code: Code, at: (u64, u32), block_line: u64) -> Run {
+    check_lathe_on(
+        &Dialect::fanuc_lathe().machine(),
+        program,
+        code,
+        at,
+        block_line,
+    )
+}
+
+const LATHE_START: &str = "G97 S1000 M03\nG00 X40. Z2.\nG71 U2. R0.5\n";
+
+#[test]
+fn e343_profile_that_cannot_be_cut_points_at_its_block() {
+    // Type I (the first block names only X) whose X goes down again.
+    let p = format!(
+        "{LATHE_START}G71 P10 Q30 U0.4 W0.1 F0.3\nN10 G00 X20.\nG01 Z-10.\nN25 G01 X16. Z-15.\nN30 X40.\nM30\n"
+    );
+    check_lathe(&p, Code::E343, (7, 5), 4);
+    // A profile that turns back along Z, even for type II.
+    let p = format!(
+        "{LATHE_START}G71 P10 Q30 U0.4 W0.1 F0.3\nN10 G00 X20. Z2.\nG01 Z-10.\nN25 G01 X30. Z-5.\nN30 X40.\nM30\n"
+    );
+    check_lathe(&p, Code::E343, (7, 5), 4);
+}
+
+#[test]
+fn e344_word_not_allowed_in_a_profile_block() {
+    let p = format!(
+        "{LATHE_START}G71 P10 Q30 U0.4 W0.1 F0.3\nN10 G00 X20.\nG01 Z-10. M08\nN30 X40.\nM30\n"
+    );
+    check_lathe(&p, Code::E344, (6, 11), 4);
+}
+
+#[test]
+fn e345_profile_end_missing() {
+    let p = format!(
+        "{LATHE_START}G71 P10 Q30 U0.4 W0.1 F0.3\nN10 G00 X20.\nG01 Z-10.\nN20 X40.\nM30\n"
+    );
+    check_lathe(&p, Code::E345, (4, 9), 4);
+}
+
+#[test]
+fn e346_zero_depth_of_cut() {
+    check_lathe(
+        "G97 S1000 M03\nG00 X40. Z2.\nG71 U0 R1.\n",
+        Code::E346,
+        (3, 5),
+        3,
+    );
+    // G74 whose peck is zero.
+    check_lathe(
+        "G97 S1000 M03\nG00 X0. Z2.\nG74 Z-10. Q0 F0.1\n",
+        Code::E346,
+        (3, 11),
+        3,
+    );
+}
+
+#[test]
+fn e347_chamfer_without_a_g01_after_it() {
+    let lathe = Dialect::fanuc_lathe().machine();
+    let run = |text: &str| {
+        run_with(
+            &lathe,
+            "fanuc-lathe",
+            Options::default(),
+            text.as_bytes(),
+            &mut NoPrograms,
+        )
+    };
+    // The G01 with the chamfer is held (it moves nothing by itself), so the
+    // lines before it are the state to compare with: neither it nor the
+    // block that alarms moved.
+    let before = run("G97 S1000 M03\nG00 X0. Z2.\n");
+    for (program, at) in [
+        // The next block is a rapid.
+        (
+            "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C1. F0.1\nN7 G00 Z5.\n",
+            (4, 4),
+        ),
+        // A chamfer longer than the next line.
+        (
+            "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C3. F0.1\nN7 G01 Z-2.\n",
+            (4, 4),
+        ),
+        // The program ends at the corner: the alarm points at the ,C word.
+        (
+            "G97 S1000 M03\nG00 X0. Z2.\nG01 X20. Z0. ,C1. F0.1\n",
+            (3, 14),
+        ),
+    ] {
+        let r = run(program);
+        assert_alarm(&r, Code::E347, at.0, at.1);
+        assert_eq!(motions(&r.events), motions(&before.events), "{program}");
+    }
+}
+
+/// Regression: an alarm about a move G70 makes along its profile (here
+/// over-travel) names the profile block's line and column, not a column
+/// of the G70 line.
+#[test]
+fn regression_g70_alarms_point_at_the_profile_block() {
+    let d = Dialect::fanuc_lathe();
+    let text = d
+        .default_machine
+        .replace(
+            "letter = \"x\"\n",
+            "letter = \"x\"\nmin_mm = -5.0\nmax_mm = 28.0\n",
+        )
+        .replace("start_mm = { x = 125.0", "start_mm = { x = 25.0");
+    let m = Machine::from_toml(&text).unwrap();
+    let r = run_with(
+        &m,
+        "fanuc-lathe",
+        Options::default(),
+        b"G97 S1000 M03\nG00 X50. Z2.\nG70 P10 Q20\nM30\nN10 G00 X20.\nG01 Z-10. F0.1\nN20 G01 X60.\n",
+        &mut NoPrograms,
+    );
+    // X60. is radius 30, beyond 28: the alarm is at N20's G01 (column 5).
+    assert_last_alarm(&r, Code::E501, 7, 5);
+}
+
+#[test]
+fn e348_surface_speed_at_the_centre_without_a_clamp() {
+    let d = Dialect::fanuc_lathe();
+    let text = d
+        .default_machine
+        .replace("max_spindle_rpm = 4000.0", "max_spindle_rpm = 0.0");
+    let m = Machine::from_toml(&text).unwrap();
+    check_lathe_on(
+        &m,
+        "G96 S100 M03\nG00 X10. Z2.\nN3 G01 X0. F0.1\n",
+        Code::E348,
+        (3, 4),
+        3,
+    );
+}
+
+// ---------------------------------------------------------------------------
 // E4xx — program flow
 // ---------------------------------------------------------------------------
 

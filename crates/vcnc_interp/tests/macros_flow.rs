@@ -653,3 +653,67 @@ fn syntec_m98_shares_locals_and_m198_too() {
         assert_eq!(r.values, vec![Some(want)], "{call}");
     }
 }
+
+/// Motion end points (X radius, Z) of a fanuc-lathe run.
+fn xz(events: &[Event]) -> Vec<(f64, f64)> {
+    xy(events)
+}
+
+#[test]
+fn fanuc_lathe_profiles_read_variables_when_the_cycle_runs() {
+    // #1 = 40 (diameter) is set after the profile is written but before
+    // G70 reads it: the finishing pass goes to X20 (radius) at Z2, along
+    // Z to -20, out to X25 (X50 diameter), and back to the start (25, 2).
+    let p = "G50 S2000\nT0101\nG97 S500 M03\nG00 X50. Z2.\n#1 = 40.\n\
+             G70 P10 Q20 F0.2\nM30\nN10 G00 X#1\nG01 Z-20.\nN20 X50.\n";
+    let d = Dialect::fanuc_lathe();
+    let r = run_on(&d.machine(), "fanuc-lathe", p, Store::default(), &[]);
+    ended(&r);
+    let pts = xz(&r.events);
+    let want = [(25.0, 2.0), (20.0, 2.0), (20.0, -20.0), (25.0, -20.0)];
+    let at = pts
+        .windows(4)
+        .position(|w| w == want)
+        .unwrap_or_else(|| panic!("{pts:?}"));
+    assert_eq!(pts[at + 4], (25.0, 2.0), "{pts:?}");
+}
+
+#[test]
+fn fanuc_lathe_macro_statements_cannot_stand_in_a_profile() {
+    let p = "G50 S2000\nT0101\nG97 S500 M03\nG00 X50. Z2.\n\
+             G70 P10 Q20 F0.2\nM30\nN10 G00 X40.\n#2 = 1\nN20 X50.\n";
+    let d = Dialect::fanuc_lathe();
+    let r = run_on(&d.machine(), "fanuc-lathe", p, Store::default(), &[]);
+    let Outcome::Alarm(a) = &r.outcome else {
+        panic!("{:?}", r.outcome)
+    };
+    assert_eq!((a.code, a.line, a.column), (Code::E344, 8, 1), "{a:?}");
+}
+
+#[test]
+fn fanuc_lathe_runs_g65_and_while() {
+    // O0010 turns diameter #24 (X) to length #26 (Z), then faces out 1 mm; the main
+    // program calls it for diameters 40, 36, 32.
+    let sub = "O0010\nG00 X#24\nG01 Z#26 F0.2\nX[#24 + 2.]\nG00 Z2.\nM99\n";
+    let p = "G50 S2000\nT0101\nG97 S500 M03\nG00 X50. Z2.\n#1 = 40.\n\
+             WHILE [#1 GE 32.] DO 1\nG65 P10 X#1 Z-10.\n#1 = #1 - 4.\nEND 1\nM30\n";
+    let d = Dialect::fanuc_lathe();
+    let r = run_on(
+        &d.machine(),
+        "fanuc-lathe",
+        p,
+        Store::default().with(10, sub),
+        &[],
+    );
+    ended(&r);
+    let feeds: Vec<f64> = r
+        .events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } if (to.get(1) + 10.0).abs() < 1e-9 => Some(to.get(0)),
+            _ => None,
+        })
+        .collect();
+    // Each call: in along Z at radius #24/2, then out to (#24 + 2)/2.
+    assert_eq!(feeds, vec![20.0, 21.0, 18.0, 19.0, 16.0, 17.0]);
+}

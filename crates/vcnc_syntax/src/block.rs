@@ -25,10 +25,21 @@ impl Addr {
     pub const IX: Addr = Addr(129);
     /// `IZ`: Z of an arc's middle point (lathe G05).
     pub const IZ: Addr = Addr(130);
+    /// `,C`: chamfer at the end of a G01 (Fanuc lathe).
+    pub const COMMA_C: Addr = Addr(131);
+    /// `,R`: corner rounding at the end of a G01 (Fanuc lathe).
+    pub const COMMA_R: Addr = Addr(132);
 
-    /// Index 0..4 of an extended address, for per-block tables.
+    /// Most extended addresses (their indices are 0..EXTENDED).
+    pub const EXTENDED: usize = 8;
+
+    /// Index 0..[`EXTENDED`](Self::EXTENDED) of an extended address, for
+    /// per-block tables.
     pub fn extended_index(self) -> Option<usize> {
-        self.0.checked_sub(128).map(usize::from).filter(|i| *i < 4)
+        self.0
+            .checked_sub(128)
+            .map(usize::from)
+            .filter(|i| *i < Self::EXTENDED)
     }
 
     /// How the address is written, for messages.
@@ -37,6 +48,8 @@ impl Addr {
             Addr::CR => "CR=".into(),
             Addr::IX => "IX".into(),
             Addr::IZ => "IZ".into(),
+            Addr::COMMA_C => ",C".into(),
+            Addr::COMMA_R => ",R".into(),
             Addr(l) => char::from(l).to_string(),
         }
     }

@@ -67,7 +67,9 @@ pub fn lex_block(
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
-        if b.is_ascii_alphabetic() {
+        // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
+        // the dialect has them (one call site keeps `lex_word` inlined).
+        if b.is_ascii_alphabetic() || (b == b',' && is_extended(line, i, rules)) {
             i = lex_word(line, i, rules, out)?;
             first = false;
             continue;
@@ -212,6 +214,14 @@ fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
         }
     }
     (Addr::letter(line[at].to_ascii_uppercase()), at + 1)
+}
+
+/// Whether one of the dialect's extended addresses starts at `at`.
+fn is_extended(line: &[u8], at: usize, rules: &LexRules) -> bool {
+    rules.extended.iter().any(|(text, _)| {
+        line.get(at..at + text.len())
+            .is_some_and(|here| here.eq_ignore_ascii_case(text.as_bytes()))
+    })
 }
 
 /// A grbl system command (`$H`, `$X`, `$$`) in a program.

@@ -19,7 +19,10 @@
 
 use crate::alarms;
 use crate::block::words::{ALWAYS, Words};
-use crate::dialect::{AxisWords, GOp, Group, MGroup, MOp, ProgramStop, ToolLengthChange, bit};
+use crate::dialect::{
+    AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ToolLengthChange, ToolWords,
+    bit,
+};
 use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
@@ -62,6 +65,9 @@ impl Interpreter<'_> {
         }
         self.feed_word(w)?;
         self.modal_motion(w)?;
+        if self.state.lathe.corner.is_some() {
+            self.check_corner_cut(w)?;
+        }
         if self.comp.engaged() {
             self.comp_block_end(w.first)?;
         }
@@ -112,9 +118,17 @@ impl Interpreter<'_> {
         self.comp_codes(w)?;
         self.setting_codes(w);
         let moves_before = self.moves;
+        let mut resume = None;
         match w.axis_user {
+            // G70–G73 read their profile from the program text.
+            Some(user) if user.def.op.reads_profile() => {
+                resume = self.profile_cycle(user.def.op, user.span, w, here, next)?;
+            }
             Some(user) => self.axis_code(user.def.op, user.span, w)?,
             None => self.modal_motion(w)?,
+        }
+        if self.state.lathe.corner.is_some() {
+            self.check_corner_cut(w)?;
         }
         if tool_moved && self.moves == moves_before {
             match self.dialect.tool_length_change {
@@ -150,7 +164,7 @@ impl Interpreter<'_> {
         // Calls and returns are resolved last: an unknown program or
         // sequence alarms after the motion, which the alarm then drops.
         let flow = self.prepare_flow(w, here, next, store)?;
-        self.program_flow(w, flow)
+        self.program_flow(w, flow.or(resume.map(Step::Jump)))
     }
 
     /// Step 1: one modal code written in the block.
@@ -165,6 +179,9 @@ impl Interpreter<'_> {
             GOp::ThreadInch => m.motion = Motion::ThreadInch,
             GOp::ThreePointArc => m.motion = Motion::ThreePoint,
             GOp::Nurbs => m.motion = Motion::Nurbs,
+            GOp::TurnCycle => m.motion = Motion::TurnCycle,
+            GOp::ThreadingCycle => m.motion = Motion::ThreadingCycle,
+            GOp::FaceCycle => m.motion = Motion::FaceCycle,
             GOp::RadiusMode => m.diameter = false,
             GOp::DiameterMode => m.diameter = true,
             GOp::PlaneXy => m.plane = Plane::Xy,
@@ -241,6 +258,12 @@ impl Interpreter<'_> {
                     }
                     Motion::ThreePoint => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
                     Motion::Nurbs => allowed |= bit(b'K') | bit(b'R'),
+                    // Fanuc lathe: chamfer and corner R at a G01's end.
+                    Motion::Linear => ext |= ext_bit(Addr::COMMA_C) | ext_bit(Addr::COMMA_R),
+                    // G90/G92/G94 taper.
+                    Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
+                        allowed |= bit(b'R');
+                    }
                     _ => {}
                 }
             }
@@ -264,7 +287,7 @@ impl Interpreter<'_> {
             ));
         }
         match self.state.modal.motion {
-            Motion::Thread if w.axis_user.is_none() => {
+            Motion::Thread | Motion::ThreadingCycle if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * self.unit_mm())
             }
             Motion::ThreadInch if w.axis_user.is_none() => {
@@ -283,8 +306,11 @@ impl Interpreter<'_> {
         Ok(())
     }
 
-    /// Step 2b: T selects, M06 changes.
+    /// Step 2b: T selects, M06 changes (a lathe turret indexes on T).
     fn tool_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.dialect.tool_words == ToolWords::TurretOffset {
+            return self.turret_word(w);
+        }
         if let Some(t) = w.get(b'T') {
             let n =
                 crate::block::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
@@ -390,11 +416,11 @@ impl Interpreter<'_> {
             return Ok((self.state.s_value, None));
         }
         // S is m/min, or ft/min in inch mode.
-        let surface_m_per_min = if self.state.modal.inch {
-            self.state.s_value * 0.3048
-        } else {
-            self.state.s_value
-        };
+        let surface_m_per_min = self.surface_m_per_min();
+        if self.dialect.surface_speed == SurfaceSpeedOn::WorkDiameter {
+            let rpm = self.work_css_rpm(self.state.prog, surface_m_per_min, span)?;
+            return Ok((rpm, Some(surface_m_per_min)));
+        }
         let radius = self
             .state
             .tool_active

@@ -38,8 +38,9 @@ pub struct At<T> {
 #[derive(Debug)]
 pub struct Words<'b> {
     block: &'b Block,
-    /// Index + 1 of each extended address (`CR=`, `IX`, `IZ`), 0 when absent.
-    ext: [u8; 4],
+    /// Index + 1 of each extended address (`CR=`, `IX`, `IZ`, `,C`, `,R`),
+    /// 0 when absent.
+    ext: [u8; Addr::EXTENDED],
     /// Extended addresses present (bit = [`Addr::extended_index`]).
     pub ext_present: u8,
     /// Modal-group codes in the order written (one per group).
@@ -71,7 +72,7 @@ impl<'b> Words<'b> {
     pub fn new(block: &'b Block) -> Words<'b> {
         Words {
             block,
-            ext: [0; 4],
+            ext: [0; Addr::EXTENDED],
             ext_present: 0,
             modal: [None; MAX_MODAL],
             modal_slot: [0; MODAL_GROUPS],
@@ -307,7 +308,7 @@ impl<'b> Words<'b> {
     pub fn check_used(&self, allowed: u32, allowed_ext: u8) -> Result<(), Diagnostic> {
         let stray_ext = self.ext_present & !allowed_ext;
         if stray_ext != 0 {
-            let word = (0..4usize)
+            let word = (0..Addr::EXTENDED)
                 .filter(|i| stray_ext & (1 << i) != 0)
                 .filter_map(|i| {
                     self.block

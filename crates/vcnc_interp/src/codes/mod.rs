@@ -5,13 +5,21 @@
 
 pub(crate) mod calls;
 pub(crate) mod comp;
+pub(crate) mod corner;
 pub(crate) mod cycles;
 pub(crate) mod lathe_cycles;
+pub(crate) mod lathe_data;
+pub(crate) mod mrc;
 pub(crate) mod nurbs;
 pub(crate) mod offsets;
 pub(crate) mod pockets;
+pub(crate) mod profile;
 pub(crate) mod refs;
+pub(crate) mod rough;
 pub(crate) mod smoothing;
+pub(crate) mod threads;
 pub(crate) mod tool_length;
 pub(crate) mod transforms;
 pub(crate) mod turning;
+pub(crate) mod turning_cycles;
+pub(crate) mod turret;

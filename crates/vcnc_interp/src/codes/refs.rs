@@ -76,14 +76,22 @@ impl Interpreter<'_> {
             GOp::Probe { must_trip } => self.probe(w, cmd, must_trip),
             GOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
             GOp::PocketRect | GOp::PocketCircle => self.pocket(op, w, cmd),
+            GOp::FacePeckCycle => self.peck_cycle(w, cmd, true),
+            GOp::GrooveCycle => self.peck_cycle(w, cmd, false),
+            GOp::ThreadMultiCycle => self.thread_cycle_multi(w, cmd),
             _ => Ok(()),
         }
     }
 
-    /// G04: P whole milliseconds, or X seconds (milliseconds without a point).
+    /// G04: P whole milliseconds, or X (a lathe's U) seconds
+    /// (milliseconds without a point).
     fn dwell(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let seconds = match (w.get(b'P'), w.get(b'X')) {
-            (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, b'X')),
+        let x = match (w.get(b'X'), w.get(b'U')) {
+            (Some(_), Some(u)) => return Err(alarms::word_not_allowed(u.span, b'U')),
+            (x, u) => x.or(u),
+        };
+        let seconds = match (w.get(b'P'), x) {
+            (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, x.addr.0)),
             (Some(p), None) => {
                 f64::from(whole(
                     &p,
@@ -96,7 +104,7 @@ impl Interpreter<'_> {
             (None, Some(x)) if x.value < 0.0 => {
                 return Err(alarms::value_out_of_range(
                     x.span,
-                    b'X',
+                    x.addr.0,
                     x.value,
                     "a dwell is not negative",
                 ));
@@ -113,7 +121,7 @@ impl Interpreter<'_> {
         };
         // Manual 1.2.5: 0.001 to 9999.999 s (0 is the exact-stop check).
         if seconds > 9_999.999 {
-            let word = w.get(b'X').or(w.get(b'P')).unwrap_or_default();
+            let word = x.or(w.get(b'P')).unwrap_or_default();
             return Err(alarms::value_out_of_range(
                 word.span,
                 word.addr.0,

@@ -5,8 +5,9 @@
 //! cycles, the pockets G78/G79 and G99 as a junction marker.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
-    LongChord, ProgramStop, RapidPath, ToolLengthChange, bit, g, mill::MILL_M,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow,
+    Group, IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange,
+    ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -92,5 +93,8 @@ pub(super) fn eia() -> Dialect {
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
         macros: super::MacroRules::NONE,
+        feed_at_power_on: FeedAtPowerOn::PerMinute,
+        surface_speed: SurfaceSpeedOn::ToolDiameter,
+        tool_words: ToolWords::Select,
     }
 }

@@ -7,8 +7,9 @@
 //! output runs on it.
 
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords, LongChord,
-    MGroup, MOp, MRow, ProgramStop, RapidPath, ToolLengthChange, bit, g,
+    BareReturn, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow, Group,
+    IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
@@ -117,5 +118,8 @@ pub(super) fn grbl() -> Dialect {
         program_stop: ProgramStop::Pause,
         tool_length_change: ToolLengthChange::AtNextMove,
         macros: super::MacroRules::NONE,
+        feed_at_power_on: FeedAtPowerOn::PerMinute,
+        surface_speed: SurfaceSpeedOn::ToolDiameter,
+        tool_words: ToolWords::Select,
     }
 }

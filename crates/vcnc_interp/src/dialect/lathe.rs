@@ -6,8 +6,9 @@
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords, LongChord,
-    ProgramStop, RapidPath, ToolLengthChange, bit, g, mill::MILL_M,
+    BareReturn, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow, Group,
+    IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords,
+    bit, g, mill::MILL_M,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
@@ -124,5 +125,8 @@ pub(super) fn lathe() -> Dialect {
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
         macros: super::MacroRules::NONE,
+        feed_at_power_on: FeedAtPowerOn::PerMinute,
+        surface_speed: SurfaceSpeedOn::ToolDiameter,
+        tool_words: ToolWords::Select,
     }
 }

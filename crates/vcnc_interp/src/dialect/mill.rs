@@ -3,8 +3,9 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, G10L20, GOp, GRow, Group, IntegerWords,
-    LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, ToolLengthChange, bit, g,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow,
+    Group, IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -124,7 +125,7 @@ const MILL_G: &[GRow] = &[
 ];
 
 /// Every letter (the arguments of G65/G66).
-const ALL_LETTERS: u32 = (1 << 26) - 1;
+pub(super) const ALL_LETTERS: u32 = (1 << 26) - 1;
 
 /// Syntec 900M: inch/metric are G70/G71 (manual 1.1, 1.2.29).
 const SYNTEC_UNITS: &[GRow] = &[
@@ -211,6 +212,9 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
         macros: super::MacroRules::FANUC,
+        feed_at_power_on: FeedAtPowerOn::PerMinute,
+        surface_speed: SurfaceSpeedOn::ToolDiameter,
+        tool_words: ToolWords::Select,
     }
 }
 

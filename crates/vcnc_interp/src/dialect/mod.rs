@@ -11,6 +11,7 @@
 //! adds word rules: U/W incremental axes, X in diameters, `CR=`, `IX`/`IZ`.
 
 mod eia;
+mod fanuc_lathe;
 mod grbl;
 mod lathe;
 mod macro_rules;
@@ -183,6 +184,18 @@ pub enum GOp {
     PocketRect,
     PocketCircle,
     Junction,
+    // Fanuc lathe (0i-TF, G-code system A): single cycles (modal, group
+    // 01) and the multiple repetitive cycles (one-shot).
+    TurnCycle,
+    ThreadingCycle,
+    FaceCycle,
+    FinishCycle,
+    RoughTurnCycle,
+    RoughFaceCycle,
+    PatternCycle,
+    FacePeckCycle,
+    GrooveCycle,
+    ThreadMultiCycle,
     // Cutter radius compensation (Syntec 1.2.18).
     CompCancel,
     CompLeft,
@@ -421,6 +434,36 @@ pub enum G10L20 {
     FromPosition,
 }
 
+/// The feed mode at power-on (group 05).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FeedAtPowerOn {
+    /// Per minute (G94 on mills, Fanuc 0i-M).
+    PerMinute,
+    /// Per revolution (G99 on Fanuc lathes).
+    PerRevolution,
+}
+
+/// What G96's constant surface speed is measured on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceSpeedOn {
+    /// The active tool's diameter (a milling cutter's edge: Syntec 1.2.46).
+    ToolDiameter,
+    /// The work diameter under the tool, twice the program X (a lathe):
+    /// the speed follows every move.
+    WorkDiameter,
+}
+
+/// How a T word is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ToolWords {
+    /// T selects a tool, M06 changes it (mills, the seed lathe).
+    Select,
+    /// `T tt oo`: the turret indexes to station tt at once and offset oo
+    /// (X/Z geometry and wear, nose radius, tip) applies; `oo = 00`
+    /// cancels the offset; no M06 (Fanuc lathes).
+    TurretOffset,
+}
+
 /// Which reading of the canned drilling cycles a dialect has.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CycleRules {
@@ -478,10 +521,16 @@ pub struct Dialect {
     pub l20: G10L20,
     /// M00.
     pub program_stop: ProgramStop,
-    /// G43/G44/G49 without a move.
+    /// G43/G44/G49 without a move (and a lathe T word's offset).
     pub tool_length_change: ToolLengthChange,
     /// Macros: languages, variables, calls.
     pub macros: MacroRules,
+    /// G94/G99 at power-on.
+    pub feed_at_power_on: FeedAtPowerOn,
+    /// G96 on the tool or on the work.
+    pub surface_speed: SurfaceSpeedOn,
+    /// T words.
+    pub tool_words: ToolWords,
 }
 
 impl std::fmt::Debug for Dialect {
@@ -509,12 +558,21 @@ impl Dialect {
             "eia" => Some(eia::eia()),
             "grbl" => Some(grbl::grbl()),
             "haas" => Some(mill::haas()),
+            "fanuc-lathe" => Some(fanuc_lathe::fanuc_lathe()),
             _ => None,
         }
     }
 
     /// Names accepted by [`by_name`](Self::by_name).
-    pub const NAMES: &'static [&'static str] = &["syntec", "fanuc", "lathe", "eia", "grbl", "haas"];
+    pub const NAMES: &'static [&'static str] = &[
+        "syntec",
+        "fanuc",
+        "lathe",
+        "eia",
+        "grbl",
+        "haas",
+        "fanuc-lathe",
+    ];
 
     /// Syntec 900M mill (the default).
     pub fn syntec() -> Dialect {
@@ -544,6 +602,11 @@ impl Dialect {
     /// Haas mills (Fanuc with Haas's differences).
     pub fn haas() -> Dialect {
         mill::haas()
+    }
+
+    /// Fanuc 0i-TF lathes (G-code system A; Haas lathes).
+    pub fn fanuc_lathe() -> Dialect {
+        fanuc_lathe::fanuc_lathe()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the
@@ -670,5 +733,22 @@ mod tests {
         assert_eq!(l.g_elsewhere(16.0), None);
         assert_eq!(s.g_elsewhere(21.0), Some("fanuc"));
         assert!(l.unsupported_reason(7.0).is_some());
+    }
+
+    #[test]
+    fn the_fanuc_lathe_reads_system_a() {
+        let f = Dialect::fanuc_lathe();
+        assert_eq!(f.g(90.0).map(|d| d.op), Some(GOp::TurnCycle));
+        assert_eq!(f.g(92.0).map(|d| d.op), Some(GOp::ThreadingCycle));
+        assert_eq!(f.g(94.0).map(|d| d.op), Some(GOp::FaceCycle));
+        assert_eq!(f.g(99.0).map(|d| d.op), Some(GOp::PerRev));
+        assert_eq!(f.g(50.0).map(|d| d.op), Some(GOp::PresetOrClamp));
+        assert_eq!(f.g(32.0).map(|d| d.op), Some(GOp::Thread));
+        assert_eq!(f.m(6.0), None);
+        // The seed lathe's G18 now points at the Fanuc lathe, not a mill;
+        // a Fanuc lathe's G17 (live tooling) is listed as not run.
+        assert_eq!(Dialect::lathe().g_elsewhere(18.0), Some("fanuc-lathe"));
+        assert!(f.unsupported_reason(17.0).is_some());
+        assert_eq!(f.g_elsewhere(43.0), None);
     }
 }

@@ -202,6 +202,39 @@ impl Interpreter<'_> {
         self.run_compiled(&c, src, block, store, sink)
     }
 
+    /// A profile block (fanuc-lathe G70–G73, P..Q) the lexer rejected: a
+    /// word block with expressions (`N10 G00 X#1`) is evaluated into `block`
+    /// with the variables as they stand when the cycle reads its profile
+    /// (Fanuc reads the profile then too); any other macro statement is
+    /// E344. Returns where the next block starts.
+    pub(crate) fn profile_macro_block(
+        &mut self,
+        bytes: &[u8],
+        start: usize,
+        lexed: Diagnostic,
+        block: &mut Block,
+    ) -> Result<usize, Diagnostic> {
+        if self.macros.rules.iso == IsoMacros::None {
+            return Err(lexed);
+        }
+        let syn = self
+            .macros
+            .rules
+            .syntax(Lang::MacroB, self.dialect.lex.slash_comments);
+        let Some((st, next)) = parse_iso_block(bytes, start, &syn)? else {
+            return Err(lexed);
+        };
+        let StmtKind::Words(words) = &st.kind else {
+            return Err(alarms::profile_word(
+                st.first,
+                "a macro statement (assignment, IF, GOTO, WHILE, END)",
+            ));
+        };
+        self.eval_words(words, Lang::MacroB, block)?;
+        block.deleted = st.deleted;
+        Ok(next)
+    }
+
     /// Runs a compiled statement; alarms come back located.
     pub(crate) fn run_compiled<S: Sink>(
         &mut self,

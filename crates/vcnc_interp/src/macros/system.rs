@@ -136,6 +136,10 @@ impl Interpreter<'_> {
                 Motion::ThreePoint => Value::Long(5),
                 // G06.2 has no whole code.
                 Motion::Nurbs => Value::Double(6.2),
+                // Fanuc lathe system A (not a Syntec dialect, for completeness).
+                Motion::TurnCycle => Value::Long(90),
+                Motion::ThreadingCycle => Value::Long(92),
+                Motion::FaceCycle => Value::Long(94),
             }),
             1003 | 1004 => code(if m.incremental { 91 } else { 90 }),
             1015 => code(match m.comp {
@@ -211,6 +215,10 @@ impl Interpreter<'_> {
                 Motion::ThreadInch => 32.0,
                 Motion::ThreePoint => 5.0,
                 Motion::Nurbs => 6.2,
+                // Fanuc lathe system A: the modal turning cycles.
+                Motion::TurnCycle => 90.0,
+                Motion::ThreadingCycle => 92.0,
+                Motion::FaceCycle => 94.0,
             },
             2 => match m.plane {
                 crate::events::Plane::Xy => 17.0,

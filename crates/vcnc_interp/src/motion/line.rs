@@ -24,6 +24,9 @@ impl Interpreter<'_> {
             Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
             Motion::ThreePoint => self.three_point_arc(w, cmd),
             Motion::Nurbs => self.nurbs_block(w, cmd),
+            Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
+                self.single_cycle(w, cmd, motion)
+            }
             _ if !w.any(self.axis_mask) => Ok(()),
             Motion::Rapid => {
                 let goal = self.target(w, self.state.modal.incremental);
@@ -44,6 +47,10 @@ impl Interpreter<'_> {
                     self.feed(cmd)?
                 };
                 let to = self.to_target(&goal);
+                if w.ext_present != 0 {
+                    // `,C`/`,R`: the corner waits for the next block.
+                    return self.hold_corner(w, cmd, feed, &goal);
+                }
                 self.straight(MoveKind::Feed(feed), to, w, cmd)
             }
             Motion::Thread | Motion::ThreadInch => {

@@ -129,6 +129,14 @@ impl Interpreter<'_> {
     /// Sends one move of the block `w` through the stages. Nothing is
     /// changed unless every stage accepts it (and the block as a whole).
     pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.state.lathe.corner.is_some() {
+            // A G01's chamfer or corner R is cut before this move.
+            self.cut_corner(&mv, w)?;
+        }
+        if self.state.modal.css {
+            // A lathe's G96: the speed follows the diameter.
+            self.css_follow(&mv)?;
+        }
         if self.state.rpm <= 0.0 {
             // Once W104 is given only a per-revolution move needs a look.
             let per_rev = match mv.kind {

@@ -20,6 +20,7 @@
 //! still held when a later block alarms never reach the output.
 
 pub(crate) mod geom;
+pub(crate) mod nose;
 
 use super::{MachineKind, MachineMove};
 use crate::alarms;
@@ -68,6 +69,9 @@ struct Held {
     r: f64,
     /// The start-up move (from the uncompensated point).
     startup: bool,
+    /// From the nose centre to the controlled point: a lathe's imaginary
+    /// tool tip (`nose.rs`); zero on a mill.
+    shift: V2,
     at: Origin,
 }
 
@@ -230,6 +234,7 @@ impl Interpreter<'_> {
                     side,
                     r,
                     startup: true,
+                    shift: self.nose_shift(r),
                     at,
                 });
                 Ok(())
@@ -253,6 +258,7 @@ impl Interpreter<'_> {
                     side,
                     r,
                     startup: false,
+                    shift: self.nose_shift(r),
                     at,
                 };
                 self.advance(next)
@@ -359,7 +365,10 @@ impl Interpreter<'_> {
         if !held.startup && !held.seg.keeps_direction(held.start, end) {
             return Err(self.fault(Fault::NoIntersection, &held.at));
         }
-        let start_pos = with_plane(held.mm.from, axes, held.start);
+        // The compensated points are the nose centre's; the controlled
+        // point is `shift` from it (a lathe's imaginary tip).
+        let tip = |q: V2| nose::plus(q, held.shift);
+        let start_pos = with_plane(held.mm.from, axes, tip(held.start));
         let arc = match held.mm.kind {
             MachineKind::Arc {
                 center, plane, dir, ..
@@ -382,7 +391,7 @@ impl Interpreter<'_> {
             let join = MachineMove {
                 kind,
                 from: self.state.pos,
-                to: with_plane(held.mm.from, axes, l2),
+                to: with_plane(held.mm.from, axes, tip(l2)),
                 exact_stop: false,
             };
             self.release(join, &held.at, None)?;
@@ -399,10 +408,11 @@ impl Interpreter<'_> {
             Some(l1) if held.seg.arc.is_none() => (l1, None),
             other => (end, other),
         };
-        let to = with_plane(held.mm.to, axes, end);
+        let to = with_plane(held.mm.to, axes, tip(end));
         let moved = MachineMove {
             from: self.state.pos,
             to,
+            kind: nose::shifted_kind(held.mm.kind, held.shift),
             ..held.mm
         };
         self.release(moved, &held.at, None)?;
@@ -410,7 +420,7 @@ impl Interpreter<'_> {
             let ext = MachineMove {
                 kind: straight_kind(&held.mm),
                 from: to,
-                to: with_plane(held.mm.to, axes, l1),
+                to: with_plane(held.mm.to, axes, tip(l1)),
                 exact_stop: false,
             };
             self.release(ext, &held.at, None)?;

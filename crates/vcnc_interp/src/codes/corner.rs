@@ -1,0 +1,242 @@
+//! Chamfer and corner rounding at the end of a G01 (`,C` and `,R`, Fanuc
+//! 0i-TF "chamfering and corner R"), between that G01 and the G01 of the
+//! next block.
+//!
+//! ```text
+//!            P1 ──── corner          ,C c: P1 and P2 are c from the corner
+//!   G01 ─────●╲     ╱                       along each line, joined by a G01
+//!              ╲   ╱ (not cut)       ,R r: P1 and P2 are t = r·tan(θ/2) from
+//!               ● P2                        it (θ: the turn), joined by an arc
+//!               │ next G01                  of radius r tangent to both
+//! ```
+//!
+//! The G01 with `,C`/`,R` is held: its block moves nothing, and the
+//! programmed point becomes the corner, so that the next block's U/W count
+//! from it, as Fanuc's do. The next move (it must be a G01 in the plane)
+//! first sends the held G01 to P1 and the chamfer or round to P2, with the
+//! held block's line, then its own move from P2. Anything else in the next
+//! block — no move, a rapid, an arc, a cycle — alarms E347 there, as does a
+//! chamfer longer than either line or two lines in one direction.
+
+use crate::alarms;
+use crate::block::convert::Goal;
+use crate::block::words::Words;
+use crate::codes::lathe_data::{CornerKind, PendingCorner};
+use crate::events::{Feed, Pos};
+use crate::interpreter::Interpreter;
+use crate::motion::{Move, MoveKind, Target};
+use vcnc_syntax::{Addr, Diagnostic, Span};
+
+/// A point or direction of the plane (first, second axis).
+pub(crate) type P2 = (f64, f64);
+
+/// Where a corner's chamfer or round starts and ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CornerCut {
+    /// End of the shortened first line.
+    pub p1: P2,
+    /// Start of the shortened second line.
+    pub p2: P2,
+    /// For a round: its centre and whether it turns counter-clockwise.
+    pub arc: Option<(P2, bool)>,
+}
+
+/// Below this a length or a turn is nothing.
+const EPS: f64 = 1e-9;
+
+/// The chamfer or round between `a → corner` and `corner → b`, or why it
+/// cannot be made.
+pub(crate) fn corner_cut(
+    a: P2,
+    corner: P2,
+    b: P2,
+    kind: CornerKind,
+) -> Result<CornerCut, &'static str> {
+    let (d1, d2) = (sub(corner, a), sub(b, corner));
+    let (l1, l2) = (len(d1), len(d2));
+    if l1 < EPS || l2 < EPS {
+        return Err("one of the two moves has no length");
+    }
+    let (u1, u2) = ((d1.0 / l1, d1.1 / l1), (d2.0 / l2, d2.1 / l2));
+    let cross = u1.0 * u2.1 - u1.1 * u2.0;
+    let dot = u1.0 * u2.0 + u1.1 * u2.1;
+    let turn = cross.atan2(dot);
+    if turn.abs() < 1e-7 {
+        return Err("the two moves run in one direction, there is no corner");
+    }
+    if (turn.abs() - std::f64::consts::PI).abs() < 1e-7 {
+        return Err("the next move turns straight back");
+    }
+    let (t, arc) = match kind {
+        CornerKind::Chamfer(c) => (c, None),
+        CornerKind::Round(r) => (r * (turn.abs() / 2.0).tan(), Some(r)),
+    };
+    if t <= 0.0 {
+        return Err("the chamfer or radius is not positive");
+    }
+    if t > l1 + 1e-6 || t > l2 + 1e-6 {
+        return Err("it is longer than one of the two moves");
+    }
+    let p1 = (corner.0 - t * u1.0, corner.1 - t * u1.1);
+    let p2 = (corner.0 + t * u2.0, corner.1 + t * u2.1);
+    let arc = arc.map(|r| {
+        // The centre is r from P1 on the inside of the turn.
+        let ccw = cross > 0.0;
+        let n = if ccw { (-u1.1, u1.0) } else { (u1.1, -u1.0) };
+        ((p1.0 + r * n.0, p1.1 + r * n.1), ccw)
+    });
+    Ok(CornerCut { p1, p2, arc })
+}
+
+fn sub(a: P2, b: P2) -> P2 {
+    (a.0 - b.0, a.1 - b.1)
+}
+
+fn len(v: P2) -> f64 {
+    v.0.hypot(v.1)
+}
+
+impl Interpreter<'_> {
+    /// A G01 with `,C` or `,R`: hold it until the next block.
+    pub(crate) fn hold_corner(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        feed: Feed,
+        goal: &Goal,
+    ) -> Result<(), Diagnostic> {
+        let (kind, word) = match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
+            (Some(_), Some(r)) => return Err(alarms::corner_fault(r.span, "both ,C and ,R")),
+            (Some(c), None) => (CornerKind::Chamfer(self.length_mm(&c)), c),
+            (None, Some(r)) => (CornerKind::Round(self.length_mm(&r)), r),
+            (None, None) => return Ok(()),
+        };
+        if goal.named == 0 {
+            return Err(alarms::corner_fault(word.span, "the G01 has no end point"));
+        }
+        if self.state.lathe.corner.is_some() {
+            // The corner held before this G01 is cut first.
+            let mv = Move {
+                kind: MoveKind::Feed(feed),
+                to: Target::Program(goal.prog),
+                exact_stop: false,
+                cmd,
+            };
+            self.cut_corner(&mv, w)?;
+        }
+        self.state.lathe.corner = Some(PendingCorner {
+            kind,
+            start: self.state.prog,
+            feed,
+            cmd,
+            word: word.span,
+            line: self.flow.loc.line,
+            block_at: w.first.start,
+            source_line: self.cur_line,
+        });
+        self.state.prog = goal.prog;
+        Ok(())
+    }
+
+    /// Before the move after a held G01: the G01 to P1 and the chamfer or
+    /// round to P2 (with the held block's line).
+    pub(crate) fn cut_corner(&mut self, mv: &Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let Some(held) = self.state.lathe.corner.take() else {
+            return Ok(());
+        };
+        let corner = self.state.prog;
+        let end = match (mv.kind, mv.to) {
+            (MoveKind::Feed(_), Target::Program(p)) => p,
+            (MoveKind::Feed(_), Target::Relative(d)) => corner.plus(d),
+            _ => {
+                return Err(alarms::corner_fault(
+                    mv.cmd,
+                    "the block after a ,C or ,R must be a G01 move",
+                ));
+            }
+        };
+        let axes = self.plane_axes(self.state.modal.plane, mv.cmd)?;
+        let p = |q: Pos| (q.get(axes.a), q.get(axes.b));
+        let off_plane = (0..crate::events::MAX_AXES)
+            .filter(|&i| i != axes.a && i != axes.b)
+            .any(|i| {
+                (end.get(i) - corner.get(i)).abs() > EPS
+                    || (corner.get(i) - held.start.get(i)).abs() > EPS
+            });
+        if off_plane {
+            return Err(alarms::corner_fault(mv.cmd, "the moves leave the plane"));
+        }
+        let cut = corner_cut(p(held.start), p(corner), p(end), held.kind)
+            .map_err(|why| alarms::corner_fault(mv.cmd, why))?;
+        let at = |q: P2| {
+            let mut pos = corner;
+            pos.set(axes.a, q.0);
+            pos.set(axes.b, q.1);
+            pos
+        };
+        // The held block's moves carry its line (and its alarms its place).
+        let line = std::mem::replace(&mut self.flow.loc.line, held.line);
+        let cur_line = std::mem::replace(&mut self.cur_line, held.source_line);
+        self.state.prog = held.start;
+        let first = Move {
+            kind: MoveKind::Feed(held.feed),
+            to: Target::Program(at(cut.p1)),
+            exact_stop: false,
+            cmd: held.cmd,
+        };
+        let mut out = self.commit(first, w);
+        if out.is_ok() {
+            let kind = match cut.arc {
+                Some((c, ccw)) => {
+                    let mut offset = Pos::default();
+                    offset.set(axes.a, c.0 - cut.p1.0);
+                    offset.set(axes.b, c.1 - cut.p1.1);
+                    MoveKind::Arc {
+                        offset,
+                        plane: self.state.modal.plane,
+                        cw: !ccw,
+                        feed: held.feed,
+                    }
+                }
+                None => MoveKind::Feed(held.feed),
+            };
+            let round = Move {
+                kind,
+                to: Target::Program(at(cut.p2)),
+                exact_stop: false,
+                cmd: held.cmd,
+            };
+            out = self.commit(round, w);
+        }
+        self.flow.loc.line = line;
+        let out = match (out, held.source_line) {
+            (Err(d), Some((src, l))) => Err(self.locate(d, src, &l)),
+            (out, _) => out,
+        };
+        self.cur_line = cur_line;
+        out
+    }
+
+    /// At the end of the program (its last block being the G01 with the
+    /// corner): the move it waits for never comes.
+    pub(crate) fn check_corner_at_end(&self) -> Result<(), Diagnostic> {
+        match self.state.lathe.corner {
+            Some(held) => Err(alarms::corner_fault(
+                held.word,
+                "the program ends after this ,C or ,R",
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// After a block's motion: a corner held by an earlier block that
+    /// this block did not cut (it did not move with G01) alarms.
+    pub(crate) fn check_corner_cut(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match self.state.lathe.corner {
+            Some(held) if (held.line, held.block_at) != (self.flow.loc.line, w.first.start) => Err(
+                alarms::corner_fault(w.first, "the block after a ,C or ,R must be a G01 move"),
+            ),
+            _ => Ok(()),
+        }
+    }
+}

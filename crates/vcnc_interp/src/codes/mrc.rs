@@ -1,0 +1,529 @@
+//! The Fanuc lathe's multiple repetitive cycles, two-block format (0i-TF,
+//! G-code system A): what each block reads and the moves it makes.
+//!
+//! ```text
+//!   G70 P Q                   finish along the profile N P … N Q, back to A
+//!   G71 U(Δd) R(e)            first block: depth of cut, retract (modal)
+//!   G71 P Q U(Δu) W(Δw) F     rough turning (rough.rs), types I and II
+//!   G72 W(Δd) R(e)            rough facing: the same with X and Z swapped
+//!   G72 P Q U W F
+//!   G73 U(Δi) W(Δk) R(d)      pattern repeating: d passes of the profile
+//!   G73 P Q U W F               shifted from Δi+Δu/2, Δk+Δw to Δu/2, Δw
+//!   G74 R(e)                  face peck drilling / face grooving
+//!   G74 X(U) Z(W) P(Δi) Q(Δk) R(Δd) F
+//!   G75 R(e)                  grooving: G74 with X and Z swapped
+//!   G75 X(U) Z(W) P(Δi) Q(Δk) R(Δd) F
+//!   G76 P(m r a) Q(Δdmin) R(d)            threading (threads.rs)
+//!   G76 X(U) Z(W) R(i) P(k) Q(Δd) F(L)
+//! ```
+//!
+//! A block with P or Q (G71–G73) or with axis words (G74–G76) is the
+//! second block; the first block's values stay until changed, as Fanuc's
+//! parameters 5130–5143 do. Lengths without a decimal point are least
+//! increments (Fanuc writes P and Q of G74–G76 that way: `Q6000` is 6 mm);
+//! U of a second block is a diameter, U of G71's first block a radius.
+//! Haas's one-block G71/G72 (`D` the depth of cut) runs as a second block
+//! with that depth.
+//!
+//! G71–G73 read the profile (profile.rs) and then, when the profile follows
+//! the cycle block, go on after its last block; G70 goes on after itself.
+//! Their moves carry the cycle block's line, except G70's, which carry the
+//! profile blocks' lines (the blocks it runs). Cutter compensation is
+//! suspended for G71–G76 (their passes are not compensated) and runs over
+//! G70's profile like over any moves.
+
+use crate::alarms;
+use crate::block::words::Words;
+use crate::codes::profile::{Elem, Profile};
+use crate::codes::rough::{self, Across, Frame, Rough, Seg, Step};
+use crate::codes::turning_cycles::{How, Xz};
+use crate::dialect::GOp;
+use crate::events::{Pos, SpindleDir};
+use crate::interpreter::Interpreter;
+use crate::motion::{MoveKind, Target};
+use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
+
+/// Most rough levels, passes or pecks one cycle block may make.
+const MAX_PASSES: f64 = 10_000.0;
+
+impl GOp {
+    /// G70–G73: cycles that read a profile.
+    pub(crate) fn reads_profile(self) -> bool {
+        matches!(
+            self,
+            GOp::FinishCycle | GOp::RoughTurnCycle | GOp::RoughFaceCycle | GOp::PatternCycle
+        )
+    }
+}
+
+impl Interpreter<'_> {
+    /// G70–G73; returns where the program goes on after the block.
+    pub(crate) fn profile_cycle(
+        &mut self,
+        op: GOp,
+        cmd: Span,
+        w: &Words<'_>,
+        here: Cursor,
+        next: Cursor,
+    ) -> Result<Option<Cursor>, Diagnostic> {
+        let pq = (w.get(b'P'), w.get(b'Q'));
+        if op != GOp::FinishCycle && pq == (None, None) {
+            self.profile_first_block(op, w)?;
+            return Ok(None);
+        }
+        let (Some(p), Some(q)) = pq else {
+            return Err(alarms::needs_word(
+                cmd,
+                "this cycle",
+                "P and Q (the profile's first and last sequence numbers)",
+            ));
+        };
+        self.refuse(w, b"XZ")?;
+        match op {
+            GOp::FinishCycle => {
+                self.refuse(w, b"UWRD")?;
+                let profile = self.read_profile(p, q, here)?;
+                self.finish(&profile, w, cmd)?;
+                Ok(Some(next))
+            }
+            _ => {
+                if op != GOp::PatternCycle {
+                    self.refuse(w, b"R")?;
+                }
+                // Compensation is suspended for the passes (like the mill's
+                // canned cycles): the next move in the plane starts it again.
+                let suspended = self.suspend_comp()?;
+                let profile = self.read_profile(p, q, here)?;
+                if op == GOp::PatternCycle {
+                    self.pattern_repeat(&profile, w, cmd)?;
+                } else {
+                    self.rough(op, &profile, w, cmd)?;
+                }
+                self.resume_comp(suspended);
+                Ok(Some(if profile.follows { profile.after } else { next }))
+            }
+        }
+    }
+
+    /// E203 for the first of `letters` written in the block.
+    fn refuse(&self, w: &Words<'_>, letters: &[u8]) -> Result<(), Diagnostic> {
+        match letters.iter().find_map(|l| w.get(*l)) {
+            Some(word) => Err(alarms::word_not_allowed(word.span, word.addr.0)),
+            None => Ok(()),
+        }
+    }
+
+    /// G71 U R, G72 W R, G73 U W R.
+    fn profile_first_block(&mut self, op: GOp, w: &Words<'_>) -> Result<(), Diagnostic> {
+        self.refuse(w, b"XZD")?;
+        let len = |word: Option<Word>| word.map(|x| self.length_mm(&x));
+        match op {
+            GOp::RoughTurnCycle | GOp::RoughFaceCycle => {
+                let depth_letter = if op == GOp::RoughTurnCycle {
+                    b'U'
+                } else {
+                    b'W'
+                };
+                let other = if op == GOp::RoughTurnCycle {
+                    b'W'
+                } else {
+                    b'U'
+                };
+                self.refuse(w, &[other])?;
+                let depth = len(w.get(depth_letter));
+                let retract = len(w.get(b'R'));
+                if let Some(d) = depth.filter(|d| *d <= 0.0) {
+                    let span = w.get(depth_letter).map_or(w.first, |x| x.span);
+                    return Err(alarms::zero_amount(span, &format!("the depth of cut {d}")));
+                }
+                let mrc = &mut self.state.lathe.mrc;
+                if let Some(d) = depth {
+                    mrc.depth_mm = d;
+                }
+                if let Some(r) = retract {
+                    mrc.retract_mm = r.abs();
+                }
+            }
+            _ => {
+                let (du, dw) = (len(w.get(b'U')), len(w.get(b'W')));
+                let divisions = match w.get(b'R') {
+                    Some(r) => Some(self.count(&r, "R is the number of passes")?),
+                    None => None,
+                };
+                let mrc = &mut self.state.lathe.mrc;
+                if let Some(u) = du {
+                    mrc.relief_x_mm = u;
+                }
+                if let Some(v) = dw {
+                    mrc.relief_z_mm = v;
+                }
+                if let Some(d) = divisions {
+                    mrc.divisions = d;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A whole count ≥ 1 (a decimal point is allowed when the value is whole).
+    pub(crate) fn count(&self, word: &Word, why: &str) -> Result<u32, Diagnostic> {
+        if word.value.fract() != 0.0 || word.value < 0.0 || word.value > MAX_PASSES {
+            return Err(alarms::value_out_of_range(
+                word.span,
+                word.addr.0,
+                word.value,
+                why,
+            ));
+        }
+        if word.value < 1.0 {
+            return Err(alarms::zero_amount(word.span, why));
+        }
+        // Whole and in 1..=MAX_PASSES: the cast is exact.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Ok(word.value as u32)
+    }
+
+    /// The finishing allowance of a second block: U (a diameter) and W.
+    fn allowance(&self, w: &Words<'_>) -> Xz {
+        (
+            w.get(b'U').map_or(0.0, |u| self.x_length_mm(&u)),
+            w.get(b'W').map_or(0.0, |v| self.length_mm(&v)),
+        )
+    }
+
+    /// A profile error located at element `k`'s block.
+    fn profile_alarm(&mut self, profile: &Profile, k: usize, why: &str) -> Diagnostic {
+        let Some(e) = profile.elems.get(k) else {
+            return alarms::profile_not_cut(Span::new(0, 1), why);
+        };
+        let d = alarms::profile_not_cut(e.span, why);
+        self.locate(d, profile.src, &e.line)
+    }
+
+    /// G71 / G72 second block.
+    fn rough(
+        &mut self,
+        op: GOp,
+        profile: &Profile,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        let a = self.here_xz(axes);
+        let across = if op == GOp::RoughTurnCycle {
+            Across::X
+        } else {
+            Across::Z
+        };
+        let depth = match w.get(b'D') {
+            Some(d) => self.length_mm(&d),
+            None => self.state.lathe.mrc.depth_mm,
+        };
+        if depth <= 0.0 {
+            let span = w.get(b'D').map_or(cmd, |d| d.span);
+            return Err(alarms::zero_amount(
+                span,
+                "the depth of cut (the cycle's first block U, or D)",
+            ));
+        }
+        let feed = self.feed(cmd)?;
+        let (frame, chain) = self.rough_chain(profile, a, across, self.allowance(w))?;
+        let (ua, _) = frame.uv(a);
+        let lowest = chain
+            .iter()
+            .flat_map(|s| [frame.uv(s.from).0, frame.uv(s.to).0])
+            .fold(f64::INFINITY, f64::min);
+        if ((ua - lowest) / depth).ceil() > MAX_PASSES {
+            return Err(alarms::too_many_cycle_moves(cmd));
+        }
+        let r = Rough {
+            frame,
+            depth,
+            retract: self.state.lathe.mrc.retract_mm,
+        };
+        let moves =
+            rough::rough_passes(a, &chain, &r).ok_or_else(|| alarms::too_many_cycle_moves(cmd))?;
+        let first_rapid = profile.elems.first().is_some_and(|e| e.rapid);
+        let approach_how = if first_rapid {
+            How::Rapid
+        } else {
+            How::Cut(feed)
+        };
+        for (step, p) in moves {
+            match step {
+                Step::Rapid => self.cycle_moves(&[(How::Rapid, p)], axes, w, cmd)?,
+                Step::Feed => self.cycle_moves(&[(How::Cut(feed), p)], axes, w, cmd)?,
+                Step::Approach => self.cycle_moves(&[(approach_how, p)], axes, w, cmd)?,
+                Step::Along(seg) => self.along(&seg, axes, feed, w, cmd)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// The frame of G71/G72 and the chain its levels are cut against: the
+    /// profile shifted by the allowance, after the approach from A (from
+    /// the stock top when the profile starts in front of the stock, else
+    /// A's own line to the profile's start). Checks what the type needs.
+    fn rough_chain(
+        &mut self,
+        profile: &Profile,
+        a: Xz,
+        across: Across,
+        shift: Xz,
+    ) -> Result<(Frame, Vec<Seg>), Diagnostic> {
+        let Some((first, rest)) = profile.elems.split_first() else {
+            return Err(self.profile_alarm(profile, 0, "the profile has no moves"));
+        };
+        let (names_across, names_along) = match across {
+            Across::X => profile.first_names,
+            Across::Z => (profile.first_names.1, profile.first_names.0),
+        };
+        if !names_across {
+            let why = match across {
+                Across::X => "the first block must give X (or U)",
+                Across::Z => "the first block must give Z (or W)",
+            };
+            return Err(self.profile_alarm(profile, 0, why));
+        }
+        let frame = self.rough_frame(profile, a, across)?;
+        let segs: Vec<Seg> = rest.iter().map(|e| e.seg.shifted(shift)).collect();
+        // Type I (the first block names only the level axis) is monotone
+        // both ways, type II along the cuts.
+        rough::check_monotone(&segs, &frame, !names_along)
+            .map_err(|u| self.profile_alarm(profile, u.elem + 1, u.why))?;
+        let start = (first.seg.to.0 + shift.0, first.seg.to.1 + shift.1);
+        let (ua, va) = frame.uv(a);
+        let from = if frame.uv(start).1 >= va {
+            frame.xz((ua, frame.uv(start).1))
+        } else {
+            a
+        };
+        let mut chain = vec![Seg {
+            from,
+            to: start,
+            arc: None,
+        }];
+        chain.extend(segs);
+        Ok((frame, chain))
+    }
+
+    /// The normalised frame of G71/G72: the profile lies on one side of A
+    /// across the levels, and its end beyond A along the cuts.
+    fn rough_frame(
+        &mut self,
+        profile: &Profile,
+        a: Xz,
+        across: Across,
+    ) -> Result<Frame, Diagnostic> {
+        let pick = |p: Xz| match across {
+            Across::X => (p.0, p.1),
+            Across::Z => (p.1, p.0),
+        };
+        let (aa, av) = pick(a);
+        let pts: Vec<(f64, f64)> = profile
+            .elems
+            .iter()
+            .skip(1)
+            .flat_map(|e| [pick(e.seg.from), pick(e.seg.to)])
+            .collect();
+        let below = pts.iter().all(|p| p.0 <= aa + 1e-9);
+        let above = pts.iter().all(|p| p.0 >= aa - 1e-9);
+        let su = match (below, above) {
+            (true, false) => 1.0,
+            (false, true) => -1.0,
+            _ => {
+                return Err(self.profile_alarm(
+                    profile,
+                    0,
+                    "the profile lies on both sides of the start point across the cuts: start the cycle outside the stock",
+                ));
+            }
+        };
+        let end = profile.elems.last().map_or(av, |e| pick(e.seg.to).1);
+        let sv = if end < av - 1e-9 {
+            1.0
+        } else if end > av + 1e-9 {
+            -1.0
+        } else {
+            let last = profile.elems.len().saturating_sub(1);
+            return Err(self.profile_alarm(
+                profile,
+                last,
+                "the profile ends where the cycle starts along the cuts",
+            ));
+        };
+        Ok(Frame { across, su, sv })
+    }
+
+    /// A feed along a profile element (a line or an arc).
+    fn along(
+        &mut self,
+        seg: &Seg,
+        axes: (usize, usize),
+        feed: crate::events::Feed,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        match seg.arc {
+            None => self.cycle_moves(&[(How::Cut(feed), seg.to)], axes, w, cmd),
+            Some((c, cw)) => {
+                let mut to: Pos = self.state.prog;
+                to.set(axes.0, seg.to.0);
+                to.set(axes.1, seg.to.1);
+                let here = self.here_xz(axes);
+                let mut offset = Pos::default();
+                offset.set(axes.0, c.0 - here.0);
+                offset.set(axes.1, c.1 - here.1);
+                let kind = MoveKind::Arc {
+                    offset,
+                    plane: crate::events::Plane::Zx,
+                    cw,
+                    feed,
+                };
+                self.straight(kind, Target::Program(to), w, cmd)
+            }
+        }
+    }
+
+    /// G73 second block: the profile d times, shifted.
+    fn pattern_repeat(
+        &mut self,
+        profile: &Profile,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        let a = self.here_xz(axes);
+        let feed = self.feed(cmd)?;
+        let (du, dw) = self.allowance(w);
+        let mrc = self.state.lathe.mrc;
+        let d = mrc.divisions;
+        if d == 0 {
+            return Err(alarms::zero_amount(
+                cmd,
+                "the number of passes (the first block's R)",
+            ));
+        }
+        if f64::from(d) * (profile.elems.len() as f64 + 1.0) > rough::MAX_MOVES as f64 {
+            return Err(alarms::too_many_cycle_moves(cmd));
+        }
+        let approach_how = |e: &Elem| if e.rapid { How::Rapid } else { How::Cut(feed) };
+        for j in 1..=d {
+            let k = if d > 1 {
+                f64::from(d - j) / f64::from(d - 1)
+            } else {
+                0.0
+            };
+            let shift = (mrc.relief_x_mm * k + du, mrc.relief_z_mm * k + dw);
+            for (n, e) in profile.elems.iter().enumerate() {
+                let seg = e.seg.shifted(shift);
+                if n == 0 {
+                    self.cycle_moves(&[(approach_how(e), seg.to)], axes, w, cmd)?;
+                } else if e.rapid {
+                    self.cycle_moves(&[(How::Rapid, seg.to)], axes, w, cmd)?;
+                } else {
+                    self.along(&seg, axes, feed, w, cmd)?;
+                }
+            }
+            self.return_to(a, axes, w, cmd)?;
+        }
+        Ok(())
+    }
+
+    /// The G00 back to the cycle's start point.
+    fn return_to(
+        &mut self,
+        a: Xz,
+        axes: (usize, usize),
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let mut to: Pos = self.state.prog;
+        to.set(axes.0, a.0);
+        to.set(axes.1, a.1);
+        if to == self.state.prog {
+            return Ok(());
+        }
+        self.straight(MoveKind::Rapid, Target::Program(to), w, cmd)
+    }
+
+    /// G70: the profile's own moves (with their F and S, and their lines),
+    /// then a G00 back to A.
+    fn finish(&mut self, profile: &Profile, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        let a = self.here_xz(axes);
+        let (line, cur_line) = (self.flow.loc.line, self.cur_line);
+        let out = self.finish_moves(profile, axes, w);
+        self.flow.loc.line = line;
+        self.cur_line = cur_line;
+        out?;
+        self.return_to(a, axes, w, cmd)
+    }
+
+    fn finish_moves(
+        &mut self,
+        profile: &Profile,
+        axes: (usize, usize),
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        for e in &profile.elems {
+            // The moves, warnings and alarms of an element are its block's.
+            self.flow.loc.line = e.line.number;
+            self.cur_line = Some((profile.src, e.line));
+            self.finish_elem(e, axes, w)
+                .map_err(|d| self.locate(d, profile.src, &e.line))?;
+        }
+        Ok(())
+    }
+
+    /// One profile element under G70.
+    fn finish_elem(
+        &mut self,
+        e: &Elem,
+        axes: (usize, usize),
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        if let Some(f) = e.feed {
+            self.state.feed = f;
+        }
+        if let Some(s) = e.speed {
+            self.profile_speed(s, e.span)?;
+        }
+        let here = self.here_xz(axes);
+        let still = (e.seg.to.0 - here.0).abs() < 1e-9 && (e.seg.to.1 - here.1).abs() < 1e-9;
+        if still && e.seg.arc.is_none() {
+            return Ok(());
+        }
+        if e.rapid {
+            let mut to: Pos = self.state.prog;
+            to.set(axes.0, e.seg.to.0);
+            to.set(axes.1, e.seg.to.1);
+            self.straight(MoveKind::Rapid, Target::Program(to), w, e.span)
+        } else {
+            let feed = self.feed(e.span)?;
+            self.along(&e.seg, axes, feed, w, e.span)
+        }
+    }
+
+    /// An S word in a profile block run by G70: the new speed, as the
+    /// spindle words of a block would set it.
+    fn profile_speed(&mut self, s: f64, span: Span) -> Result<(), Diagnostic> {
+        self.state.s_value = s;
+        let dir = self.state.spindle;
+        if !matches!(dir, SpindleDir::Cw | SpindleDir::Ccw) {
+            return Ok(());
+        }
+        let (rpm, surface_m_per_min) = self.spindle_rpm(span)?;
+        if (rpm - self.state.rpm).abs() < 1e-9 {
+            return Ok(());
+        }
+        self.state.rpm = rpm;
+        self.emit(|loc| crate::events::Event::Spindle {
+            loc,
+            dir,
+            rpm,
+            surface_m_per_min,
+        });
+        Ok(())
+    }
+}

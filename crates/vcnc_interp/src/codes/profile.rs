@@ -1,0 +1,479 @@
+//! Reading the finishing profile of G70–G73: the blocks from `N P` to
+//! `N Q` of the current program, read once per cycle straight from the
+//! program text (they are not executed), turned into line and arc
+//! elements in program coordinates and checked as they are read.
+//!
+//! ```text
+//!   G71 P10 Q50 …      ─▶ find N10 (the label cache) ─▶ lex each block
+//!   N10 G00 X20.          └ G00/G01/G02/G03, X/Z/U/W, I/K or R, ,C/,R, F, S
+//!   …                     └ anything else: E344 at the word
+//!   N50 X60.           ─▶ elements A→A', …, →B; the cursor after N50
+//! ```
+//!
+//! The first block must move with G00 or G01 (it is the approach from the
+//! cycle's start point A); a `,C`/`,R` is resolved between two lines as
+//! in a program (`corner.rs`); the profile ends at the block numbered Q,
+//! and a program that ends first is E345. At most [`MAX_BLOCKS`] blocks.
+//! Alarms point at the profile block's line and column.
+
+use crate::alarms;
+use crate::block::convert::whole;
+use crate::block::words::Words;
+use crate::codes::corner::corner_cut;
+use crate::codes::lathe_data::CornerKind;
+use crate::codes::rough::Seg;
+use crate::codes::turning_cycles::Xz;
+use crate::dialect::{GOp, bit};
+use crate::flow::first_value;
+use crate::interpreter::Interpreter;
+use vcnc_syntax::{Addr, Block, Cursor, Diagnostic, Line, Span, Word, lex_block};
+
+/// Most blocks a profile may have.
+pub(crate) const MAX_BLOCKS: usize = 1000;
+
+/// One element of a profile and where it was written.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Elem {
+    pub seg: Seg,
+    /// G00 (only the first element may be one that matters to G71–G73).
+    pub rapid: bool,
+    /// F and S written in its block (program units), for G70.
+    pub feed: Option<f64>,
+    pub speed: Option<f64>,
+    /// Its block: the line and the span of its motion word (else its
+    /// first word), for alarms and for G70's events.
+    pub line: Line,
+    pub span: Span,
+}
+
+/// A profile read from the program.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Profile {
+    /// The elements, the first one the approach from A.
+    pub elems: Vec<Elem>,
+    /// Which axes the first block names: (X or U, Z or W).
+    pub first_names: (bool, bool),
+    /// The source the profile is in (for alarms about its blocks).
+    pub src: usize,
+    /// Where the program goes on after a cycle whose profile follows it.
+    pub after: Cursor,
+    /// Whether the profile follows the cycle block in the program.
+    pub follows: bool,
+}
+
+/// What reading a profile keeps from block to block.
+struct Reading {
+    profile: Profile,
+    /// Where the profile is so far (X radius, Z).
+    at: Xz,
+    /// The modal motion within the profile.
+    motion: Option<GOp>,
+    /// F and S written since the last element.
+    carry: (Option<f64>, Option<f64>),
+    /// A `,C`/`,R` waiting for the next element, its word and line.
+    pending: Option<(CornerKind, Span, Line)>,
+    /// Blocks read.
+    blocks: usize,
+}
+
+/// What a profile block says, after validation.
+struct Move {
+    motion: Option<GOp>,
+    to: Xz,
+    named: (bool, bool),
+    arc: Option<ArcWords>,
+    feed: Option<f64>,
+    speed: Option<f64>,
+    corner: Option<(CornerKind, Span)>,
+    span: Span,
+}
+
+/// An arc's centre words.
+#[derive(Clone, Copy)]
+enum ArcWords {
+    Offsets(f64, f64),
+    Radius(f64, Span),
+}
+
+impl Interpreter<'_> {
+    /// Reads the profile `N p` … `N q` for the cycle block at `here`.
+    pub(crate) fn read_profile(
+        &mut self,
+        p: Word,
+        q: Word,
+        here: Cursor,
+    ) -> Result<Profile, Diagnostic> {
+        let ns = whole(
+            &p,
+            b'P',
+            0.0,
+            99_999_999.0,
+            "P is the profile's first sequence number",
+        )?;
+        let nf = whole(
+            &q,
+            b'Q',
+            0.0,
+            99_999_999.0,
+            "Q is the profile's last sequence number",
+        )?;
+        let frame = self.flow.frame();
+        let (src, lex) = (frame.source, self.dialect.lex);
+        let start = self
+            .flow
+            .find_sequence(src, frame.program, ns, &lex)
+            .ok_or_else(|| alarms::sequence_not_found(p.span, ns))?;
+        // The last block must exist after the first: checked before any
+        // block is read, so that a missing Q is said as such.
+        let end = self.flow.find_sequence(src, frame.program, nf, &lex);
+        if end.is_none_or(|e| (e.offset, e.col) < (start.offset, start.col)) {
+            return Err(alarms::profile_end_missing(q.span, nf));
+        }
+        let axes = self.lathe_axes(p.span)?;
+        let mut r = Reading {
+            profile: Profile {
+                elems: Vec::new(),
+                first_names: (false, false),
+                src,
+                after: start,
+                follows: (start.offset, start.col) > (here.offset, here.col),
+            },
+            at: self.here_xz(axes),
+            motion: None,
+            carry: (None, None),
+            pending: None,
+            blocks: 0,
+        };
+        let mut block = Block::default();
+        if let Some(s) = self.flow.source(src) {
+            s.reader.seek(Cursor { col: 0, ..start });
+        }
+        let mut col = start.col as usize;
+        loop {
+            let Some((line, bytes)) = self.profile_line(src) else {
+                return Err(alarms::profile_end_missing(q.span, nf));
+            };
+            let mut i = std::mem::take(&mut col);
+            while i < bytes.len() {
+                let lexed = lex_block(&bytes, i, &lex, &mut block);
+                i = match lexed {
+                    Ok(next) => Ok(next),
+                    Err(d) => self.profile_macro_block(&bytes, i, d, &mut block),
+                }
+                .map_err(|d| self.locate(d, src, &line))?;
+                if block.is_empty() || (block.deleted.is_some() && self.opts.block_delete) {
+                    continue;
+                }
+                if block.percent || first_value(&block, b'O').is_some() {
+                    return Err(alarms::profile_end_missing(q.span, nf));
+                }
+                r.blocks += 1;
+                if r.blocks > MAX_BLOCKS {
+                    return Err(alarms::profile_too_long(q.span, MAX_BLOCKS));
+                }
+                self.profile_take(&mut r, &block, line, axes)?;
+                let last = block
+                    .words()
+                    .iter()
+                    .any(|w| w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(nf));
+                if last {
+                    if let Some((_, word, held_at)) = r.pending {
+                        let d = alarms::corner_fault(word, "the profile ends at this corner");
+                        return Err(self.locate(d, src, &held_at));
+                    }
+                    r.profile.after = Cursor {
+                        offset: line.offset,
+                        line: line.number,
+                        col: vcnc_syntax::clamp_u32(i),
+                    };
+                    return Ok(r.profile);
+                }
+            }
+        }
+    }
+
+    /// One profile block: its element (with the F and S written since the
+    /// last one), a chamfer or round the block before asked for, and the
+    /// corner this block asks for.
+    fn profile_take(
+        &mut self,
+        r: &mut Reading,
+        block: &Block,
+        line: Line,
+        axes: (usize, usize),
+    ) -> Result<(), Diagnostic> {
+        let src = r.profile.src;
+        let first = r.blocks == 1;
+        let mv = self
+            .profile_block(block, axes, r.at, &mut r.motion, first)
+            .map_err(|d| self.locate(d, src, &line))?;
+        if first {
+            r.profile.first_names = mv.named;
+        }
+        r.carry = (mv.feed.or(r.carry.0), mv.speed.or(r.carry.1));
+        let elem = self
+            .profile_elem(&mv, r.at, line, first)
+            .map_err(|d| self.locate(d, src, &line))?;
+        if let Some(elem) = elem {
+            let elem = Elem {
+                feed: r.carry.0,
+                speed: r.carry.1,
+                ..elem
+            };
+            r.carry = (None, None);
+            match r.pending.take() {
+                Some((kind, word, held_at)) => {
+                    let prev = r.profile.elems.pop();
+                    self.push_corner(&mut r.profile.elems, prev, elem, kind)
+                        .map_err(|why| {
+                            let d = alarms::corner_fault(word, why);
+                            self.locate(d, src, &held_at)
+                        })?;
+                }
+                None => r.profile.elems.push(elem),
+            }
+            r.at = elem.seg.to;
+        }
+        if let Some((kind, word)) = mv.corner {
+            r.pending = Some((kind, word, line));
+        }
+        Ok(())
+    }
+
+    /// The next line of source `src`, copied (the reader is shared).
+    fn profile_line(&mut self, src: usize) -> Option<(Line, Vec<u8>)> {
+        let source = self.flow.source(src)?;
+        loop {
+            match source.reader.next_line() {
+                Ok(Some(line)) => return Some((line, source.reader.bytes(&line).to_vec())),
+                Ok(None) | Err(vcnc_syntax::ReadError::Io(_)) => return None,
+                Err(vcnc_syntax::ReadError::TooLong { .. }) => {}
+            }
+        }
+    }
+
+    /// Validates one profile block and reads its words.
+    fn profile_block(
+        &self,
+        block: &Block,
+        (ix, iz): (usize, usize),
+        at: Xz,
+        motion: &mut Option<GOp>,
+        first: bool,
+    ) -> Result<Move, Diagnostic> {
+        let mut w = Words::new(block);
+        w.fill(self.dialect, self.machine, self.axis_mask)?;
+        if let Some(code) = w.once_codes().next() {
+            return Err(alarms::profile_word(code.span, "a one-shot G code"));
+        }
+        let mut span = w.first;
+        for code in w.modal_codes() {
+            match code.def.op {
+                GOp::Rapid | GOp::Linear | GOp::ArcCw | GOp::ArcCcw => {
+                    *motion = Some(code.def.op);
+                    span = code.span;
+                }
+                _ => return Err(alarms::profile_word(code.span, "this G code")),
+            }
+        }
+        if let Some(m) = w.m.iter().flatten().next() {
+            return Err(alarms::profile_word(m.span, "an M code"));
+        }
+        if let Some(m) = w.other_m.iter().flatten().next() {
+            return Err(alarms::profile_word(m.span, "an M code"));
+        }
+        let allowed = [b'N', b'X', b'Z', b'U', b'W', b'I', b'K', b'R', b'F', b'S']
+            .iter()
+            .fold(0, |m, l| m | bit(*l));
+        if let Some(word) = block.words().iter().find(|wd| {
+            wd.addr
+                .as_letter()
+                .is_some_and(|l| l != b'G' && l != b'M' && allowed & bit(l) == 0)
+        }) {
+            return Err(alarms::profile_word(
+                word.span,
+                &format!("the word {}", char::from(word.addr.0)),
+            ));
+        }
+        for (abs, inc) in [(b'X', b'U'), (b'Z', b'W')] {
+            if let (Some(_), Some(i)) = (w.get(abs), w.get(inc)) {
+                return Err(alarms::absolute_and_incremental(i.span, abs, inc));
+            }
+        }
+        let Some(op) = *motion else {
+            return Err(alarms::profile_not_cut(
+                w.first,
+                "the profile's first block must move with G00 or G01",
+            ));
+        };
+        let arc = matches!(op, GOp::ArcCw | GOp::ArcCcw);
+        if first && arc {
+            return Err(alarms::profile_not_cut(
+                span,
+                "the profile's first block must move with G00 or G01, not an arc",
+            ));
+        }
+        let coord = |abs: u8, inc: u8, i: usize, from: f64| match (w.get(abs), w.get(inc)) {
+            (Some(word), _) => (self.axis_value(i, &word), true),
+            (None, Some(word)) => (from + self.axis_value(i, &word), true),
+            (None, None) => (from, false),
+        };
+        let (x, nx) = coord(b'X', b'U', ix, at.0);
+        let (z, nz) = coord(b'Z', b'W', iz, at.1);
+        let arc_words = if arc {
+            match (w.get(b'R'), w.get(b'I'), w.get(b'K')) {
+                (Some(r), _, _) => Some(ArcWords::Radius(self.length_mm(&r), r.span)),
+                (None, i, k) if i.is_some() || k.is_some() => Some(ArcWords::Offsets(
+                    i.map_or(0.0, |i| self.length_mm(&i)),
+                    k.map_or(0.0, |k| self.length_mm(&k)),
+                )),
+                _ => return Err(alarms::arc_without_center(span, "zx")),
+            }
+        } else {
+            for l in [b'I', b'K', b'R'] {
+                if let Some(word) = w.get(l) {
+                    return Err(alarms::word_not_allowed(word.span, l));
+                }
+            }
+            None
+        };
+        let corner = match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
+            (Some(_), Some(r)) => return Err(alarms::corner_fault(r.span, "both ,C and ,R")),
+            (Some(c), None) => Some((CornerKind::Chamfer(self.length_mm(&c)), c.span)),
+            (None, Some(r)) => Some((CornerKind::Round(self.length_mm(&r)), r.span)),
+            (None, None) => None,
+        };
+        if let Some((_, word)) = corner.filter(|_| op != GOp::Linear) {
+            return Err(alarms::corner_fault(word, "only a G01 takes ,C or ,R"));
+        }
+        Ok(Move {
+            motion: Some(op),
+            to: (x, z),
+            named: (nx, nz),
+            arc: arc_words,
+            feed: w.get(b'F').map(|f| f.value),
+            speed: w.get(b'S').map(|s| s.value),
+            corner,
+            span,
+        })
+    }
+
+    /// The element a validated block moves along, if it moves (the first
+    /// block always makes one: the approach).
+    fn profile_elem(
+        &self,
+        mv: &Move,
+        at: Xz,
+        line: Line,
+        first: bool,
+    ) -> Result<Option<Elem>, Diagnostic> {
+        let moved = (mv.to.0 - at.0).abs() > 1e-9 || (mv.to.1 - at.1).abs() > 1e-9;
+        if !moved && !first && mv.arc.is_none() {
+            return Ok(None);
+        }
+        let arc = match (mv.motion, mv.arc) {
+            (Some(op @ (GOp::ArcCw | GOp::ArcCcw)), Some(words)) => {
+                let cw = op == GOp::ArcCw;
+                Some((self.profile_center(at, mv.to, words, cw, mv.span)?, cw))
+            }
+            _ => None,
+        };
+        Ok(Some(Elem {
+            seg: Seg {
+                from: at,
+                to: mv.to,
+                arc,
+            },
+            rapid: mv.motion == Some(GOp::Rapid),
+            feed: None,
+            speed: None,
+            line,
+            span: mv.span,
+        }))
+    }
+
+    /// The centre of a profile arc (X radius, Z), checked on the circle.
+    fn profile_center(
+        &self,
+        s: Xz,
+        e: Xz,
+        words: ArcWords,
+        cw: bool,
+        span: Span,
+    ) -> Result<Xz, Diagnostic> {
+        let tol = self.machine.params.arc_tolerance_mm;
+        // In the (Z, X) frame of the plane: first Z, second X.
+        let (sz, sx, ez, ex) = (s.1, s.0, e.1, e.0);
+        let c = match words {
+            ArcWords::Offsets(i, k) => (sx + i, sz + k),
+            ArcWords::Radius(r, rspan) => {
+                let (dz, dx) = (ez - sz, ex - sx);
+                let chord = dz.hypot(dx);
+                if r.abs() < 1e-9 {
+                    return Err(alarms::zero_radius(span));
+                }
+                if chord < 1e-9 {
+                    return Err(alarms::r_full_circle(rspan));
+                }
+                let h2 = r * r - chord * chord / 4.0;
+                if h2 < 0.0 && chord - 2.0 * r.abs() > tol {
+                    return Err(alarms::radius_too_small(rspan, r.abs(), chord));
+                }
+                let h = h2.max(0.0).sqrt();
+                let (nz, nx) = (-dx / chord, dz / chord);
+                let side = if cw { -1.0 } else { 1.0 } * r.signum();
+                (sx + dx / 2.0 + side * h * nx, sz + dz / 2.0 + side * h * nz)
+            }
+        };
+        let r0 = (sx - c.0).hypot(sz - c.1);
+        let r1 = (ex - c.0).hypot(ez - c.1);
+        if r0 < 1e-9 {
+            return Err(alarms::zero_radius(span));
+        }
+        if (r0 - r1).abs() > tol {
+            return Err(alarms::end_off_circle(span, r0, r1));
+        }
+        if (sx - ex).abs() < 1e-9 && (sz - ez).abs() < 1e-9 {
+            return Err(alarms::profile_not_cut(span, "a full circle"));
+        }
+        Ok(c)
+    }
+
+    /// Replaces `prev` (a line whose block asked for a corner) and pushes
+    /// the chamfer or round and `next` (which must be a line).
+    fn push_corner(
+        &self,
+        elems: &mut Vec<Elem>,
+        prev: Option<Elem>,
+        next: Elem,
+        kind: CornerKind,
+    ) -> Result<(), &'static str> {
+        let Some(prev) = prev else {
+            return Err("there is no move before the corner");
+        };
+        if next.seg.arc.is_some() || next.rapid || prev.rapid {
+            return Err("the block after a ,C or ,R must be a G01 move");
+        }
+        // (Z, X) frame, like the plane.
+        let zx = |p: Xz| (p.1, p.0);
+        let cut = corner_cut(zx(prev.seg.from), zx(prev.seg.to), zx(next.seg.to), kind)?;
+        let xz = |p: (f64, f64)| (p.1, p.0);
+        let mut first = prev;
+        first.seg.to = xz(cut.p1);
+        elems.push(first);
+        elems.push(Elem {
+            seg: Seg {
+                from: xz(cut.p1),
+                to: xz(cut.p2),
+                arc: cut.arc.map(|(c, ccw)| (xz(c), !ccw)),
+            },
+            feed: None,
+            speed: None,
+            ..prev
+        });
+        let mut second = next;
+        second.seg.from = xz(cut.p2);
+        elems.push(second);
+        Ok(())
+    }
+}

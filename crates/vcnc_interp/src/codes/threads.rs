@@ -1,0 +1,361 @@
+//! G74 and G75 (peck drilling and grooving) and G76 (multiple threading),
+//! the multiple repetitive cycles of the Fanuc lathe that need no profile.
+//!
+//! G74/G75 peck along one axis and step along the other:
+//!
+//! ```text
+//!   G74: pecks along Z by Δk (Q), steps in X by Δi (P)    ┌─A  (e: retract
+//!   G75: pecks along X by Δi (P), steps in Z by Δk (Q)    │     after each
+//!   each position: feed Δk, back e, feed Δk+e, … to the   ▼     peck; Δd (R):
+//!   end, relief Δd across, rapid back out, next position  ══    relief at the
+//!   then back to A.                                             bottom)
+//! ```
+//!
+//! G76 threads in passes of constant area (Fanuc 0i-TF):
+//!
+//! ```text
+//!   depth of pass n: Dn = Δd·√n, at least D(n-1) + Δdmin, until k − d;
+//!   then m finishing passes at k (the first cuts the allowance d, the others
+//!   are spring passes). Each pass starts Dn·tan(a/2) along the thread from
+//!   A (flank infeed along the tool's angle a), threads to the end with the
+//!   chamfer-out r (tenths of the lead), goes out to A's X and back to A.
+//!
+//!   X ▲ A ●──────────────────────┐      k: thread height (radius)
+//!     │    ╲ (rapid)             │      X: the thread's root at its end
+//!     │     ●━━━━━━thread━━━━━━━┓│      i (R): taper, X at A's Z minus X at
+//!     └───────────────────────────▶ Z      the end
+//! ```
+
+use crate::alarms;
+use crate::block::convert::whole;
+use crate::block::words::Words;
+use crate::codes::turning_cycles::{How, Xz};
+use crate::interpreter::Interpreter;
+use vcnc_syntax::{Diagnostic, Span};
+
+/// Most pecks, positions or passes one block may make.
+const MAX_STEPS: usize = 10_000;
+
+/// The tool angles G76 accepts (Fanuc: 80, 60, 55, 30, 29, 0 degrees).
+const ANGLES: [u32; 6] = [0, 29, 30, 55, 60, 80];
+
+/// The cumulative depths (radius, mm) of G76's passes before the
+/// finishing ones: Δd·√n, each at least `min_step` deeper than the last,
+/// the last exactly `height − allowance`. `None` beyond [`MAX_STEPS`].
+pub(crate) fn thread_depths(
+    first: f64,
+    min_step: f64,
+    height: f64,
+    allowance: f64,
+) -> Option<Vec<f64>> {
+    let rough_to = height - allowance;
+    let mut out = Vec::new();
+    if rough_to <= 1e-9 {
+        return Some(out);
+    }
+    let mut prev = 0.0;
+    for n in 1..=MAX_STEPS {
+        // n ≤ 10,000: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let mut d = first * (n as f64).sqrt();
+        if d - prev < min_step {
+            d = prev + min_step;
+        }
+        if d >= rough_to - 1e-9 {
+            out.push(rough_to);
+            return Some(out);
+        }
+        out.push(d);
+        prev = d;
+    }
+    None
+}
+
+impl Interpreter<'_> {
+    /// G74 (`face`) or G75.
+    pub(crate) fn peck_cycle(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        face: bool,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        if !w.any(self.axis_mask) {
+            // The first block: R, the retract after each peck.
+            for l in [b'P', b'Q'] {
+                if let Some(word) = w.get(l) {
+                    return Err(alarms::word_not_allowed(word.span, l));
+                }
+            }
+            if let Some(r) = w.get(b'R') {
+                self.state.lathe.mrc.peck_retract_mm = self.length_mm(&r).abs();
+            }
+            return Ok(());
+        }
+        let a = self.here_xz(axes);
+        let end = {
+            let goal = self.target(w, false);
+            (goal.prog.get(axes.0), goal.prog.get(axes.1))
+        };
+        // (peck axis, step axis): G74 pecks along Z, G75 along X.
+        let (pa, sa, pe, se) = if face {
+            (a.1, a.0, end.1, end.0)
+        } else {
+            (a.0, a.1, end.0, end.1)
+        };
+        let x_amount = w.get(b'P').map(|p| self.length_mm(&p).abs());
+        let z_amount = w.get(b'Q').map(|q| self.length_mm(&q).abs());
+        let (peck, step, peck_word, step_word) = if face {
+            (z_amount, x_amount, w.get(b'Q'), w.get(b'P'))
+        } else {
+            (x_amount, z_amount, w.get(b'P'), w.get(b'Q'))
+        };
+        if (pe - pa).abs() < 1e-9 {
+            return Err(alarms::cycle_parameters(
+                cmd,
+                "the cycle's end point is where it starts along the pecks",
+            ));
+        }
+        let peck = match peck {
+            Some(p) if p > 0.0 => p,
+            _ => {
+                let span = peck_word.map_or(cmd, |x| x.span);
+                return Err(alarms::zero_amount(span, "the depth of each peck"));
+            }
+        };
+        let stepping = (se - sa).abs() > 1e-9;
+        let step = match step {
+            Some(s) if s > 0.0 => s,
+            _ if !stepping => 1.0,
+            _ => {
+                let span = step_word.map_or(cmd, |x| x.span);
+                return Err(alarms::zero_amount(span, "the step between positions"));
+            }
+        };
+        let relief = w.get(b'R').map_or(0.0, |r| self.length_mm(&r).abs());
+        let retract = self.state.lathe.mrc.peck_retract_mm;
+        let count = ((pe - pa).abs() / peck).ceil() * (((se - sa).abs() / step).floor() + 2.0);
+        if count > MAX_STEPS as f64 {
+            return Err(alarms::too_many_cycle_moves(cmd));
+        }
+        let feed = self.feed(cmd)?;
+        let moves = peck_moves((pa, sa), (pe, se), peck, step, retract, relief, feed);
+        let xz: Vec<(How, Xz)> = moves
+            .into_iter()
+            .map(|(how, (p, s))| (how, if face { (s, p) } else { (p, s) }))
+            .collect();
+        let suspended = self.suspend_comp()?;
+        self.cycle_moves(&xz, axes, w, cmd)?;
+        self.resume_comp(suspended);
+        Ok(())
+    }
+
+    /// G76, first or second block.
+    pub(crate) fn thread_cycle_multi(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        if !w.any(self.axis_mask) {
+            return self.thread_first_block(w);
+        }
+        let a = self.here_xz(axes);
+        let goal = self.target(w, false);
+        let (has_x, has_z) = (
+            goal.named & (1 << axes.0) != 0,
+            goal.named & (1 << axes.1) != 0,
+        );
+        if !has_x || !has_z {
+            return Err(alarms::needs_word(
+                cmd,
+                "G76",
+                "X (or U) and Z (or W): the thread's root at its end",
+            ));
+        }
+        let (root, z_end) = (goal.prog.get(axes.0), goal.prog.get(axes.1));
+        let height = match w.get(b'P') {
+            Some(p) if self.length_mm(&p) > 0.0 => self.length_mm(&p),
+            p => {
+                return Err(alarms::zero_amount(
+                    p.map_or(cmd, |p| p.span),
+                    "the thread height P",
+                ));
+            }
+        };
+        let first = match w.get(b'Q') {
+            Some(q) if self.length_mm(&q) > 0.0 => self.length_mm(&q),
+            q => {
+                return Err(alarms::zero_amount(
+                    q.map_or(cmd, |q| q.span),
+                    "the first depth of cut Q",
+                ));
+            }
+        };
+        let lead_mm = match w.get(b'F') {
+            Some(f) if f.value > 0.0 => f.value * self.unit_mm(),
+            _ => return Err(alarms::thread_without_lead(cmd)),
+        };
+        let taper = w.get(b'R').map_or(0.0, |r| self.length_mm(&r));
+        let (dir_x, dir_z) = ((root - a.0).signum(), (z_end - a.1).signum());
+        if (root - a.0).abs() < 1e-9 || (z_end - a.1).abs() < 1e-9 {
+            return Err(alarms::cycle_parameters(
+                cmd,
+                "the thread's end must differ from the start point in X and Z",
+            ));
+        }
+        let mrc = self.state.lathe.mrc;
+        let mut depths = thread_depths(first, mrc.min_depth_mm, height, mrc.allowance_mm)
+            .ok_or_else(|| alarms::too_many_cycle_moves(cmd))?;
+        depths.extend(std::iter::repeat_n(height, mrc.finish_count as usize));
+        let half_angle = (mrc.tool_angle_deg / 2.0).to_radians().tan();
+        let crest_end = root - dir_x * height;
+        let length = (z_end - a.1).abs();
+        let mut moves = Vec::new();
+        for d in depths {
+            let x_end = crest_end + dir_x * d;
+            let shift = d * half_angle;
+            if shift >= length {
+                return Err(alarms::cycle_parameters(
+                    cmd,
+                    "the flank infeed moves the pass start past the thread's end",
+                ));
+            }
+            let z_start = a.1 + dir_z * shift;
+            let x_start = x_end + taper * (z_start - z_end) / (a.1 - z_end);
+            moves.push((How::Rapid, (x_start, z_start)));
+            moves.extend(self.thread_with_chamfer(
+                (x_start, z_start),
+                (x_end, z_end),
+                a.0,
+                lead_mm,
+            ));
+            moves.push((How::Rapid, (a.0, z_end)));
+            moves.push((How::Rapid, a));
+        }
+        let suspended = self.suspend_comp()?;
+        self.cycle_moves(&moves, axes, w, cmd)?;
+        self.resume_comp(suspended);
+        Ok(())
+    }
+
+    /// G76 P(m r a) Q(Δdmin) R(d).
+    fn thread_first_block(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if let Some(p) = w.get(b'P') {
+            let v = whole(
+                &p,
+                b'P',
+                0.0,
+                999_999.0,
+                "G76 P is mmrraa: finishing passes, chamfer, tool angle",
+            )?;
+            let (m, r, angle) = (v / 10_000, (v / 100) % 100, v % 100);
+            if m == 0 {
+                return Err(alarms::zero_amount(
+                    p.span,
+                    "the number of finishing passes (P's first two digits)",
+                ));
+            }
+            if !ANGLES.contains(&angle) {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    b'P',
+                    p.value,
+                    "the tool angle (P's last two digits) is 80, 60, 55, 30, 29 or 0",
+                ));
+            }
+            let mrc = &mut self.state.lathe.mrc;
+            mrc.finish_count = m;
+            // r < 100 and angle < 100: both fit.
+            mrc.chamfer_tenths = u8::try_from(r).unwrap_or(0);
+            mrc.tool_angle_deg = f64::from(angle);
+        }
+        if let Some(q) = w.get(b'Q') {
+            self.state.lathe.mrc.min_depth_mm = self.length_mm(&q).abs();
+        }
+        if let Some(r) = w.get(b'R') {
+            self.state.lathe.mrc.allowance_mm = self.length_mm(&r).abs();
+        }
+        Ok(())
+    }
+}
+
+/// The moves of G74/G75 in (peck axis, step axis) coordinates.
+fn peck_moves(
+    a: (f64, f64),
+    end: (f64, f64),
+    peck: f64,
+    step: f64,
+    retract: f64,
+    relief: f64,
+    feed: crate::events::Feed,
+) -> Vec<(How, (f64, f64))> {
+    let (dp, ds) = (
+        (end.0 - a.0).signum(),
+        if end.1 == a.1 {
+            1.0
+        } else {
+            (end.1 - a.1).signum()
+        },
+    );
+    let mut moves = Vec::new();
+    let mut s = a.1;
+    loop {
+        if moves.is_empty() {
+            // The first position is A's.
+        } else {
+            moves.push((How::Rapid, (a.0, s)));
+        }
+        let mut cur = a.0;
+        loop {
+            let next = if (end.0 - cur).abs() <= peck + 1e-9 {
+                end.0
+            } else {
+                cur + dp * peck
+            };
+            moves.push((How::Cut(feed), (next, s)));
+            if next == end.0 {
+                break;
+            }
+            moves.push((How::Rapid, (next - dp * retract, s)));
+            cur = next;
+        }
+        let out_s = s - ds * relief;
+        if relief > 0.0 {
+            moves.push((How::Cut(feed), (end.0, out_s)));
+        }
+        moves.push((How::Rapid, (a.0, out_s)));
+        if (end.1 - s).abs() <= 1e-9 {
+            break;
+        }
+        s = if (end.1 - s).abs() <= step + 1e-9 {
+            end.1
+        } else {
+            s + ds * step
+        };
+    }
+    moves.push((How::Rapid, a));
+    moves
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depths_follow_the_square_root_until_the_allowance() {
+        let d = thread_depths(0.3, 0.0, 1.0, 0.1).unwrap();
+        // 0.3, 0.4243, 0.5196, 0.6, 0.6708, 0.7348, 0.7937, 0.8485, then 0.9.
+        assert_eq!(d.len(), 9);
+        assert!((d[1] - 0.3 * 2f64.sqrt()).abs() < 1e-12);
+        assert_eq!(d[8], 0.9);
+        // A minimum step larger than √n's increments takes over.
+        let d = thread_depths(0.3, 0.2, 1.0, 0.0).unwrap();
+        let want = [0.3, 0.5, 0.7, 0.9, 1.0];
+        assert_eq!(d.len(), want.len());
+        assert!(
+            d.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{d:?}"
+        );
+    }
+}

@@ -1,0 +1,195 @@
+//! The Fanuc 0i-TF lathe dialect (G-code system A), which Haas lathes also
+//! run: another profile of the same engine, with the numbers a Fanuc lathe
+//! gives its codes.
+//!
+//! ```text
+//!   code   mill (fanuc)            fanuc-lathe (system A)
+//!   G50    scaling off             coordinate setting / spindle clamp (S)
+//!   G70–G76 —, canned drilling      multiple repetitive cycles (two blocks)
+//!   G90    absolute                turning cycle (modal, group 01)
+//!   G92    coordinate setting      threading cycle (modal, group 01)
+//!   G94    feed per minute         facing cycle (modal, group 01)
+//!   G98/G99 cycle return level     feed per minute / per revolution
+//! ```
+//!
+//! There is no G90/G91: X/Z are absolute and U/W incremental in every
+//! block. X is a diameter (events keep the radius), G18 and G99 are on at
+//! power-on, a T word indexes the turret and applies an offset (`T0101`),
+//! G96 keeps the surface speed on the work diameter under the tool.
+//! Decisions are in `docs/dialects.md` (the Fanuc lathe).
+
+use super::{
+    AxisWords, BareReturn, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow, Group,
+    IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ToolLengthChange, ToolWords, bit, g,
+};
+use crate::events::Plane;
+use crate::machine::DEFAULT_FANUC_LATHE_TOML;
+use vcnc_syntax::{Addr, LexRules, Semicolon};
+
+/// Words of the multiple repetitive cycles besides the axis words they
+/// claim (U and W are their parameters too): P, Q, R and Haas's D (the
+/// depth of cut of its one-block G71/G72).
+const MRC: u32 = bit(b'P') | bit(b'Q') | bit(b'R');
+
+const FANUC_LATHE_G: &[GRow] = &[
+    // Custom Macro B calls, as on the mill: every letter is an argument.
+    g(650, GOp::MacroCall, Group::NonModal)
+        .reads(super::mill::ALL_LETTERS)
+        .refuses_axes(),
+    g(660, GOp::MacroModal, Group::MacroModal)
+        .reads(super::mill::ALL_LETTERS)
+        .refuses_axes(),
+    g(670, GOp::MacroModalCancel, Group::MacroModal),
+    g(0, GOp::Rapid, Group::Motion),
+    g(10, GOp::Linear, Group::Motion),
+    g(20, GOp::ArcCw, Group::Motion),
+    g(30, GOp::ArcCcw, Group::Motion),
+    // G04 X/U seconds (milliseconds without a point), P milliseconds.
+    g(40, GOp::Dwell, Group::NonModal)
+        .reads(bit(b'P') | bit(b'X') | bit(b'U'))
+        .refuses_axes(),
+    g(180, GOp::PlaneZx, Group::Plane),
+    g(200, GOp::Inch, Group::Units),
+    g(210, GOp::Metric, Group::Units),
+    g(280, GOp::RefReturn, Group::NonModal).claims_axes(),
+    g(300, GOp::RefReturnN, Group::NonModal)
+        .reads(bit(b'P'))
+        .claims_axes(),
+    // G32: lead F in program units (mm or inch), like the mill's G33.
+    g(320, GOp::Thread, Group::Motion),
+    g(400, GOp::CompCancel, Group::CutterComp),
+    g(410, GOp::CompLeft, Group::CutterComp),
+    g(420, GOp::CompRight, Group::CutterComp),
+    g(500, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
+    g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
+    g(540, GOp::WorkSystem(0), Group::Wcs),
+    g(550, GOp::WorkSystem(1), Group::Wcs),
+    g(560, GOp::WorkSystem(2), Group::Wcs),
+    g(570, GOp::WorkSystem(3), Group::Wcs),
+    g(580, GOp::WorkSystem(4), Group::Wcs),
+    g(590, GOp::WorkSystem(5), Group::Wcs),
+    g(700, GOp::FinishCycle, Group::NonModal)
+        .reads(bit(b'P') | bit(b'Q'))
+        .claims_axes(),
+    g(710, GOp::RoughTurnCycle, Group::NonModal)
+        .reads(MRC | bit(b'D'))
+        .claims_axes(),
+    g(720, GOp::RoughFaceCycle, Group::NonModal)
+        .reads(MRC | bit(b'D'))
+        .claims_axes(),
+    g(730, GOp::PatternCycle, Group::NonModal)
+        .reads(MRC)
+        .claims_axes(),
+    g(740, GOp::FacePeckCycle, Group::NonModal)
+        .reads(MRC)
+        .claims_axes(),
+    g(750, GOp::GrooveCycle, Group::NonModal)
+        .reads(MRC)
+        .claims_axes(),
+    // G76's F is the lead, not a feed.
+    g(760, GOp::ThreadMultiCycle, Group::NonModal)
+        .reads(MRC | bit(b'F'))
+        .claims_axes(),
+    g(800, GOp::CycleCancel, Group::Cycle),
+    g(900, GOp::TurnCycle, Group::Motion),
+    g(920, GOp::ThreadingCycle, Group::Motion),
+    g(940, GOp::FaceCycle, Group::Motion),
+    g(960, GOp::SurfaceSpeed, Group::SpindleMode),
+    g(970, GOp::SpindleRpm, Group::SpindleMode),
+    g(980, GOp::PerMinute, Group::FeedMode),
+    g(990, GOp::PerRev, Group::FeedMode),
+];
+
+/// Fanuc lathe M codes: the mill's without M06 (a T word indexes the
+/// turret) and without M19 (spindle orientation is the builder's).
+const FANUC_LATHE_M: &[MRow] = &[
+    (0, MOp::Stop, MGroup::Flow, 0),
+    (1, MOp::OptionalStop, MGroup::Flow, 0),
+    (2, MOp::End, MGroup::Flow, 0),
+    (3, MOp::SpindleCw, MGroup::Spindle, 0),
+    (4, MOp::SpindleCcw, MGroup::Spindle, 0),
+    (5, MOp::SpindleStop, MGroup::Spindle, 0),
+    (8, MOp::CoolantOn, MGroup::Coolant, 0),
+    (9, MOp::CoolantOff, MGroup::Coolant, 0),
+    (30, MOp::EndRewind, MGroup::Flow, 0),
+    (
+        98,
+        MOp::Call,
+        MGroup::Flow,
+        bit(b'P') | bit(b'H') | bit(b'L'),
+    ),
+    (99, MOp::Return, MGroup::Flow, bit(b'P')),
+];
+
+/// `;` ends a block (Fanuc's EOB); `,C`/`,R` are chamfer and corner R.
+const FANUC_LATHE_LEX: LexRules = LexRules {
+    semicolon: Semicolon::EndOfBlock,
+    slash_comments: false,
+    fullwidth_semicolon: false,
+    extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
+    foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+};
+
+/// Codes of the 0i-TF list vcnc does not run, and why (E201 quotes it).
+const NOT_RUN: &[(u16, &str)] = &[
+    (
+        170,
+        "G17 selects the XY plane for live tooling (a Y or C axis), which this lathe dialect does not run",
+    ),
+    (
+        190,
+        "G19 selects the YZ plane for live tooling (a Y or C axis), which this lathe dialect does not run",
+    ),
+    (
+        830,
+        "G83 (live-tool face drilling) is not run by this lathe dialect: use G74 for peck drilling on the spindle axis",
+    ),
+    (
+        840,
+        "G84 (live-tool face tapping) is not run by this lathe dialect",
+    ),
+    (
+        1120,
+        "G112 polar coordinate interpolation (C axis) is not run by this lathe dialect",
+    ),
+];
+
+/// The Fanuc lathe dialect.
+pub(super) fn fanuc_lathe() -> Dialect {
+    let (g, m) = Dialect::tables(&[FANUC_LATHE_G], FANUC_LATHE_M);
+    debug_assert!(
+        FANUC_LATHE_G
+            .iter()
+            .all(|r| r.def.group != Group::Motion || r.def.axes == AxisWords::Free)
+    );
+    Dialect {
+        name: "fanuc-lathe",
+        lex: FANUC_LATHE_LEX,
+        g,
+        m,
+        incremental_words: &[(b'U', b'X'), (b'W', b'Z')],
+        diameter: Diameter {
+            axis: Some(b'X'),
+            at_power_on: true,
+        },
+        integers: IntegerWords::LeastIncrement,
+        plane: Plane::Zx,
+        long_chord: LongChord::Alarm,
+        arc_letters: 0,
+        default_machine: DEFAULT_FANUC_LATHE_TOML,
+        unsupported: NOT_RUN,
+        rapid: RapidPath::ByParameter,
+        cycles: CycleRules::Fanuc,
+        // Haas lathes send every axis home on a bare G28.
+        bare_return: BareReturn::AllAxes,
+        l20: G10L20::Unsupported,
+        program_stop: ProgramStop::StopsSpindleAndCoolant,
+        // A T word's offset applies at the next move.
+        tool_length_change: ToolLengthChange::AtNextMove,
+        feed_at_power_on: FeedAtPowerOn::PerRevolution,
+        surface_speed: SurfaceSpeedOn::WorkDiameter,
+        tool_words: ToolWords::TurretOffset,
+        macros: super::MacroRules::FANUC,
+    }
+}
