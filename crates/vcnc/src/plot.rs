@@ -361,7 +361,7 @@ fn write(
 ) -> std::io::Result<()> {
     let mut out = BufWriter::with_capacity(1 << 20, file);
     match set.format {
-        Format::Svg => {
+        Format::Svg | Format::Png => {
             let scene = vcnc_plot::scene(
                 plot,
                 compare.map(|c| c.0),
@@ -369,17 +369,11 @@ fn write(
                 &set.look,
                 legend,
             );
-            vcnc_plot::write_svg(&scene, &mut out)?;
-        }
-        Format::Png => {
-            let scene = vcnc_plot::scene(
-                plot,
-                compare.map(|c| c.0),
-                &set.projection,
-                &set.look,
-                legend,
-            );
-            vcnc_plot::write_png(&scene, &mut out)?;
+            if set.format == Format::Svg {
+                vcnc_plot::write_svg(&scene, &mut out)?;
+            } else {
+                vcnc_plot::write_png(&scene, &mut out)?;
+            }
         }
         Format::Html => {
             let sources = sources(&args.file, plot);

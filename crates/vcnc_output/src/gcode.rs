@@ -348,25 +348,30 @@ mod tests {
         p
     }
 
-    #[test]
-    fn an_arc_shorter_than_the_precision_is_a_line_not_a_full_circle() {
-        // From (10, 0) 30 nm along a circle of radius 10: both ends write
-        // as X10. Y0, which a reader would take for a full circle.
+    /// A rapid to (10, 0), then a ccw arc about the origin to (10, `y`).
+    fn arc_from_10_0(y: f64) -> [Event; 2] {
+        let start = Event::Rapid {
+            loc: Loc::default(),
+            to: pos(10.0, 0.0),
+            exact_stop: false,
+        };
         let arc = Event::Arc {
             loc: Loc::default(),
-            to: pos(10.0, 3e-8),
+            to: pos(10.0, y),
             center: pos(0.0, 0.0),
             plane: Plane::Xy,
             dir: ArcDir::Ccw,
             feed: Feed::PerMin(100.0),
             exact_stop: false,
         };
-        let start = Event::Rapid {
-            loc: Loc::default(),
-            to: pos(10.0, 0.0),
-            exact_stop: false,
-        };
-        let text = flatten(&[start, arc]);
+        [start, arc]
+    }
+
+    #[test]
+    fn an_arc_shorter_than_the_precision_is_a_line_not_a_full_circle() {
+        // From (10, 0) 30 nm along a circle of radius 10: both ends write
+        // as X10. Y0, which a reader would take for a full circle.
+        let text = flatten(&arc_from_10_0(3e-8));
         let last = text.lines().last().unwrap_or_default();
         assert!(last.starts_with("G1 X10. Y0."), "{text}");
     }
@@ -374,21 +379,7 @@ mod tests {
     #[test]
     fn a_micron_arc_keeps_its_end_apart_from_its_start() {
         // 0.5 µm of arc: six decimals tell the ends apart (four would not).
-        let arc = Event::Arc {
-            loc: Loc::default(),
-            to: pos(10.0, 5e-4),
-            center: pos(0.0, 0.0),
-            plane: Plane::Xy,
-            dir: ArcDir::Ccw,
-            feed: Feed::PerMin(100.0),
-            exact_stop: false,
-        };
-        let start = Event::Rapid {
-            loc: Loc::default(),
-            to: pos(10.0, 0.0),
-            exact_stop: false,
-        };
-        let text = flatten(&[start, arc]);
+        let text = flatten(&arc_from_10_0(5e-4));
         assert!(text.contains("G3 X10. Y0.0005"), "{text}");
     }
 
