@@ -25,8 +25,9 @@
 //! Haas's one-block G71/G72 (`D` the depth of cut) runs as a second block
 //! with that depth.
 //!
-//! G71–G73 read the profile (profile.rs) and then, when the profile follows
-//! the cycle block, go on after its last block; G70 goes on after itself.
+//! G71–G73 read the profile (profile.rs) and then, when the profile's
+//! first block is the block right after the cycle block, go on after its
+//! last block, else after the cycle block; G70 goes on after itself.
 //! Their moves carry the cycle block's line, except G70's, which carry the
 //! profile blocks' lines (the blocks it runs). Cutter compensation is
 //! suspended for G71–G76 (their passes are not compensated) and runs over
@@ -63,7 +64,6 @@ impl Interpreter<'_> {
         op: GOp,
         cmd: Span,
         w: &Words<'_>,
-        here: Cursor,
         next: Cursor,
     ) -> Result<Option<Cursor>, Diagnostic> {
         let pq = (w.get(b'P'), w.get(b'Q'));
@@ -82,7 +82,7 @@ impl Interpreter<'_> {
         match op {
             GOp::FinishCycle => {
                 self.refuse(w, b"UWRD")?;
-                let profile = self.read_profile(p, q, here)?;
+                let profile = self.read_profile(p, q, next)?;
                 self.finish(&profile, w, cmd)?;
                 Ok(Some(next))
             }
@@ -93,7 +93,7 @@ impl Interpreter<'_> {
                 // Compensation is suspended for the passes (like the mill's
                 // canned cycles): the next move in the plane starts it again.
                 let suspended = self.suspend_comp()?;
-                let profile = self.read_profile(p, q, here)?;
+                let profile = self.read_profile(p, q, next)?;
                 if op == GOp::PatternCycle {
                     self.pattern_repeat(&profile, w, cmd)?;
                 } else {

@@ -96,12 +96,13 @@ enum ArcWords {
 }
 
 impl Interpreter<'_> {
-    /// Reads the profile `N p` … `N q` for the cycle block at `here`.
+    /// Reads the profile `N p` … `N q` for the cycle block whose next
+    /// block starts at `next`.
     pub(crate) fn read_profile(
         &mut self,
         p: Word,
         q: Word,
-        here: Cursor,
+        next: Cursor,
     ) -> Result<Profile, Diagnostic> {
         let ns = whole(
             &p,
@@ -129,6 +130,10 @@ impl Interpreter<'_> {
         if end.is_none_or(|e| (e.offset, e.col) < (start.offset, start.col)) {
             return Err(alarms::profile_end_missing(q.span, nf));
         }
+        // Only a profile right after the cycle block is skipped by it; one
+        // after M30 or before the cycle leaves the program to go on after
+        // the cycle block.
+        let follows = self.flow.first_block_from(src, next, &lex) == Some(start);
         let axes = self.lathe_axes(p.span)?;
         let mut r = Reading {
             profile: Profile {
@@ -136,7 +141,7 @@ impl Interpreter<'_> {
                 first_names: (false, false),
                 src,
                 after: start,
-                follows: (start.offset, start.col) > (here.offset, here.col),
+                follows,
             },
             at: self.here_xz(axes),
             motion: None,
