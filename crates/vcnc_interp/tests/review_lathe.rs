@@ -59,3 +59,58 @@ fn profile_after_m30_resumes_after_the_cycle_block() {
         assert!((got.0 - want.0).abs() < 1e-9 && (got.1 - want.1).abs() < 1e-9);
     }
 }
+
+/// The alarm that ended a run.
+fn alarm(out: &Outcome) -> &vcnc_syntax::Diagnostic {
+    match out {
+        Outcome::Alarm(d) => d,
+        other => panic!("expected an alarm, got {other:?}"),
+    }
+}
+
+/// E342's help must name the Fanuc lathe's feed-per-minute code G98: the
+/// mill's G94 is the facing cycle here, so following the old advice would
+/// run a cycle instead of changing the feed mode.
+#[test]
+fn per_rev_feed_with_spindle_stopped_suggests_g98() {
+    let (_, out) = run("G00 X50. Z2.\nG01 Z-10. F0.2\nM30\n");
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E342", 2, 1));
+    assert!(d.help.contains("G98"), "{}", d.help);
+    assert!(!d.help.contains("G94"), "{}", d.help);
+}
+
+/// A thread cannot feed per minute: E342 on a G92 thread suggests
+/// starting the spindle only.
+#[test]
+fn thread_with_spindle_stopped_does_not_suggest_feed_per_minute() {
+    let (_, out) = run("G00 X40. Z5.\nG92 X38. Z-20. F1.5\nM30\n");
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E342", 2, 1));
+    assert!(!d.help.contains("per minute"), "{}", d.help);
+}
+
+/// G76 without a lead is E311; the message must not speak of G33, a code
+/// this dialect does not have (its threads are G32, G76 and G92).
+#[test]
+fn thread_without_lead_does_not_name_g33() {
+    let (_, out) = run("M03 S500\nG00 X50. Z2.\nG76 X40. Z-5. P2000 Q500\nM30\n");
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E311", 3, 1));
+    assert!(!d.message.contains("G33"), "{}", d.message);
+}
+
+/// A negative depth of cut in G71's first block (Fanuc writes Δd without a
+/// sign) alarms at the U word (line 3, column 5) with a message that says
+/// so; it used to read "the depth of cut -2 is zero".
+#[test]
+fn negative_g71_depth_says_negative_not_zero() {
+    let (events, out) =
+        run("M03 S500\nG00 X50. Z2.\nG71 U-2. R0.5\nG71 P1 Q2 F.2\nN1 G0 X30.\nN2 G1 Z-10.\nM30\n");
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E109", 3, 5));
+    assert!(!d.message.contains("zero"), "{}", d.message);
+    // Nothing of line 3 or later moved.
+    assert!(!events.iter().any(|e| matches!(e,
+        Event::Rapid { loc, .. } | Event::Feed { loc, .. } if loc.line >= 3)));
+}

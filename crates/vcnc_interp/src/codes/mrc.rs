@@ -132,9 +132,17 @@ impl Interpreter<'_> {
                 self.refuse(w, &[other])?;
                 let depth = len(w.get(depth_letter));
                 let retract = len(w.get(b'R'));
-                if let Some(d) = depth.filter(|d| *d <= 0.0) {
+                if let Some(word) = w.get(depth_letter).filter(|x| x.value < 0.0) {
+                    return Err(alarms::value_out_of_range(
+                        word.span,
+                        depth_letter,
+                        word.value,
+                        "the depth of cut is a radius written without a sign",
+                    ));
+                }
+                if depth.is_some_and(|d| d <= 0.0) {
                     let span = w.get(depth_letter).map_or(w.first, |x| x.span);
-                    return Err(alarms::zero_amount(span, &format!("the depth of cut {d}")));
+                    return Err(alarms::zero_amount(span, "the depth of cut"));
                 }
                 let mrc = &mut self.state.lathe.mrc;
                 if let Some(d) = depth {
