@@ -114,3 +114,63 @@ fn negative_g71_depth_says_negative_not_zero() {
     assert!(!events.iter().any(|e| matches!(e,
         Event::Rapid { loc, .. } | Event::Feed { loc, .. } if loc.line >= 3)));
 }
+
+/// Fanuc 0i-T forbids in a profile (ns..nf) only one-shot G codes other
+/// than G04, group 01 codes other than G00–G03, G20/G21 and M98/M99; the
+/// usual layout starts nose radius compensation in the profile's first
+/// block (`N10 G00 G42 X30.`) and cancels it in the last, and G70 applies
+/// it. G71 roughs without it.
+///
+/// Tool 1: nose radius 0.8, tip 3 (the tip is (-r, -r) from the nose
+/// centre in (Z, X radius)). Profile from A (X50 Z2: radius 25): G42 G00
+/// to radius 15, Z-10, G40 out to radius 25.
+/// - G42 (tool on +X of a -Z move): on Z-10 the centre runs at radius
+///   15.8 and the tip at 15.8 - 0.8 = 15.0: the programmed line, whose
+///   end is the inside corner with the face N20 (Z-10 radius 15 -> 25):
+///   the face's offset line is Z -10 + 0.8 (+Z of a +X move), so the
+///   centre stops at Z-9.2 and the tip at Z-9.2 - 0.8 = -10.0.
+///
+/// So G70's feed on line 6 ends at (15.0, -10.0), as without
+/// compensation: a sharp-tip path on axis-parallel lines.
+#[test]
+fn g41_g42_g40_in_a_profile_are_applied_by_g70() {
+    let program = "M03 S500\n\
+                   T0101\n\
+                   G00 X50. Z2.\n\
+                   G71 P10 Q20 U0.4 W0.1 D1000 F0.2\n\
+                   N10 G00 G42 X30.\n\
+                   G01 Z-10.\n\
+                   N20 G40 X50.\n\
+                   G70 P10 Q20\n\
+                   M30\n";
+    let (events, out) = run(program);
+    assert!(matches!(out, Outcome::Ended(EndCode::M30)), "{out:?}");
+    let z_cut = feeds_of_line(&events, 6);
+    assert_eq!(z_cut.len(), 1, "{z_cut:?}");
+    assert!((z_cut[0].0 - 15.0).abs() < 1e-6, "{z_cut:?}");
+    assert!((z_cut[0].1 + 10.0).abs() < 1e-6, "{z_cut:?}");
+    // The G40 block (line 7) ends at its programmed point: radius 25, Z-10.
+    let out_cut = feeds_of_line(&events, 7);
+    let last = out_cut.last().copied().unwrap();
+    assert!(
+        (last.0 - 25.0).abs() < 1e-6 && (last.1 + 10.0).abs() < 1e-6,
+        "{out_cut:?}"
+    );
+}
+
+/// An arc cannot start compensation: G42 on a G02 profile block is E317 at
+/// the arc's G word (line 6, column 1), as in a program.
+#[test]
+fn g42_on_a_profile_arc_is_e317() {
+    let program = "M03 S500\n\
+                   T0101\n\
+                   G00 X50. Z2.\n\
+                   G70 P10 Q20\n\
+                   N10 G00 X30.\n\
+                   G02 G42 X40. Z-5. R5.\n\
+                   N20 G01 X50.\n\
+                   M30\n";
+    let (_, out) = run(program);
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E317", 6, 1));
+}

@@ -481,6 +481,9 @@ impl Interpreter<'_> {
             self.finish_elem(e, axes, w)
                 .map_err(|d| self.locate(d, profile.src, &e.line))?;
         }
+        if let Some(side) = profile.comp_after {
+            self.set_comp_side(side);
+        }
         Ok(())
     }
 
@@ -496,6 +499,9 @@ impl Interpreter<'_> {
         }
         if let Some(s) = e.speed {
             self.profile_speed(s, e.span)?;
+        }
+        if let Some(side) = e.comp {
+            self.set_comp_side(side);
         }
         let here = self.here_xz(axes);
         let still = (e.seg.to.0 - here.0).abs() < 1e-9 && (e.seg.to.1 - here.1).abs() < 1e-9;
