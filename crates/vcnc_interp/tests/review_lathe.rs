@@ -174,3 +174,24 @@ fn g42_on_a_profile_arc_is_e317() {
     let d = alarm(&out);
     assert_eq!((d.code.as_str(), d.line, d.column), ("E317", 6, 1));
 }
+
+/// R of G73 is the number of passes in the first block only (Fanuc 0i-T:
+/// `G73 U W R; G73 P Q U W F;`). In the second block nothing reads it, so
+/// it is E203 at the R word (line 4, column 22), as for G71 and G72,
+/// rather than a pass count silently ignored.
+#[test]
+fn r_in_g73_second_block_is_e203() {
+    let program = "M03 S500\n\
+                   G00 X50. Z2.\n\
+                   G73 U2. W1. R3\n\
+                   G73 P10 Q20 U0.4 F.2 R5\n\
+                   N10 G00 X30.\n\
+                   G01 Z-10.\n\
+                   N20 X50.\n\
+                   M30\n";
+    let (events, out) = run(program);
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E203", 4, 22));
+    assert!(!events.iter().any(|e| matches!(e,
+        Event::Rapid { loc, .. } | Event::Feed { loc, .. } if loc.line >= 4)));
+}

@@ -87,9 +87,9 @@ impl Interpreter<'_> {
                 Ok(Some(next))
             }
             _ => {
-                if op != GOp::PatternCycle {
-                    self.refuse(w, b"R")?;
-                }
+                // R is a first-block word (G73's pass count); nothing reads
+                // it in the second block.
+                self.refuse(w, b"R")?;
                 // Compensation is suspended for the passes (like the mill's
                 // canned cycles): the next move in the plane starts it again.
                 let suspended = self.suspend_comp()?;
