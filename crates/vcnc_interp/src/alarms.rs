@@ -228,14 +228,15 @@ pub fn axis_conflict(span: Span) -> Diagnostic {
     )
 }
 
-/// E208: G92 with axes and S.
-pub fn g92_axes_and_s(span: Span) -> Diagnostic {
+/// E208: G92 (a Fanuc lathe's G50, named by `code`) with axes and S.
+pub fn g92_axes_and_s(span: Span, code: &str) -> Diagnostic {
     d(
         Code::E208,
         span,
-        "G92 with axis words presets coordinates, G92 with S clamps the spindle: not both at once"
-            .into(),
-        "write G92 S… and G92 X… in separate blocks",
+        format!(
+            "{code} with axis words presets coordinates, {code} with S clamps the spindle: not both at once"
+        ),
+        &format!("write {code} S… and {code} X… in separate blocks"),
     )
 }
 

@@ -195,3 +195,27 @@ fn r_in_g73_second_block_is_e203() {
     assert!(!events.iter().any(|e| matches!(e,
         Event::Rapid { loc, .. } | Event::Feed { loc, .. } if loc.line >= 4)));
 }
+
+/// Coordinate setting and the spindle clamp are G50 on a Fanuc lathe (G92
+/// is the threading cycle): `G50 X100. S2000` is E208 at the S word (line
+/// 2, column 11) and a bare `G50` is E312, both naming G50, not G92.
+#[test]
+fn g50_alarms_name_g50() {
+    let (_, out) = run("G00 X50. Z2.\nG50 X100. S2000\nM30\n");
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E208", 2, 11));
+    assert!(
+        d.message.contains("G50") && !d.message.contains("G92"),
+        "{}",
+        d.message
+    );
+    assert!(!d.help.contains("G92"), "{}", d.help);
+    let (_, out) = run("G00 X50. Z2.\nG50\nM30\n");
+    let d = alarm(&out);
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E312", 2, 1));
+    assert!(
+        d.message.contains("G50") && !d.message.contains("G92"),
+        "{}",
+        d.message
+    );
+}
