@@ -219,3 +219,23 @@ fn g50_alarms_name_g50() {
         d.message
     );
 }
+
+/// A chamfer or corner R of zero or below is wrong in its own block: E347
+/// at the `,C`/`,R` word (line 5, column 6, the comma), not at the next
+/// block, and nothing of line 5 moves.
+#[test]
+fn non_positive_chamfer_alarms_at_its_word() {
+    for corner in [",C-1.", ",C0", ",R0", ",R-2."] {
+        let program =
+            format!("M03 S500\nG00 X50. Z2.\nG01 X30. F.2\nZ-5.\nX40. {corner}\nZ-20.\nM30\n");
+        let (events, out) = run(&program);
+        let d = alarm(&out);
+        assert_eq!(
+            (d.code.as_str(), d.line, d.column),
+            ("E347", 5, 6),
+            "{corner}"
+        );
+        assert!(!events.iter().any(|e| matches!(e,
+            Event::Rapid { loc, .. } | Event::Feed { loc, .. } | Event::Arc { loc, .. } if loc.line >= 5)));
+    }
+}
