@@ -228,14 +228,15 @@ pub fn axis_conflict(span: Span) -> Diagnostic {
     )
 }
 
-/// E208: G92 with axes and S.
-pub fn g92_axes_and_s(span: Span) -> Diagnostic {
+/// E208: G92 (a Fanuc lathe's G50, named by `code`) with axes and S.
+pub fn g92_axes_and_s(span: Span, code: &str) -> Diagnostic {
     d(
         Code::E208,
         span,
-        "G92 with axis words presets coordinates, G92 with S clamps the spindle: not both at once"
-            .into(),
-        "write G92 S… and G92 X… in separate blocks",
+        format!(
+            "{code} with axis words presets coordinates, {code} with S clamps the spindle: not both at once"
+        ),
+        &format!("write {code} S… and {code} X… in separate blocks"),
     )
 }
 
@@ -345,13 +346,13 @@ pub fn css_without_diameter(span: Span) -> Diagnostic {
     )
 }
 
-/// E311: G33 without lead.
+/// E311: a thread (G33, a lathe's G32, G76, G92) without a lead.
 pub fn thread_without_lead(span: Span) -> Diagnostic {
     d(
         Code::E311,
         span,
-        "G33 without a thread lead".into(),
-        "give the lead with F, e.g. G33 Z-20. F1.5",
+        "a thread without a lead (F is 0 or was never given)".into(),
+        "give the lead per revolution with F, e.g. F1.5 for a 1.5 mm pitch",
     )
 }
 
@@ -766,13 +767,21 @@ pub fn thread_too_fast(span: Span, rpm: f64, lead_mm: f64, max_feed: f64) -> Dia
     )
 }
 
-/// E342: a feed per revolution with the spindle stopped.
-pub fn per_rev_spindle_stopped(span: Span) -> Diagnostic {
+/// E342: a feed per revolution or a thread with the spindle stopped.
+/// `per_minute` is the dialect's feed-per-minute code (G94, a Fanuc
+/// lathe's G98); `None` for a thread, which always follows the spindle.
+pub fn per_rev_spindle_stopped(span: Span, per_minute: Option<f64>) -> Diagnostic {
+    let help = match per_minute {
+        Some(g) => {
+            format!("start the spindle (M03/M04 with S) first, or feed per minute (G{g:02})")
+        }
+        None => "start the spindle (M03/M04 with S) first: a thread follows its turns".to_string(),
+    };
     d(
         Code::E342,
         span,
         "this move feeds per spindle revolution, but the spindle is stopped".to_string(),
-        "start the spindle (M03/M04 with S) first, or feed per minute (G94)",
+        &help,
     )
 }
 

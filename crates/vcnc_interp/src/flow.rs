@@ -278,6 +278,20 @@ impl Flow {
         found
     }
 
+    /// Where the first block at or after `from` starts (blank lines and
+    /// comment-only blocks skipped), within the program; `None` at its end.
+    pub fn first_block_from(&mut self, src: usize, from: Cursor, lex: &LexRules) -> Option<Cursor> {
+        let mut found = None;
+        self.walk(src, from, lex, true, true, |block, at, _| {
+            if block.is_empty() {
+                return false;
+            }
+            found = Some(at);
+            true
+        });
+        found
+    }
+
     /// Finds `N seq` in the program of `src` that starts at `start`: the
     /// first such block from the start. Like [`program_in`](Self::program_in)
     /// it remembers every label it passes and resumes where it stopped.

@@ -122,7 +122,7 @@ impl Interpreter<'_> {
         match w.axis_user {
             // G70–G73 read their profile from the program text.
             Some(user) if user.def.op.reads_profile() => {
-                resume = self.profile_cycle(user.def.op, user.span, w, here, next)?;
+                resume = self.profile_cycle(user.def.op, user.span, w, next)?;
             }
             Some(user) => self.axis_code(user.def.op, user.span, w)?,
             None => self.modal_motion(w)?,

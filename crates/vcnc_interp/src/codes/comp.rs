@@ -39,6 +39,13 @@ impl Interpreter<'_> {
             GOp::CompRight => CompSide::Right,
             _ => CompSide::Off,
         };
+        self.set_comp_side(side);
+        Ok(())
+    }
+
+    /// G40/G41/G42: the mode the next move in the plane starts, keeps or
+    /// cancels (a block's code, or a profile block's run by G70).
+    pub(crate) fn set_comp_side(&mut self, side: CompSide) {
         self.state.modal.comp = side;
         match (side, self.comp.mode) {
             (CompSide::Off, Mode::Off) => {}
@@ -56,7 +63,6 @@ impl Interpreter<'_> {
             }
             _ => {}
         }
-        Ok(())
     }
 
     /// Whether this block's D is a cutter radius (G41/G42 in it, or

@@ -114,6 +114,13 @@ impl Interpreter<'_> {
         if goal.named == 0 {
             return Err(alarms::corner_fault(word.span, "the G01 has no end point"));
         }
+        if word.value <= 0.0 {
+            // Known here already: say so at the word, not at the next block.
+            return Err(alarms::corner_fault(
+                word.span,
+                "the chamfer or radius is not positive",
+            ));
+        }
         if self.state.lathe.corner.is_some() {
             // The corner held before this G01 is cut first.
             let mv = Move {

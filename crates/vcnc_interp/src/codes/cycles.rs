@@ -427,7 +427,10 @@ impl Interpreter<'_> {
                 // The way out is fed with the spindle stopped (1.2.41
                 // step 6): per revolution it cannot move.
                 if matches!(feed, Feed::PerRev(_)) {
-                    return Err(alarms::per_rev_spindle_stopped(cmd));
+                    return Err(alarms::per_rev_spindle_stopped(
+                        cmd,
+                        self.dialect.g_for(GOp::PerMinute),
+                    ));
                 }
                 s.feed(self, zz, feed)?;
                 self.cycle_dwell(dwell);

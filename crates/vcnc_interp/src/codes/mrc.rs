@@ -25,8 +25,9 @@
 //! Haas's one-block G71/G72 (`D` the depth of cut) runs as a second block
 //! with that depth.
 //!
-//! G71–G73 read the profile (profile.rs) and then, when the profile follows
-//! the cycle block, go on after its last block; G70 goes on after itself.
+//! G71–G73 read the profile (profile.rs) and then, when the profile's
+//! first block is the block right after the cycle block, go on after its
+//! last block, else after the cycle block; G70 goes on after itself.
 //! Their moves carry the cycle block's line, except G70's, which carry the
 //! profile blocks' lines (the blocks it runs). Cutter compensation is
 //! suspended for G71–G76 (their passes are not compensated) and runs over
@@ -63,7 +64,6 @@ impl Interpreter<'_> {
         op: GOp,
         cmd: Span,
         w: &Words<'_>,
-        here: Cursor,
         next: Cursor,
     ) -> Result<Option<Cursor>, Diagnostic> {
         let pq = (w.get(b'P'), w.get(b'Q'));
@@ -82,18 +82,18 @@ impl Interpreter<'_> {
         match op {
             GOp::FinishCycle => {
                 self.refuse(w, b"UWRD")?;
-                let profile = self.read_profile(p, q, here)?;
+                let profile = self.read_profile(p, q, next)?;
                 self.finish(&profile, w, cmd)?;
                 Ok(Some(next))
             }
             _ => {
-                if op != GOp::PatternCycle {
-                    self.refuse(w, b"R")?;
-                }
+                // R is a first-block word (G73's pass count); nothing reads
+                // it in the second block.
+                self.refuse(w, b"R")?;
                 // Compensation is suspended for the passes (like the mill's
                 // canned cycles): the next move in the plane starts it again.
                 let suspended = self.suspend_comp()?;
-                let profile = self.read_profile(p, q, here)?;
+                let profile = self.read_profile(p, q, next)?;
                 if op == GOp::PatternCycle {
                     self.pattern_repeat(&profile, w, cmd)?;
                 } else {
@@ -132,9 +132,17 @@ impl Interpreter<'_> {
                 self.refuse(w, &[other])?;
                 let depth = len(w.get(depth_letter));
                 let retract = len(w.get(b'R'));
-                if let Some(d) = depth.filter(|d| *d <= 0.0) {
+                if let Some(word) = w.get(depth_letter).filter(|x| x.value < 0.0) {
+                    return Err(alarms::value_out_of_range(
+                        word.span,
+                        depth_letter,
+                        word.value,
+                        "the depth of cut is a radius written without a sign",
+                    ));
+                }
+                if depth.is_some_and(|d| d <= 0.0) {
                     let span = w.get(depth_letter).map_or(w.first, |x| x.span);
-                    return Err(alarms::zero_amount(span, &format!("the depth of cut {d}")));
+                    return Err(alarms::zero_amount(span, "the depth of cut"));
                 }
                 let mrc = &mut self.state.lathe.mrc;
                 if let Some(d) = depth {
@@ -473,6 +481,9 @@ impl Interpreter<'_> {
             self.finish_elem(e, axes, w)
                 .map_err(|d| self.locate(d, profile.src, &e.line))?;
         }
+        if let Some(side) = profile.comp_after {
+            self.set_comp_side(side);
+        }
         Ok(())
     }
 
@@ -488,6 +499,9 @@ impl Interpreter<'_> {
         }
         if let Some(s) = e.speed {
             self.profile_speed(s, e.span)?;
+        }
+        if let Some(side) = e.comp {
+            self.set_comp_side(side);
         }
         let here = self.here_xz(axes);
         let still = (e.seg.to.0 - here.0).abs() < 1e-9 && (e.seg.to.1 - here.1).abs() < 1e-9;

@@ -12,7 +12,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::dialect::G10L20;
+use crate::dialect::{G10L20, GOp};
 use crate::interpreter::Interpreter;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -157,15 +157,20 @@ impl Interpreter<'_> {
     /// G92: preset the current position (axes), or clamp the spindle (S).
     pub(crate) fn preset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let values = self.named_values(w);
+        // The code's own name for the messages: G92, a Fanuc lathe's G50.
+        let name = || {
+            let g = self.dialect.g_for(GOp::PresetOrClamp).unwrap_or(92.0);
+            format!("G{g}")
+        };
         if let Some(s) = w.get(b'S') {
             if !values.is_empty() {
-                return Err(alarms::g92_axes_and_s(s.span));
+                return Err(alarms::g92_axes_and_s(s.span, &name()));
             }
             // The clamp itself was set with the spindle words (execute.rs).
             return Ok(());
         }
         if values.is_empty() {
-            return Err(alarms::needs_axes(cmd, "G92"));
+            return Err(alarms::needs_axes(cmd, &name()));
         }
         if self.state.frame.is_transformed() {
             return Err(alarms::g92_under_transform(cmd));

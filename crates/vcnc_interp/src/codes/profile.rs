@@ -5,7 +5,8 @@
 //!
 //! ```text
 //!   G71 P10 Q50 …      ─▶ find N10 (the label cache) ─▶ lex each block
-//!   N10 G00 X20.          └ G00/G01/G02/G03, X/Z/U/W, I/K or R, ,C/,R, F, S
+//!   N10 G00 X20.          └ G00/G01/G02/G03, X/Z/U/W, I/K or R, ,C/,R, F, S,
+//!   …                       G40/G41/G42 (applied by G70 only)
 //!   …                     └ anything else: E344 at the word
 //!   N50 X60.           ─▶ elements A→A', …, →B; the cursor after N50
 //! ```
@@ -26,6 +27,7 @@ use crate::codes::turning_cycles::Xz;
 use crate::dialect::{GOp, bit};
 use crate::flow::first_value;
 use crate::interpreter::Interpreter;
+use crate::state::CompSide;
 use vcnc_syntax::{Addr, Block, Cursor, Diagnostic, Line, Span, Word, lex_block};
 
 /// Most blocks a profile may have.
@@ -40,6 +42,9 @@ pub(crate) struct Elem {
     /// F and S written in its block (program units), for G70.
     pub feed: Option<f64>,
     pub speed: Option<f64>,
+    /// G40/G41/G42 written in its block or since the last element, for
+    /// G70 (the rough cycles run without compensation).
+    pub comp: Option<CompSide>,
     /// Its block: the line and the span of its motion word (else its
     /// first word), for alarms and for G70's events.
     pub line: Line,
@@ -59,6 +64,8 @@ pub(crate) struct Profile {
     pub after: Cursor,
     /// Whether the profile follows the cycle block in the program.
     pub follows: bool,
+    /// A G40/G41/G42 in blocks after the last element (`N50 G40`).
+    pub comp_after: Option<CompSide>,
 }
 
 /// What reading a profile keeps from block to block.
@@ -70,6 +77,8 @@ struct Reading {
     motion: Option<GOp>,
     /// F and S written since the last element.
     carry: (Option<f64>, Option<f64>),
+    /// G40/G41/G42 written since the last element.
+    carry_comp: Option<CompSide>,
     /// A `,C`/`,R` waiting for the next element, its word and line.
     pending: Option<(CornerKind, Span, Line)>,
     /// Blocks read.
@@ -84,6 +93,7 @@ struct Move {
     arc: Option<ArcWords>,
     feed: Option<f64>,
     speed: Option<f64>,
+    comp: Option<CompSide>,
     corner: Option<(CornerKind, Span)>,
     span: Span,
 }
@@ -96,12 +106,13 @@ enum ArcWords {
 }
 
 impl Interpreter<'_> {
-    /// Reads the profile `N p` … `N q` for the cycle block at `here`.
+    /// Reads the profile `N p` … `N q` for the cycle block whose next
+    /// block starts at `next`.
     pub(crate) fn read_profile(
         &mut self,
         p: Word,
         q: Word,
-        here: Cursor,
+        next: Cursor,
     ) -> Result<Profile, Diagnostic> {
         let ns = whole(
             &p,
@@ -129,6 +140,10 @@ impl Interpreter<'_> {
         if end.is_none_or(|e| (e.offset, e.col) < (start.offset, start.col)) {
             return Err(alarms::profile_end_missing(q.span, nf));
         }
+        // Only a profile right after the cycle block is skipped by it; one
+        // after M30 or before the cycle leaves the program to go on after
+        // the cycle block.
+        let follows = self.flow.first_block_from(src, next, &lex) == Some(start);
         let axes = self.lathe_axes(p.span)?;
         let mut r = Reading {
             profile: Profile {
@@ -136,11 +151,13 @@ impl Interpreter<'_> {
                 first_names: (false, false),
                 src,
                 after: start,
-                follows: (start.offset, start.col) > (here.offset, here.col),
+                follows,
+                comp_after: None,
             },
             at: self.here_xz(axes),
             motion: None,
             carry: (None, None),
+            carry_comp: None,
             pending: None,
             blocks: 0,
         };
@@ -181,6 +198,7 @@ impl Interpreter<'_> {
                         let d = alarms::corner_fault(word, "the profile ends at this corner");
                         return Err(self.locate(d, src, &held_at));
                     }
+                    r.profile.comp_after = r.carry_comp;
                     r.profile.after = Cursor {
                         offset: line.offset,
                         line: line.number,
@@ -211,6 +229,7 @@ impl Interpreter<'_> {
             r.profile.first_names = mv.named;
         }
         r.carry = (mv.feed.or(r.carry.0), mv.speed.or(r.carry.1));
+        r.carry_comp = mv.comp.or(r.carry_comp);
         let elem = self
             .profile_elem(&mv, r.at, line, first)
             .map_err(|d| self.locate(d, src, &line))?;
@@ -218,9 +237,11 @@ impl Interpreter<'_> {
             let elem = Elem {
                 feed: r.carry.0,
                 speed: r.carry.1,
+                comp: r.carry_comp,
                 ..elem
             };
             r.carry = (None, None);
+            r.carry_comp = None;
             match r.pending.take() {
                 Some((kind, word, held_at)) => {
                     let prev = r.profile.elems.pop();
@@ -267,12 +288,16 @@ impl Interpreter<'_> {
             return Err(alarms::profile_word(code.span, "a one-shot G code"));
         }
         let mut span = w.first;
+        let mut comp = None;
         for code in w.modal_codes() {
             match code.def.op {
                 GOp::Rapid | GOp::Linear | GOp::ArcCw | GOp::ArcCcw => {
                     *motion = Some(code.def.op);
                     span = code.span;
                 }
+                GOp::CompCancel => comp = Some(CompSide::Off),
+                GOp::CompLeft => comp = Some(CompSide::Left),
+                GOp::CompRight => comp = Some(CompSide::Right),
                 _ => return Err(alarms::profile_word(code.span, "this G code")),
             }
         }
@@ -307,6 +332,9 @@ impl Interpreter<'_> {
             ));
         };
         let arc = matches!(op, GOp::ArcCw | GOp::ArcCcw);
+        if arc && comp.is_some() {
+            return Err(alarms::comp_arc_startup(span));
+        }
         if first && arc {
             return Err(alarms::profile_not_cut(
                 span,
@@ -353,6 +381,7 @@ impl Interpreter<'_> {
             arc: arc_words,
             feed: w.get(b'F').map(|f| f.value),
             speed: w.get(b'S').map(|s| s.value),
+            comp,
             corner,
             span,
         })
@@ -387,6 +416,7 @@ impl Interpreter<'_> {
             rapid: mv.motion == Some(GOp::Rapid),
             feed: None,
             speed: None,
+            comp: None,
             line,
             span: mv.span,
         }))

@@ -656,6 +656,16 @@ impl Dialect {
         self.g.get(slot).copied().flatten()
     }
 
+    /// The G code that does `op` in this dialect (the first in the table),
+    /// for a help text that must name the dialect's own code: feed per
+    /// minute is G94 on a mill and G98 on a Fanuc lathe, whose G94 is a
+    /// facing cycle.
+    pub fn g_for(&self, op: GOp) -> Option<f64> {
+        let slot = self.g.iter().position(|d| d.is_some_and(|d| d.op == op))?;
+        // A table index is far below 2^32, so the conversion is exact.
+        u32::try_from(slot).ok().map(|t| f64::from(t) / 10.0)
+    }
+
     /// The M code `value`, if this dialect has it.
     pub fn m(&self, value: f64) -> Option<MDef> {
         if value.fract() != 0.0 || !(0.0..M_SLOTS as f64).contains(&value) {

@@ -26,7 +26,7 @@ pub(crate) mod travel;
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::RapidPath;
+use crate::dialect::{GOp, RapidPath};
 use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Interpreter;
 use frame::ArcMap;
@@ -199,7 +199,11 @@ impl Interpreter<'_> {
     #[cold]
     fn stopped_spindle(&mut self, mv: &Move, per_rev: bool) -> Result<(), Diagnostic> {
         if per_rev {
-            return Err(alarms::per_rev_spindle_stopped(mv.cmd));
+            let per_minute = match mv.kind {
+                MoveKind::Thread { .. } => None,
+                _ => self.dialect.g_for(GOp::PerMinute),
+            };
+            return Err(alarms::per_rev_spindle_stopped(mv.cmd, per_minute));
         }
         let cut = matches!(mv.kind, MoveKind::Feed(_) | MoveKind::Arc { .. });
         if cut && !self.spindle_warned {
