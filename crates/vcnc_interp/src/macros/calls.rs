@@ -344,6 +344,10 @@ impl Interpreter<'_> {
         let Some(m) = self.macros.modal.clone() else {
             return Ok(Step::Next);
         };
+        // `G66 P L0` runs its program zero times, like `G65 P L0`.
+        if m.repeats == 0 {
+            return Ok(Step::Next);
+        }
         let locals = match (&m.shared, self.macros.rules.modal_locals) {
             (Some(values), ModalLocals::SharedUntilG67) => values
                 .iter()
