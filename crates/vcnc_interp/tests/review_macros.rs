@@ -10,7 +10,7 @@
 use std::collections::HashMap;
 use std::io;
 use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, ProgramStore, VecSink};
-use vcnc_syntax::{MemSource, TextSource};
+use vcnc_syntax::{Code, MemSource, TextSource};
 
 /// Programs by number (`O0010`).
 #[derive(Default)]
@@ -67,6 +67,16 @@ fn ended(r: &Ran) {
     );
 }
 
+/// The alarm of a run: (code, line, column), checked to be the last event
+/// (no motion after it).
+fn alarm_of(r: &Ran) -> (Code, u64, u32) {
+    let Outcome::Alarm(d) = &r.outcome else {
+        panic!("no alarm: {:?}\n{:?}", r.outcome, r.events);
+    };
+    assert!(matches!(r.events.last(), Some(Event::Alarm(a)) if a == d));
+    (d.code, d.line, d.column)
+}
+
 /// End points of the motion events, X only.
 fn xs(events: &[Event]) -> Vec<f64> {
     events
@@ -94,4 +104,31 @@ fn g66_with_l0_calls_nothing_like_g65_l0() {
     let r = run("fanuc", p, Store::default().with(70, o70), &["#100"]);
     ended(&r);
     assert_eq!(r.values, vec![Some(4.0)]);
+}
+
+#[test]
+fn sequence_and_program_numbers_cannot_be_variables() {
+    // Fanuc 0i, Custom macro, limitations: "Program numbers, sequence
+    // numbers, and optional block skip numbers cannot be referenced using
+    // variables" (O#1; N#3 Y200.0; are its examples). The block alarms at
+    // the word, and nothing of it runs.
+    let r = run("fanuc", "#1 = 5\nN#1 G00 X1.\nM30\n", Store::default(), &[]);
+    // Line 2, the N word at column 1.
+    assert_eq!(alarm_of(&r), (Code::E601, 2, 1));
+    assert!(xs(&r.events).is_empty());
+    // In the middle of a block too: `G00 N[#1] X1.` alarms at N, column 5.
+    let r = run(
+        "fanuc",
+        "#1 = 5\nG00 N[#1] X1.\nM30\n",
+        Store::default(),
+        &[],
+    );
+    assert_eq!(alarm_of(&r), (Code::E601, 2, 5));
+    // O#1 on line 1, column 1.
+    let r = run("fanuc", "O#1\nG00 X1.\nM30\n", Store::default(), &[]);
+    assert_eq!(alarm_of(&r), (Code::E601, 1, 1));
+    // Syntec ISO programs read Macro B: the same rule.
+    let r = run("syntec", "G00 X1.\nN#1 X2.\nM30\n", Store::default(), &[]);
+    assert_eq!(alarm_of(&r), (Code::E601, 2, 1));
+    assert_eq!(xs(&r.events), vec![1.0]);
 }

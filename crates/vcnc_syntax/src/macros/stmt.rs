@@ -384,6 +384,14 @@ fn iso_word(s: &mut Scan<'_>, words_follow: bool) -> Result<MWord, Diagnostic> {
         j += 1;
     }
     if matches!(s.at(j), b'#' | b'[') {
+        // Fanuc 0i: "program numbers, sequence numbers ... cannot be
+        // referenced using variables" (O#1, N#3 are its examples).
+        if matches!(letter, b'N' | b'O') {
+            return Err(diag::number_word_not_variable(
+                Span::new(at, at + 1),
+                char::from(letter),
+            ));
+        }
         s.pos = value_at + j;
         let mut p = ExprParser::new(s);
         p.primary()?;
