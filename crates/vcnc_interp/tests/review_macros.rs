@@ -132,3 +132,47 @@ fn sequence_and_program_numbers_cannot_be_variables() {
     assert_eq!(alarm_of(&r), (Code::E601, 2, 1));
     assert_eq!(xs(&r.events), vec![1.0]);
 }
+
+/// End points of the motion events, X, Y and A.
+fn xya(events: &[Event]) -> Vec<(f64, f64, f64)> {
+    let r = |v: f64| (v * 1e6).round() / 1e6;
+    events
+        .iter()
+        .filter_map(Event::motion_end)
+        .map(|p| (r(p.get(0)), r(p.get(1)), r(p.get(3))))
+        .collect()
+}
+
+#[test]
+fn round_in_an_address_rounds_to_the_least_input_increment() {
+    // Fanuc 0i, Custom macro, "Rounding function": "When the ROUND
+    // function is specified in an NC statement address, the specified
+    // value is rounded off according to the least input increment of the
+    // address", with the example #1 = 1.2345, #2 = 2.3456 on a 0.001 mm
+    // control: X[ROUND[#1]+ROUND[#2]] travels 1.235 + 2.346 = 3.581.
+    // In an assignment ROUND stays a whole number: #4 = ROUND[#1] = 1.
+    let p = "#1 = 1.2345\n#2 = 2.3456\n#3 = 1.23456\n\
+             G90 G00 X[ROUND[#1]] Y[ROUND[-#1]]\n\
+             G00 X[ROUND[#1]+ROUND[#2]] A[ROUND[#3]]\n\
+             #4 = ROUND[#1]\nG00 X#4\nM30\n";
+    let r = run("fanuc", p, Store::default(), &["#4"]);
+    ended(&r);
+    assert_eq!(r.values, vec![Some(1.0)]);
+    assert_eq!(
+        xya(&r.events),
+        vec![
+            // Line 4: 1.2345 → 1.235; -1.2345 → -1.235 (half away from 0).
+            (1.235, -1.235, 0.0),
+            // Line 5: 1.235 + 2.346; A in 0.001° increments: 1.23456 → 1.235.
+            (3.581, -1.235, 1.235),
+            // Line 7: X#4 = X1.
+            (1.0, -1.235, 1.235),
+        ]
+    );
+    // Under G20 (in a block of its own, as Fanuc wants it) the increment
+    // is 0.0001 in: ROUND[1.23456] = 1.2346 in, 31.35884 mm.
+    let p = "#3 = 1.23456\nG20\nG90 G00 X[ROUND[#3]]\nM30\n";
+    let r = run("fanuc", p, Store::default(), &[]);
+    ended(&r);
+    assert_eq!(xya(&r.events), vec![(31.35884, 0.0, 0.0)]);
+}

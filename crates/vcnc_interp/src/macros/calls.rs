@@ -193,20 +193,27 @@ impl Interpreter<'_> {
                 Value::Long(w.value as i64)
             };
         }
-        let letter = w.addr.0;
         let whole_units = w.point
             || self.dialect.integers == IntegerWords::WholeUnits
             || self.machine.params.decimal_input == DecimalInput::Calculator;
-        if whole_units || !LENGTH_ARGS.contains(&letter) {
-            return Value::Double(w.value);
+        match self.increments_per_unit(w.addr.0) {
+            Some(per_unit) if !whole_units => Value::Double(w.value / per_unit),
+            _ => Value::Double(w.value),
+        }
+    }
+
+    /// Least input increments per unit of a length or angle address
+    /// (0.001 mm or degree, 0.0001 in); `None` for other letters.
+    pub(crate) fn increments_per_unit(&self, letter: u8) -> Option<f64> {
+        if !LENGTH_ARGS.contains(&letter) {
+            return None;
         }
         let rotary = matches!(letter, b'A' | b'B' | b'C');
-        let per_unit = if rotary || !self.state.modal.inch {
+        Some(if rotary || !self.state.modal.inch {
             1000.0
         } else {
             10_000.0
-        };
-        Value::Double(w.value / per_unit)
+        })
     }
 
     /// The locals a call starts with: each argument in its local.
