@@ -426,8 +426,10 @@ pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E405,
         span,
-        format!("more than {max} jumps (subprogram calls, M99 returns and repeats)"),
-        "check for an endless M99 loop, or raise limits.max_jumps in the machine file",
+        format!(
+            "more than {max} jumps (subprogram and macro calls, M99 returns and repeats, GOTOs, loop passes)"
+        ),
+        "check for an endless loop (M99, GOTO, WHILE or FOR that never ends), or raise limits.max_jumps in the machine file",
     )
 }
 

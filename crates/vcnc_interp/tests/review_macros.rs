@@ -176,3 +176,29 @@ fn round_in_an_address_rounds_to_the_least_input_increment() {
     ended(&r);
     assert_eq!(xya(&r.events), vec![(31.35884, 0.0, 0.0)]);
 }
+
+#[test]
+fn a_runaway_macro_loop_is_named_in_the_jump_limit_alarm() {
+    // With max_jumps = 100 a WHILE loop that never ends stops at E405 on
+    // its END (line 3, column 1), and the message must name what a macro
+    // programmer wrote — a loop — not only M98/M99 calls and returns, which
+    // this program has none of.
+    let machine = Machine::from_toml(
+        &vcnc_interp::machine::DEFAULT_MILL_TOML.replace("max_jumps = 1000000", "max_jumps = 100"),
+    )
+    .unwrap();
+    let dialect = Dialect::by_name("fanuc").unwrap();
+    let mut sink = VecSink::default();
+    let p = "#1 = 0\nWHILE [#1 GE 0] DO 1\nEND 1\nM30\n";
+    let outcome = Interpreter::new(&machine, &dialect, Options::default()).run(
+        Box::new(MemSource(p.as_bytes().to_vec())),
+        &mut Store::default(),
+        &mut sink,
+    );
+    let Outcome::Alarm(d) = outcome else {
+        panic!("no alarm: {outcome:?}");
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E405, 3, 1));
+    assert!(d.message.contains("loop"), "{}", d.message);
+    assert!(d.help.contains("loop"), "{}", d.help);
+}
