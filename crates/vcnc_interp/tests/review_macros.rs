@@ -202,3 +202,23 @@ fn a_runaway_macro_loop_is_named_in_the_jump_limit_alarm() {
     assert!(d.message.contains("loop"), "{}", d.message);
     assert!(d.help.contains("loop"), "{}", d.help);
 }
+
+#[test]
+fn a_g_code_beside_g65_alarms_about_the_call_not_the_lathe() {
+    // `G65 P10 G01 X1.`: Fanuc passes no G code as an argument, so G01
+    // (line 1, column 9) cannot share the call's block: E209. The help
+    // must speak of the call, not list the lathe codes of another
+    // document.
+    let r = run(
+        "fanuc",
+        "G65 P10 G01 X1.\nM30\n",
+        Store::default().with(10, "O0010\nM99\n"),
+        &[],
+    );
+    assert_eq!(alarm_of(&r), (Code::E209, 1, 9));
+    let Outcome::Alarm(d) = &r.outcome else {
+        unreachable!()
+    };
+    assert!(!d.help.contains("lathe"), "{}", d.help);
+    assert!(d.message.contains("G65"), "{}", d.message);
+}

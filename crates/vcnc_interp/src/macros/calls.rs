@@ -82,7 +82,7 @@ impl Interpreter<'_> {
         } else {
             "G66"
         };
-        let p = self.call_words(block, code.span, true, b"GNO")?;
+        let p = self.call_words(block, code.span, name, true, b"GNO")?;
         let Some((number, p_span)) = p.program else {
             return Err(alarms::needs_word(
                 code.span,
@@ -118,13 +118,15 @@ impl Interpreter<'_> {
         )
     }
 
-    /// Reads P, L and the argument letters of a call block. `own_pl`: P and
-    /// L are the call's (G65, G66); else they are arguments too (Syntec's
-    /// extended G and M macros: L repeats and sets #12, P sets #16).
+    /// Reads P, L and the argument letters of a call block; `call` names
+    /// the call in alarms. `own_pl`: P and L are the call's (G65, G66);
+    /// else they are arguments too (Syntec's extended G and M macros: L
+    /// repeats and sets #12, P sets #16).
     fn call_words(
         &self,
         block: &Block,
         code: Span,
+        call: &str,
         own_pl: bool,
         not_args: &[u8],
     ) -> Result<Parsed, Diagnostic> {
@@ -152,7 +154,7 @@ impl Interpreter<'_> {
             seen |= bit;
             if not_args.contains(&l) {
                 return Err(if l == b'G' || l == b'M' {
-                    alarms::not_alone(w.span, code)
+                    alarms::call_not_alone(w.span, call)
                 } else {
                     alarms::word_not_allowed(w.span, l)
                 });
@@ -404,7 +406,7 @@ impl Interpreter<'_> {
         {
             return Ok(None);
         }
-        let p = self.call_words(block, g.span, false, b"GO")?;
+        let p = self.call_words(block, g.span, "a G-code macro call", false, b"GO")?;
         if p.repeats == 0 {
             return Ok(Some(Step::Next));
         }
@@ -437,7 +439,7 @@ impl Interpreter<'_> {
             .get(&m.def)
             .map(|n| n.to_string())
             .unwrap_or_default();
-        let p = self.call_words(block, m.span, false, b"GMO")?;
+        let p = self.call_words(block, m.span, "an M-code macro call", false, b"GMO")?;
         if p.repeats == 0 {
             return Ok(Step::Next);
         }
