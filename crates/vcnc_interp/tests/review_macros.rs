@@ -222,3 +222,18 @@ fn a_g_code_beside_g65_alarms_about_the_call_not_the_lathe() {
     assert!(!d.help.contains("lathe"), "{}", d.help);
     assert!(d.message.contains("G65"), "{}", d.message);
 }
+
+#[test]
+fn a_stray_operator_in_a_syntec_macro_file_gets_syntec_advice() {
+    // `-1:` is no CASE label (Syntec §4.5: labels are Longs ≥ 0), so line
+    // 3 is read as a G-code block starting with `-`: E601 at column 1. The
+    // help must not advise Macro B's `X[#1+2.]`: in Syntec MACRO `[ ]`
+    // index a variable (`#[#1]`), and an address takes `X(#1 + 2.)`.
+    let p = "%@MACRO\nCASE 1 OF\n-1: G00 X1.;\nEND_CASE;\nM30;\n";
+    let r = run("syntec", p, Store::default(), &[]);
+    assert_eq!(alarm_of(&r), (Code::E601, 3, 1));
+    let Outcome::Alarm(d) = &r.outcome else {
+        unreachable!()
+    };
+    assert!(!d.help.contains("X[#1"), "{}", d.help);
+}

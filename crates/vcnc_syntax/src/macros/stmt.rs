@@ -240,6 +240,12 @@ fn stray(s: &mut Scan<'_>) -> Diagnostic {
         .and_then(|t| t.chars().next())
         .unwrap_or('\u{FFFD}');
     match ch {
+        // In Syntec MACRO `[ ]` index variables: the advice differs.
+        '+' | '-' | '*' | '/' | '=' | ']' if s.syn.lang == Lang::Syntec => diag::macro_syntax(
+            at,
+            &format!("`{ch}` is not allowed here: a statement or a G-code block starts here"),
+            "start a G-code block with its address letter, whose value may be an expression: X(#1 + 2.)",
+        ),
         '+' | '-' | '*' | '/' | '=' | ']' => diag::macro_syntax(
             at,
             &format!(
