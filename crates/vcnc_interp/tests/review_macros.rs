@@ -237,3 +237,26 @@ fn a_stray_operator_in_a_syntec_macro_file_gets_syntec_advice() {
     };
     assert!(!d.help.contains("X[#1"), "{}", d.help);
 }
+
+#[test]
+fn goto_finds_a_label_after_a_macro_statement_on_the_same_line() {
+    // `;` ends a block (Fanuc's EOB), and docs/macros.md lets statements
+    // share a line: `#1 = 1; N20 G00 X2.` holds the block N20. GOTO 20
+    // (line 2) skips line 3 and lands on it: the only move is X2, and #1
+    // stays vacant because the jump lands after `#1 = 1`.
+    let p = "#2 = 0\nGOTO 20\nG00 X1.\n#1 = 1; N20 G00 X2.\nM30\n";
+    let r = run("fanuc", p, Store::default(), &["#1"]);
+    ended(&r);
+    assert_eq!(xs(&r.events), vec![2.0]);
+    assert_eq!(r.values, vec![None]);
+    // The same with a macro statement as the target: N30 #3 = 3.
+    let p = "GOTO 30\n#3 = 1\nG00 X1.; N30 #3 = 3\nG00 X#3\nM30\n";
+    let r = run("fanuc", p, Store::default(), &["#3"]);
+    ended(&r);
+    assert_eq!(xs(&r.events), vec![3.0]);
+    // And in a loop that counts to 3 through a label after a statement.
+    let p = "#1 = 0\n#9 = 0; N5 #1 = #1 + 1\nIF [#1 LT 3] GOTO 5\nG00 X#1\nM30\n";
+    let r = run("fanuc", p, Store::default(), &[]);
+    ended(&r);
+    assert_eq!(xs(&r.events), vec![3.0]);
+}
