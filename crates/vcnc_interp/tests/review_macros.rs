@@ -175,6 +175,13 @@ fn round_in_an_address_rounds_to_the_least_input_increment() {
     let r = run("fanuc", p, Store::default(), &[]);
     ended(&r);
     assert_eq!(xya(&r.events), vec![(31.35884, 0.0, 0.0)]);
+    // The Haas manual's own example (inch): #1 = 1.00333,
+    // G0 X[ROUND[#1] + ROUND[#1]] moves to 2.0066 in (50.96764 mm) and
+    // A[ROUND[#1] + ROUND[#1]] to 2.006°.
+    let p = "#1 = 1.00333\nG20\nG90 G0 X[ROUND[#1] + ROUND[#1]] A[ROUND[#1] + ROUND[#1]]\nM30\n";
+    let r = run("haas", p, Store::default(), &[]);
+    ended(&r);
+    assert_eq!(xya(&r.events), vec![(50.96764, 0.0, 2.006)]);
 }
 
 #[test]
