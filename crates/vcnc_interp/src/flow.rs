@@ -96,6 +96,9 @@ pub(crate) struct Frame {
     pub locals: u32,
     /// How this level was entered.
     pub call: CallKind,
+    /// The number of the program running at this level (`#4115`): from
+    /// the call's P, or the main program's O header.
+    pub number: Option<u32>,
 }
 
 impl Frame {
@@ -112,6 +115,7 @@ impl Frame {
             returns_with: "M99",
             locals: 0,
             call: CallKind::Sub,
+            number: None,
         }
     }
 }

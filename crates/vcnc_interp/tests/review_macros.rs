@@ -267,3 +267,24 @@ fn goto_finds_a_label_after_a_macro_statement_on_the_same_line() {
     ended(&r);
     assert_eq!(xs(&r.events), vec![3.0]);
 }
+
+#[test]
+fn program_number_4115_is_the_running_program_also_in_the_main_file() {
+    // #4115 is the number of the program that is running (its O). The main
+    // program O0555 reads 555; O0013 and O0014, written after it in the
+    // same file, read 13 (G65) and 14 (M98); back in the main, 555 again.
+    // O0020 comes from the program store and reads 20.
+    let p = "O0555\n#101 = #4115\nG65 P13\nM98 P14\nG65 P20\n#104 = #4115\nM30\n\
+             O0013\n#102 = #4115\nM99\nO0014\n#103 = #4115\nM99\n";
+    let r = run(
+        "fanuc",
+        p,
+        Store::default().with(20, "O0020\n#105 = #4115\nM99\n"),
+        &["#101", "#102", "#103", "#104", "#105"],
+    );
+    ended(&r);
+    assert_eq!(
+        r.values,
+        vec![Some(555.0), Some(13.0), Some(14.0), Some(555.0), Some(20.0)]
+    );
+}

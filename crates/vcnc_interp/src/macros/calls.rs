@@ -288,6 +288,10 @@ impl Interpreter<'_> {
             returns_with: "M99",
             locals: level,
             call: kind,
+            number: match program {
+                Program::Number(n) => Some(*n),
+                Program::Named(_) => None,
+            },
         });
         Ok(Step::Jump(start))
     }
