@@ -158,6 +158,17 @@ pub fn not_alone(span: Span, code: Span) -> Diagnostic {
     )
 }
 
+/// E209: a G or M code in the block of a macro call (G65, G66, an
+/// extended G-code or an M-code macro), which passes no G or M argument.
+pub fn call_not_alone(span: Span, call: &str) -> Diagnostic {
+    d(
+        Code::E209,
+        span,
+        format!("{call} takes P, L and argument letters only: this code cannot share its block"),
+        "move the code to a block of its own before or after the call",
+    )
+}
+
 /// E313: G05 through three points on one line.
 pub fn three_points_on_a_line(span: Span) -> Diagnostic {
     d(
@@ -427,8 +438,10 @@ pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E405,
         span,
-        format!("more than {max} jumps (subprogram calls, M99 returns and repeats)"),
-        "check for an endless M99 loop, or raise limits.max_jumps in the machine file",
+        format!(
+            "more than {max} jumps (subprogram and macro calls, M99 returns and repeats, GOTOs, loop passes)"
+        ),
+        "check for an endless loop (M99, GOTO, WHILE or FOR that never ends), or raise limits.max_jumps in the machine file",
     )
 }
 

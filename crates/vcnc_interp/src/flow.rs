@@ -24,6 +24,7 @@ use std::io;
 use std::sync::Arc;
 use vcnc_syntax::{
     Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block,
+    next_block_start,
 };
 
 /// Finds called programs outside the main file.
@@ -95,6 +96,9 @@ pub(crate) struct Frame {
     pub locals: u32,
     /// How this level was entered.
     pub call: CallKind,
+    /// The number of the program running at this level (`#4115`): from
+    /// the call's P, or the main program's O header.
+    pub number: Option<u32>,
 }
 
 impl Frame {
@@ -111,6 +115,7 @@ impl Frame {
             returns_with: "M99",
             locals: 0,
             call: CallKind::Sub,
+            number: None,
         }
     }
 }
@@ -377,14 +382,16 @@ impl Flow {
             let mut i = std::mem::take(&mut col);
             while i < bytes.len() {
                 let start = i;
-                let lexed = lex_block(bytes, i, lex, &mut block);
-                let broken = lexed.is_err();
-                i = match lexed {
+                i = match lex_block(bytes, i, lex, &mut block) {
                     Ok(next) => next,
                     // The words before the error still count: a macro
-                    // block `N400 #20 = #20 + 1` is labelled N400.
-                    Err(_) if !block.words().is_empty() => bytes.len(),
-                    Err(_) => continue 'lines,
+                    // block `N400 #20 = #20 + 1` is labelled N400. The
+                    // blocks after its `;` count too.
+                    Err(_) if !block.words().is_empty() => next_block_start(bytes, start, lex),
+                    Err(_) => {
+                        i = next_block_start(bytes, start, lex);
+                        continue;
+                    }
                 };
                 let at = Cursor {
                     offset: line.offset,
@@ -405,9 +412,6 @@ impl Flow {
                 if visit(&block, at, after) {
                     resume = Some(after);
                     break 'lines;
-                }
-                if broken {
-                    continue 'lines;
                 }
             }
         }

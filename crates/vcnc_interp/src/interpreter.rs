@@ -625,9 +625,11 @@ impl<'a> Interpreter<'a> {
         if !started {
             // The tape start `%` and the program's own O header come before
             // its first block: restarts and searches begin after them.
+            let number = first_value(block, b'O');
             if let Some(f) = self.flow().frame_mut() {
                 f.start = next;
                 f.program = next;
+                f.number = number.or(f.number);
             }
             return Ok(Step::Next);
         }

@@ -173,6 +173,22 @@ pub fn macro_syntax(span: Span, what: &str, help: &str) -> Diagnostic {
     Diagnostic::new(Code::E601, span, what.to_string(), help)
 }
 
+/// E601: a sequence or program number written as a variable or an
+/// expression (`N#1`, `O[#2]`), which Custom Macro B forbids.
+pub fn number_word_not_variable(span: Span, letter: char) -> Diagnostic {
+    let what = if letter == 'N' {
+        "a sequence number"
+    } else {
+        "a program number"
+    };
+    Diagnostic::new(
+        Code::E601,
+        span,
+        format!("{letter} cannot take a variable or an expression: {what} is written as digits"),
+        "write the number itself (N100, O0010); to jump to a computed label use GOTO #1",
+    )
+}
+
 /// E602: an expression of more than `max` operations.
 pub fn macro_too_complex(span: Span, max: usize) -> Diagnostic {
     Diagnostic::new(

@@ -50,6 +50,37 @@ pub enum Semicolon {
 const FULLWIDTH_SEMICOLON: &[u8] = "；".as_bytes();
 const BOM: &[u8] = "\u{FEFF}".as_bytes();
 
+/// Where the block after one the lexer rejected begins: past the `;` that
+/// ends the block starting at `start` (comments and quoted text skipped),
+/// or `line.len()`. A rejected block is often a macro statement
+/// (`#1 = 1; N20 G00 X2.`), and the blocks after its `;` still hold labels.
+pub fn next_block_start(line: &[u8], start: usize, rules: &LexRules) -> usize {
+    if rules.semicolon == Semicolon::Comment {
+        return line.len();
+    }
+    let mut i = start;
+    while i < line.len() {
+        let closing = match line[i] {
+            b'(' => b')',
+            b'"' => b'"',
+            b';' => return i + 1,
+            b'/' if rules.slash_comments && line.get(i + 1) == Some(&b'/') => return line.len(),
+            0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
+                return i + FULLWIDTH_SEMICOLON.len();
+            }
+            _ => {
+                i += 1;
+                continue;
+            }
+        };
+        match memchr::memchr(closing, &line[i + 1..]) {
+            Some(k) => i += k + 2,
+            None => return line.len(),
+        }
+    }
+    line.len()
+}
+
 /// Lexes the block that starts at `start` in `line` into `out`.
 ///
 /// Returns the index where the next block starts (past the terminator), or

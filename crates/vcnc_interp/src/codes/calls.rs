@@ -95,6 +95,7 @@ impl Interpreter<'_> {
             // A subprogram shares its caller's locals.
             locals: caller.locals,
             call: crate::flow::CallKind::Sub,
+            number: program.map_or(caller.number, |(n, _)| Some(n)),
         });
         Ok(Step::Jump(start))
     }
@@ -202,6 +203,7 @@ impl Interpreter<'_> {
             returns_with: "G24",
             locals: caller.locals,
             call: crate::flow::CallKind::Sub,
+            number: caller.number,
         });
         Ok(Step::Jump(start))
     }

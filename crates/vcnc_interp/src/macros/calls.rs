@@ -82,7 +82,7 @@ impl Interpreter<'_> {
         } else {
             "G66"
         };
-        let p = self.call_words(block, code.span, true, b"GNO")?;
+        let p = self.call_words(block, code.span, name, true, b"GNO")?;
         let Some((number, p_span)) = p.program else {
             return Err(alarms::needs_word(
                 code.span,
@@ -118,13 +118,15 @@ impl Interpreter<'_> {
         )
     }
 
-    /// Reads P, L and the argument letters of a call block. `own_pl`: P and
-    /// L are the call's (G65, G66); else they are arguments too (Syntec's
-    /// extended G and M macros: L repeats and sets #12, P sets #16).
+    /// Reads P, L and the argument letters of a call block; `call` names
+    /// the call in alarms. `own_pl`: P and L are the call's (G65, G66);
+    /// else they are arguments too (Syntec's extended G and M macros: L
+    /// repeats and sets #12, P sets #16).
     fn call_words(
         &self,
         block: &Block,
         code: Span,
+        call: &str,
         own_pl: bool,
         not_args: &[u8],
     ) -> Result<Parsed, Diagnostic> {
@@ -152,7 +154,7 @@ impl Interpreter<'_> {
             seen |= bit;
             if not_args.contains(&l) {
                 return Err(if l == b'G' || l == b'M' {
-                    alarms::not_alone(w.span, code)
+                    alarms::call_not_alone(w.span, call)
                 } else {
                     alarms::word_not_allowed(w.span, l)
                 });
@@ -193,20 +195,27 @@ impl Interpreter<'_> {
                 Value::Long(w.value as i64)
             };
         }
-        let letter = w.addr.0;
         let whole_units = w.point
             || self.dialect.integers == IntegerWords::WholeUnits
             || self.machine.params.decimal_input == DecimalInput::Calculator;
-        if whole_units || !LENGTH_ARGS.contains(&letter) {
-            return Value::Double(w.value);
+        match self.increments_per_unit(w.addr.0) {
+            Some(per_unit) if !whole_units => Value::Double(w.value / per_unit),
+            _ => Value::Double(w.value),
+        }
+    }
+
+    /// Least input increments per unit of a length or angle address
+    /// (0.001 mm or degree, 0.0001 in); `None` for other letters.
+    pub(crate) fn increments_per_unit(&self, letter: u8) -> Option<f64> {
+        if !LENGTH_ARGS.contains(&letter) {
+            return None;
         }
         let rotary = matches!(letter, b'A' | b'B' | b'C');
-        let per_unit = if rotary || !self.state.modal.inch {
+        Some(if rotary || !self.state.modal.inch {
             1000.0
         } else {
             10_000.0
-        };
-        Value::Double(w.value / per_unit)
+        })
     }
 
     /// The locals a call starts with: each argument in its local.
@@ -279,6 +288,10 @@ impl Interpreter<'_> {
             returns_with: "M99",
             locals: level,
             call: kind,
+            number: match program {
+                Program::Number(n) => Some(*n),
+                Program::Named(_) => None,
+            },
         });
         Ok(Step::Jump(start))
     }
@@ -344,6 +357,10 @@ impl Interpreter<'_> {
         let Some(m) = self.macros.modal.clone() else {
             return Ok(Step::Next);
         };
+        // `G66 P L0` runs its program zero times, like `G65 P L0`.
+        if m.repeats == 0 {
+            return Ok(Step::Next);
+        }
         let locals = match (&m.shared, self.macros.rules.modal_locals) {
             (Some(values), ModalLocals::SharedUntilG67) => values
                 .iter()
@@ -393,7 +410,7 @@ impl Interpreter<'_> {
         {
             return Ok(None);
         }
-        let p = self.call_words(block, g.span, false, b"GO")?;
+        let p = self.call_words(block, g.span, "a G-code macro call", false, b"GO")?;
         if p.repeats == 0 {
             return Ok(Some(Step::Next));
         }
@@ -426,7 +443,7 @@ impl Interpreter<'_> {
             .get(&m.def)
             .map(|n| n.to_string())
             .unwrap_or_default();
-        let p = self.call_words(block, m.span, false, b"GMO")?;
+        let p = self.call_words(block, m.span, "an M-code macro call", false, b"GMO")?;
         if p.repeats == 0 {
             return Ok(Step::Next);
         }

@@ -99,6 +99,21 @@ fn round_half_away(x: f64) -> f64 {
     x.round()
 }
 
+/// `x` rounded half away from zero to a whole number of increments
+/// (`per_unit` of them per unit). A value written in decimal that lands
+/// within a millionth of an increment of a half counts as the half: 1.2345
+/// is 1.235 at 0.001, as the control computes it in decimal.
+fn round_to_increment(x: f64, per_unit: f64) -> f64 {
+    let y = x * per_unit;
+    let half = ((y - y.trunc()).abs() - 0.5).abs() < 1e-6;
+    let n = if half {
+        y.trunc() + y.signum()
+    } else {
+        round_half_away(y)
+    };
+    n / per_unit
+}
+
 /// Applies a binary operator.
 pub(crate) fn binary(
     lang: Lang,
@@ -464,6 +479,13 @@ impl Interpreter<'_> {
                 Ok(Value::Null)
             }
             Func::Wait | Func::Sleep | Func::Draw | Func::Param => Ok(Value::Null),
+            Func::Round => match self.macros.round_per_unit {
+                Some(per_unit) => {
+                    let x = args.first().copied().map_or(0.0, num);
+                    real(round_to_increment(x, per_unit), span)
+                }
+                None => function(lang, f, args, span),
+            },
             _ => function(lang, f, args, span),
         }
     }

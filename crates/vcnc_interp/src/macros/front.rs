@@ -339,10 +339,19 @@ impl Interpreter<'_> {
         for w in words {
             let (value, point) = match &w.value {
                 MValue::Literal { value, point } => (*value, *point),
-                MValue::Expr(e) => match self.eval(e, lang)? {
-                    Value::Null => continue,
-                    v => word_value(w.addr.0, v, lang, w.span)?,
-                },
+                MValue::Expr(e) => {
+                    // Fanuc 0i: ROUND in an NC address rounds to the
+                    // address's least input increment.
+                    if lang == Lang::MacroB {
+                        self.macros.round_per_unit = self.increments_per_unit(w.addr.0);
+                    }
+                    let v = self.eval(e, lang);
+                    self.macros.round_per_unit = None;
+                    match v? {
+                        Value::Null => continue,
+                        v => word_value(w.addr.0, v, lang, w.span)?,
+                    }
+                }
             };
             let word = Word {
                 addr: w.addr,

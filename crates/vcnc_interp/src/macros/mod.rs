@@ -141,6 +141,10 @@ pub(crate) struct Macros {
     pub text: Vec<u8>,
     /// The arguments of each call level (GETARG).
     pub args: Vec<[Value; 26]>,
+    /// While a Macro B word of a length or angle address is evaluated:
+    /// its least input increments per unit, to which ROUND rounds (Fanuc
+    /// 0i); `None` elsewhere, where ROUND gives a whole number.
+    pub round_per_unit: Option<f64>,
 }
 
 impl Macros {
@@ -162,6 +166,7 @@ impl Macros {
             unset: Vec::new(),
             text: Vec::new(),
             args: Vec::new(),
+            round_per_unit: None,
         }
     }
 

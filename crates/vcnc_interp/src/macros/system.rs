@@ -319,13 +319,7 @@ impl Interpreter<'_> {
             9 => Value::Double(s.feed),
             11 => Value::Double(f64::from(s.h_number)),
             15 => {
-                let src = self.flow.frames.last().map_or(0, |f| f.source);
-                let number = self
-                    .flow
-                    .sources
-                    .get(src)
-                    .and_then(|s| s.as_ref())
-                    .and_then(|s| s.number);
+                let number = self.flow.frames.last().and_then(|f| f.number);
                 number.map_or(Value::Null, |n| Value::Double(f64::from(n)))
             }
             19 => Value::Double(s.s_value),

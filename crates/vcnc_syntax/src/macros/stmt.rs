@@ -240,6 +240,12 @@ fn stray(s: &mut Scan<'_>) -> Diagnostic {
         .and_then(|t| t.chars().next())
         .unwrap_or('\u{FFFD}');
     match ch {
+        // In Syntec MACRO `[ ]` index variables: the advice differs.
+        '+' | '-' | '*' | '/' | '=' | ']' if s.syn.lang == Lang::Syntec => diag::macro_syntax(
+            at,
+            &format!("`{ch}` is not allowed here: a statement or a G-code block starts here"),
+            "start a G-code block with its address letter, whose value may be an expression: X(#1 + 2.)",
+        ),
         '+' | '-' | '*' | '/' | '=' | ']' => diag::macro_syntax(
             at,
             &format!(
@@ -384,6 +390,14 @@ fn iso_word(s: &mut Scan<'_>, words_follow: bool) -> Result<MWord, Diagnostic> {
         j += 1;
     }
     if matches!(s.at(j), b'#' | b'[') {
+        // Fanuc 0i: "program numbers, sequence numbers ... cannot be
+        // referenced using variables" (O#1, N#3 are its examples).
+        if matches!(letter, b'N' | b'O') {
+            return Err(diag::number_word_not_variable(
+                Span::new(at, at + 1),
+                char::from(letter),
+            ));
+        }
         s.pos = value_at + j;
         let mut p = ExprParser::new(s);
         p.primary()?;
