@@ -273,3 +273,36 @@ fn forbidden_profile_words_are_e344_at_the_word() {
         }
     }
 }
+
+/// E343 for a profile that never reaches the stock: `G71 P1 Q1` whose one
+/// block `N1 G0 X30.` is only the approach from A (X50): there is no
+/// shape below A to cut. The message must say that, not that the profile
+/// "lies on both sides of the start point" (it lies on neither). The
+/// alarm is at the profile's block: line 4, column 4 (the G0).
+#[test]
+fn a_profile_of_only_its_approach_says_so() {
+    let program = "M03 S500\nG00 X50. Z2.\nG71 P1 Q1 U0.4 W0.1 D1000 F0.2\nN1 G0 X30.\nM30\n";
+    let (_, out) = run(program);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E343", 4, 4));
+    assert!(!d.message.contains("both sides"), "{}", d.message);
+    assert!(
+        d.message.contains("never reaches the stock"),
+        "{}",
+        d.message
+    );
+    assert!(d.message.contains("only its first block"), "{}", d.message);
+    // A shape that runs on A's own level (X50 from A at X50, then along Z)
+    // never reaches the stock either; the alarm is at the first block's
+    // G0 (line 4, column 4) and says so.
+    let program =
+        "M03 S500\nG00 X50. Z2.\nG71 P1 Q2 U0.4 W0.1 D1000 F0.2\nN1 G0 X50.\nN2 G1 Z-10.\nM30\n";
+    let (_, out) = run(program);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code.as_str(), d.line, d.column), ("E343", 4, 4));
+    assert!(d.message.contains("start point's level"), "{}", d.message);
+}

@@ -339,7 +339,17 @@ impl Interpreter<'_> {
         let su = match (below, above) {
             (true, false) => 1.0,
             (false, true) => -1.0,
-            _ => {
+            // Nothing but the approach, or a shape on A's own level: on
+            // neither side, so nothing to rough.
+            (true, true) => {
+                let why = if pts.is_empty() {
+                    "it is only its first block (the approach from the start point), so it never reaches the stock: write the finished shape's blocks up to the N that Q names"
+                } else {
+                    "it runs on the start point's level across the cuts, so it never reaches the stock: start the cycle outside the stock, clear of the shape"
+                };
+                return Err(self.profile_alarm(profile, 0, why));
+            }
+            (false, false) => {
                 return Err(self.profile_alarm(
                     profile,
                     0,
