@@ -278,14 +278,7 @@ impl Interpreter<'_> {
         if w.code_letters() & bit(b'F') != 0 {
             return Ok(());
         }
-        if f.value < 0.0 {
-            return Err(alarms::value_out_of_range(
-                f.span,
-                b'F',
-                f.value,
-                "a feed is not negative",
-            ));
-        }
+        not_negative_feed(&f)?;
         match self.state.modal.motion {
             Motion::Thread | Motion::ThreadingCycle if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * self.unit_mm())
@@ -323,14 +316,7 @@ impl Interpreter<'_> {
             }
         }
         if let Some(f) = w.get(b'F') {
-            if f.value < 0.0 {
-                return Err(alarms::value_out_of_range(
-                    f.span,
-                    b'F',
-                    f.value,
-                    "a feed is not negative",
-                ));
-            }
+            not_negative_feed(&f)?;
             self.set_feed(f);
         }
         self.tool_words(w)?;
@@ -666,6 +652,19 @@ impl Interpreter<'_> {
 /// Letters a plain motion block may carry besides the axes.
 const PLAIN_EXTRA: u32 =
     bit(b'F') | bit(b'N') | bit(b'R') | bit(b'I') | bit(b'J') | bit(b'K') | bit(b'D');
+
+/// E109 for a negative F (a feed or a thread's lead).
+fn not_negative_feed(f: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
+    if f.value < 0.0 {
+        return Err(alarms::value_out_of_range(
+            f.span,
+            b'F',
+            f.value,
+            "a feed is not negative",
+        ));
+    }
+    Ok(())
+}
 
 /// The centre-offset letters of a plane.
 fn plane_offsets(plane: Plane) -> u32 {
