@@ -1104,7 +1104,7 @@ pub fn profile_word(span: Span, what: &str) -> Diagnostic {
         Code::E344,
         span,
         format!("{what} is not allowed in a profile block (between P and Q)"),
-        "a profile holds G00/G01/G02/G03 moves with X/Z/U/W, I/K or R, ,C/,R, F and S only",
+        "a profile holds G00-G03 moves (X/Z/U/W, I/K or R, ,C/,R, G40-G42) and beside them F, S, T, G04, G96/G97, G98/G99 and M codes other than stops, ends and calls",
     )
 }
 

@@ -607,7 +607,7 @@ fn e343_profile_that_cannot_be_cut_points_at_its_block() {
 #[test]
 fn e344_word_not_allowed_in_a_profile_block() {
     let p = format!(
-        "{LATHE_START}G71 P10 Q30 U0.4 W0.1 F0.3\nN10 G00 X20.\nG01 Z-10. M08\nN30 X40.\nM30\n"
+        "{LATHE_START}G71 P10 Q30 U0.4 W0.1 F0.3\nN10 G00 X20.\nG01 Z-10. M99\nN30 X40.\nM30\n"
     );
     check_lathe(&p, Code::E344, (6, 11), 4);
 }

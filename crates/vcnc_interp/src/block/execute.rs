@@ -278,14 +278,7 @@ impl Interpreter<'_> {
         if w.code_letters() & bit(b'F') != 0 {
             return Ok(());
         }
-        if f.value < 0.0 {
-            return Err(alarms::value_out_of_range(
-                f.span,
-                b'F',
-                f.value,
-                "a feed is not negative",
-            ));
-        }
+        not_negative_feed(&f)?;
         match self.state.modal.motion {
             Motion::Thread | Motion::ThreadingCycle if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * self.unit_mm())
@@ -293,16 +286,51 @@ impl Interpreter<'_> {
             Motion::ThreadInch if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * crate::block::convert::MM_PER_INCH);
             }
-            _ => {
-                self.state.feed = f.value;
-                let mm_per_min = f.value * self.unit_mm() * self.state.feed_factor;
-                // Under G93 F is no rate: the move checks its own.
-                let rate = !self.state.modal.per_rev && !self.state.modal.inverse_time;
-                if rate && mm_per_min > self.max_feed {
-                    self.warn(alarms::feed_clamped(f.span, mm_per_min, self.max_feed));
-                }
+            _ => self.set_feed(f),
+        }
+        Ok(())
+    }
+
+    /// F as the feed of the cutting moves that follow.
+    fn set_feed(&mut self, f: vcnc_syntax::Word) {
+        self.state.feed = f.value;
+        let mm_per_min = f.value * self.unit_mm() * self.state.feed_factor;
+        // Under G93 F is no rate: the move checks its own.
+        let rate = !self.state.modal.per_rev && !self.state.modal.inverse_time;
+        if rate && mm_per_min > self.max_feed {
+            self.warn(alarms::feed_clamped(f.span, mm_per_min, self.max_feed));
+        }
+    }
+
+    /// The words of a G70–G73 profile block beyond its move, which G70
+    /// runs before the move (`codes/profile.rs` has checked that nothing
+    /// else is there): steps 1 (G96/G97, G98/G99; G00–G03 and G40–G42 are
+    /// the profile's own), 2 (F is a feed whatever the modal motion: G70
+    /// cuts), 2b T, 4 spindle, 5 coolant and builder M codes, and G04 in
+    /// the place of step 6. A frame a T changed is reported here, with the
+    /// T block's line.
+    pub(crate) fn profile_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        for at in w.modal_codes() {
+            if matches!(at.def.group, Group::SpindleMode | Group::FeedMode) {
+                self.apply_modal(at.def.op);
             }
         }
+        if let Some(f) = w.get(b'F') {
+            not_negative_feed(&f)?;
+            self.set_feed(f);
+        }
+        self.tool_words(w)?;
+        self.spindle_words(w)?;
+        if let Some(m) = w.m_of(MGroup::Coolant) {
+            let on = m.def.op == MOp::CoolantOn;
+            self.state.coolant = on;
+            self.emit(|loc| Event::Coolant { loc, on });
+        }
+        self.other_m_codes(w);
+        if let Some(g04) = w.once(GOp::Dwell) {
+            self.axis_code(GOp::Dwell, g04.span, w)?;
+        }
+        self.report_frame();
         Ok(())
     }
 
@@ -624,6 +652,19 @@ impl Interpreter<'_> {
 /// Letters a plain motion block may carry besides the axes.
 const PLAIN_EXTRA: u32 =
     bit(b'F') | bit(b'N') | bit(b'R') | bit(b'I') | bit(b'J') | bit(b'K') | bit(b'D');
+
+/// E109 for a negative F (a feed or a thread's lead).
+fn not_negative_feed(f: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
+    if f.value < 0.0 {
+        return Err(alarms::value_out_of_range(
+            f.span,
+            b'F',
+            f.value,
+            "a feed is not negative",
+        ));
+    }
+    Ok(())
+}
 
 /// The centre-offset letters of a plane.
 fn plane_offsets(plane: Plane) -> u32 {

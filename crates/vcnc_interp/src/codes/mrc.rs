@@ -39,7 +39,7 @@ use crate::codes::profile::{Elem, Profile};
 use crate::codes::rough::{self, Across, Frame, Rough, Seg, Step};
 use crate::codes::turning_cycles::{How, Xz};
 use crate::dialect::GOp;
-use crate::events::{Pos, SpindleDir};
+use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
 use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
@@ -339,7 +339,17 @@ impl Interpreter<'_> {
         let su = match (below, above) {
             (true, false) => 1.0,
             (false, true) => -1.0,
-            _ => {
+            // Nothing but the approach, or a shape on A's own level: on
+            // neither side, so nothing to rough.
+            (true, true) => {
+                let why = if pts.is_empty() {
+                    "it is only its first block (the approach from the start point), so it never reaches the stock: write the finished shape's blocks up to the N that Q names"
+                } else {
+                    "it runs on the start point's level across the cuts, so it never reaches the stock: start the cycle outside the stock, clear of the shape"
+                };
+                return Err(self.profile_alarm(profile, 0, why));
+            }
+            (false, false) => {
                 return Err(self.profile_alarm(
                     profile,
                     0,
@@ -475,14 +485,32 @@ impl Interpreter<'_> {
         w: &Words<'_>,
     ) -> Result<(), Diagnostic> {
         for e in &profile.elems {
+            self.finish_asides(profile, e.asides)?;
             // The moves, warnings and alarms of an element are its block's.
             self.flow.loc.line = e.line.number;
             self.cur_line = Some((profile.src, e.line));
             self.finish_elem(e, axes, w)
                 .map_err(|d| self.locate(d, profile.src, &e.line))?;
         }
+        self.finish_asides(profile, profile.asides_after)?;
         if let Some(side) = profile.comp_after {
             self.set_comp_side(side);
+        }
+        Ok(())
+    }
+
+    /// The asides `range` of the profile under G70: each block's words
+    /// beyond its move, run with the block's line as an ordinary block's
+    /// steps would run them (`Interpreter::profile_words`).
+    fn finish_asides(&mut self, profile: &Profile, range: (u32, u32)) -> Result<(), Diagnostic> {
+        let (from, to) = (range.0 as usize, range.1 as usize);
+        for aside in profile.asides.get(from..to).unwrap_or_default() {
+            self.flow.loc.line = aside.line.number;
+            self.cur_line = Some((profile.src, aside.line));
+            let mut w = Words::new(&aside.block);
+            w.fill(self.dialect, self.machine, self.axis_mask)
+                .and_then(|()| self.profile_words(&w))
+                .map_err(|d| self.locate(d, profile.src, &aside.line))?;
         }
         Ok(())
     }
@@ -494,12 +522,6 @@ impl Interpreter<'_> {
         axes: (usize, usize),
         w: &Words<'_>,
     ) -> Result<(), Diagnostic> {
-        if let Some(f) = e.feed {
-            self.state.feed = f;
-        }
-        if let Some(s) = e.speed {
-            self.profile_speed(s, e.span)?;
-        }
         if let Some(side) = e.comp {
             self.set_comp_side(side);
         }
@@ -517,27 +539,5 @@ impl Interpreter<'_> {
             let feed = self.feed(e.span)?;
             self.along(&e.seg, axes, feed, w, e.span)
         }
-    }
-
-    /// An S word in a profile block run by G70: the new speed, as the
-    /// spindle words of a block would set it.
-    fn profile_speed(&mut self, s: f64, span: Span) -> Result<(), Diagnostic> {
-        self.state.s_value = s;
-        let dir = self.state.spindle;
-        if !matches!(dir, SpindleDir::Cw | SpindleDir::Ccw) {
-            return Ok(());
-        }
-        let (rpm, surface_m_per_min) = self.spindle_rpm(span)?;
-        if (rpm - self.state.rpm).abs() < 1e-9 {
-            return Ok(());
-        }
-        self.state.rpm = rpm;
-        self.emit(|loc| crate::events::Event::Spindle {
-            loc,
-            dir,
-            rpm,
-            surface_m_per_min,
-        });
-        Ok(())
     }
 }

@@ -5,11 +5,23 @@
 //!
 //! ```text
 //!   G71 P10 Q50 …      ─▶ find N10 (the label cache) ─▶ lex each block
-//!   N10 G00 X20.          └ G00/G01/G02/G03, X/Z/U/W, I/K or R, ,C/,R, F, S,
+//!   N10 G00 X20.          └ G00/G01/G02/G03, X/Z/U/W, I/K or R, ,C/,R,
 //!   …                       G40/G41/G42 (applied by G70 only)
+//!   …                     └ F S T, M codes, G04, G96/G97, G98/G99: kept
+//!   …                       as the block's words, run by G70 only
 //!   …                     └ anything else: E344 at the word
 //!   N50 X60.           ─▶ elements A→A', …, →B; the cursor after N50
 //! ```
+//!
+//! Fanuc 0i-TF forbids in a profile one-shot G codes other than G04,
+//! group-01 codes other than G00–G03, G20/G21 and M98/M99; F, S and T
+//! there are ignored by G71–G73 and valid in G70. So a block that carries
+//! more than its move keeps its words (an [`Aside`]); the roughing reads
+//! only the elements, and G70 runs a block's asides before its element,
+//! in program order, as the ordinary steps of a block would
+//! (`execute.rs`: modes, F, S, T, spindle, coolant, builder M codes, G04).
+//! Program stops, ends and calls (M00, M01, M02, M30, M97, M98, M99) stay
+//! E344: vcnc does not run a program's flow from inside a cycle.
 //!
 //! The first block must move with G00 or G01 (it is the approach from the
 //! cycle's start point A); a `,C`/`,R` is resolved between two lines as
@@ -24,7 +36,7 @@ use crate::codes::corner::corner_cut;
 use crate::codes::lathe_data::CornerKind;
 use crate::codes::rough::Seg;
 use crate::codes::turning_cycles::Xz;
-use crate::dialect::{GOp, bit};
+use crate::dialect::{GOp, MGroup, bit};
 use crate::flow::first_value;
 use crate::interpreter::Interpreter;
 use crate::state::CompSide;
@@ -39,9 +51,10 @@ pub(crate) struct Elem {
     pub seg: Seg,
     /// G00 (only the first element may be one that matters to G71–G73).
     pub rapid: bool,
-    /// F and S written in its block (program units), for G70.
-    pub feed: Option<f64>,
-    pub speed: Option<f64>,
+    /// The asides G70 runs before this element (a range of
+    /// [`Profile::asides`]): its block's and those of the blocks without
+    /// a move since the last element.
+    pub asides: (u32, u32),
     /// G40/G41/G42 written in its block or since the last element, for
     /// G70 (the rough cycles run without compensation).
     pub comp: Option<CompSide>,
@@ -51,11 +64,24 @@ pub(crate) struct Elem {
     pub span: Span,
 }
 
+/// The words of a profile block beyond its move (F, S, T, M codes, G04,
+/// G96/G97, G98/G99): the block itself, which G70 runs through the
+/// ordinary steps of a block, and its line.
+#[derive(Debug, Clone)]
+pub(crate) struct Aside {
+    pub block: Block,
+    pub line: Line,
+}
+
 /// A profile read from the program.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub(crate) struct Profile {
     /// The elements, the first one the approach from A.
     pub elems: Vec<Elem>,
+    /// The blocks with words beyond their move, in program order.
+    pub asides: Vec<Aside>,
+    /// The asides of blocks after the last element (`N50 M09`).
+    pub asides_after: (u32, u32),
     /// Which axes the first block names: (X or U, Z or W).
     pub first_names: (bool, bool),
     /// The source the profile is in (for alarms about its blocks).
@@ -75,8 +101,8 @@ struct Reading {
     at: Xz,
     /// The modal motion within the profile.
     motion: Option<GOp>,
-    /// F and S written since the last element.
-    carry: (Option<f64>, Option<f64>),
+    /// The first aside not yet given to an element.
+    asides_from: u32,
     /// G40/G41/G42 written since the last element.
     carry_comp: Option<CompSide>,
     /// A `,C`/`,R` waiting for the next element, its word and line.
@@ -91,8 +117,8 @@ struct Move {
     to: Xz,
     named: (bool, bool),
     arc: Option<ArcWords>,
-    feed: Option<f64>,
-    speed: Option<f64>,
+    /// The block has words G70 runs beyond its move (an [`Aside`]).
+    aside: bool,
     comp: Option<CompSide>,
     corner: Option<(CornerKind, Span)>,
     span: Span,
@@ -148,6 +174,8 @@ impl Interpreter<'_> {
         let mut r = Reading {
             profile: Profile {
                 elems: Vec::new(),
+                asides: Vec::new(),
+                asides_after: (0, 0),
                 first_names: (false, false),
                 src,
                 after: start,
@@ -156,7 +184,7 @@ impl Interpreter<'_> {
             },
             at: self.here_xz(axes),
             motion: None,
-            carry: (None, None),
+            asides_from: 0,
             carry_comp: None,
             pending: None,
             blocks: 0,
@@ -199,6 +227,7 @@ impl Interpreter<'_> {
                         return Err(self.locate(d, src, &held_at));
                     }
                     r.profile.comp_after = r.carry_comp;
+                    r.profile.asides_after = (r.asides_from, aside_count(&r.profile));
                     r.profile.after = Cursor {
                         offset: line.offset,
                         line: line.number,
@@ -210,9 +239,9 @@ impl Interpreter<'_> {
         }
     }
 
-    /// One profile block: its element (with the F and S written since the
-    /// last one), a chamfer or round the block before asked for, and the
-    /// corner this block asks for.
+    /// One profile block: its element (with the asides since the last
+    /// one), a chamfer or round the block before asked for, and the corner
+    /// this block asks for.
     fn profile_take(
         &mut self,
         r: &mut Reading,
@@ -228,19 +257,24 @@ impl Interpreter<'_> {
         if first {
             r.profile.first_names = mv.named;
         }
-        r.carry = (mv.feed.or(r.carry.0), mv.speed.or(r.carry.1));
+        if mv.aside {
+            r.profile.asides.push(Aside {
+                block: block.clone(),
+                line,
+            });
+        }
         r.carry_comp = mv.comp.or(r.carry_comp);
         let elem = self
             .profile_elem(&mv, r.at, line, first)
             .map_err(|d| self.locate(d, src, &line))?;
         if let Some(elem) = elem {
+            let end = aside_count(&r.profile);
             let elem = Elem {
-                feed: r.carry.0,
-                speed: r.carry.1,
+                asides: (r.asides_from, end),
                 comp: r.carry_comp,
                 ..elem
             };
-            r.carry = (None, None);
+            r.asides_from = end;
             r.carry_comp = None;
             match r.pending.take() {
                 Some((kind, word, held_at)) => {
@@ -284,11 +318,19 @@ impl Interpreter<'_> {
     ) -> Result<Move, Diagnostic> {
         let mut w = Words::new(block);
         w.fill(self.dialect, self.machine, self.axis_mask)?;
-        if let Some(code) = w.once_codes().next() {
-            return Err(alarms::profile_word(code.span, "a one-shot G code"));
+        let mut dwell = false;
+        for code in w.once_codes() {
+            if code.def.op != GOp::Dwell {
+                return Err(alarms::profile_word(
+                    code.span,
+                    "a one-shot G code other than G04",
+                ));
+            }
+            dwell = true;
         }
         let mut span = w.first;
         let mut comp = None;
+        let mut modes = false;
         for code in w.modal_codes() {
             match code.def.op {
                 GOp::Rapid | GOp::Linear | GOp::ArcCw | GOp::ArcCcw => {
@@ -298,18 +340,28 @@ impl Interpreter<'_> {
                 GOp::CompCancel => comp = Some(CompSide::Off),
                 GOp::CompLeft => comp = Some(CompSide::Left),
                 GOp::CompRight => comp = Some(CompSide::Right),
+                GOp::SurfaceSpeed | GOp::SpindleRpm | GOp::PerMinute | GOp::PerRev => {
+                    modes = true;
+                }
                 _ => return Err(alarms::profile_word(code.span, "this G code")),
             }
         }
-        if let Some(m) = w.m.iter().flatten().next() {
-            return Err(alarms::profile_word(m.span, "an M code"));
+        if let Some(m) = w.m_of(MGroup::Flow) {
+            return Err(alarms::profile_word(
+                m.span,
+                "a program stop, end or call (M00, M01, M02, M30, M97, M98, M99)",
+            ));
         }
-        if let Some(m) = w.other_m.iter().flatten().next() {
-            return Err(alarms::profile_word(m.span, "an M code"));
+        let m_codes =
+            w.m.iter().flatten().next().is_some() || w.other_m.iter().flatten().next().is_some();
+        let mut allowed = [
+            b'N', b'X', b'Z', b'U', b'W', b'I', b'K', b'R', b'F', b'S', b'T',
+        ]
+        .iter()
+        .fold(0, |m, l| m | bit(*l));
+        if dwell {
+            allowed |= bit(b'P');
         }
-        let allowed = [b'N', b'X', b'Z', b'U', b'W', b'I', b'K', b'R', b'F', b'S']
-            .iter()
-            .fold(0, |m, l| m | bit(*l));
         if let Some(word) = block.words().iter().find(|wd| {
             wd.addr
                 .as_letter()
@@ -320,6 +372,7 @@ impl Interpreter<'_> {
                 &format!("the word {}", char::from(word.addr.0)),
             ));
         }
+        let aside = dwell || modes || m_codes || w.any(bit(b'F') | bit(b'S') | bit(b'T'));
         for (abs, inc) in [(b'X', b'U'), (b'Z', b'W')] {
             if let (Some(_), Some(i)) = (w.get(abs), w.get(inc)) {
                 return Err(alarms::absolute_and_incremental(i.span, abs, inc));
@@ -331,6 +384,29 @@ impl Interpreter<'_> {
                 "the profile's first block must move with G00 or G01",
             ));
         };
+        if dwell {
+            // G04's X/U/P are its time: the block does not move.
+            if first {
+                return Err(alarms::profile_not_cut(
+                    span,
+                    "the profile's first block must move with G00 or G01, not dwell",
+                ));
+            }
+            let corner = w.get_ext(Addr::COMMA_C).or(w.get_ext(Addr::COMMA_R));
+            if let Some(word) = corner {
+                return Err(alarms::corner_fault(word.span, "only a G01 takes ,C or ,R"));
+            }
+            return Ok(Move {
+                motion: Some(op),
+                to: at,
+                named: (false, false),
+                arc: None,
+                aside,
+                comp,
+                corner: None,
+                span,
+            });
+        }
         let arc = matches!(op, GOp::ArcCw | GOp::ArcCcw);
         if arc && comp.is_some() {
             return Err(alarms::comp_arc_startup(span));
@@ -379,8 +455,7 @@ impl Interpreter<'_> {
             to: (x, z),
             named: (nx, nz),
             arc: arc_words,
-            feed: w.get(b'F').map(|f| f.value),
-            speed: w.get(b'S').map(|s| s.value),
+            aside,
             comp,
             corner,
             span,
@@ -414,8 +489,7 @@ impl Interpreter<'_> {
                 arc,
             },
             rapid: mv.motion == Some(GOp::Rapid),
-            feed: None,
-            speed: None,
+            asides: (0, 0),
             comp: None,
             line,
             span: mv.span,
@@ -497,8 +571,7 @@ impl Interpreter<'_> {
                 to: xz(cut.p2),
                 arc: cut.arc.map(|(c, ccw)| (xz(c), !ccw)),
             },
-            feed: None,
-            speed: None,
+            asides: (0, 0),
             ..prev
         });
         let mut second = next;
@@ -506,4 +579,10 @@ impl Interpreter<'_> {
         elems.push(second);
         Ok(())
     }
+}
+
+/// The number of asides so far, as the ranges of [`Elem::asides`] count
+/// them (at most [`MAX_BLOCKS`]).
+fn aside_count(profile: &Profile) -> u32 {
+    u32::try_from(profile.asides.len()).unwrap_or(u32::MAX)
 }
