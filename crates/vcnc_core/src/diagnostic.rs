@@ -129,6 +129,7 @@ codes! {
     E611 => "loop or branch structure does not pair",
     E612 => "alarm raised by the program",
     E613 => "macro stack full",
+    E614 => "GOTO into a loop from outside it",
     W101 => "length without a decimal point in a program that writes points",
     W102 => "feed above the machine's maximum",
     W103 => "spindle speed above the machine's maximum",

@@ -1086,6 +1086,21 @@ pub fn macro_stack_full(span: Span, max: usize) -> Diagnostic {
     )
 }
 
+/// E614: a Macro B GOTO whose target lies inside a DO–END loop that does
+/// not hold the GOTO.
+pub fn goto_into_loop(span: Span, n: u32, m: u8, line: u64) -> Diagnostic {
+    d(
+        Code::E614,
+        span,
+        format!(
+            "GOTO {n} jumps into the DO {m} loop of line {line} from outside it: N{n} lies between its WHILE and its END {m}"
+        ),
+        &format!(
+            "a GOTO may leave a loop but not enter one: jump to the WHILE block (label it), or move N{n} out of the loop"
+        ),
+    )
+}
+
 /// E343: the profile (P..Q) of a turning cycle cannot be cut: not
 /// monotone where the cycle needs it, a first block the cycle does not
 /// accept, a start point on the wrong side.

@@ -71,10 +71,10 @@ impl Interpreter<'_> {
                 self.assign(target, value, lang, c.st.comment.as_deref())?;
                 Ok(Step::Next)
             }
-            StmtKind::Goto(target) => self.goto(target, lang),
-            StmtKind::IfGoto { cond, target } => {
+            StmtKind::Goto { word, target } => self.goto(c, src, *word, target),
+            StmtKind::IfGoto { cond, word, target } => {
                 if self.holds(cond, lang)? {
-                    self.goto(target, lang)
+                    self.goto(c, src, *word, target)
                 } else {
                     Ok(Step::Next)
                 }
@@ -168,10 +168,17 @@ impl Interpreter<'_> {
         self.write_var(kind, n, v, t.span(), comment)
     }
 
-    /// GOTO n: the first block `N n` of the current program.
-    fn goto(&mut self, target: &Expr, lang: Lang) -> Result<Step, Diagnostic> {
+    /// GOTO n: the first block `N n` of the current program; in Macro B
+    /// not into a DO loop that does not hold the GOTO.
+    fn goto(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        word: Span,
+        target: &Expr,
+    ) -> Result<Step, Diagnostic> {
         let span = target.span;
-        let v = self.eval(target, lang)?;
+        let v = self.eval(target, c.lang)?;
         let Some(x) = v.number() else {
             return Err(alarms::vacant_value(span, "the sequence number of a GOTO"));
         };
@@ -190,8 +197,33 @@ impl Interpreter<'_> {
             .flow
             .find_sequence(frame.source, frame.program, n, &lex)
             .ok_or_else(|| alarms::sequence_not_found(span, n))?;
+        if c.lang == Lang::MacroB {
+            self.not_into_a_loop(c, src, word, n, to)?;
+        }
         self.count_jump(span)?;
         Ok(Step::Jump(to))
+    }
+
+    /// Fanuc 0i: a branch may leave a DO–END range but not enter one from
+    /// outside. Syntec MACRO loops are not checked: its §4.8 shows a GOTO
+    /// back into a FOR running (and only advises against it).
+    fn not_into_a_loop(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        word: Span,
+        n: u32,
+        to: Cursor,
+    ) -> Result<(), Diagnostic> {
+        // Pairs the program's loops if a call scanned another since.
+        self.ensure_structure(src)?;
+        let Some(loops) = self.macros.structure.loops(self.program_key()) else {
+            return Ok(());
+        };
+        match loops.iter().find(|r| r.holds(to) && !r.holds(c.here)) {
+            Some(r) => Err(alarms::goto_into_loop(word, n, r.m, r.line)),
+            None => Ok(()),
+        }
     }
 
     /// The statement's link, found by the structure scan.

@@ -18,7 +18,9 @@
 //! a loop number other than 1–3), an IF without END_IF, an ELSE after ELSE,
 //! an EXIT outside a loop or structures nested more than ten deep alarm
 //! E611 there, before they run. What the scan learns is kept as links from
-//! each statement to where it jumps, so a loop's END never searches.
+//! each statement to where it jumps, so a loop's END never searches, and
+//! as the text range of each Macro B DO loop, so a GOTO into a loop from
+//! outside it alarms (E614, `exec.rs`).
 //! Memory is bounded: at most [`LINK_LIMIT`] links in a run.
 
 use super::{Compiled, FastMap, Key, key};
@@ -74,12 +76,47 @@ pub(crate) enum Link {
     Case(Rc<CaseTable>),
 }
 
+/// A position in a source: (line offset, column), in text order.
+pub(crate) type Pos = (u64, u32);
+
+fn pos(c: Cursor) -> Pos {
+    (c.offset, c.col)
+}
+
+/// The range of a Macro B `DO m … END m` loop that a GOTO may leave but
+/// not enter from outside (Fanuc 0i).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LoopRange {
+    /// The first statement after `WHILE … DO m` (a target at the WHILE
+    /// itself enters the loop at its test, as running into it does).
+    pub body: Pos,
+    /// Just after `END m`: the END belongs to the range.
+    pub end: Pos,
+    /// The line of the WHILE, and the loop's number (for the message).
+    pub line: u64,
+    pub m: u8,
+}
+
+impl LoopRange {
+    pub fn holds(&self, at: Cursor) -> bool {
+        (self.body..self.end).contains(&pos(at))
+    }
+}
+
 /// Links of the programs scanned so far.
 #[derive(Default)]
 pub(crate) struct Structure {
     pub links: FastMap<Key, Link>,
-    scanned: FastMap<Key, ()>,
+    /// The DO loops of each program scanned, by program.
+    scanned: FastMap<Key, Rc<[LoopRange]>>,
     last: Option<Key>,
+}
+
+impl Structure {
+    /// The DO loops of program `pk`, when it has been scanned.
+    pub fn loops(&self, pk: Key) -> Option<Rc<[LoopRange]>> {
+        self.scanned.get(&pk).cloned()
+    }
 }
 
 /// A structure still open during the scan.
@@ -131,11 +168,15 @@ impl Open {
 
 type Fault = (Rc<Compiled>, Diagnostic);
 
+/// What pairing a program finds: the links and the DO loops' ranges.
+type Paired = (Vec<(Key, Link)>, Vec<LoopRange>);
+
 /// The pairing of one program's statements.
 struct Pairing {
     id: u32,
     stack: Vec<Open>,
     links: Vec<(Key, Link)>,
+    loops: Vec<LoopRange>,
 }
 
 impl Pairing {
@@ -144,6 +185,7 @@ impl Pairing {
             id,
             stack: Vec::new(),
             links: Vec::new(),
+            loops: Vec::new(),
         }
     }
 
@@ -437,12 +479,18 @@ impl Pairing {
         if let Some(Open::Do { head, .. }) = self.stack.pop() {
             self.links.push((self.k(c), Link::Back(head.here)));
             self.links.push((self.k(&head), Link::Exit(c.next)));
+            self.loops.push(LoopRange {
+                body: pos(head.next),
+                end: pos(c.next),
+                line: head.here.line,
+                m,
+            });
         }
         Ok(())
     }
 
     /// The program ended: what is still open alarms at its head.
-    fn finish(mut self) -> Result<Vec<(Key, Link)>, Fault> {
+    fn finish(mut self) -> Result<Paired, Fault> {
         if let Some(open) = self.stack.pop() {
             let head = Rc::clone(open.head());
             let what = match &open {
@@ -465,13 +513,13 @@ impl Pairing {
                 "close every loop and branch in the program that opens it",
             ));
         }
-        Ok(self.links)
+        Ok((self.links, self.loops))
     }
 }
 
 impl Interpreter<'_> {
     /// The program of the current level, as a key.
-    fn program_key(&self) -> Key {
+    pub(crate) fn program_key(&self) -> Key {
         let f = self.flow.frames.last().map(|f| (f.source, f.program));
         let (src, at) = f.unwrap_or((0, Cursor::default()));
         key(self.source_id(src), at)
@@ -509,8 +557,8 @@ impl Interpreter<'_> {
                 s.reader.seek(back);
             }
             self.macros.moved_reader = true;
-            let links = match pairing.finish() {
-                Ok(links) => links,
+            let (links, loops) = match pairing.finish() {
+                Ok(found) => found,
                 Err((c, d)) => return Err(self.locate_compiled(d, src, &c)),
             };
             let s = &mut self.macros.structure;
@@ -525,7 +573,7 @@ impl Interpreter<'_> {
             if s.scanned.len() >= LINK_LIMIT {
                 s.scanned.clear();
             }
-            s.scanned.insert(pk, ());
+            s.scanned.insert(pk, loops.into());
         }
         self.macros.structure.last = Some(pk);
         Ok(())

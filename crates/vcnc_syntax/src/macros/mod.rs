@@ -299,11 +299,18 @@ pub enum StmtKind {
     /// A `%` tape mark (Syntec files).
     Percent,
     /// `GOTO n`.
-    Goto(Expr),
+    Goto {
+        /// The GOTO keyword (alarms about where it jumps).
+        word: Span,
+        /// Sequence number.
+        target: Expr,
+    },
     /// Macro B `IF [c] GOTO n`.
     IfGoto {
         /// Condition.
         cond: Expr,
+        /// The GOTO keyword.
+        word: Span,
         /// Sequence number.
         target: Expr,
     },
@@ -373,7 +380,7 @@ impl StmtKind {
             StmtKind::Assign { .. }
                 | StmtKind::Words(_)
                 | StmtKind::Percent
-                | StmtKind::Goto(_)
+                | StmtKind::Goto { .. }
                 | StmtKind::IfGoto { .. }
                 | StmtKind::IfThen { .. }
                 | StmtKind::Call(_)

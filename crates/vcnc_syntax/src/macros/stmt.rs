@@ -186,9 +186,10 @@ fn iso_statement(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, D
             return finish(s, StmtKind::End(m));
         }
         if s.at_prefix("GOTO")? {
+            let word = Span::new(s.pos, s.pos + 4);
             s.pos += 4;
             let target = goto_target(s)?;
-            return finish(s, StmtKind::Goto(target));
+            return finish(s, StmtKind::Goto { word, target });
         }
     }
     loop {
@@ -306,9 +307,10 @@ fn iso_if(s: &mut Scan<'_>) -> Result<StmtKind, Diagnostic> {
     s.pos += 2;
     let cond = bracketed(s, "IF")?;
     if s.at_prefix("GOTO")? {
+        let word = Span::new(s.pos, s.pos + 4);
         s.pos += 4;
         let target = goto_target(s)?;
-        return finish(s, StmtKind::IfGoto { cond, target });
+        return finish(s, StmtKind::IfGoto { cond, word, target });
     }
     if s.keyword("THEN")? {
         if s.peek()? != b'#' {
@@ -791,7 +793,10 @@ fn syntec_kind(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, Dia
         "FOR" => for_header(s)?,
         "END_FOR" | "ENDFOR" => StmtKind::EndFor,
         "EXIT" => StmtKind::Exit,
-        "GOTO" => StmtKind::Goto(goto_target(s)?),
+        "GOTO" => StmtKind::Goto {
+            word: span,
+            target: goto_target(s)?,
+        },
         "ELSIF" => {
             return Err(diag::macro_syntax(
                 span,
