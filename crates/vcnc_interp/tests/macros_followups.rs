@@ -1,8 +1,10 @@
-//! Follow-ups of the macro review: a GOTO into a loop from outside it.
+//! Follow-ups of the macro review: a GOTO into a loop from outside it,
+//! clearer messages for a variable in the block-delete position and for a
+//! Syntec `@` variable in an ISO program.
 //! Each test names what it guards; expected values, lines and columns are
 //! worked out by hand in the comments from the program text, the Fanuc 0i
 //! "Custom macro" chapter, the Syntec MACRO specification
-//! (`docs/macro-handbook/03-syntax.md`, §4.8) and `docs/macros.md`.
+//! (`docs/macro-handbook/03-syntax.md`, §4.8; `02-variables.md`, §2.5, §2.8) and `docs/macros.md`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
@@ -204,4 +206,41 @@ fn syntec_goto_back_into_a_for_loop_runs_as_its_specification_shows() {
     let r = run("syntec", p, &["@1", "#10"]);
     ended(&r);
     assert_eq!(r.values, vec![Some(500.0), Some(101.0)]);
+}
+
+// ---------------------------------------------------------------------------
+// 2. Clearer messages
+// ---------------------------------------------------------------------------
+
+#[test]
+fn a_variable_in_the_block_delete_position_says_so() {
+    // Fanuc 0i: "optional block skip numbers cannot be referenced using
+    // variables". `/#2 G00 X1.` alarms at `#2` (column 2), naming the
+    // block delete, not "expected `=`"; nothing moves.
+    let r = run("fanuc", "/#2 G00 X1.\nM30\n", &[]);
+    let d = alarm(&r);
+    assert_eq!(where_(d), (Code::E601, 1, 2));
+    assert!(d.message.contains("block delete"), "{}", d.message);
+    assert!(!d.message.contains("expected"), "{}", d.message);
+    assert!(xs(&r.events).is_empty());
+    // A block-deleted assignment stays one: with block delete off (the
+    // default) `/#2 = 5` sets #2.
+    let r = run("fanuc", "/#2 = 5\nM30\n", &["#2"]);
+    ended(&r);
+    assert_eq!(r.values, vec![Some(5.0)]);
+}
+
+#[test]
+fn an_at_variable_in_a_syntec_iso_program_names_macro_files() {
+    // `@1` is a Syntec global, which only `%@MACRO` files read (Syntec
+    // §2.5, §2.8: MACRO syntax in an ISO file is an error). The word
+    // `Y@1` starts at column 5 of line 2; nothing of the block moves.
+    let r = run("syntec", "G90 G00 X2.\nG00 Y@1 X3.\nM30\n", &[]);
+    let d = alarm(&r);
+    assert_eq!(where_(d), (Code::E104, 2, 5));
+    assert!(d.message.contains("%@MACRO"), "{}", d.message);
+    assert_eq!(xs(&r.events), vec![2.0]);
+    // Fanuc has no `@` variables: its message stays the plain one.
+    let r = run("fanuc", "G00 Y@1\nM30\n", &[]);
+    assert!(!alarm(&r).message.contains("%@MACRO"));
 }

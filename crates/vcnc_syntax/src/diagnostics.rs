@@ -102,6 +102,31 @@ pub fn missing_value(span: Span, letter: char) -> Diagnostic {
     )
 }
 
+/// E104: a Syntec `@` variable as a word's value in an ISO program
+/// (`Y@1`): `@` variables exist only in `%@MACRO` files.
+pub fn at_variable_in_iso(span: Span, letter: char) -> Diagnostic {
+    Diagnostic::new(
+        Code::E104,
+        span,
+        format!(
+            "address {letter} has no value: `@` variables exist only in Syntec MACRO files, whose first line is %@MACRO"
+        ),
+        "start the file with a %@MACRO line to use @ variables, or use a # variable in this ISO program",
+    )
+}
+
+/// E601: a variable right after `/` (`/#2 G00 X1.`): the block-delete
+/// (optional block skip) switch is a digit, never a variable (Fanuc 0i).
+pub fn block_delete_variable(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E601,
+        span,
+        "a block delete switch cannot be a variable: after `/` comes a digit 1-9 or nothing"
+            .to_string(),
+        "write the switch as a digit (/2 G00 X1.); a variable after `/` starts an assignment (/#2 = 5)",
+    )
+}
+
 /// E203: an address that only another dialect has.
 pub fn foreign_address(span: Span, text: &str, dialect: &str) -> Diagnostic {
     let mut d = Diagnostic::new(

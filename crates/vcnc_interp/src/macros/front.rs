@@ -174,7 +174,7 @@ impl Interpreter<'_> {
             None => None,
         };
         let Some((st, next_col)) = parsed else {
-            return Err(lexed);
+            return Err(self.no_macro_syntax(src, line, lexed));
         };
         let here = Cursor {
             offset: line.offset,
@@ -200,6 +200,31 @@ impl Interpreter<'_> {
         self.ensure_structure(src)?;
         *i = next_col;
         self.run_compiled(&c, src, block, store, sink)
+    }
+
+    /// The lexer's alarm for a block without macro syntax, except that a
+    /// word whose value is a Syntec `@` variable (`Y@1`) in an ISO program
+    /// of a controller with `%@MACRO` files says where `@` variables live.
+    #[cold]
+    fn no_macro_syntax(&mut self, src: usize, line: &Line, lexed: Diagnostic) -> Diagnostic {
+        if lexed.code != vcnc_syntax::Code::E104 || self.macros.rules.files != MacroFiles::Syntec {
+            return lexed;
+        }
+        let Some(s) = self.flow.source(src) else {
+            return lexed;
+        };
+        let bytes = s.reader.bytes(line);
+        let span = lexed.span;
+        let value = bytes
+            .get(span.start as usize + 1..)
+            .and_then(|rest| rest.iter().find(|b| !matches!(b, b' ' | b'\t')));
+        match (value, bytes.get(span.start as usize)) {
+            (Some(b'@'), Some(letter)) => vcnc_syntax::diagnostics::at_variable_in_iso(
+                span,
+                char::from(letter.to_ascii_uppercase()),
+            ),
+            _ => lexed,
+        }
     }
 
     /// A profile block (fanuc-lathe G70–G73, P..Q) the lexer rejected: a

@@ -262,6 +262,15 @@ fn stray(s: &mut Scan<'_>) -> Diagnostic {
 fn iso_assignment(s: &mut Scan<'_>) -> Result<StmtKind, Diagnostic> {
     let target = target(s)?;
     if !s.eat(b'=')? {
+        // `/#2 G00 X1.` means a block delete switch from a variable, which
+        // Custom Macro B does not have: say that rather than "expected =".
+        let before = s.text[..target.span().start as usize]
+            .iter()
+            .rev()
+            .find(|b| !matches!(b, b' ' | b'\t'));
+        if before == Some(&b'/') {
+            return Err(diag::block_delete_variable(target.span()));
+        }
         return Err(expected(s, "`=` after the variable", "#1 = 2.5"));
     }
     let value = ExprParser::parse(s)?;
