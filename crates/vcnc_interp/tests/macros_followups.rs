@@ -1,10 +1,11 @@
 //! Follow-ups of the macro review: a GOTO into a loop from outside it,
 //! clearer messages for a variable in the block-delete position and for a
-//! Syntec `@` variable in an ISO program.
+//! Syntec `@` variable in an ISO program, and Syntec string assignment.
 //! Each test names what it guards; expected values, lines and columns are
 //! worked out by hand in the comments from the program text, the Fanuc 0i
 //! "Custom macro" chapter, the Syntec MACRO specification
-//! (`docs/macro-handbook/03-syntax.md`, §4.8; `02-variables.md`, §2.5, §2.8) and `docs/macros.md`.
+//! (`docs/macro-handbook/03-syntax.md`, §4.2, §4.8; `02-variables.md`,
+//! §2.1, §2.5, §2.8) and `docs/macros.md`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
@@ -243,4 +244,41 @@ fn an_at_variable_in_a_syntec_iso_program_names_macro_files() {
     // Fanuc has no `@` variables: its message stays the plain one.
     let r = run("fanuc", "G00 Y@1\nM30\n", &[]);
     assert!(!alarm(&r).message.contains("%@MACRO"));
+}
+// ---------------------------------------------------------------------------
+// 3. Syntec string assignment
+// ---------------------------------------------------------------------------
+
+#[test]
+fn syntec_string_assigned_to_a_local_is_its_number() {
+    // Syntec §4.2: `#10 := "12";  // 区域变量 #10 内容为 12` (local #10
+    // holds 12; locals are numbers, §2.1). 12 + 1 = 13 proves it is a
+    // number; "2.5" gives 2.5.
+    let p = "%@MACRO\n#10 := \"12\";\n#11 := #10 + 1;\n#12 := \"2.5\";\nM30;\n";
+    let r = run("syntec", p, &["#10", "#11", "#12"]);
+    ended(&r);
+    assert_eq!(r.values, vec![Some(12.0), Some(13.0), Some(2.5)]);
+}
+
+#[test]
+fn syntec_string_that_is_no_number_alarms() {
+    // A text that spells no number cannot be a local's value: E601 at the
+    // string, line 2 column 8 (`#10 := ` is 7 characters).
+    let r = run("syntec", "%@MACRO\n#10 := \"AB\";\nM30;\n", &["#10"]);
+    let d = alarm(&r);
+    assert_eq!(where_(d), (Code::E601, 2, 8));
+    assert!(d.message.contains("not a number"), "{}", d.message);
+    assert_eq!(r.values, vec![None]);
+}
+
+#[test]
+fn syntec_string_assigned_to_a_global_needs_the_controller() {
+    // Syntec §2.5: a global stores text as ASCII codes that SCANTEXT reads
+    // back; vcnc has no SCANTEXT, so E604 at the string (line 2, column 8:
+    // `@10 := ` is 7 characters), and @10 stays vacant.
+    let r = run("syntec", "%@MACRO\n@10 := \"12\";\nM30;\n", &["@10"]);
+    let d = alarm(&r);
+    assert_eq!(where_(d), (Code::E604, 2, 8));
+    assert!(d.message.contains("SCANTEXT"), "{}", d.message);
+    assert_eq!(r.values, vec![None]);
 }

@@ -127,6 +127,17 @@ pub fn block_delete_variable(span: Span) -> Diagnostic {
     )
 }
 
+/// E604: text stored in a Syntec global (`@10 := "12";`), which the
+/// controller keeps as ASCII codes for SCANTEXT to read back.
+pub fn unavailable_string_store(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E604,
+        span,
+        "text in a global (@) variable is kept as ASCII codes for SCANTEXT, which needs the real controller".to_string(),
+        "store numbers in @ variables; a # variable takes a number written as text (#10 := \"12\";)",
+    )
+}
+
 /// E203: an address that only another dialect has.
 pub fn foreign_address(span: Span, text: &str, dialect: &str) -> Diagnostic {
     let mut d = Diagnostic::new(

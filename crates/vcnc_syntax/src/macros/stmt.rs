@@ -762,6 +762,10 @@ fn syntec_kind(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, Dia
         if !(s.eat2(b":=")? || s.eat(b'=')?) {
             return Err(expected(s, "`:=` after the variable", "#1 := 2.5;"));
         }
+        if let Some((text, span)) = s.string()? {
+            let value = string_value(&target, &text, span)?;
+            return Ok(StmtKind::Assign { target, value });
+        }
         let value = ExprParser::parse(s)?;
         if value.ops.is_empty() {
             return Err(expected(s, "a value after `:=`", "#1 := 2.5;"));
@@ -827,6 +831,46 @@ fn syntec_kind(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, Dia
         _ => return Err(diag::unknown_statement(span, &name)),
     };
     Ok(kind)
+}
+
+/// The value of `v := "text";` (Syntec §4.2): a local (`#`) holds the
+/// number the text spells (`#10 := "12";` gives 12, a Long as `12` would
+/// be; `"2.5"` a Double). A global (`@`) would hold the text's ASCII
+/// codes, read back with SCANTEXT, which vcnc does not have.
+fn string_value(target: &Target, text: &str, span: Span) -> Result<Expr, Diagnostic> {
+    if matches!(
+        target,
+        Target::Fixed(VarKind::At, ..) | Target::Indirect(VarKind::At, ..)
+    ) {
+        return Err(diag::unavailable_string_store(span));
+    }
+    let bytes = text.trim().as_bytes();
+    let number = parse_number(bytes, 0)
+        .ok()
+        .filter(|n| n.end == bytes.len() && !bytes.iter().any(|b| matches!(b, b' ' | b'\t')));
+    let Some(n) = number else {
+        return Err(diag::macro_syntax(
+            span,
+            &format!("the text \"{text}\" is not a number, and a # variable holds numbers"),
+            "write the number in the quotes (#10 := \"12\";) or without them (#10 := 12;)",
+        ));
+    };
+    let value = if n.point {
+        Value::Double(n.value)
+    } else {
+        // Whole by construction: no point, and the number reader allows
+        // at most 9 digits before it.
+        #[allow(clippy::cast_possible_truncation)]
+        Value::Long(n.value as i64)
+    };
+    Ok(Expr {
+        ops: vec![super::Op {
+            code: OpCode::Num(value),
+            span,
+        }],
+        texts: Vec::new(),
+        span,
+    })
 }
 
 /// A condition followed by its keyword (THEN, DO, OF).
