@@ -304,6 +304,32 @@ fn a_goto_to_a_missing_label() {
 }
 
 #[test]
+fn a_goto_into_a_loop_alarms_in_the_program_that_holds_it() {
+    // O0077 jumps within its own loop (allowed: N5 and the GOTO are both
+    // inside DO 1) and returns; the main program's GOTO 10 then enters its
+    // own loop from outside: E614 at line 2, column 1 of the main program.
+    let o77 =
+        "O0077\n#1 = 0\nWHILE [#1 LT 2] DO 1\n#1 = #1 + 1\nIF [#1 EQ 1] GOTO 5\nN5 END 1\nM99\n";
+    let main = "G65 P77\nGOTO 10\nWHILE [#1 LT 1] DO 1\nN10 #1 = 1\nEND 1\nM30\n";
+    let mut store = Store::default();
+    store.0.insert(77, o77.to_string());
+    let (code, line, col, _) = alarm_on(&Machine::default_mill(), "fanuc", main, store);
+    assert_eq!((code, line, col), (Code::E614, 2, 1));
+    // In the called program: line 3 of O0077 jumps into the loop of its
+    // lines 4-6.
+    let o77 = "O0077\n#1 = 0\nGOTO 5\nWHILE [#1 LT 2] DO 1\nN5 #1 = #1 + 1\nEND 1\nM99\n";
+    let mut store = Store::default();
+    store.0.insert(77, o77.to_string());
+    let (code, line, col, events) =
+        alarm_on(&Machine::default_mill(), "fanuc", "G65 P77\nM30\n", store);
+    assert_eq!((code, line, col), (Code::E614, 3, 1));
+    let Some(Event::Alarm(d)) = events.last() else {
+        panic!("no alarm event");
+    };
+    assert_eq!(d.file.as_deref(), Some("O0077.nc"));
+}
+
+#[test]
 fn calls_that_fail() {
     assert_eq!(alarm("fanuc", "G90\nG65 X1.\nM30\n"), (Code::E312, 2, 1));
     assert_eq!(alarm("fanuc", "G90\nG65 P77\nM30\n"), (Code::E401, 2, 5));
