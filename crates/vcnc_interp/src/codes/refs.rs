@@ -247,7 +247,7 @@ impl Interpreter<'_> {
         // Both legs move like G00 (dog-legs with parameter 411 = 1); the
         // block is all or nothing, so a second leg that alarms drops the first.
         self.straight(MoveKind::Rapid, self.to_target(&goal), w, cmd)?;
-        let mut end = self.state.pos;
+        let mut end = self.settled_tool_pos()?;
         for i in 0..self.machine.axes.len() {
             if named & (1 << i) != 0 {
                 end.set(i, reference.get(i));
@@ -293,7 +293,7 @@ impl Interpreter<'_> {
         if self.state.modal.incremental {
             return Err(alarms::g53_incremental(cmd));
         }
-        let mut to = self.state.pos;
+        let mut to = self.settled_tool_pos()?;
         let mut named = 0;
         for (i, axis) in self.machine.axes.iter().enumerate() {
             if let Some(word) = w.get(axis.letter) {

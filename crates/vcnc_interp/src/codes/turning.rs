@@ -100,7 +100,7 @@ impl Interpreter<'_> {
             if w.get(a.letter).is_none() && a.inc.and_then(|l| w.get(l)).is_none() {
                 continue;
             }
-            let mut to = self.state.pos;
+            let mut to = self.settled_tool_pos()?;
             to.set(i, reference.get(i));
             self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)?;
             any = true;

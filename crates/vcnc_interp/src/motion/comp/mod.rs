@@ -324,6 +324,20 @@ impl Interpreter<'_> {
         Ok(())
     }
 
+    /// Where the tool is once the held move and what waits behind it have
+    /// left: a move to a machine point (G28, G53 …) keeps the axes it does
+    /// not name there, not where the tool was when the stage began to hold.
+    /// Compensation starts again with the next move in the plane.
+    pub(crate) fn settled_tool_pos(&mut self) -> Result<Pos, Diagnostic> {
+        if self.comp.engaged() {
+            self.comp_finish()?;
+            if self.state.modal.comp != crate::state::CompSide::Off {
+                self.comp.mode = Mode::Starting;
+            }
+        }
+        Ok(self.state.pos)
+    }
+
     /// Counts a block without motion in the plane while a move is held.
     pub(crate) fn comp_block_end(&mut self, first: Span) -> Result<(), Diagnostic> {
         if self.comp.mode == Mode::Cancelling && !self.comp.moved_in_plane {

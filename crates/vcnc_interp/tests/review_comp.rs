@@ -1,0 +1,82 @@
+//! Adversarial review of cutter radius compensation (G40/G41/G42) and the
+//! frames it runs under: each test guards one bug found in review, with
+//! the expected tool-centre points worked out by hand in its comments.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, Pos};
+
+fn run(program: &str) -> (Vec<Event>, Outcome) {
+    let m = Machine::default_mill();
+    let d = Dialect::fanuc();
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&m, &d, Options::default()).run_str(program, &mut sink);
+    (sink.0, out)
+}
+
+use vcnc_interp::VecSink;
+
+/// The end points of the rapids and feeds of line `line`.
+fn ends(events: &[Event], line: u64) -> Vec<Pos> {
+    events
+        .iter()
+        .filter(|e| e.loc().is_some_and(|l| l.line == line))
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } | Event::Rapid { to, .. } | Event::Arc { to, .. } => Some(*to),
+            _ => None,
+        })
+        .collect()
+}
+
+fn near(p: Pos, x: f64, y: f64, z: f64) -> bool {
+    (p.0[0] - x).abs() < 1e-6 && (p.0[1] - y).abs() < 1e-6 && (p.0[2] - z).abs() < 1e-6
+}
+
+/// A square pocket wall cut with G41 (r = 5) along +X at y = 0, then a
+/// machine-coordinate Z move (`mid`), then on up along x = 40.
+fn wall_then(mid: &str) -> String {
+    format!(
+        "G10 L12 P1 R5.\n\
+         G00 X0 Y-20. Z-5.\n\
+         G41 D1 G01 X0 Y0 F100.\n\
+         X40.\n\
+         {mid}\n\
+         Y30.\n\
+         G40 X60.\n\
+         M30\n"
+    )
+}
+
+#[test]
+fn g53_z_under_compensation_moves_z_alone() {
+    // Line 4 (+X to 40,0, tool left at y = +5) is held until line 5; G53
+    // ends it square to its path at (40, 5), then only Z goes to machine
+    // 0: the rapid of line 5 ends at (40, 5, 0). X and Y must not jump back
+    // to where the tool was when the block was read (the start-up's end,
+    // 0, 5), which would rapid the tool across the part.
+    let (ev, out) = run(&wall_then("G53 Z0."));
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let l5 = ends(&ev, 5);
+    assert_eq!(l5.len(), 1, "{l5:?}");
+    assert!(near(l5[0], 40.0, 5.0, 0.0), "{l5:?}");
+    // Nothing after it goes back towards x = 0 before the cancel.
+    for p in ends(&ev, 6) {
+        assert!(p.0[0] > 30.0, "line 6 at {p:?}");
+    }
+}
+
+#[test]
+fn g28_z_under_compensation_moves_z_alone() {
+    // G28 Z10.: to the intermediate point Z10 (program), then Z to the
+    // reference point (machine z = 0). Both legs keep X and Y where the
+    // tool is once line 4 has ended square at (40, 5).
+    let (ev, out) = run(&wall_then("G28 Z10."));
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let l5 = ends(&ev, 5);
+    assert_eq!(l5.len(), 2, "{l5:?}");
+    assert!(near(l5[0], 40.0, 5.0, 10.0), "{l5:?}");
+    assert!(near(l5[1], 40.0, 5.0, 0.0), "{l5:?}");
+    for p in ends(&ev, 6) {
+        assert!(p.0[0] > 30.0, "line 6 at {p:?}");
+    }
+}
