@@ -80,3 +80,40 @@ fn g28_z_under_compensation_moves_z_alone() {
         assert!(p.0[0] > 30.0, "line 6 at {p:?}");
     }
 }
+
+#[test]
+fn an_increment_after_g53_under_compensation_starts_from_the_programmed_point() {
+    // After `G53 Z0.` the tool stays at (40, 5) (line 4's square end), but
+    // the programmed point is still (40, 0): the vector of 5 is not a
+    // programmed offset. So `G91 Y30.` programs (40, 0) → (40, 30) and
+    // `X-40.` (40, 30) → (0, 30). Line 7 runs -X with the tool left (−Y):
+    // on y = 25. Its start is the corner with line 6 (+Y, tool at
+    // x = 35): (35, 25). The cancel runs −Y from (0, 30): after −X that
+    // turns left, towards the tool, an inside corner, so line 7 ends where
+    // y = 25 meets the cancel's offset x = 5 (left of −Y is +X): (5, 25).
+    let prog = "G10 L12 P1 R5.\n\
+                G00 X0 Y-20. Z-5.\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                X40.\n\
+                G53 Z0.\n\
+                G91 Y30.\n\
+                X-40.\n\
+                G90 G40 X0 Y-20.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let l6 = ends(&ev, 6);
+    assert!(near(*l6.last().unwrap(), 35.0, 25.0, 0.0), "{l6:?}");
+    let l7 = ends(&ev, 7);
+    assert!(near(*l7.last().unwrap(), 5.0, 25.0, 0.0), "{l7:?}");
+    // The programmed path of line 7, as its contour event reports it.
+    let contour = ev
+        .iter()
+        .find_map(|e| match e {
+            Event::Contour { loc, from, to, .. } if loc.line == 7 => Some((*from, *to)),
+            _ => None,
+        })
+        .unwrap();
+    assert!(near(contour.0, 40.0, 30.0, 0.0), "{contour:?}");
+    assert!(near(contour.1, 0.0, 30.0, 0.0), "{contour:?}");
+}

@@ -183,6 +183,7 @@ impl Interpreter<'_> {
             if self.state.modal.comp != crate::state::CompSide::Off {
                 self.comp.mode = comp::Mode::Starting;
             }
+            self.keep_programmed_plane(&mm, mv.cmd)?;
         }
         let at = comp::Origin {
             loc: self.flow.loc.clone(),

@@ -338,6 +338,28 @@ impl Interpreter<'_> {
         Ok(self.state.pos)
     }
 
+    /// After the held move has ended square, a move to a machine point
+    /// that leaves a plane axis where the tool is (`G53 Z0`) leaves the
+    /// compensation vector on it: that axis keeps its programmed value
+    /// (the uncompensated `mm.from`), so the vector never becomes part of
+    /// the programmed position that later increments add to.
+    pub(crate) fn keep_programmed_plane(
+        &mut self,
+        mm: &MachineMove,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.plane_axes(self.comp.plane, cmd)?;
+        let mut plain = mm.to;
+        for i in [axes.a, axes.b] {
+            if (mm.to.get(i) - self.state.pos.get(i)).abs() < PLANE_EPS {
+                plain.set(i, mm.from.get(i));
+            }
+        }
+        self.state.nominal = plain;
+        self.state.prog = self.state.frame.program_of(plain);
+        Ok(())
+    }
+
     /// Counts a block without motion in the plane while a move is held.
     pub(crate) fn comp_block_end(&mut self, first: Span) -> Result<(), Diagnostic> {
         if self.comp.mode == Mode::Cancelling && !self.comp.moved_in_plane {
