@@ -523,6 +523,17 @@ pub fn g92_under_transform(span: Span) -> Diagnostic {
     )
 }
 
+/// E210: G31 while cutter compensation is on (Fanuc PS0035): the skip
+/// stops where the signal fires, off the end the corner was worked out for.
+pub fn skip_under_comp(span: Span) -> Diagnostic {
+    d(
+        Code::E210,
+        span,
+        "G31 cannot skip while cutter compensation (G41/G42) is on".into(),
+        "cancel compensation with G40 before G31, and start it again afterwards",
+    )
+}
+
 /// E312: tool length compensation on a machine without a Z axis.
 pub fn tool_length_without_z(span: Span) -> Diagnostic {
     d(

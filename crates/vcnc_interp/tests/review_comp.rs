@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
 use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, Pos};
+use vcnc_syntax::Code;
 
 fn run(program: &str) -> (Vec<Event>, Outcome) {
     let m = Machine::default_mill();
@@ -116,4 +117,26 @@ fn an_increment_after_g53_under_compensation_starts_from_the_programmed_point() 
         .unwrap();
     assert!(near(contour.0, 40.0, 30.0, 0.0), "{contour:?}");
     assert!(near(contour.1, 0.0, 30.0, 0.0), "{contour:?}");
+}
+
+#[test]
+fn g31_under_compensation_alarms_at_its_g_word() {
+    // A skip stops where the signal fires, so the corner the compensation
+    // worked out for its end is wrong once it leaves (here an over-cut
+    // alarm at the next block, or a tool centre 5 mm off). Fanuc refuses
+    // G31 in cutter compensation mode (PS0035): E210 at the G31 word
+    // (line 4, column 1), and nothing of line 4 or later moves.
+    let prog = "G10 L12 P1 R5.\n\
+                G00 X0 Y-20.\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                G31 X40.\n\
+                G01 Y30.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!(d.code, Code::E210, "{d:?}");
+    assert_eq!((d.line, d.column), (4, 1), "{d:?}");
+    assert!(ends(&ev, 4).is_empty() && ends(&ev, 5).is_empty());
 }

@@ -134,6 +134,10 @@ impl Interpreter<'_> {
 
     /// G31: moves like G01 until the skip signal of the machine file fires.
     pub(crate) fn skip(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        if self.comp.engaged() {
+            // The compensated corner at its end would be wrong once it stops short.
+            return Err(alarms::skip_under_comp(cmd));
+        }
         let feed = self.feed(cmd)?;
         let goal = self.target(w, self.state.modal.incremental);
         if goal.named == 0 {
