@@ -140,3 +140,31 @@ fn g31_under_compensation_alarms_at_its_g_word() {
     assert_eq!((d.line, d.column), (4, 1), "{d:?}");
     assert!(ends(&ev, 4).is_empty() && ends(&ev, 5).is_empty());
 }
+
+#[test]
+fn g41_to_g42_on_a_straight_line_on_joins_the_two_offsets() {
+    // G41 along +X to (40, 0) (tool at y = +5), then G42 on along +X to
+    // (80, 0) (tool at y = −5). The two offset lines are parallel: no
+    // intersection. Fanuc ("change in the offset direction", no
+    // intersection): block A ends square to its end, (40, 5), and a vector
+    // square to block B is made at B's start, (40, −5); the tool goes
+    // there straight and on along y = −5. B then meets the cancel (−Y
+    // after +X turns right, towards the tool on the right: inside) where
+    // y = −5 meets the cancel's offset x = 75: (75, −5).
+    let prog = "G10 L12 P1 R5.\n\
+                G00 X0 Y-20.\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                X40.\n\
+                G42 X80.\n\
+                G40 X80. Y-20.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let l4 = ends(&ev, 4);
+    assert_eq!(l4.len(), 1, "{l4:?}");
+    assert!(near(l4[0], 40.0, 5.0, 0.0), "{l4:?}");
+    let l5 = ends(&ev, 5);
+    assert_eq!(l5.len(), 2, "{l5:?}");
+    assert!(near(l5[0], 40.0, -5.0, 0.0), "{l5:?}");
+    assert!(near(l5[1], 75.0, -5.0, 0.0), "{l5:?}");
+}

@@ -267,8 +267,21 @@ pub(crate) fn corner(a: &Seg, sa: f64, b: &Seg, sb: f64, r: f64) -> Result<Corne
     let (ta, tb) = (a.tangent(true), b.tangent(false));
     let meet = || intersect(a.offset(sa, r), b.offset(sb, r), a.b).ok_or(Fault::NoIntersection);
     if sa != sb {
-        // A change of side: where the two offset paths cross (Fanuc).
-        return meet().map(Corner::At);
+        // A change of side: where the two offset paths cross; where they
+        // do not (a straight line on), `a` ends square to its end and a line
+        // joins the point square to `b`'s start (Fanuc).
+        return Ok(match meet() {
+            Ok(p) => Corner::At(p),
+            Err(_) => {
+                let (p1, p2) = (a.perpendicular(true, sa, r), b.perpendicular(false, sb, r));
+                Corner::Around {
+                    p1,
+                    l1: p1,
+                    l2: p2,
+                    p2,
+                }
+            }
+        });
     }
     match kind(ta, tb, sa) {
         Kind::Tangent => return Ok(Corner::At(a.perpendicular(true, sa, r))),

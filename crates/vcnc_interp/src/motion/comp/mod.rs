@@ -431,7 +431,7 @@ impl Interpreter<'_> {
                 exact_stop: false,
             };
             self.release(join, &held.at, None)?;
-            if held.seg.arc.is_some() {
+            if held.seg.arc.is_some() && l2.dist(held.start) > PLANE_EPS {
                 let lead = MachineMove {
                     to: start_pos,
                     ..join
@@ -452,7 +452,7 @@ impl Interpreter<'_> {
             ..held.mm
         };
         self.release(moved, &held.at, None)?;
-        if let Some(l1) = extension {
+        if let Some(l1) = extension.filter(|l1| l1.dist(end) > PLANE_EPS) {
             let ext = MachineMove {
                 kind: straight_kind(&held.mm),
                 from: to,
