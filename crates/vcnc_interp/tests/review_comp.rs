@@ -168,3 +168,32 @@ fn g41_to_g42_on_a_straight_line_on_joins_the_two_offsets() {
     assert!(near(l5[0], 40.0, -5.0, 0.0), "{l5:?}");
     assert!(near(l5[1], 75.0, -5.0, 0.0), "{l5:?}");
 }
+
+#[test]
+fn a_nearly_tangent_arc_to_line_from_rounded_coordinates_is_cut() {
+    // CAM output rounds to 0.001 mm, so an arc and the line leaving it
+    // tangentially are tangent only to within that. Here the G03 about
+    // (0, 10) ends 0.001 beyond its radius (10.001, accepted as an arc)
+    // and the line leaves it 0.003° off the tangent (+Y). G42 puts the
+    // tool outside the arc (r = 3): its offset circle has radius 13, the
+    // line's offset runs along x ≈ 13.001 and misses that circle by
+    // 0.001 mm: no intersection, but nothing is over-cut — the corner is
+    // the tangent point. Expected: the arc ends at (13.001, 10) and the
+    // line, meeting the cancel's offset y = 27 (inside corner),
+    // at x = 13.001 + 0.00005·17 = 13.0019.
+    let prog = "G10 L12 P1 R3.\n\
+                G00 X-30. Y-10.\n\
+                G42 D1 G01 X-30. Y0 F100.\n\
+                X0\n\
+                G03 X10.001 Y10. I0 J10.\n\
+                G01 X10.002 Y30.\n\
+                G40 X30. Y30.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let near2 = |p: Pos, x: f64, y: f64| (p.0[0] - x).abs() < 2e-3 && (p.0[1] - y).abs() < 2e-3;
+    let l5 = ends(&ev, 5);
+    assert!(near2(*l5.last().unwrap(), 13.001, 10.0), "{l5:?}");
+    let l6 = ends(&ev, 6);
+    assert!(near2(*l6.last().unwrap(), 13.0019, 27.0), "{l6:?}");
+}

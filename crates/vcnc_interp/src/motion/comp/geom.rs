@@ -24,6 +24,13 @@ use std::f64::consts::PI;
 const EPS: f64 = 1e-9;
 /// Below this two angles are equal, degrees (α exactly 90° or 180°).
 const ANGLE_EPS_DEG: f64 = 1e-7;
+/// Offsets that miss each other by less than this touch, mm. Programs are
+/// rounded (to 0.001 mm by most CAM posts) and an arc's end may lie off its
+/// radius by up to the arc tolerance (0.01 mm by default), so a tangent
+/// junction of a line or an arc with an arc is tangent only to within that:
+/// its offsets then pass within a few micrometres without meeting, and the
+/// tangent point is the corner, not an over-cut.
+const TOUCH_MM: f64 = 0.01;
 
 /// A point or vector of the plane.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -230,16 +237,16 @@ pub(crate) fn intersect(o1: Offset, o2: Offset, near: V2) -> Option<V2> {
         (Offset::Line { p, d }, Offset::Circle { c, r })
         | (Offset::Circle { c, r }, Offset::Line { p, d }) => {
             let foot = p.add(d.scale(c.sub(p).dot(d)));
-            let h2 = r * r - foot.dist(c).powi(2);
-            if h2 < -1e-9 {
+            if foot.dist(c) > r + TOUCH_MM {
                 return None;
             }
+            let h2 = r * r - foot.dist(c).powi(2);
             let h = h2.max(0.0).sqrt();
             Some(pick(foot.add(d.scale(h)), foot.sub(d.scale(h))))
         }
         (Offset::Circle { c: c1, r: r1 }, Offset::Circle { c: c2, r: r2 }) => {
             let dd = c1.dist(c2);
-            if dd < EPS || dd > r1 + r2 + 1e-9 || dd < (r1 - r2).abs() - 1e-9 {
+            if dd < EPS || dd > r1 + r2 + TOUCH_MM || dd < (r1 - r2).abs() - TOUCH_MM {
                 return None;
             }
             let a = (r1 * r1 - r2 * r2 + dd * dd) / (2.0 * dd);
