@@ -197,3 +197,29 @@ fn a_nearly_tangent_arc_to_line_from_rounded_coordinates_is_cut() {
     let l6 = ends(&ev, 6);
     assert!(near2(*l6.last().unwrap(), 13.0019, 27.0), "{l6:?}");
 }
+
+#[test]
+fn an_uneven_scale_with_a_negative_factor_swaps_the_side_like_a_mirror() {
+    // G51 I-2000 J1000 about (0, 0): x' = −2x, y' = y, a mirror in X with
+    // an uneven scale (lines only: arcs would alarm E315). The programmed
+    // pocket (0, 0)–(40, 0)–(40, 30) with G41 inside it becomes, on the
+    // machine, (0, 0)–(−80, 0)–(−80, 30), still with the tool inside: the
+    // mirror swaps G41 to the machine's right, as it does for G51 I-1000.
+    // Line 5 runs −X at y = +5 and ends at the inside corner (−75, 5);
+    // line 6 runs +Y at x = −75 (right of +Y is +X).
+    let prog = "G10 L12 P1 R5.\n\
+                G00 X0 Y-20.\n\
+                G51 X0 Y0 I-2000 J1000\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                X40.\n\
+                Y30.\n\
+                G40 X60.\n\
+                G50\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let l5 = ends(&ev, 5);
+    assert!(near(*l5.last().unwrap(), -75.0, 5.0, 0.0), "{l5:?}");
+    let l6 = ends(&ev, 6);
+    assert!((l6.last().unwrap().0[0] + 75.0).abs() < 1e-6, "{l6:?}");
+}

@@ -386,9 +386,16 @@ impl Frame {
     }
 
     /// Whether an odd number of mirrors act in `plane` (the compensation
-    /// side swaps, Syntec 1.2.21).
+    /// side swaps, Syntec 1.2.21): the plane's 2×2 block turns left into
+    /// right, also under an uneven scale with a negative factor (which
+    /// carries lines though not arcs).
     pub fn mirrors(&self, plane: Plane) -> bool {
-        matches!(self.arc_map(plane), ArcMap::Similar { reversed: true })
+        if self.identity {
+            return false;
+        }
+        let (i, j) = plane_rows(plane);
+        let m = &self.affine.m;
+        m[i][i] * m[j][j] - m[i][j] * m[j][i] < 0.0
     }
 
     /// The linear part (rows and columns x, y, z), for the `frame` event.
