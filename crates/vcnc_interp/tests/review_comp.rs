@@ -4,6 +4,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
+use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, Pos};
 use vcnc_syntax::Code;
 
@@ -222,4 +223,56 @@ fn an_uneven_scale_with_a_negative_factor_swaps_the_side_like_a_mirror() {
     assert!(near(*l5.last().unwrap(), -75.0, 5.0, 0.0), "{l5:?}");
     let l6 = ends(&ev, 6);
     assert!((l6.last().unwrap().0[0] + 75.0).abs() < 1e-6, "{l6:?}");
+}
+
+#[test]
+fn a_full_circle_with_outside_corners_on_both_sides_sweeps_more_than_a_turn() {
+    // A full G03 circle about (0, 10) (r 10) at (0, 0), entered along
+    // y = x/2 from (−20, −10) and left along y = −x/2 to (20, −10), G41:
+    // the tool inside the circle, offset circle radius 5. Both corners
+    // are outside (the entry turns right into +X, the exit turns right
+    // out of it), so each corner is where the line's offset crosses the
+    // offset circle: the entry's offset y = x/2 + 5.59 meets it at
+    // (−0.9846, 5.0979) (258.64° about the centre), the exit's at
+    // (0.9846, 5.0979) (281.36°). The tool runs from the first over the
+    // top (y = 15) round to the second: 360° + 22.71° = 382.71°, 33.40 mm.
+    // An event from the one point to the other says 22.71° to a reader,
+    // and the circle is never cut.
+    let prog = "G10 L12 P1 R5.\n\
+                G00 X-40. Y0\n\
+                G41 D1 G01 X-20. Y-10. F100.\n\
+                X0 Y0\n\
+                G03 X0 Y0 I0 J10.\n\
+                G01 X20. Y-10.\n\
+                G40 X40.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let xy = PlaneAxes {
+        a: 0,
+        b: 1,
+        n: Some(2),
+    };
+    let mut pos = Pos::default();
+    let mut length = 0.0;
+    for e in &ev {
+        match e {
+            Event::Feed { to, .. } | Event::Rapid { to, .. } => pos = *to,
+            Event::Arc {
+                loc,
+                to,
+                center,
+                dir,
+                ..
+            } => {
+                if loc.line == 5 {
+                    length += ArcPath::new(pos, *to, *center, xy, *dir).length();
+                }
+                pos = *to;
+            }
+            _ => {}
+        }
+    }
+    assert!((length - 33.398).abs() < 0.01, "arc length {length}");
+    assert!(near(*ends(&ev, 5).last().unwrap(), 0.984554, 5.097893, 0.0));
 }

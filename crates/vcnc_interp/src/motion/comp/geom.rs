@@ -165,25 +165,53 @@ impl Seg {
     /// the programmed path (a line not turned by more than 90°, an arc whose
     /// sweep does not reverse).
     pub fn keeps_direction(&self, s2: V2, e2: V2) -> bool {
-        match self.arc {
+        match self.compensated_sweep(s2, e2) {
             None => e2.sub(s2).dot(self.b.sub(self.a)) >= -EPS,
-            Some((c, ccw)) => {
-                let sigma = if ccw { 1.0 } else { -1.0 };
-                // Angle from p to q about c, in the arc's direction, in (−π, π].
-                let ang = |p: V2, q: V2| {
-                    let (u, v) = (p.sub(c), q.sub(c));
-                    sigma * u.cross(v).atan2(u.dot(v))
-                };
-                let full = self.a.dist(self.b) < EPS;
-                let sweep = if full {
-                    2.0 * PI
-                } else {
-                    ang(self.a, self.b).rem_euclid(2.0 * PI)
-                };
-                let compensated = sweep - ang(self.a, s2) + ang(self.b, e2);
-                compensated >= -1e-9
-            }
+            Some(sweep) => sweep >= -1e-9,
         }
+    }
+
+    /// An arc's sweep (radians, in its direction) compensated from `s2` to
+    /// `e2`: the programmed sweep less what the start moved on, plus what
+    /// the end did. It can pass a full turn (a circle entered and left at
+    /// outside corners). `None` for a line.
+    fn compensated_sweep(&self, s2: V2, e2: V2) -> Option<f64> {
+        let (c, ccw) = self.arc?;
+        let sigma = if ccw { 1.0 } else { -1.0 };
+        // Angle from p to q about c, in the arc's direction, in (−π, π].
+        let ang = |p: V2, q: V2| {
+            let (u, v) = (p.sub(c), q.sub(c));
+            sigma * u.cross(v).atan2(u.dot(v))
+        };
+        let full = self.a.dist(self.b) < EPS;
+        let sweep = if full {
+            2.0 * PI
+        } else {
+            ang(self.a, self.b).rem_euclid(2.0 * PI)
+        };
+        Some(sweep - ang(self.a, s2) + ang(self.b, e2))
+    }
+
+    /// Where to split the compensated arc from `s2` to `e2` in two, when
+    /// one event from `s2` to `e2` would say another sweep than it has: a
+    /// reader takes the sweep from `s2` to `e2` in the arc's direction, a
+    /// full turn when they coincide, never more. The split point is half
+    /// way round.
+    pub fn split(&self, s2: V2, e2: V2) -> Option<V2> {
+        let (c, ccw) = self.arc?;
+        let sweep = self.compensated_sweep(s2, e2)?;
+        let sigma = if ccw { 1.0 } else { -1.0 };
+        let (u, v) = (s2.sub(c), e2.sub(c));
+        let read = if s2.dist(e2) < EPS {
+            2.0 * PI
+        } else {
+            (sigma * u.cross(v).atan2(u.dot(v))).rem_euclid(2.0 * PI)
+        };
+        if (read - sweep).abs() < 1e-6 {
+            return None;
+        }
+        let (sin, cos) = (sigma * sweep / 2.0).sin_cos();
+        Some(c.add(V2::new(u.x * cos - u.y * sin, u.x * sin + u.y * cos)))
     }
 }
 

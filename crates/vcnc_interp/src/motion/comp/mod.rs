@@ -445,6 +445,21 @@ impl Interpreter<'_> {
             other => (end, other),
         };
         let to = with_plane(held.mm.to, axes, tip(end));
+        if let Some(mid) = held.seg.split(held.start, end) {
+            // More than a turn: two events, half the sweep (and of the
+            // helix's rise) each.
+            let mut half = self.state.pos;
+            for (h, t) in half.0.iter_mut().zip(to.0) {
+                *h = (*h + t) / 2.0;
+            }
+            let first = MachineMove {
+                from: self.state.pos,
+                to: with_plane(half, axes, tip(mid)),
+                kind: nose::shifted_kind(held.mm.kind, held.shift),
+                ..held.mm
+            };
+            self.release(first, &held.at, None)?;
+        }
         let moved = MachineMove {
             from: self.state.pos,
             to,
