@@ -276,3 +276,34 @@ fn a_full_circle_with_outside_corners_on_both_sides_sweeps_more_than_a_turn() {
     assert!((length - 33.398).abs() < 0.01, "arc length {length}");
     assert!(near(*ends(&ev, 5).last().unwrap(), 0.984554, 5.097893, 0.0));
 }
+
+#[test]
+fn an_arc_the_corners_shrink_to_a_point_is_not_a_full_circle() {
+    // A G03 of radius 10 about (0, 0) from 240° (−5, −8.660254) to 300°
+    // (5, −8.660254), between a line down x = −5 and a line up x = 5,
+    // G41: the tool is inside, the offset circle has radius 5, and both
+    // line offsets are x = 0. Both inside corners are where x = 0 meets
+    // the offset circle nearest the arc's ends: (0, −5). The compensated
+    // arc runs from (0, −5) to (0, −5) sweeping 60° − 30° − 30° = 0: the
+    // tool touches the arc's bottom and leaves. One arc event from a point
+    // to itself reads as a full circle of radius 5, which passes x = ±5,
+    // right through both walls; the tool must stay on x = 0.
+    let prog = "G10 L12 P1 R5.\n\
+                G00 X-5. Y20.\n\
+                G41 D1 G01 X-5. Y10. F100.\n\
+                Y-8.660254\n\
+                G03 X5. Y-8.660254 I5. J8.660254\n\
+                G01 Y10.\n\
+                G40 X5. Y20.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    for e in &ev {
+        if let Event::Arc { loc, .. } = e {
+            assert!(loc.line != 5, "an arc event for the collapsed arc: {e:?}");
+        }
+    }
+    for p in ends(&ev, 5) {
+        assert!(p.0[0].abs() < 1e-4 && (p.0[1] + 5.0).abs() < 1e-4, "{p:?}");
+    }
+}

@@ -192,6 +192,16 @@ impl Seg {
         Some(sweep - ang(self.a, s2) + ang(self.b, e2))
     }
 
+    /// Whether the compensated arc from `s2` to `e2` shrinks to a point
+    /// (its corners take all of its sweep): it must not leave as an arc
+    /// from a point to itself, which reads as a full circle.
+    pub fn collapses(&self, s2: V2, e2: V2) -> bool {
+        s2.dist(e2) < 1e-6
+            && self
+                .compensated_sweep(s2, e2)
+                .is_some_and(|sweep| sweep < PI)
+    }
+
     /// Where to split the compensated arc from `s2` to `e2` in two, when
     /// one event from `s2` to `e2` would say another sweep than it has: a
     /// reader takes the sweep from `s2` to `e2` in the arc's direction, a
@@ -200,6 +210,9 @@ impl Seg {
     pub fn split(&self, s2: V2, e2: V2) -> Option<V2> {
         let (c, ccw) = self.arc?;
         let sweep = self.compensated_sweep(s2, e2)?;
+        if self.collapses(s2, e2) {
+            return None;
+        }
         let sigma = if ccw { 1.0 } else { -1.0 };
         let (u, v) = (s2.sub(c), e2.sub(c));
         let read = if s2.dist(e2) < EPS {

@@ -460,10 +460,16 @@ impl Interpreter<'_> {
             };
             self.release(first, &held.at, None)?;
         }
+        // An arc its corners shrink to a point leaves as a straight move.
+        let kind = if held.seg.collapses(held.start, end) {
+            straight_kind(&held.mm)
+        } else {
+            nose::shifted_kind(held.mm.kind, held.shift)
+        };
         let moved = MachineMove {
             from: self.state.pos,
             to,
-            kind: nose::shifted_kind(held.mm.kind, held.shift),
+            kind,
             ..held.mm
         };
         self.release(moved, &held.at, None)?;
