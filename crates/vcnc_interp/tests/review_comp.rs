@@ -307,3 +307,25 @@ fn an_arc_the_corners_shrink_to_a_point_is_not_a_full_circle() {
         assert!(p.0[0].abs() < 1e-4 && (p.0[1] + 5.0).abs() < 1e-4, "{p:?}");
     }
 }
+
+#[test]
+fn a_d_word_in_an_arc_block_under_g41_is_the_offset_number_not_a_diameter() {
+    // Fanuc: under G41/G42 a D word in any motion block, arcs included,
+    // changes the radius offset. Only the lathe dialect reads D on an arc
+    // as its diameter. Here D2 (r = 3) comes with a G03 given by I/J about
+    // (0, 20) from (0, 0) to (20, 20); the tool is left, towards the
+    // centre. The line after it leaves tangentially (+Y), so the arc ends
+    // square to its end at the new radius: (20 − 3, 20) = (17, 20).
+    let prog = "G10 L12 P1 R5.\n\
+                G10 L12 P2 R3.\n\
+                G00 X0 Y-20.\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                G03 X20. Y20. I0. J20. D2\n\
+                G01 X20. Y40.\n\
+                G40 X40.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let l5 = ends(&ev, 5);
+    assert!(near(*l5.last().unwrap(), 17.0, 20.0, 0.0), "{l5:?}");
+}

@@ -22,7 +22,7 @@ use super::MoveKind;
 use crate::alarms;
 use crate::block::convert::Goal;
 use crate::block::words::Words;
-use crate::dialect::LongChord;
+use crate::dialect::{LongChord, bit};
 use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::frame::plane_rows;
@@ -115,6 +115,10 @@ impl Interpreter<'_> {
                 span: cr.span,
                 line_if_short,
             });
+        }
+        if self.dialect.arc_letters & bit(b'D') == 0 {
+            // Elsewhere D is the cutter radius offset (G41/G42), not a diameter.
+            return None;
         }
         w.get(b'D').map(|d| Radius {
             mm: self.length_mm(&d) / 2.0,
