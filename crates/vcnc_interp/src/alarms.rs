@@ -644,6 +644,20 @@ pub fn comp_lookahead(span: Span, limit: u32) -> Diagnostic {
     )
 }
 
+/// E320: a new cutter radius in force at an arc while compensating: the
+/// compensated arc would start at one radius from its centre and end at
+/// another (Fanuc PS0020).
+pub fn comp_radius_change_on_arc(span: Span, old_mm: f64, new_mm: f64) -> Diagnostic {
+    d(
+        Code::E320,
+        span,
+        format!(
+            "the cutter radius cannot change on an arc (from {old_mm:.4} mm to {new_mm:.4} mm): the compensated arc would not be a circle"
+        ),
+        "give the new D in a straight (G00/G01) block, or with compensation cancelled",
+    )
+}
+
 /// E320: a code that must not change while cutter compensation is on.
 pub fn not_while_compensating(span: Span, what: &str) -> Diagnostic {
     d(

@@ -329,3 +329,28 @@ fn a_d_word_in_an_arc_block_under_g41_is_the_offset_number_not_a_diameter() {
     let l5 = ends(&ev, 5);
     assert!(near(*l5.last().unwrap(), 17.0, 20.0, 0.0), "{l5:?}");
 }
+
+#[test]
+fn a_radius_change_on_an_arc_under_compensation_alarms() {
+    // D2 (r = 3, was 5) on a G03 about (20, 20) from (20, 0): the corner
+    // before the arc is worked out with the old radius, so the arc would
+    // start 15 from its centre, at (20, 5), and end with the new one 17
+    // from it, at (37, 20). No circle does that (one event cannot say it,
+    // grbl refuses it, a Fanuc alarms PS0020). E320 at the G03 word (line
+    // 6, column 4), and nothing of the arc or after it moves.
+    let prog = "G10 L12 P1 R5.\n\
+                G10 L12 P2 R3.\n\
+                G00 X0 Y-20.\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                X20.\n\
+                D2 G03 X40. Y20. I0. J20.\n\
+                G01 Y40.\n\
+                G40 X60.\n\
+                M30\n";
+    let (ev, out) = run(prog);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E320, 6, 4), "{d:?}");
+    assert!(ends(&ev, 6).is_empty() && ends(&ev, 7).is_empty());
+}

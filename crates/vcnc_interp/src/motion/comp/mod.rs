@@ -250,6 +250,14 @@ impl Interpreter<'_> {
                 self.release(mm, &at, None)
             }
             _ => {
+                if let Some(h) = self.comp.held.as_ref()
+                    && seg.arc.is_some()
+                    && !h.startup
+                    && (h.r - r).abs() > PLANE_EPS
+                {
+                    // The corner before it uses the old radius, its end the new.
+                    return Err(alarms::comp_radius_change_on_arc(cmd, h.r, r));
+                }
                 let next = Held {
                     mm,
                     seg,
