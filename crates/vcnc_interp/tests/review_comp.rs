@@ -354,3 +354,27 @@ fn a_radius_change_on_an_arc_under_compensation_alarms() {
     assert_eq!((d.code, d.line, d.column), (Code::E320, 6, 4), "{d:?}");
     assert!(ends(&ev, 6).is_empty() && ends(&ev, 7).is_empty());
 }
+
+#[test]
+fn a_d_word_in_a_modal_arc_block_under_g41_changes_the_radius() {
+    // As above, but the arc block is modal G03 after another G03 (the
+    // usual way to write a chain of arcs). Its D2 must change the radius
+    // to 3 as in any motion block, not be dropped: here it is in force at
+    // an arc that is not the first after the start-up, so E320 at the
+    // first word of line 6 (the block has no G word). Ignoring it would
+    // cut on with r = 5 though the program asks for 3.
+    let prog = "G10 L12 P1 R5.\n\
+                G10 L12 P2 R3.\n\
+                G00 X0 Y-20.\n\
+                G41 D1 G01 X0 Y0 F100.\n\
+                G03 X20. Y20. I0. J20.\n\
+                X0 Y40. I-20. J0. D2\n\
+                G01 X-20.\n\
+                G40 Y0\n\
+                M30\n";
+    let (_, out) = run(prog);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line), (Code::E320, 6), "{d:?}");
+}

@@ -11,7 +11,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::{GOp, Group};
+use crate::dialect::{GOp, Group, bit};
 use crate::interpreter::Interpreter;
 use crate::motion::comp::Mode;
 use crate::state::{CompSide, Motion};
@@ -66,11 +66,13 @@ impl Interpreter<'_> {
     }
 
     /// Whether this block's D is a cutter radius (G41/G42 in it, or
-    /// compensation on), not the lathe's arc diameter.
+    /// compensation on), not an arc's diameter (a dialect whose arcs read
+    /// D: the lathe's).
     fn reads_d(&self, w: &Words<'_>) -> bool {
+        let arc_reads_d = self.dialect.arc_letters & bit(b'D') != 0
+            && matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw);
         w.group(Group::CutterComp).is_some()
-            || (self.state.modal.comp != CompSide::Off
-                && !matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw))
+            || (self.state.modal.comp != CompSide::Off && !arc_reads_d)
     }
 
     /// E320 when compensation is on and the block changes what it cannot
