@@ -378,3 +378,35 @@ fn a_d_word_in_a_modal_arc_block_under_g41_changes_the_radius() {
     };
     assert_eq!((d.code, d.line), (Code::E320, 6), "{d:?}");
 }
+
+#[test]
+fn a_d_word_without_g41_selects_the_radius_for_the_next_g41() {
+    // Fanuc keeps D modal: `T1 M06 D1` and `G43 Z10. H1 D1` store offset 1
+    // (r = 5 by G10 L12), and the G41 of line 6 without D uses it. The
+    // start-up from (-10, -10) to (0, 0) turns left into x = 0 going +Y
+    // (an inside corner on the left): it ends where the offset lines meet,
+    // x = -5 and y = x + 5·√2, i.e. (-5, 2.071068); the wall x = 0 up to
+    // y = 20 turning right along +X (an outside 90° corner) ends at the
+    // intersection (-5, 25).
+    let p = "G10 L12 P1 R5.\nT1 M06 D1\nG00 G43 Z10. H1 D1\nG00 X-10. Y-10.\n\
+             S1000 M03\nG41 G01 X0 Y0 F100.\nY20.\nX20.\nG40 G00 X30. Y30.\nM30\n";
+    let (ev, out) = run(p);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let start = ends(&ev, 6);
+    assert!(near(start[0], -5.0, 2.071_068, 10.0), "{start:?}");
+    let wall = ends(&ev, 7);
+    assert!(near(wall[0], -5.0, 25.0, 10.0), "{wall:?}");
+}
+
+#[test]
+fn a_d_word_alone_stays_an_error_where_d_is_no_radius_offset() {
+    // grbl has no cutter compensation: a lone D is an unused word (E203).
+    let d = Dialect::grbl();
+    let m = d.machine();
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&m, &d, Options::default()).run_str("D1\nM2\n", &mut sink);
+    match out {
+        Outcome::Alarm(a) => assert_eq!((a.code, a.line, a.column), (Code::E203, 1, 1)),
+        other => panic!("{other:?}"),
+    }
+}

@@ -234,8 +234,10 @@ impl Interpreter<'_> {
             // Under G43/G44 an H word alone changes the offset.
             allowed |= bit(b'H');
         }
-        if self.state.modal.comp != crate::state::CompSide::Off {
-            // Under G41/G42 a D word alone changes the radius.
+        if self.state.modal.comp != crate::state::CompSide::Off || self.d_alone_is_radius() {
+            // Under G41/G42 a D word alone changes the radius; outside them
+            // it selects the offset the next G41/G42 uses (Fanuc: D is
+            // modal; `T1 M06 D1`, `G43 Z10. H1 D1`).
             allowed |= bit(b'D');
         }
         if self.state.cycle.code.is_some() && w.axis_user.is_none() {

@@ -69,10 +69,22 @@ impl Interpreter<'_> {
     /// compensation on), not an arc's diameter (a dialect whose arcs read
     /// D: the lathe's).
     fn reads_d(&self, w: &Words<'_>) -> bool {
-        let arc_reads_d = self.dialect.arc_letters & bit(b'D') != 0
-            && matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw);
         w.group(Group::CutterComp).is_some()
-            || (self.state.modal.comp != CompSide::Off && !arc_reads_d)
+            || (self.state.modal.comp != CompSide::Off && !self.arc_reads_d())
+            || self.d_alone_is_radius()
+    }
+
+    /// Whether the modal motion is an arc that reads D as its diameter
+    /// (the lathe's).
+    fn arc_reads_d(&self) -> bool {
+        self.dialect.arc_letters & bit(b'D') != 0
+            && matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw)
+    }
+
+    /// Whether a D outside G41/G42 is a cutter-radius offset number to
+    /// keep for the next G41/G42, not an arc's diameter.
+    pub(crate) fn d_alone_is_radius(&self) -> bool {
+        self.dialect.d_is_radius_offset() && !self.arc_reads_d()
     }
 
     /// E320 when compensation is on and the block changes what it cannot

@@ -656,6 +656,13 @@ impl Dialect {
         self.g.get(slot).copied().flatten()
     }
 
+    /// Whether a D word selects a cutter-radius offset in this dialect (its
+    /// G41 reads D): then D is modal and may stand without G41/G42.
+    pub(crate) fn d_is_radius_offset(&self) -> bool {
+        self.g(41.0)
+            .is_some_and(|g| g.op == GOp::CompLeft && g.letters & (1 << (b'D' - b'A')) != 0)
+    }
+
     /// The G code that does `op` in this dialect (the first in the table),
     /// for a help text that must name the dialect's own code: feed per
     /// minute is G94 on a mill and G98 on a Fanuc lathe, whose G94 is a
