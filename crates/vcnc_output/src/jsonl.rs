@@ -364,7 +364,7 @@ impl Obj<'_> {
         push_json_str(self.out, &d.help);
     }
 
-    #[inline]
+    #[inline(always)]
     fn head(&mut self, kind: &str, loc: &Loc) {
         self.out.extend_from_slice(b"{\"type\":\"");
         self.out.extend_from_slice(kind.as_bytes());
@@ -375,7 +375,7 @@ impl Obj<'_> {
             push_json_str(self.out, f);
         }
     }
-    #[inline]
+    #[inline(always)]
     fn key(&mut self, k: &str) {
         self.out.extend_from_slice(b",\"");
         self.out.extend_from_slice(k.as_bytes());
