@@ -56,7 +56,7 @@ pub(crate) struct Origin {
 }
 
 /// A move in the plane whose end is not settled yet.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 struct Held {
     mm: MachineMove,
     seg: Seg,
@@ -84,7 +84,7 @@ enum Queued {
 }
 
 /// The compensation stage.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub(crate) struct Comp {
     pub mode: Mode,
     /// The plane compensation runs in (set by G41/G42).
@@ -97,6 +97,72 @@ pub(crate) struct Comp {
     moved_in_plane: bool,
     /// A held move is leaving: its events go out at once.
     releasing: bool,
+}
+
+// `Held` and `Comp` spell out `clone_from`: the interpreter saves the stage
+// before every block while compensation is engaged (an alarm puts it back),
+// and the derived `clone_from` builds a whole new value, then drops the old
+// one. These assign in place and keep the queue's buffer; they name every
+// field, so a new field fails to compile until it is copied here too.
+impl Clone for Held {
+    fn clone(&self) -> Held {
+        Held {
+            at: self.at.clone(),
+            ..*self
+        }
+    }
+
+    fn clone_from(&mut self, src: &Held) {
+        let Held {
+            mm,
+            seg,
+            start,
+            lead_in,
+            side,
+            r,
+            startup,
+            shift,
+            at,
+        } = src;
+        self.mm = *mm;
+        self.seg = *seg;
+        self.start = *start;
+        self.lead_in = *lead_in;
+        self.side = *side;
+        self.r = *r;
+        self.startup = *startup;
+        self.shift = *shift;
+        self.at.clone_from(at);
+    }
+}
+
+impl Clone for Comp {
+    fn clone(&self) -> Comp {
+        Comp {
+            held: self.held.clone(),
+            queue: self.queue.clone(),
+            ..*self
+        }
+    }
+
+    fn clone_from(&mut self, src: &Comp) {
+        let Comp {
+            mode,
+            plane,
+            held,
+            queue,
+            idle_blocks,
+            moved_in_plane,
+            releasing,
+        } = src;
+        self.mode = *mode;
+        self.plane = *plane;
+        self.held.clone_from(held);
+        self.queue.clone_from(queue);
+        self.idle_blocks = *idle_blocks;
+        self.moved_in_plane = *moved_in_plane;
+        self.releasing = *releasing;
+    }
 }
 
 impl Default for Comp {
