@@ -5,85 +5,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-use std::collections::{BTreeMap, HashMap};
-use std::io;
-use vcnc_interp::{
-    Dialect, EndCode, Event, Interpreter, Machine, Options, Outcome, ProgramStore, VecSink,
-};
+mod common;
+
+use common::{Store, ended, run, run_on};
+use std::collections::BTreeMap;
+use vcnc_interp::{Dialect, EndCode, Event, Interpreter, Machine, Options, Outcome, VecSink};
+use vcnc_syntax::Code;
 use vcnc_syntax::macros::Value;
-use vcnc_syntax::{Code, MemSource, TextSource};
-
-/// Programs by number (`O0010`) and by name (`G0200`, `M0123`).
-#[derive(Default)]
-struct Store {
-    numbered: HashMap<u32, String>,
-    named: HashMap<String, String>,
-}
-
-impl Store {
-    fn with(mut self, n: u32, text: &str) -> Store {
-        self.numbered.insert(n, text.to_string());
-        self
-    }
-    fn named(mut self, name: &str, text: &str) -> Store {
-        self.named.insert(name.to_string(), text.to_string());
-        self
-    }
-}
-
-impl ProgramStore for Store {
-    fn open(&mut self, n: u32) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
-        let text = self.numbered.get(&n)?.clone();
-        Some(Ok((
-            Box::new(MemSource(text.into_bytes())),
-            format!("O{n:04}.nc"),
-        )))
-    }
-    fn open_named(&mut self, name: &str) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
-        let text = self.named.get(name)?.clone();
-        Some(Ok((
-            Box::new(MemSource(text.into_bytes())),
-            name.to_string(),
-        )))
-    }
-}
-
-struct Ran {
-    outcome: Outcome,
-    events: Vec<Event>,
-    values: Vec<Option<f64>>,
-}
-
-fn run_on(machine: &Machine, dialect: &str, program: &str, store: Store, names: &[&str]) -> Ran {
-    let dialect = Dialect::by_name(dialect).unwrap();
-    let mut sink = VecSink::default();
-    let mut store = store;
-    let mut interp = Interpreter::new(machine, &dialect, Options::default());
-    let outcome = interp.run(
-        Box::new(MemSource(program.as_bytes().to_vec())),
-        &mut store,
-        &mut sink,
-    );
-    let values = names.iter().map(|n| interp.variable(n)).collect();
-    Ran {
-        outcome,
-        events: sink.0,
-        values,
-    }
-}
-
-fn run(dialect: &str, program: &str, store: Store, names: &[&str]) -> Ran {
-    run_on(&Machine::default_mill(), dialect, program, store, names)
-}
-
-fn ended(r: &Ran) {
-    assert!(
-        matches!(r.outcome, Outcome::Ended(_)),
-        "{:?}\n{:?}",
-        r.outcome,
-        r.events
-    );
-}
 
 /// End points of the motion events, X and Y.
 fn xy(events: &[Event]) -> Vec<(f64, f64)> {

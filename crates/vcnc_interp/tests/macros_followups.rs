@@ -9,40 +9,14 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, NoPrograms, Options, Outcome};
-use vcnc_syntax::{Code, Diagnostic, MemSource};
+mod common;
 
-struct Ran {
-    outcome: Outcome,
-    events: Vec<Event>,
-    values: Vec<Option<f64>>,
-}
+use common::{Ran, Store, ended};
+use vcnc_interp::{Event, Outcome};
+use vcnc_syntax::{Code, Diagnostic};
 
 fn run(dialect: &str, program: &str, names: &[&str]) -> Ran {
-    let dialect = Dialect::by_name(dialect).unwrap();
-    let machine = Machine::default_mill();
-    let mut sink = vcnc_interp::VecSink::default();
-    let mut interp = Interpreter::new(&machine, &dialect, Options::default());
-    let outcome = interp.run(
-        Box::new(MemSource(program.as_bytes().to_vec())),
-        &mut NoPrograms,
-        &mut sink,
-    );
-    let values = names.iter().map(|n| interp.variable(n)).collect();
-    Ran {
-        outcome,
-        events: sink.0,
-        values,
-    }
-}
-
-fn ended(r: &Ran) {
-    assert!(
-        matches!(r.outcome, Outcome::Ended(_)),
-        "{:?}\n{:?}",
-        r.outcome,
-        r.events
-    );
+    common::run(dialect, program, Store::default(), names)
 }
 
 /// The alarm of a run, checked to be the last event (no motion after it).

@@ -7,65 +7,11 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-use std::collections::HashMap;
-use std::io;
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, ProgramStore, VecSink};
-use vcnc_syntax::{Code, MemSource, TextSource};
+mod common;
 
-/// Programs by number (`O0010`).
-#[derive(Default)]
-struct Store(HashMap<u32, String>);
-
-impl Store {
-    fn with(mut self, n: u32, text: &str) -> Store {
-        self.0.insert(n, text.to_string());
-        self
-    }
-}
-
-impl ProgramStore for Store {
-    fn open(&mut self, n: u32) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
-        let text = self.0.get(&n)?.clone();
-        Some(Ok((
-            Box::new(MemSource(text.into_bytes())),
-            format!("O{n:04}.nc"),
-        )))
-    }
-}
-
-struct Ran {
-    outcome: Outcome,
-    events: Vec<Event>,
-    values: Vec<Option<f64>>,
-}
-
-fn run(dialect: &str, program: &str, store: Store, names: &[&str]) -> Ran {
-    let dialect = Dialect::by_name(dialect).unwrap();
-    let machine = Machine::default_mill();
-    let mut sink = VecSink::default();
-    let mut store = store;
-    let mut interp = Interpreter::new(&machine, &dialect, Options::default());
-    let outcome = interp.run(
-        Box::new(MemSource(program.as_bytes().to_vec())),
-        &mut store,
-        &mut sink,
-    );
-    let values = names.iter().map(|n| interp.variable(n)).collect();
-    Ran {
-        outcome,
-        events: sink.0,
-        values,
-    }
-}
-
-fn ended(r: &Ran) {
-    assert!(
-        matches!(r.outcome, Outcome::Ended(_)),
-        "{:?}\n{:?}",
-        r.outcome,
-        r.events
-    );
-}
+use common::{Ran, Store, ended, run};
+use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, VecSink};
+use vcnc_syntax::{Code, MemSource};
 
 /// The alarm of a run: (code, line, column), checked to be the last event
 /// (no motion after it).
