@@ -1,0 +1,74 @@
+//! Adversarial review of the day's last changes (D without G41/G42, words
+//! in G70–G73 profiles, E614): each test guards one bug found in review,
+//! with the expected values worked out by hand in its comments.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, Pos, VecSink};
+
+fn run(dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
+    let m = Machine::default_mill();
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&m, dialect, Options::default()).run_str(program, &mut sink);
+    (sink.0, out)
+}
+
+/// The end points of the rapids, feeds and arcs of line `line`.
+fn ends(events: &[Event], line: u64) -> Vec<Pos> {
+    events
+        .iter()
+        .filter(|e| e.loc().is_some_and(|l| l.line == line))
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } | Event::Rapid { to, .. } | Event::Arc { to, .. } => Some(*to),
+            _ => None,
+        })
+        .collect()
+}
+
+fn near(p: Pos, x: f64, y: f64, z: f64) -> bool {
+    (p.0[0] - x).abs() < 1e-6 && (p.0[1] - y).abs() < 1e-6 && (p.0[2] - z).abs() < 1e-6
+}
+
+/// Offset 1 is r = 5; `select` (line 2) is the block that should select
+/// it; the G41 of line 5 has no D. The start-up from (-10, -10) to (0, 0)
+/// turns left into x = 0 going +Y (inside on the left): it ends where the
+/// offset lines meet, x = -5 and y = x + 5·√2 = 2.071068; the wall x = 0
+/// up to y = 20, turning right along +X (outside 90°), ends at (-5, 25).
+fn d_then_g41(select: &str) -> String {
+    format!(
+        "G10 L12 P1 R5.\n{select}\nG00 X-10. Y-10. Z10.\nS1000 M03\n\
+         G41 G01 X0 Y0 F100.\nY20.\nX20.\nG40 G00 X30. Y30.\nM30\n"
+    )
+}
+
+fn assert_radius_5(dialect: &Dialect, select: &str) {
+    let (ev, out) = run(dialect, &d_then_g41(select));
+    assert!(matches!(out, Outcome::Ended(_)), "{select}: {out:?}");
+    let start = ends(&ev, 5);
+    assert!(
+        start.len() == 1 && near(start[0], -5.0, 2.071_068, 10.0),
+        "{select}: {start:?}"
+    );
+    let wall = ends(&ev, 6);
+    assert!(
+        wall.len() == 1 && near(wall[0], -5.0, 25.0, 10.0),
+        "{select}: {wall:?}"
+    );
+}
+
+#[test]
+fn a_d_word_alone_on_its_line_selects_the_radius_for_the_next_g41() {
+    // `D1` alone is a block of plain words (no G or M code); it was taken
+    // as a motion-only block, which reads D only under G41/G42, so the D
+    // was accepted and dropped: the G41 ran with D0 (r = 0).
+    for dialect in [Dialect::fanuc(), Dialect::syntec(), Dialect::haas()] {
+        assert_radius_5(&dialect, "D1");
+    }
+}
+
+#[test]
+fn a_d_word_in_a_plain_move_selects_the_radius_for_the_next_g41() {
+    // The same with D in a move without codes (X0 Y0 is where the tool
+    // is: an empty move).
+    assert_radius_5(&Dialect::fanuc(), "X0 Y0 D1");
+}
