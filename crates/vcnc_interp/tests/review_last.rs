@@ -72,3 +72,39 @@ fn a_d_word_in_a_plain_move_selects_the_radius_for_the_next_g41() {
     // is: an empty move).
     assert_radius_5(&Dialect::fanuc(), "X0 Y0 D1");
 }
+
+#[test]
+fn a_d_word_in_a_plain_arc_block_on_a_mill_selects_the_radius_and_keeps_the_arc() {
+    // Line 5 carries D1 in a block of plain words under modal G02: on a
+    // mill D is no diameter, so the arc stays the semicircle from
+    // (-15, -10) to (-10, -10) about (-12.5, -10) (R2.5), and D1 (r = 5)
+    // is the radius of the G41 of line 6, whose start-up and wall are
+    // those of `d_then_g41`: (-5, 2.071068) and (-5, 25).
+    let p = "G10 L12 P1 R5.\nG00 X-20. Y-10. Z10.\nS1000 M03\nG02 X-15. Y-10. R2.5 F100.\n\
+             X-10. R2.5 D1\nG41 G01 X0 Y0\nY20.\nX20.\nG40 G00 X30. Y30.\nM30\n";
+    let (ev, out) = run(&Dialect::fanuc(), p);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let arc = ev
+        .iter()
+        .find_map(|e| match e {
+            Event::Arc {
+                loc, to, center, ..
+            } if loc.line == 5 => Some((*to, *center)),
+            _ => None,
+        })
+        .expect("the arc of line 5");
+    assert!(
+        near(arc.0, -10.0, -10.0, 10.0) && near(arc.1, -12.5, -10.0, 10.0),
+        "{arc:?}"
+    );
+    let start = ends(&ev, 6);
+    assert!(
+        start.len() == 1 && near(start[0], -5.0, 2.071_068, 10.0),
+        "{start:?}"
+    );
+    let wall = ends(&ev, 7);
+    assert!(
+        wall.len() == 1 && near(wall[0], -5.0, 25.0, 10.0),
+        "{wall:?}"
+    );
+}
