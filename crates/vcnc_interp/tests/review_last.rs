@@ -108,3 +108,24 @@ fn a_d_word_in_a_plain_arc_block_on_a_mill_selects_the_radius_and_keeps_the_arc(
         "{wall:?}"
     );
 }
+
+#[test]
+fn a_d_word_under_g42_on_the_fanuc_lathe_is_unused() {
+    // fanuc-lathe's G41/G42 read no D: the radius is the nose radius of
+    // the T offset (T0101: 0.8 mm on the built-in machine). A D under G42
+    // was taken as a radius register and D0 silently turned the nose
+    // radius compensation off (line 7 then ended at Z-20 on the profile).
+    // The dialect has no D: E203 at the D (line 7, column 7).
+    let d = Dialect::fanuc_lathe();
+    let m = d.machine();
+    let mut sink = VecSink::default();
+    let p = "G21 G99 G18\nT0101\nG97 S500 M03\nG00 X42. Z2.\nG42 G01 X20. Z0 F0.1\nZ-10.\n\
+             Z-20. D0\nX40. Z-30.\nG40 G00 X50.\nM30\n";
+    let out = Interpreter::new(&m, &d, Options::default()).run_str(p, &mut sink);
+    match out {
+        Outcome::Alarm(a) => {
+            assert_eq!((a.code, a.line, a.column), (vcnc_syntax::Code::E203, 7, 7))
+        }
+        other => panic!("{other:?}"),
+    }
+}

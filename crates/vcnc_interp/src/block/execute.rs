@@ -235,10 +235,11 @@ impl Interpreter<'_> {
             // Under G43/G44 an H word alone changes the offset.
             allowed |= bit(b'H');
         }
-        if self.state.modal.comp != crate::state::CompSide::Off || self.d_alone_is_radius() {
+        if self.comp_on_reads_d() || self.d_alone_is_radius() {
             // Under G41/G42 a D word alone changes the radius; outside them
             // it selects the offset the next G41/G42 uses (Fanuc: D is
-            // modal; `T1 M06 D1`, `G43 Z10. H1 D1`).
+            // modal; `T1 M06 D1`, `G43 Z10. H1 D1`). Where G41 reads no D
+            // (fanuc-lathe: the radius is T's nose) D stays unused.
             allowed |= bit(b'D');
         }
         if self.state.cycle.code.is_some() && w.axis_user.is_none() {

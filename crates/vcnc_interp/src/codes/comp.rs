@@ -69,9 +69,16 @@ impl Interpreter<'_> {
     /// compensation on), not an arc's diameter (a dialect whose arcs read
     /// D: the lathe's).
     fn reads_d(&self, w: &Words<'_>) -> bool {
-        w.group(Group::CutterComp).is_some()
-            || (self.state.modal.comp != CompSide::Off && !self.arc_reads_d())
-            || self.d_alone_is_radius()
+        w.group(Group::CutterComp).is_some() || self.comp_on_reads_d() || self.d_alone_is_radius()
+    }
+
+    /// Whether compensation is on and a D word changes its radius: not on
+    /// an arc that reads D as its diameter, nor in a dialect whose G41
+    /// reads no D (fanuc-lathe: the radius is the T offset's nose).
+    pub(crate) fn comp_on_reads_d(&self) -> bool {
+        self.state.modal.comp != CompSide::Off
+            && !self.arc_reads_d()
+            && self.dialect.d_is_radius_offset()
     }
 
     /// Whether the modal motion is an arc that reads D as its diameter
