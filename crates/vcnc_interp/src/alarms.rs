@@ -1118,7 +1118,7 @@ pub fn goto_into_loop(span: Span, n: u32, m: u8, line: u64) -> Diagnostic {
         Code::E614,
         span,
         format!(
-            "GOTO {n} jumps into the DO {m} loop of line {line} from outside it: N{n} lies between its WHILE and its END {m}"
+            "GOTO {n} jumps into the DO {m} loop of line {line} from outside it: N{n} lies inside the loop, before its END {m}"
         ),
         &format!(
             "a GOTO may leave a loop but not enter one: jump to the WHILE block (label it), or move N{n} out of the loop"
