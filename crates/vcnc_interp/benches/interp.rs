@@ -132,23 +132,16 @@ fn interpret_compensated_to_null_sink(bencher: Bencher, blocks: usize) {
     );
 }
 
-/// A turning program of `blocks` blocks: roughing passes in diameters with
-/// U/W increments and arcs, the shape of `tools/bench/gen_turning.py`.
-fn turning(blocks: usize) -> String {
+/// `blocks` blocks of roughing passes: `header`, then five blocks a pass
+/// (`pass` spells them for a diameter), then M30.
+fn passes(blocks: usize, header: &str, pass: fn(f64) -> [String; 5]) -> String {
     let mut s = String::with_capacity(blocks * 24);
-    s.push_str("G23\nG90 G94\nG00 X120 Z5\n");
+    s.push_str(header);
     let mut n = 3;
-    let mut pass = 0usize;
+    let mut k = 0usize;
     while n < blocks - 1 {
-        let d = 118.0 - (pass % 50) as f64 * 2.0;
-        let lines = [
-            format!("G00 X{d:.3} Z2.000"),
-            "G01 Z-80.000 F200".to_string(),
-            "G02 U4.000 W-2.000 R2.000".to_string(),
-            "G01 U2.000".to_string(),
-            "G00 Z2.000".to_string(),
-        ];
-        for line in lines {
+        let d = 118.0 - (k % 50) as f64 * 2.0;
+        for line in pass(d) {
             s.push_str(&line);
             s.push('\n');
             n += 1;
@@ -156,10 +149,24 @@ fn turning(blocks: usize) -> String {
                 break;
             }
         }
-        pass += 1;
+        k += 1;
     }
     s.push_str("M30\n");
     s
+}
+
+/// A turning program of `blocks` blocks: roughing passes in diameters with
+/// U/W increments and arcs, the shape of `tools/bench/gen_turning.py`.
+fn turning(blocks: usize) -> String {
+    passes(blocks, "G23\nG90 G94\nG00 X120 Z5\n", |d| {
+        [
+            format!("G00 X{d:.3} Z2.000"),
+            "G01 Z-80.000 F200".to_string(),
+            "G02 U4.000 W-2.000 R2.000".to_string(),
+            "G01 U2.000".to_string(),
+            "G00 Z2.000".to_string(),
+        ]
+    })
 }
 
 #[divan::bench(args = [100_000])]
@@ -179,31 +186,19 @@ fn interpret_turning_to_null_sink(bencher: Bencher, blocks: usize) {
 /// feed per revolution at a constant speed), the shape of
 /// `tools/bench/gen_fanuc_turning.py`.
 fn fanuc_turning(blocks: usize) -> String {
-    let mut s = String::with_capacity(blocks * 24);
-    s.push_str("G00 G18 G21 G40 G80 G99\nG97 S1000 M03\nG00 X120. Z5.\n");
-    let mut n = 3;
-    let mut pass = 0usize;
-    while n < blocks - 1 {
-        let d = 118.0 - (pass % 50) as f64 * 2.0;
-        let lines = [
-            format!("G00 X{d:.3} Z2."),
-            "G01 Z-80. F0.2".to_string(),
-            "G02 U4. W-2. R2.".to_string(),
-            "G01 U2.".to_string(),
-            "G00 Z2.".to_string(),
-        ];
-        for line in lines {
-            s.push_str(&line);
-            s.push('\n');
-            n += 1;
-            if n >= blocks - 1 {
-                break;
-            }
-        }
-        pass += 1;
-    }
-    s.push_str("M30\n");
-    s
+    passes(
+        blocks,
+        "G00 G18 G21 G40 G80 G99\nG97 S1000 M03\nG00 X120. Z5.\n",
+        |d| {
+            [
+                format!("G00 X{d:.3} Z2."),
+                "G01 Z-80. F0.2".to_string(),
+                "G02 U4. W-2. R2.".to_string(),
+                "G01 U2.".to_string(),
+                "G00 Z2.".to_string(),
+            ]
+        },
+    )
 }
 
 #[divan::bench(args = [100_000])]
