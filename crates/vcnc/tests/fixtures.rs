@@ -167,18 +167,13 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
         if !expected.iter().any(|e| e["type"] == "warning") {
             got.retain(|e| e["type"] != "warning");
         }
-        let first_diff =
-            (0..expected.len().max(got.len())).find(|&i| match (expected.get(i), got.get(i)) {
-                (Some(a), Some(b)) => !close(a, b, tol, ""),
-                _ => true,
-            });
-        if let Some(i) = first_diff {
+        if let Some(i) = first_difference(&expected, &got, tol) {
             failures.push(format!(
                 "{}: event {} differs\n  expected: {}\n  got:      {}",
                 p.display(),
                 i + 1,
-                expected.get(i).map_or("(none)".into(), Value::to_string),
-                got.get(i).map_or("(none)".into(), Value::to_string)
+                shown(&expected, i),
+                shown(&got, i)
             ));
         }
     }
@@ -190,6 +185,20 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
         failures.join("\n")
     );
     programs.len()
+}
+
+/// The index of the first event where `got` departs from `expected`
+/// (beyond `tol`, or one list ends first).
+fn first_difference(expected: &[Value], got: &[Value], tol: f64) -> Option<usize> {
+    (0..expected.len().max(got.len())).find(|&i| match (expected.get(i), got.get(i)) {
+        (Some(a), Some(b)) => !close(a, b, tol, ""),
+        _ => true,
+    })
+}
+
+/// Event `i` of `events` for a failure message.
+fn shown(events: &[Value], i: usize) -> String {
+    events.get(i).map_or("(none)".into(), Value::to_string)
 }
 
 #[test]
@@ -307,18 +316,13 @@ fn linuxcnc_lathe_moves_match_rs274() {
             .map(|l| serde_json::from_str(l).expect("JSON"))
             .collect();
         let got = moves(run(p, "fanuc-lathe"));
-        let diff =
-            (0..expected.len().max(got.len())).find(|&i| match (expected.get(i), got.get(i)) {
-                (Some(a), Some(b)) => !close(a, b, 1e-4, ""),
-                _ => true,
-            });
-        if let Some(i) = diff {
+        if let Some(i) = first_difference(&expected, &got, 1e-4) {
             failures.push(format!(
                 "{}: move {} differs\n  rs274: {}\n  vcnc:  {}",
                 p.display(),
                 i + 1,
-                expected.get(i).map_or("(none)".into(), Value::to_string),
-                got.get(i).map_or("(none)".into(), Value::to_string)
+                shown(&expected, i),
+                shown(&got, i)
             ));
         }
     }
