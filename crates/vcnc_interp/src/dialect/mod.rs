@@ -660,7 +660,7 @@ impl Dialect {
     /// G41 reads D): then D is modal and may stand without G41/G42.
     pub(crate) fn d_is_radius_offset(&self) -> bool {
         self.g(41.0)
-            .is_some_and(|g| g.op == GOp::CompLeft && g.letters & (1 << (b'D' - b'A')) != 0)
+            .is_some_and(|g| g.op == GOp::CompLeft && g.letters & bit(b'D') != 0)
     }
 
     /// The G code that does `op` in this dialect (the first in the table),
