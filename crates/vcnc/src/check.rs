@@ -12,6 +12,7 @@
 
 use crate::cli::{CheckArgs, CheckFormat};
 use crate::files::{self, Input};
+use crate::offload::Offload;
 use crate::{Setup, execute, render, setup, timing};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -109,16 +110,12 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
 
 /// One program: the summary block, warnings and the alarm on stderr.
 fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, String> {
-    let mut summary = Summary::new(&s.machine);
-    // One program: the planner on the second core.
-    let mut plan = timing::Background::start(&s.machine, None);
-    let (outcome, diameter) = execute(
-        &args.opts,
-        s,
-        input,
-        &mut timing::Tee(&mut summary, &mut plan),
-    )?;
-    let planned = plan.finish()?;
+    // One program: the summary and the planner on the second core.
+    let mut beside =
+        Offload::start(|| timing::Tee(Summary::new(&s.machine), timing::planner(&s.machine, None)));
+    let (outcome, diameter) = execute(&args.opts, s, input, &mut beside)?;
+    let timing::Tee(summary, plan) = beside.join()?;
+    let planned = plan.into_timeline();
     eprint!("{}", render::warnings(&summary, input));
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, input));

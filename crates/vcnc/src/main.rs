@@ -9,6 +9,7 @@
 mod check;
 mod cli;
 mod files;
+mod offload;
 mod plot;
 mod render;
 mod timing;
@@ -109,23 +110,30 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
     // usage error with nothing on stdout.
     let input = Input::from_arg(&args.file)?;
     drop(input.open()?);
-    // The JSON-lines sink buffers itself; the others go through a BufWriter.
-    let out = std::io::stdout().lock();
-    // One monomorphic run per format: the sink is on the hot path.
+    // The sink formats and writes on the second core (`offload`); the
+    // JSON-lines sink buffers itself, the others go through a BufWriter.
+    let machine = &s.machine;
     let (outcome, warnings, written) = match args.format {
-        Format::Jsonl => stream(args, &s, &input, JsonlSink::new(out, &s.machine))?,
-        Format::Csv => {
-            let sink = CsvSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
-            stream(args, &s, &input, sink)?
-        }
-        Format::Gcode => {
-            let sink = GcodeSink::new(BufWriter::with_capacity(1 << 16, out), &s.machine);
-            stream(args, &s, &input, sink)?
-        }
+        Format::Jsonl => stream(args, &s, &input, || {
+            JsonlSink::new(std::io::stdout(), machine)
+        })?,
+        Format::Csv => stream(args, &s, &input, || {
+            CsvSink::new(
+                BufWriter::with_capacity(1 << 16, std::io::stdout()),
+                machine,
+            )
+        })?,
+        Format::Gcode => stream(args, &s, &input, || {
+            GcodeSink::new(
+                BufWriter::with_capacity(1 << 16, std::io::stdout()),
+                machine,
+            )
+        })?,
         Format::Trace => {
             let profile = args.profile.map(Into::into);
-            let sink = trace::TraceSink::new(out, &s.machine, args.period, profile);
-            stream(args, &s, &input, sink)?
+            stream(args, &s, &input, || {
+                trace::TraceSink::new(std::io::stdout(), machine, args.period, profile)
+            })?
         }
     };
     match written {
@@ -159,21 +167,24 @@ impl<S: Sink> Sink for Tap<S> {
     fn is_done(&self) -> bool {
         self.inner.is_done()
     }
-    fn finish(&mut self) -> std::io::Result<()> {
-        self.inner.finish()
-    }
 }
 
 type Streamed = (Outcome, Summary, std::io::Result<()>);
 
-/// Runs into `sink` and flushes it.
-fn stream<S: Sink>(args: &RunArgs, s: &Setup, input: &Input, sink: S) -> Result<Streamed, String> {
+/// Runs into the sink `make` builds (on the second core when there is one)
+/// and flushes it.
+fn stream<S: Sink + Send + 'static>(
+    args: &RunArgs,
+    s: &Setup,
+    input: &Input,
+    make: impl Fn() -> S,
+) -> Result<Streamed, String> {
     let mut tap = Tap {
-        inner: sink,
+        inner: offload::Offload::start(make),
         warnings: Summary::new(&s.machine),
     };
     let (outcome, _) = execute(&args.opts, s, input, &mut tap)?;
-    let written = tap.finish();
+    let written = tap.inner.join()?.finish();
     Ok((outcome, tap.warnings, written))
 }
 
