@@ -546,19 +546,23 @@ impl<'a> Interpreter<'a> {
             }
         }
         // All or nothing: events wait in `pending`, the state is restored
-        // whole and the tables' writes are undone if the block alarms.
-        let saved = self.state;
+        // and the tables' writes are undone if the block alarms.
         let jumps = self.flow.jumps;
         let comp_engaged = self.comp.engaged();
         if comp_engaged {
             self.comp_saved.clone_from(&self.comp);
         }
         self.pending.clear();
-        let result = if words.is_plain_motion(self.axis_mask) {
-            // Only axis words, F and a motion code: nothing but a move.
-            self.execute_motion_only(&words).map(|()| Step::Next)
+        let result = if !words.is_plain_motion(self.axis_mask) {
+            self.keeping_state(|s| s.execute(&words, here, next, store))
+        } else if self.moves_in_place(&words, comp_engaged) {
+            // A plain G00/G01 keeps only what it changes before its last
+            // check (the copy of the state is most of its cost).
+            self.move_in_place(&words).map(|()| Step::Next)
         } else {
-            self.execute(&words, here, next, store)
+            // Only axis words, F and a motion code: nothing but a move.
+            self.keeping_state(|s| s.execute_motion_only(&words))
+                .map(|()| Step::Next)
         };
         // Under G66 a block that moves calls the macro after its move.
         let modal_call =
@@ -576,7 +580,6 @@ impl<'a> Interpreter<'a> {
                 }
             }
             Err(_) => {
-                self.state = saved;
                 self.flow.jumps = jumps;
                 self.tables.rollback();
                 if comp_engaged {
@@ -588,6 +591,20 @@ impl<'a> Interpreter<'a> {
         }
         if modal_call && matches!(result, Ok(Step::Next)) {
             return self.modal_macro_call(next, store);
+        }
+        result
+    }
+
+    /// Runs `f` on the state, which is restored whole if it alarms.
+    #[inline(always)]
+    fn keeping_state<T>(
+        &mut self,
+        f: impl FnOnce(&mut Self) -> Result<T, Diagnostic>,
+    ) -> Result<T, Diagnostic> {
+        let saved = self.state;
+        let result = f(self);
+        if result.is_err() {
+            self.state = saved;
         }
         result
     }
