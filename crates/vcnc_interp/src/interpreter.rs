@@ -37,24 +37,25 @@ pub(crate) struct AxisWord {
     pub diameter: bool,
     /// A rotary axis (degrees).
     pub rotary: bool,
+    /// `letter` and `inc` as a letter mask (bit 0 = 'A'): a block without
+    /// either skips the axis with one test.
+    pub mask: u32,
 }
 
 impl AxisWord {
     fn of(letter: u8, dialect: &Dialect) -> AxisWord {
+        let inc = dialect
+            .incremental_words
+            .iter()
+            .find(|(_, a)| *a == letter)
+            .map(|(w, _)| *w);
         AxisWord {
             letter,
-            inc: dialect
-                .incremental_words
-                .iter()
-                .find(|(_, a)| *a == letter)
-                .map(|(w, _)| *w),
+            inc,
             diameter: dialect.diameter.axis == Some(letter),
             rotary: matches!(letter, b'A' | b'B' | b'C'),
+            mask: crate::dialect::bit(letter) | inc.map_or(0, crate::dialect::bit),
         }
-    }
-
-    fn mask(&self) -> u32 {
-        crate::dialect::bit(self.letter) | self.inc.map_or(0, crate::dialect::bit)
     }
 }
 
@@ -167,7 +168,7 @@ impl<'a> Interpreter<'a> {
             state: State::power_on(machine, dialect),
             tables: Tables::new(machine),
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
-            axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask()),
+            axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask),
             axis_words,
             executed: 0,
             rereading: false,
