@@ -37,24 +37,25 @@ pub(crate) struct AxisWord {
     pub diameter: bool,
     /// A rotary axis (degrees).
     pub rotary: bool,
+    /// `letter` and `inc` as a letter mask (bit 0 = 'A'): a block without
+    /// either skips the axis with one test.
+    pub mask: u32,
 }
 
 impl AxisWord {
     fn of(letter: u8, dialect: &Dialect) -> AxisWord {
+        let inc = dialect
+            .incremental_words
+            .iter()
+            .find(|(_, a)| *a == letter)
+            .map(|(w, _)| *w);
         AxisWord {
             letter,
-            inc: dialect
-                .incremental_words
-                .iter()
-                .find(|(_, a)| *a == letter)
-                .map(|(w, _)| *w),
+            inc,
             diameter: dialect.diameter.axis == Some(letter),
             rotary: matches!(letter, b'A' | b'B' | b'C'),
+            mask: crate::dialect::bit(letter) | inc.map_or(0, crate::dialect::bit),
         }
-    }
-
-    fn mask(&self) -> u32 {
-        crate::dialect::bit(self.letter) | self.inc.map_or(0, crate::dialect::bit)
     }
 }
 
@@ -167,7 +168,7 @@ impl<'a> Interpreter<'a> {
             state: State::power_on(machine, dialect),
             tables: Tables::new(machine),
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
-            axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask()),
+            axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask),
             axis_words,
             executed: 0,
             rereading: false,
@@ -546,19 +547,23 @@ impl<'a> Interpreter<'a> {
             }
         }
         // All or nothing: events wait in `pending`, the state is restored
-        // whole and the tables' writes are undone if the block alarms.
-        let saved = self.state;
+        // and the tables' writes are undone if the block alarms.
         let jumps = self.flow.jumps;
         let comp_engaged = self.comp.engaged();
         if comp_engaged {
             self.comp_saved.clone_from(&self.comp);
         }
         self.pending.clear();
-        let result = if words.is_plain_motion(self.axis_mask) {
-            // Only axis words, F and a motion code: nothing but a move.
-            self.execute_motion_only(&words).map(|()| Step::Next)
+        let result = if !words.is_plain_motion(self.axis_mask) {
+            self.keeping_state(|s| s.execute(&words, here, next, store))
+        } else if self.moves_in_place(&words, comp_engaged) {
+            // A plain G00/G01 keeps only what it changes before its last
+            // check (the copy of the state is most of its cost).
+            self.move_in_place(&words).map(|()| Step::Next)
         } else {
-            self.execute(&words, here, next, store)
+            // Only axis words, F and a motion code: nothing but a move.
+            self.keeping_state(|s| s.execute_motion_only(&words))
+                .map(|()| Step::Next)
         };
         // Under G66 a block that moves calls the macro after its move.
         let modal_call =
@@ -576,7 +581,6 @@ impl<'a> Interpreter<'a> {
                 }
             }
             Err(_) => {
-                self.state = saved;
                 self.flow.jumps = jumps;
                 self.tables.rollback();
                 if comp_engaged {
@@ -588,6 +592,20 @@ impl<'a> Interpreter<'a> {
         }
         if modal_call && matches!(result, Ok(Step::Next)) {
             return self.modal_macro_call(next, store);
+        }
+        result
+    }
+
+    /// Runs `f` on the state, which is restored whole if it alarms.
+    #[inline(always)]
+    fn keeping_state<T>(
+        &mut self,
+        f: impl FnOnce(&mut Self) -> Result<T, Diagnostic>,
+    ) -> Result<T, Diagnostic> {
+        let saved = self.state;
+        let result = f(self);
+        if result.is_err() {
+            self.state = saved;
         }
         result
     }

@@ -7,6 +7,10 @@
 //!   frame, feed, spindle, tool …    tool offsets H/D (G10 L10–L13)
 //!   └ copied before every block,    └ every write journaled; a failed
 //!     restored if it alarms           block rolls its writes back
+//!     (a plain G00/G01 keeps only
+//!     the few fields it changes
+//!     before its last check:
+//!     `block::execute::MoveUndo`)
 //! ```
 //!
 //! Positions are kept twice: `prog`, the programmed point in program
@@ -165,7 +169,8 @@ impl CycleData {
 }
 
 /// Everything a block may change, copied before each block so that an
-/// alarm restores it whole.
+/// alarm restores it whole (but for the plain moves that
+/// `block::execute::MoveUndo` covers).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct State {
     /// Modal codes.

@@ -53,6 +53,11 @@ const BLOCKS: &[&str] = &[
     "G10 L10 P1 R5. G55 X99999.",
     "G68 R45. G51 P2.",
     "G92 X1. M98 P9999",
+    // Plain moves that alarm after their motion code, F or polar point
+    // changed (they save only those, see `MoveUndo`).
+    "G01 Y2. F0.",
+    "X5000. F7.",
+    "X9000. Y30.",
 ];
 
 fn run(machine: &Machine, program: &str) -> (Vec<Event>, Outcome, State, Tables) {

@@ -26,7 +26,7 @@ use crate::dialect::{
 use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
-use crate::state::Motion;
+use crate::state::{Motion, State};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
@@ -43,7 +43,86 @@ impl Words<'_> {
     }
 }
 
+/// What a plain G00/G01 block that [`Interpreter::moves_in_place`] accepts
+/// may have changed in the state when it alarms: every check of such a
+/// block (a negative or zero feed, a per-revolution feed with the spindle
+/// stopped, G93's F, the travel limits) comes before the move changes the
+/// positions and reports the frame, so only the modal motion, F, the
+/// smoothing's bookkeeping and the last polar point can have changed
+/// before them. Keeping these spares the block the copy of the whole state
+/// (~1 KB, the largest single cost of a plain move).
+#[derive(Clone, Copy)]
+pub(crate) struct MoveUndo {
+    motion: Motion,
+    feed: f64,
+    smoothing: crate::codes::smoothing::Smoothing,
+    polar: (f64, f64),
+}
+
+impl MoveUndo {
+    /// The fields of `s` a plain move may change before its last check.
+    #[inline]
+    pub(crate) fn of(s: &State) -> MoveUndo {
+        MoveUndo {
+            motion: s.modal.motion,
+            feed: s.feed,
+            smoothing: s.smoothing,
+            polar: s.polar,
+        }
+    }
+
+    /// Puts them back after the block alarmed.
+    #[cold]
+    pub(crate) fn restore(self, s: &mut State) {
+        s.modal.motion = self.motion;
+        s.feed = self.feed;
+        s.smoothing = self.smoothing;
+        s.polar = self.polar;
+    }
+}
+
 impl Interpreter<'_> {
+    /// Whether a plain motion block `w` is a G00/G01 that [`MoveUndo`] can
+    /// undo: no compensation, canned cycle, lathe corner or G96 in force
+    /// (each changes more before it can alarm), and nothing in the block
+    /// beyond axes, F and N (no arc word, D or `,C`/`,R`).
+    #[inline]
+    pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
+        let s = &self.state;
+        if comp_engaged
+            || s.cycle.code.is_some()
+            || s.lathe.corner.is_some()
+            || s.modal.css
+            || w.has_arc_words(self.axis_mask)
+        {
+            return false;
+        }
+        match w.group(Group::Motion) {
+            Some(m) => matches!(m.def.op, GOp::Rapid | GOp::Linear),
+            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
+        }
+    }
+
+    /// A plain move that [`moves_in_place`](Self::moves_in_place)
+    /// accepted, all or nothing with a [`MoveUndo`] instead of a copy of
+    /// the state.
+    #[inline(always)]
+    pub(crate) fn move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let undo = MoveUndo::of(&self.state);
+        #[cfg(debug_assertions)]
+        let whole = self.state;
+        let result = self.execute_motion_only(w);
+        if result.is_err() {
+            undo.restore(&mut self.state);
+            #[cfg(debug_assertions)]
+            debug_assert!(
+                self.state == whole,
+                "a plain move changed a field that MoveUndo does not keep"
+            );
+        }
+        result
+    }
+
     /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
     pub(crate) fn execute_motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         if self.comp.engaged() || w.get(b'D').is_some() {

@@ -162,17 +162,9 @@ impl Interpreter<'_> {
         }
         // 1 frame
         let (prog_to, mm) = self.to_machine_move(&mv)?;
-        self.moves += 1;
-        self.state.prog = prog_to;
-        self.state.nominal = mm.to;
-        if !matches!(mv.to, Target::Relative(_)) {
-            self.state.detached = false;
-        }
-        // The frame this move uses is reported before it, also when the
-        // move waits in the compensation stage.
-        self.report_frame();
         // 2 compensation
         if self.comp.engaged() {
+            self.accept_move(prog_to, mm.to, mv.to);
             if !matches!(mv.to, Target::Machine(_)) {
                 return self.compensate(mm, mv.cmd);
             }
@@ -184,14 +176,43 @@ impl Interpreter<'_> {
                 self.comp.mode = comp::Mode::Starting;
             }
             self.keep_programmed_plane(&mm, mv.cmd)?;
+            let at = comp::Origin {
+                loc: self.flow.loc.clone(),
+                src: 0,
+                line: None,
+                cmd: mv.cmd,
+            };
+            return self.release(mm, &at, Some(w));
         }
-        let at = comp::Origin {
-            loc: self.flow.loc.clone(),
-            src: 0,
-            line: None,
-            cmd: mv.cmd,
+        // 3 travel, before anything changes: a move that leaves the
+        // machine's limits leaves the state as the block found it (which a
+        // plain move block relies on, see `Interpreter::block`).
+        let mm = MachineMove {
+            from: self.state.pos,
+            ..mm
         };
-        self.release(mm, &at, Some(w))
+        if self.travel_limited {
+            self.travel_alarm(&mm, mv.cmd, Some(w))?;
+        }
+        self.accept_move(prog_to, mm.to, mv.to);
+        // 4 events
+        let loc = self.flow.loc.clone();
+        self.emit_released(&mm, loc);
+        Ok(())
+    }
+
+    /// Stage 1's bookkeeping once a move is accepted: the programmed and
+    /// nominal points move to its end, and the frame it uses is reported
+    /// before it (also when it waits in the compensation stage).
+    #[inline]
+    fn accept_move(&mut self, prog_to: Pos, nominal: Pos, to: Target) {
+        self.moves += 1;
+        self.state.prog = prog_to;
+        self.state.nominal = nominal;
+        if !matches!(to, Target::Relative(_)) {
+            self.state.detached = false;
+        }
+        self.report_frame();
     }
 
     /// A move with the spindle stopped: a thread or a feed per revolution
@@ -223,19 +244,27 @@ impl Interpreter<'_> {
         at: &comp::Origin,
         w: Option<&Words<'_>>,
     ) -> Result<(), Diagnostic> {
+        self.travel_alarm(mm, at.cmd, w).map_err(|d| match at.line {
+            Some(line) => self.locate(d, at.src, &line),
+            None => d,
+        })
+    }
+
+    /// Stage 3 for a move of the current block: the alarm points at the
+    /// axis word of `w`, else at `cmd`.
+    fn travel_alarm(
+        &self,
+        mm: &MachineMove,
+        cmd: Span,
+        w: Option<&Words<'_>>,
+    ) -> Result<(), Diagnostic> {
         let arc = match mm.kind {
-            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, at.cmd)?),
+            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, cmd)?),
             _ => None,
         };
         if let Err(out) = travel::check(self.machine, mm, arc.as_ref()) {
-            let span = w
-                .and_then(|w| self.axis_span(w, out.axis))
-                .unwrap_or(at.cmd);
-            let d = out.alarm(self.machine, span);
-            return Err(match at.line {
-                Some(line) => self.locate(d, at.src, &line),
-                None => d,
-            });
+            let span = w.and_then(|w| self.axis_span(w, out.axis)).unwrap_or(cmd);
+            return Err(out.alarm(self.machine, span));
         }
         Ok(())
     }
@@ -258,7 +287,15 @@ impl Interpreter<'_> {
             self.check_travel(&mm, at, w)?;
         }
         self.report_frame();
-        match self.emit_motion(&mm, &at.loc) {
+        self.emit_released(&mm, at.loc.clone());
+        Ok(())
+    }
+
+    /// Stage 4 of a checked move: its events, and the tool at its end
+    /// (or where the skip signal stopped it).
+    #[inline]
+    fn emit_released(&mut self, mm: &MachineMove, loc: crate::events::Loc) {
+        match self.emit_motion(mm, loc) {
             None => self.state.pos = mm.to,
             Some(stop) => {
                 // The skip signal stopped the move short.
@@ -268,7 +305,6 @@ impl Interpreter<'_> {
                 self.state.detached = false;
             }
         }
-        Ok(())
     }
 
     /// The word that positioned machine axis `i` in this block, if any.
@@ -367,7 +403,8 @@ impl Interpreter<'_> {
     /// Stage 4: the events of a machine move from the block at `loc`;
     /// returns where it stopped if that is not its end (a G31 whose skip
     /// signal fired).
-    fn emit_motion(&mut self, m: &MachineMove, loc: &crate::events::Loc) -> Option<Pos> {
+    #[inline(always)]
+    fn emit_motion(&mut self, m: &MachineMove, loc: crate::events::Loc) -> Option<Pos> {
         let (exact_stop, to) = (m.exact_stop, m.to);
         let mut emit = |e: Event| self.pending.push(e);
         match m.kind {
@@ -390,7 +427,7 @@ impl Interpreter<'_> {
                     }
                 } else {
                     emit(Event::Rapid {
-                        loc: loc.clone(),
+                        loc,
                         to,
                         exact_stop,
                     });
@@ -399,7 +436,7 @@ impl Interpreter<'_> {
             }
             MachineKind::Feed(feed) => {
                 emit(Event::Feed {
-                    loc: loc.clone(),
+                    loc,
                     to,
                     feed,
                     exact_stop,
@@ -419,7 +456,7 @@ impl Interpreter<'_> {
                     center.set(b, cb);
                 }
                 emit(Event::Arc {
-                    loc: loc.clone(),
+                    loc,
                     to,
                     center,
                     plane,
@@ -430,11 +467,7 @@ impl Interpreter<'_> {
                 None
             }
             MachineKind::Thread(lead_mm) => {
-                emit(Event::Thread {
-                    loc: loc.clone(),
-                    to,
-                    lead_mm,
-                });
+                emit(Event::Thread { loc, to, lead_mm });
                 None
             }
             MachineKind::Skip(feed) => {
@@ -442,7 +475,7 @@ impl Interpreter<'_> {
                 let to = hit.map_or(m.to, |t| line::lerp(m.from, m.to, t));
                 let triggered = hit.is_some();
                 emit(Event::Skip {
-                    loc: loc.clone(),
+                    loc,
                     to,
                     feed,
                     triggered,
