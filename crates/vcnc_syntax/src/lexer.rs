@@ -14,7 +14,7 @@
 
 use crate::block::{Addr, Block, MAX_WORDS, Word};
 use crate::diagnostics::{self as diag, Diagnostic};
-use crate::number::{NumberError, parse_number};
+use crate::number::{NumberError, lex_number};
 use vcnc_core::Span;
 
 /// Longest block the lexer accepts (E106 beyond).
@@ -101,7 +101,7 @@ pub fn lex_block(
         // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
         // the dialect has them (one call site keeps `lex_word` inlined).
         if b.is_ascii_alphabetic() || (b == b',' && is_extended(line, i, rules)) {
-            i = lex_word(line, i, rules, out)?;
+            i = lex_word(line, start, i, rules, out)?;
             first = false;
             continue;
         }
@@ -130,7 +130,7 @@ pub fn lex_block(
                 out.percent = true;
                 return finish(out, start, i + 1, line.len());
             }
-            b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, i, rules, out)?,
+            b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, start, i, rules, out)?,
             0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
                 return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
             }
@@ -143,12 +143,15 @@ pub fn lex_block(
         }
         first = first && matches!(b, b' ' | b'\t' | b'\r' | b'(' | 0x0c);
         if i - start > MAX_BLOCK_BYTES {
-            return Err(diag::block_too_long(
-                Span::new(start, start + 1),
-                MAX_BLOCK_BYTES,
-            ));
+            return Err(too_long(start));
         }
     }
+}
+
+/// E106 for the block that starts at `start`.
+#[cold]
+fn too_long(start: usize) -> Diagnostic {
+    diag::block_too_long(Span::new(start, start + 1), MAX_BLOCK_BYTES)
 }
 
 fn finish(out: &mut Block, start: usize, end: usize, next: usize) -> Result<usize, Diagnostic> {
@@ -163,14 +166,20 @@ fn skip_comment(line: &[u8], open: usize) -> Result<usize, Diagnostic> {
     }
 }
 
+/// Lexes the word at `at` into `out` and returns where lexing goes on:
+/// past the spaces and tabs after the word when the number parser has
+/// looked at them, which the main loop would otherwise step over one by
+/// one (counting them toward the block's length, as here).
+#[inline(always)]
 fn lex_word(
     line: &[u8],
+    start: usize,
     at: usize,
     rules: &LexRules,
     out: &mut Block,
 ) -> Result<usize, Diagnostic> {
     let (addr, value_at) = address(line, at, rules);
-    let n = match parse_number(line, value_at) {
+    let (n, next) = match lex_number(line, value_at) {
         Ok(n) => n,
         Err(e) => {
             return Err(foreign_address(line, at, rules)
@@ -187,7 +196,10 @@ fn lex_word(
     if !out.push(word) {
         return Err(diag::too_many_words(word.span, MAX_WORDS));
     }
-    Ok(n.end)
+    if next > n.end && next - start > MAX_BLOCK_BYTES {
+        return Err(too_long(start));
+    }
+    Ok(next)
 }
 
 /// `O7997A`: a letter glued to the program number of an `O` word that
