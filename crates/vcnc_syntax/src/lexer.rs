@@ -100,8 +100,11 @@ pub fn lex_block(
         };
         // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
         // the dialect has them (one call site keeps `lex_word` inlined).
-        if b.is_ascii_alphabetic() || (b == b',' && is_extended(line, i, rules)) {
-            i = lex_word(line, start, i, rules, out)?;
+        // `b | 0x20` lowercases a letter, so one compare finds both cases
+        // and `b & !0x20` is then its uppercase.
+        let letter = b & !0x20;
+        if (b | 0x20).wrapping_sub(b'a') < 26 || (b == b',' && is_extended(line, i, rules)) {
+            i = lex_word(line, start, i, letter, rules, out)?;
             first = false;
             continue;
         }
@@ -130,7 +133,6 @@ pub fn lex_block(
                 out.percent = true;
                 return finish(out, start, i + 1, line.len());
             }
-            b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, start, i, rules, out)?,
             0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
                 return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
             }
@@ -154,6 +156,17 @@ fn too_long(start: usize) -> Diagnostic {
     diag::block_too_long(Span::new(start, start + 1), MAX_BLOCK_BYTES)
 }
 
+/// E106 if the blanks skipped after a word (from `end` to `next`) took the
+/// block beyond its length, as the main loop's check after each blank
+/// would. Out of line, so that the common path is one compare.
+#[cold]
+fn blanks_too_long(start: usize, end: usize, next: usize) -> Result<(), Diagnostic> {
+    if next > end {
+        return Err(too_long(start));
+    }
+    Ok(())
+}
+
 fn finish(out: &mut Block, start: usize, end: usize, next: usize) -> Result<usize, Diagnostic> {
     out.span = Span::new(start, end);
     Ok(next)
@@ -175,10 +188,11 @@ fn lex_word(
     line: &[u8],
     start: usize,
     at: usize,
+    letter: u8,
     rules: &LexRules,
     out: &mut Block,
 ) -> Result<usize, Diagnostic> {
-    let (addr, value_at) = address(line, at, rules);
+    let (addr, value_at) = address(line, at, letter, rules);
     let (n, next) = match lex_number(line, value_at) {
         Ok(n) => n,
         Err(e) => {
@@ -196,8 +210,8 @@ fn lex_word(
     if !out.push(word) {
         return Err(diag::too_many_words(word.span, MAX_WORDS));
     }
-    if next > n.end && next - start > MAX_BLOCK_BYTES {
-        return Err(too_long(start));
+    if next - start > MAX_BLOCK_BYTES {
+        blanks_too_long(start, n.end, next)?;
     }
     Ok(next)
 }
@@ -247,16 +261,18 @@ fn number_error(line: &[u8], at: usize, value_at: usize, e: NumberError) -> Diag
     }
 }
 
-/// The address at `at` and the index where its value starts.
+/// The address at `at`, whose byte is `letter` in uppercase if it is a
+/// letter (and not an address if not), and the index where its value
+/// starts.
 #[inline]
-fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
+fn address(line: &[u8], at: usize, letter: u8, rules: &LexRules) -> (Addr, usize) {
     for (text, addr) in rules.extended {
         let t = text.as_bytes();
         if line.len() >= at + t.len() && line[at..at + t.len()].eq_ignore_ascii_case(t) {
             return (*addr, at + t.len());
         }
     }
-    (Addr::letter(line[at].to_ascii_uppercase()), at + 1)
+    (Addr::letter(letter), at + 1)
 }
 
 /// Whether one of the dialect's extended addresses starts at `at`.

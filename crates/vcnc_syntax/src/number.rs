@@ -85,10 +85,11 @@ fn fast_number(bytes: &[u8], start: usize) -> Option<(Number, usize)> {
     let mut mantissa: u64 = 0;
     let mut point_at = None;
     while let Some(&c) = bytes.get(i) {
-        let d = c.wrapping_sub(b'0');
+        // Widened before the subtraction, so the digit is added as it is.
+        let d = u64::from(c).wrapping_sub(u64::from(b'0'));
         if d <= 9 {
             // Wrapping: more than 15 digits go to the careful path below.
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(d);
         } else if c == b'.' && point_at.is_none() {
             point_at = Some(i);
         } else {
