@@ -92,19 +92,49 @@ pub fn lex_block(
     out: &mut Block,
 ) -> Result<usize, Diagnostic> {
     out.clear();
+    // Most blocks are words up to the line's end (`lex_word` steps over the
+    // blanks after each): they take this lean loop, and anything else hands
+    // over to the general one, whose state and rare paths then cost them
+    // nothing.
     let mut i = start;
-    let mut first = true;
+    while let Some(&b) = line.get(i) {
+        if !is_letter(b) {
+            return lex_rest(line, start, i, rules, out);
+        }
+        i = lex_word(line, start, i, b & !0x20, rules, out)?;
+    }
+    finish(out, start, i, line.len())
+}
+
+/// Whether `b` is an ASCII letter: `b | 0x20` lowercases a letter, so one
+/// compare finds both cases (and `b & !0x20` is then its uppercase).
+#[inline(always)]
+fn is_letter(b: u8) -> bool {
+    (b | 0x20).wrapping_sub(b'a') < 26
+}
+
+/// [`lex_block`] from `i` on, where its lean loop met something other than
+/// a word: blanks, comments, block ends, block delete, tape marks, `,C`
+/// and every error.
+#[inline(never)]
+fn lex_rest(
+    line: &[u8],
+    start: usize,
+    mut i: usize,
+    rules: &LexRules,
+    out: &mut Block,
+) -> Result<usize, Diagnostic> {
+    // The lean loop reads only words, so none was read if it stopped at
+    // the start.
+    let mut first = i == start;
     loop {
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
         // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
-        // the dialect has them (one call site keeps `lex_word` inlined).
-        // `b | 0x20` lowercases a letter, so one compare finds both cases
-        // and `b & !0x20` is then its uppercase.
-        let letter = b & !0x20;
-        if (b | 0x20).wrapping_sub(b'a') < 26 || (b == b',' && is_extended(line, i, rules)) {
-            i = lex_word(line, start, i, letter, rules, out)?;
+        // the dialect has them.
+        if is_letter(b) || (b == b',' && is_extended(line, i, rules)) {
+            i = lex_word(line, start, i, b & !0x20, rules, out)?;
             first = false;
             continue;
         }
@@ -195,11 +225,7 @@ fn lex_word(
     let (addr, value_at) = address(line, at, letter, rules);
     let (n, next) = match lex_number(line, value_at) {
         Ok(n) => n,
-        Err(e) => {
-            return Err(foreign_address(line, at, rules)
-                .or_else(|| lettered_program_name(line, at, out))
-                .unwrap_or_else(|| number_error(line, at, value_at, e)));
-        }
+        Err(e) => return Err(word_error(line, at, value_at, e, rules, out)),
     };
     let word = Word {
         addr,
@@ -214,6 +240,25 @@ fn lex_word(
         blanks_too_long(start, n.end, next)?;
     }
     Ok(next)
+}
+
+/// Why the word at `at`, whose value should start at `value_at`, has no
+/// number: an address of another dialect, a lettered program name, or the
+/// number's own error. Out of line, so that the word loop keeps neither
+/// the rules' foreign addresses nor a diagnostic in its frame.
+#[cold]
+#[inline(never)]
+fn word_error(
+    line: &[u8],
+    at: usize,
+    value_at: usize,
+    e: NumberError,
+    rules: &LexRules,
+    out: &Block,
+) -> Diagnostic {
+    foreign_address(line, at, rules)
+        .or_else(|| lettered_program_name(line, at, out))
+        .unwrap_or_else(|| number_error(line, at, value_at, e))
 }
 
 /// `O7997A`: a letter glued to the program number of an `O` word that

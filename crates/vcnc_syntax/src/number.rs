@@ -61,8 +61,9 @@ pub(crate) fn lex_number(bytes: &[u8], start: usize) -> Result<(Number, usize), 
     fast_number(bytes, start).map_or_else(|| slow_number(bytes, start).map(|n| (n, n.end)), Ok)
 }
 
-/// The common case in one tight loop: `[-+]digits[.digits]` with no spaces
-/// inside, at most 9 digits before the point and 15 in all. `None` sends
+/// The common case in two tight loops: `[-+]digits[.digits]` with no
+/// spaces inside, at most 9 digits before the point and 15 in all (the
+/// fraction's length is where its loop ended, so no digit is counted). `None` sends
 /// anything else to the careful path, which gives the same answer for these
 /// forms. Returns the number and the index past the blanks after it.
 #[inline(always)]
@@ -80,27 +81,17 @@ fn fast_number(bytes: &[u8], start: usize) -> Option<(Number, usize)> {
         _ => false,
     };
     let digits_start = i;
-    // The digits on both sides of the point in one indexed loop (an
-    // iterator, or a second loop for the fraction, costs more per digit).
     let mut mantissa: u64 = 0;
-    let mut point_at = None;
-    while let Some(&c) = bytes.get(i) {
-        // Widened before the subtraction, so the digit is added as it is.
-        let d = u64::from(c).wrapping_sub(u64::from(b'0'));
-        if d <= 9 {
-            // Wrapping: more than 15 digits go to the careful path below.
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(d);
-        } else if c == b'.' && point_at.is_none() {
-            point_at = Some(i);
-        } else {
-            break;
-        }
+    digits(bytes, &mut i, &mut mantissa);
+    let int_digits = i - digits_start;
+    let point = bytes.get(i) == Some(&b'.');
+    let mut frac = 0;
+    if point {
         i += 1;
+        let frac_start = i;
+        digits(bytes, &mut i, &mut mantissa);
+        frac = i - frac_start;
     }
-    let (int_digits, frac) = match point_at {
-        Some(p) => (p - digits_start, i - p - 1),
-        None => (i - digits_start, 0),
-    };
     // Leading zeros count here, so `0000000001` takes the careful path.
     if int_digits + frac == 0
         || int_digits > MAX_INT_DIGITS as usize
@@ -123,10 +114,26 @@ fn fast_number(bytes: &[u8], start: usize) -> Option<(Number, usize)> {
     let magnitude = (mantissa as i64) as f64 / POW10[frac];
     let number = Number {
         value: if negative { -magnitude } else { magnitude },
-        point: point_at.is_some(),
+        point,
         end: i,
     };
     Some((number, next))
+}
+
+/// Appends the digits at `bytes[*i..]` to `mantissa` and moves `i` past
+/// them. An indexed loop: an iterator costs more per digit.
+#[inline(always)]
+fn digits(bytes: &[u8], i: &mut usize, mantissa: &mut u64) {
+    while let Some(&c) = bytes.get(*i) {
+        // Widened before the subtraction, so the digit is added as it is.
+        let d = u64::from(c).wrapping_sub(u64::from(b'0'));
+        if d > 9 {
+            break;
+        }
+        // Wrapping: more than 15 digits go to the careful path.
+        *mantissa = mantissa.wrapping_mul(10).wrapping_add(d);
+        *i += 1;
+    }
 }
 
 /// Spaces inside the number, leading zeros beyond 15 digits, and all errors.
