@@ -14,7 +14,7 @@
 
 use crate::block::{Addr, Block, MAX_WORDS, Word};
 use crate::diagnostics::{self as diag, Diagnostic};
-use crate::number::{NumberError, parse_number};
+use crate::number::{NumberError, lex_number};
 use vcnc_core::Span;
 
 /// Longest block the lexer accepts (E106 beyond).
@@ -92,16 +92,49 @@ pub fn lex_block(
     out: &mut Block,
 ) -> Result<usize, Diagnostic> {
     out.clear();
+    // Most blocks are words up to the line's end (`lex_word` steps over the
+    // blanks after each): they take this lean loop, and anything else hands
+    // over to the general one, whose state and rare paths then cost them
+    // nothing.
     let mut i = start;
-    let mut first = true;
+    while let Some(&b) = line.get(i) {
+        if !is_letter(b) {
+            return lex_rest(line, start, i, rules, out);
+        }
+        i = lex_word(line, start, i, b & !0x20, rules, out)?;
+    }
+    finish(out, start, i, line.len())
+}
+
+/// Whether `b` is an ASCII letter: `b | 0x20` lowercases a letter, so one
+/// compare finds both cases (and `b & !0x20` is then its uppercase).
+#[inline(always)]
+fn is_letter(b: u8) -> bool {
+    (b | 0x20).wrapping_sub(b'a') < 26
+}
+
+/// [`lex_block`] from `i` on, where its lean loop met something other than
+/// a word: blanks, comments, block ends, block delete, tape marks, `,C`
+/// and every error.
+#[inline(never)]
+fn lex_rest(
+    line: &[u8],
+    start: usize,
+    mut i: usize,
+    rules: &LexRules,
+    out: &mut Block,
+) -> Result<usize, Diagnostic> {
+    // The lean loop reads only words, so none was read if it stopped at
+    // the start.
+    let mut first = i == start;
     loop {
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
         // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
-        // the dialect has them (one call site keeps `lex_word` inlined).
-        if b.is_ascii_alphabetic() || (b == b',' && is_extended(line, i, rules)) {
-            i = lex_word(line, i, rules, out)?;
+        // the dialect has them.
+        if is_letter(b) || (b == b',' && is_extended(line, i, rules)) {
+            i = lex_word(line, start, i, b & !0x20, rules, out)?;
             first = false;
             continue;
         }
@@ -130,7 +163,6 @@ pub fn lex_block(
                 out.percent = true;
                 return finish(out, start, i + 1, line.len());
             }
-            b'a'..=b'z' | b'A'..=b'Z' => i = lex_word(line, i, rules, out)?,
             0xEF if rules.fullwidth_semicolon && line[i..].starts_with(FULLWIDTH_SEMICOLON) => {
                 return finish(out, start, i, i + FULLWIDTH_SEMICOLON.len());
             }
@@ -143,12 +175,26 @@ pub fn lex_block(
         }
         first = first && matches!(b, b' ' | b'\t' | b'\r' | b'(' | 0x0c);
         if i - start > MAX_BLOCK_BYTES {
-            return Err(diag::block_too_long(
-                Span::new(start, start + 1),
-                MAX_BLOCK_BYTES,
-            ));
+            return Err(too_long(start));
         }
     }
+}
+
+/// E106 for the block that starts at `start`.
+#[cold]
+fn too_long(start: usize) -> Diagnostic {
+    diag::block_too_long(Span::new(start, start + 1), MAX_BLOCK_BYTES)
+}
+
+/// E106 if the blanks skipped after a word (from `end` to `next`) took the
+/// block beyond its length, as the main loop's check after each blank
+/// would. Out of line, so that the common path is one compare.
+#[cold]
+fn blanks_too_long(start: usize, end: usize, next: usize) -> Result<(), Diagnostic> {
+    if next > end {
+        return Err(too_long(start));
+    }
+    Ok(())
 }
 
 fn finish(out: &mut Block, start: usize, end: usize, next: usize) -> Result<usize, Diagnostic> {
@@ -163,20 +209,23 @@ fn skip_comment(line: &[u8], open: usize) -> Result<usize, Diagnostic> {
     }
 }
 
+/// Lexes the word at `at` into `out` and returns where lexing goes on:
+/// past the spaces and tabs after the word when the number parser has
+/// looked at them, which the main loop would otherwise step over one by
+/// one (counting them toward the block's length, as here).
+#[inline(always)]
 fn lex_word(
     line: &[u8],
+    start: usize,
     at: usize,
+    letter: u8,
     rules: &LexRules,
     out: &mut Block,
 ) -> Result<usize, Diagnostic> {
-    let (addr, value_at) = address(line, at, rules);
-    let n = match parse_number(line, value_at) {
+    let (addr, value_at) = address(line, at, letter, rules);
+    let (n, next) = match lex_number(line, value_at) {
         Ok(n) => n,
-        Err(e) => {
-            return Err(foreign_address(line, at, rules)
-                .or_else(|| lettered_program_name(line, at, out))
-                .unwrap_or_else(|| number_error(line, at, value_at, e)));
-        }
+        Err(e) => return Err(word_error(line, at, value_at, e, rules, out)),
     };
     let word = Word {
         addr,
@@ -187,7 +236,29 @@ fn lex_word(
     if !out.push(word) {
         return Err(diag::too_many_words(word.span, MAX_WORDS));
     }
-    Ok(n.end)
+    if next - start > MAX_BLOCK_BYTES {
+        blanks_too_long(start, n.end, next)?;
+    }
+    Ok(next)
+}
+
+/// Why the word at `at`, whose value should start at `value_at`, has no
+/// number: an address of another dialect, a lettered program name, or the
+/// number's own error. Out of line, so that the word loop keeps neither
+/// the rules' foreign addresses nor a diagnostic in its frame.
+#[cold]
+#[inline(never)]
+fn word_error(
+    line: &[u8],
+    at: usize,
+    value_at: usize,
+    e: NumberError,
+    rules: &LexRules,
+    out: &Block,
+) -> Diagnostic {
+    foreign_address(line, at, rules)
+        .or_else(|| lettered_program_name(line, at, out))
+        .unwrap_or_else(|| number_error(line, at, value_at, e))
 }
 
 /// `O7997A`: a letter glued to the program number of an `O` word that
@@ -235,16 +306,18 @@ fn number_error(line: &[u8], at: usize, value_at: usize, e: NumberError) -> Diag
     }
 }
 
-/// The address at `at` and the index where its value starts.
+/// The address at `at`, whose byte is `letter` in uppercase if it is a
+/// letter (and not an address if not), and the index where its value
+/// starts.
 #[inline]
-fn address(line: &[u8], at: usize, rules: &LexRules) -> (Addr, usize) {
+fn address(line: &[u8], at: usize, letter: u8, rules: &LexRules) -> (Addr, usize) {
     for (text, addr) in rules.extended {
         let t = text.as_bytes();
         if line.len() >= at + t.len() && line[at..at + t.len()].eq_ignore_ascii_case(t) {
             return (*addr, at + t.len());
         }
     }
-    (Addr::letter(line[at].to_ascii_uppercase()), at + 1)
+    (Addr::letter(letter), at + 1)
 }
 
 /// Whether one of the dialect's extended addresses starts at `at`.

@@ -17,17 +17,6 @@ const POW10: [f64; 16] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
 ];
 
-/// Smallest mantissa with more than 9 integer digits, by fraction digits.
-const INT_LIMIT: [u64; 16] = {
-    let mut t = [u64::MAX; 16];
-    let mut k: u32 = 0;
-    while k + MAX_INT_DIGITS < 19 {
-        t[k as usize] = 10u64.pow(MAX_INT_DIGITS + k);
-        k += 1;
-    }
-    t
-};
-
 /// Why a number could not be read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NumberError {
@@ -56,77 +45,95 @@ pub struct Number {
 /// let n = vcnc_syntax::parse_number(b"-12.50 Y", 0).unwrap();
 /// assert_eq!((n.value, n.point, n.end), (-12.5, true, 6));
 /// ```
-// Inlined into the lexer's word loop (its hot path) even now that the macro
-// parser calls it too.
+// Inlined into the macro parser's hot paths, as it was when the lexer
+// called it too.
 #[inline(always)]
 pub fn parse_number(bytes: &[u8], start: usize) -> Result<Number, NumberError> {
-    fast_number(bytes, start).map_or_else(|| slow_number(bytes, start), Ok)
+    lex_number(bytes, start).map(|(n, _)| n)
 }
 
-/// The common case in one tight loop: `[-+]digits[.digits]` with no spaces
-/// inside and at most 15 digits. `None` sends anything else to the careful
-/// path, which gives the same answer for these forms.
+/// [`parse_number`] for the lexer: the number, and where the lexer goes on,
+/// which is past the spaces and tabs after the number when the fast path
+/// has looked at them (it must, to know that the number ended there) and
+/// at its end otherwise.
 #[inline(always)]
-fn fast_number(bytes: &[u8], start: usize) -> Option<Number> {
-    let rest = bytes.get(start..)?;
-    let (negative, mut i) = match rest.first() {
-        Some(b'-') => (true, 1),
-        Some(b'+') => (false, 1),
-        _ => (false, 0),
+pub(crate) fn lex_number(bytes: &[u8], start: usize) -> Result<(Number, usize), NumberError> {
+    fast_number(bytes, start).map_or_else(|| slow_number(bytes, start).map(|n| (n, n.end)), Ok)
+}
+
+/// The common case in two tight loops: `[-+]digits[.digits]` with no
+/// spaces inside, at most 9 digits before the point and 15 in all (the
+/// fraction's length is where its loop ended, so no digit is counted). `None` sends
+/// anything else to the careful path, which gives the same answer for these
+/// forms. Returns the number and the index past the blanks after it.
+#[inline(always)]
+fn fast_number(bytes: &[u8], start: usize) -> Option<(Number, usize)> {
+    let mut i = start;
+    let negative = match bytes.get(i) {
+        Some(b'-') => {
+            i += 1;
+            true
+        }
+        Some(b'+') => {
+            i += 1;
+            false
+        }
+        _ => false,
     };
     let digits_start = i;
     let mut mantissa: u64 = 0;
-    while i < rest.len() {
-        let d = rest[i].wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        // Wrapping: more than 15 digits go to the careful path below anyway.
-        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
-        i += 1;
-    }
+    digits(bytes, &mut i, &mut mantissa);
     let int_digits = i - digits_start;
-    let point = i < rest.len() && rest[i] == b'.';
-    let mut frac = 0usize;
+    let point = bytes.get(i) == Some(&b'.');
+    let mut frac = 0;
     if point {
         i += 1;
-        while i < rest.len() {
-            let d = rest[i].wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
-            i += 1;
-            frac += 1;
-        }
+        let frac_start = i;
+        digits(bytes, &mut i, &mut mantissa);
+        frac = i - frac_start;
     }
+    // Leading zeros count here, so `0000000001` takes the careful path.
     if int_digits + frac == 0
+        || int_digits > MAX_INT_DIGITS as usize
         || int_digits + frac > MAX_SIG_DIGITS as usize
-        || mantissa >= INT_LIMIT[frac]
     {
         return None;
     }
-    match rest.get(i) {
-        // A second point or a sign inside the number: malformed.
-        Some(b'.' | b'+' | b'-') => return None,
-        // A space ends the number only if no digit, point or sign follows.
-        Some(b' ' | b'\t') => {
-            let mut j = i;
-            while j < rest.len() && matches!(rest[j], b' ' | b'\t') {
-                j += 1;
-            }
-            if j < rest.len() && matches!(rest[j], b'0'..=b'9' | b'.' | b'+' | b'-') {
-                return None;
-            }
-        }
-        _ => {}
+    // A space ends the number only if no digit, point or sign follows it;
+    // right after the digits a point or sign (a second point, a sign inside
+    // the number) is malformed.
+    let mut next = i;
+    while let Some(b' ' | b'\t') = bytes.get(next) {
+        next += 1;
     }
-    let magnitude = mantissa as f64 / POW10[frac];
-    Some(Number {
+    if let Some(b'0'..=b'9' | b'.' | b'+' | b'-') = bytes.get(next) {
+        return None;
+    }
+    // At most 15 digits: the mantissa is below 2^63, where the signed
+    // conversion (one instruction, the unsigned one takes six) is exact.
+    let magnitude = (mantissa as i64) as f64 / POW10[frac];
+    let number = Number {
         value: if negative { -magnitude } else { magnitude },
         point,
-        end: start + i,
-    })
+        end: i,
+    };
+    Some((number, next))
+}
+
+/// Appends the digits at `bytes[*i..]` to `mantissa` and moves `i` past
+/// them. An indexed loop: an iterator costs more per digit.
+#[inline(always)]
+fn digits(bytes: &[u8], i: &mut usize, mantissa: &mut u64) {
+    while let Some(&c) = bytes.get(*i) {
+        // Widened before the subtraction, so the digit is added as it is.
+        let d = u64::from(c).wrapping_sub(u64::from(b'0'));
+        if d > 9 {
+            break;
+        }
+        // Wrapping: more than 15 digits go to the careful path.
+        *mantissa = mantissa.wrapping_mul(10).wrapping_add(d);
+        *i += 1;
+    }
 }
 
 /// Spaces inside the number, leading zeros beyond 15 digits, and all errors.
@@ -275,8 +282,11 @@ mod equivalence {
         #[test]
         fn fast_path_agrees_with_slow_path(s in "[-+ 0-9.]{0,20}[ XY;]{0,2}") {
             let b = s.as_bytes();
-            if let Some(fast) = fast_number(b, 0) {
+            if let Some((fast, next)) = fast_number(b, 0) {
                 prop_assert_eq!(Ok(fast), slow_number(b, 0));
+                // The lexer goes on past the blanks after the number.
+                prop_assert!(b[fast.end..next].iter().all(|c| matches!(c, b' ' | b'\t')));
+                prop_assert!(!matches!(b.get(next), Some(b' ' | b'\t')));
             }
         }
     }

@@ -127,6 +127,19 @@ impl<S: TextSource> LineReader<S> {
 
     /// The next physical line without its `\n`, or `None` at the end.
     pub fn next_line(&mut self) -> Result<Option<Line>, ReadError> {
+        // Nearly every line is whole in the buffer: found here, without the
+        // refill loop's state in this frame.
+        let window = self.buf.get(self.pos..self.filled).unwrap_or(&[]);
+        if let Some(k) = memchr::memchr(b'\n', window) {
+            return Ok(Some(self.take(k, k + 1)));
+        }
+        self.next_line_refilling()
+    }
+
+    /// [`next_line`](Self::next_line) when the buffer holds no whole line:
+    /// refills it, or hands out the last line, or skips one too long.
+    #[inline(never)]
+    fn next_line_refilling(&mut self) -> Result<Option<Line>, ReadError> {
         loop {
             let window = &self.buf[self.pos..self.filled];
             if let Some(k) = memchr::memchr(b'\n', window) {
