@@ -183,8 +183,14 @@ fn stream<S: Sink + Send + 'static>(
         inner: offload::Offload::start(make),
         warnings: Summary::new(&s.machine),
     };
-    let (outcome, _) = execute(&args.opts, s, input, &mut tap)?;
-    let written = tap.inner.join()?.finish();
+    let ran = execute(&args.opts, s, input, &mut tap);
+    // The sink is taken back also when the run failed (the variables file
+    // could not be written), and then dropped unfinished as it was when it
+    // ran in line: the events still in its chunk reach it and its buffer
+    // is flushed before the error is reported.
+    let sink = tap.inner.join();
+    let (outcome, _) = ran?;
+    let written = sink?.finish();
     Ok((outcome, tap.warnings, written))
 }
 

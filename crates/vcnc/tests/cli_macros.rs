@@ -139,6 +139,54 @@ fn kept_variables_survive_between_runs_in_a_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A variables file that cannot be written after the run is an error (2),
+/// but what the run wrote stays written: the CSV and G-code sinks are
+/// flushed as when no variables file is given, also now that they run on
+/// a second thread.
+#[test]
+fn a_variables_file_that_cannot_be_written_keeps_the_output() {
+    let dir = std::env::temp_dir().join(format!("vcnc-vars-lost-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program = dir.join("moves.nc");
+    std::fs::write(&program, "#500 = 1\nG00 X1. Y2.\nG01 Z-1. F100.\nM30\n").unwrap();
+    let program = program.display().to_string();
+    // Its directory does not exist.
+    let vars = dir.join("missing").join("vars.txt").display().to_string();
+    for format in ["csv", "gcode"] {
+        let plain = vcnc(
+            &["run", "--dialect", "fanuc", "--format", format, &program],
+            None,
+        );
+        assert_eq!(plain.status.code(), Some(0), "{}", text(&plain.stderr));
+        assert!(!plain.stdout.is_empty());
+        let failed = vcnc(
+            &[
+                "run",
+                "--dialect",
+                "fanuc",
+                "--format",
+                format,
+                "--variables",
+                &vars,
+                &program,
+            ],
+            None,
+        );
+        assert_eq!(failed.status.code(), Some(2), "{}", text(&failed.stderr));
+        assert!(
+            text(&failed.stderr).contains("variables file"),
+            "{}",
+            text(&failed.stderr)
+        );
+        assert_eq!(
+            text(&failed.stdout),
+            text(&plain.stdout),
+            "--format {format}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn messages_reach_the_event_stream() {
     let out = vcnc(
