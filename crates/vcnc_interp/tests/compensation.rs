@@ -62,17 +62,19 @@ fn on_sweep(phi: f64, a0: f64, sweep: f64) -> bool {
     }
 }
 
+/// An arc from `a` to `b` about `c` as radius, start angle and signed sweep.
+fn arc_polar(a: P, b: P, c: P, ccw: bool) -> (f64, f64, f64) {
+    let a0 = (a.1 - c.1).atan2(a.0 - c.0);
+    let a1 = (b.1 - c.1).atan2(b.0 - c.0);
+    let sweep = (a1 - a0).rem_euclid(TAU);
+    (dist(a, c), a0, if ccw { sweep } else { sweep - TAU })
+}
+
 fn dist_to_edge(p: P, e: &Edge) -> f64 {
     match *e {
         Edge::Line(a, b) => dist_to_segment(p, a, b),
         Edge::Arc(a, b, c, ccw) => {
-            let r = dist(a, c);
-            let a0 = (a.1 - c.1).atan2(a.0 - c.0);
-            let a1 = (b.1 - c.1).atan2(b.0 - c.0);
-            let mut sweep = (a1 - a0).rem_euclid(TAU);
-            if !ccw {
-                sweep -= TAU;
-            }
+            let (r, a0, sweep) = arc_polar(a, b, c, ccw);
             let phi = (p.1 - c.1).atan2(p.0 - c.0);
             if on_sweep(phi, a0, sweep) {
                 (dist(p, c) - r).abs()
@@ -88,13 +90,7 @@ fn edge_points(e: &Edge) -> Vec<P> {
     match *e {
         Edge::Line(a, b) => vec![a, b],
         Edge::Arc(a, b, c, ccw) => {
-            let r = dist(a, c);
-            let a0 = (a.1 - c.1).atan2(a.0 - c.0);
-            let a1 = (b.1 - c.1).atan2(b.0 - c.0);
-            let mut sweep = (a1 - a0).rem_euclid(TAU);
-            if !ccw {
-                sweep -= TAU;
-            }
+            let (r, a0, sweep) = arc_polar(a, b, c, ccw);
             let mut pts: Vec<P> = (0..64)
                 .map(|k| {
                     let t = a0 + sweep * f64::from(k) / 64.0;
