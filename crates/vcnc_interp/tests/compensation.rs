@@ -17,15 +17,13 @@
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
-use vcnc_interp::{ArcDir, Dialect, Event, Interpreter, Machine, Options, Outcome, Pos, VecSink};
+use vcnc_interp::{ArcDir, Dialect, Event, Outcome, Pos};
 use vcnc_syntax::Code;
 
+mod common;
+
 fn run(program: &str) -> (Vec<Event>, Outcome) {
-    let m = Machine::default_mill();
-    let d = Dialect::fanuc();
-    let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, &d, Options::default()).run_str(program, &mut sink);
-    (sink.0, out)
+    common::run_str(&Dialect::fanuc(), program)
 }
 
 type P = (f64, f64);

@@ -11,34 +11,11 @@
 
 mod common;
 
-use common::{Ran, Store, ended};
-use vcnc_interp::{Event, Outcome};
-use vcnc_syntax::{Code, Diagnostic};
+use common::{Ran, Store, alarm, at, ended, xs};
+use vcnc_syntax::Code;
 
 fn run(dialect: &str, program: &str, names: &[&str]) -> Ran {
     common::run(dialect, program, Store::default(), names)
-}
-
-/// The alarm of a run, checked to be the last event (no motion after it).
-fn alarm(r: &Ran) -> &Diagnostic {
-    let Outcome::Alarm(d) = &r.outcome else {
-        panic!("no alarm: {:?}\n{:?}", r.outcome, r.events);
-    };
-    assert!(matches!(r.events.last(), Some(Event::Alarm(a)) if a == d));
-    d
-}
-
-fn where_(d: &Diagnostic) -> (Code, u64, u32) {
-    (d.code, d.line, d.column)
-}
-
-/// End points of the motion events, X only.
-fn xs(events: &[Event]) -> Vec<f64> {
-    events
-        .iter()
-        .filter_map(Event::motion_end)
-        .map(|p| (p.get(0) * 1e6).round() / 1e6)
-        .collect()
 }
 
 // ---------------------------------------------------------------------------
@@ -64,13 +41,13 @@ fn goto_into_a_loop_from_outside_alarms_at_the_goto_word() {
     // must not.
     let r = run("fanuc", INTO_LOOP, &[]);
     let d = alarm(&r);
-    assert_eq!(where_(d), (Code::E614, 3, 14));
+    assert_eq!(at(d), (Code::E614, 3, 14));
     assert!(d.message.contains("N10"), "{}", d.message);
     assert!(d.message.contains("loop"), "{}", d.message);
     assert_eq!(xs(&r.events), vec![5.0]);
     // Syntec ISO programs read Macro B (docs/macros.md): the same alarm.
     let r = run("syntec", INTO_LOOP, &[]);
-    assert_eq!(where_(alarm(&r)), (Code::E614, 3, 14));
+    assert_eq!(at(alarm(&r)), (Code::E614, 3, 14));
     assert_eq!(xs(&r.events), vec![5.0]);
 }
 
@@ -81,7 +58,7 @@ fn plain_goto_to_a_loop_end_from_outside_alarms() {
     // 2 is column 1.
     let p = "#1 = 0\nGOTO 20\nWHILE [#1 LT 2] DO 1\n#1 = #1 + 1\nN20 END 1\nM30\n";
     let r = run("fanuc", p, &["#1"]);
-    assert_eq!(where_(alarm(&r)), (Code::E614, 2, 1));
+    assert_eq!(at(alarm(&r)), (Code::E614, 2, 1));
     // Nothing after the GOTO ran: #1 is still 0.
     assert_eq!(r.values, vec![Some(0.0)]);
 }
@@ -100,7 +77,7 @@ fn goto_from_an_outer_loop_into_an_inner_loop_alarms() {
              END 1\n\
              M30\n";
     let r = run("fanuc", p, &["#1"]);
-    assert_eq!(where_(alarm(&r)), (Code::E614, 4, 1));
+    assert_eq!(at(alarm(&r)), (Code::E614, 4, 1));
     // Line 3 ran once before the alarm.
     assert_eq!(r.values, vec![Some(1.0)]);
 }
@@ -194,7 +171,7 @@ fn a_variable_in_the_block_delete_position_says_so() {
     // block delete, not "expected `=`"; nothing moves.
     let r = run("fanuc", "/#2 G00 X1.\nM30\n", &[]);
     let d = alarm(&r);
-    assert_eq!(where_(d), (Code::E601, 1, 2));
+    assert_eq!(at(d), (Code::E601, 1, 2));
     assert!(d.message.contains("block delete"), "{}", d.message);
     assert!(!d.message.contains("expected"), "{}", d.message);
     assert!(xs(&r.events).is_empty());
@@ -212,7 +189,7 @@ fn an_at_variable_in_a_syntec_iso_program_names_macro_files() {
     // `Y@1` starts at column 5 of line 2; nothing of the block moves.
     let r = run("syntec", "G90 G00 X2.\nG00 Y@1 X3.\nM30\n", &[]);
     let d = alarm(&r);
-    assert_eq!(where_(d), (Code::E104, 2, 5));
+    assert_eq!(at(d), (Code::E104, 2, 5));
     assert!(d.message.contains("%@MACRO"), "{}", d.message);
     assert_eq!(xs(&r.events), vec![2.0]);
     // Fanuc has no `@` variables: its message stays the plain one.
@@ -240,7 +217,7 @@ fn syntec_string_that_is_no_number_alarms() {
     // string, line 2 column 8 (`#10 := ` is 7 characters).
     let r = run("syntec", "%@MACRO\n#10 := \"AB\";\nM30;\n", &["#10"]);
     let d = alarm(&r);
-    assert_eq!(where_(d), (Code::E601, 2, 8));
+    assert_eq!(at(d), (Code::E601, 2, 8));
     assert!(d.message.contains("not a number"), "{}", d.message);
     assert_eq!(r.values, vec![None]);
 }
@@ -252,7 +229,7 @@ fn syntec_string_assigned_to_a_global_needs_the_controller() {
     // `@10 := ` is 7 characters), and @10 stays vacant.
     let r = run("syntec", "%@MACRO\n@10 := \"12\";\nM30;\n", &["@10"]);
     let d = alarm(&r);
-    assert_eq!(where_(d), (Code::E604, 2, 8));
+    assert_eq!(at(d), (Code::E604, 2, 8));
     assert!(d.message.contains("SCANTEXT"), "{}", d.message);
     assert_eq!(r.values, vec![None]);
 }

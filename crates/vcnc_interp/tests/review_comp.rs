@@ -5,33 +5,15 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, Pos};
+use vcnc_interp::{Dialect, Event, Interpreter, Options, Outcome, Pos, VecSink};
 use vcnc_syntax::Code;
 
+mod common;
+
+use common::{ends, near};
+
 fn run(program: &str) -> (Vec<Event>, Outcome) {
-    let m = Machine::default_mill();
-    let d = Dialect::fanuc();
-    let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, &d, Options::default()).run_str(program, &mut sink);
-    (sink.0, out)
-}
-
-use vcnc_interp::VecSink;
-
-/// The end points of the rapids and feeds of line `line`.
-fn ends(events: &[Event], line: u64) -> Vec<Pos> {
-    events
-        .iter()
-        .filter(|e| e.loc().is_some_and(|l| l.line == line))
-        .filter_map(|e| match e {
-            Event::Feed { to, .. } | Event::Rapid { to, .. } | Event::Arc { to, .. } => Some(*to),
-            _ => None,
-        })
-        .collect()
-}
-
-fn near(p: Pos, x: f64, y: f64, z: f64) -> bool {
-    (p.0[0] - x).abs() < 1e-6 && (p.0[1] - y).abs() < 1e-6 && (p.0[2] - z).abs() < 1e-6
+    common::run_str(&Dialect::fanuc(), program)
 }
 
 /// A square pocket wall cut with G41 (r = 5) along +X at y = 0, then a

@@ -4,30 +4,11 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, Pos, VecSink};
+use vcnc_interp::{Dialect, Event, Interpreter, Options, Outcome, VecSink};
 
-fn run(dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
-    let m = Machine::default_mill();
-    let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, dialect, Options::default()).run_str(program, &mut sink);
-    (sink.0, out)
-}
+mod common;
 
-/// The end points of the rapids, feeds and arcs of line `line`.
-fn ends(events: &[Event], line: u64) -> Vec<Pos> {
-    events
-        .iter()
-        .filter(|e| e.loc().is_some_and(|l| l.line == line))
-        .filter_map(|e| match e {
-            Event::Feed { to, .. } | Event::Rapid { to, .. } | Event::Arc { to, .. } => Some(*to),
-            _ => None,
-        })
-        .collect()
-}
-
-fn near(p: Pos, x: f64, y: f64, z: f64) -> bool {
-    (p.0[0] - x).abs() < 1e-6 && (p.0[1] - y).abs() < 1e-6 && (p.0[2] - z).abs() < 1e-6
-}
+use common::{ends, near, run_str as run};
 
 /// Offset 1 is r = 5; `select` (line 2) is the block that should select
 /// it; the G41 of line 5 has no D. The start-up from (-10, -10) to (0, 0)

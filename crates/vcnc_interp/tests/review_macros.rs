@@ -9,28 +9,9 @@
 
 mod common;
 
-use common::{Ran, Store, ended, run};
+use common::{Store, alarm_of, ended, run, xs};
 use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, VecSink};
 use vcnc_syntax::{Code, MemSource};
-
-/// The alarm of a run: (code, line, column), checked to be the last event
-/// (no motion after it).
-fn alarm_of(r: &Ran) -> (Code, u64, u32) {
-    let Outcome::Alarm(d) = &r.outcome else {
-        panic!("no alarm: {:?}\n{:?}", r.outcome, r.events);
-    };
-    assert!(matches!(r.events.last(), Some(Event::Alarm(a)) if a == d));
-    (d.code, d.line, d.column)
-}
-
-/// End points of the motion events, X only.
-fn xs(events: &[Event]) -> Vec<f64> {
-    events
-        .iter()
-        .filter_map(Event::motion_end)
-        .map(|p| (p.get(0) * 1e6).round() / 1e6)
-        .collect()
-}
 
 #[test]
 fn g66_with_l0_calls_nothing_like_g65_l0() {

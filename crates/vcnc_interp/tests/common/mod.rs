@@ -1,12 +1,15 @@
-//! Helpers the macro test files share: programs by number and by name, and
-//! a run that reads variables back after it ends.
+//! Helpers the integration tests share: programs by number and by name, a
+//! run that reads variables back after it ends, a plain run of a program
+//! text, and the looks at its events and alarm the tests assert on.
 
 #![allow(dead_code)] // each test file uses a part of it
 
 use std::collections::HashMap;
 use std::io;
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, ProgramStore, VecSink};
-use vcnc_syntax::{MemSource, TextSource};
+use vcnc_interp::{
+    Dialect, Event, Interpreter, Machine, Options, Outcome, Pos, ProgramStore, VecSink,
+};
+use vcnc_syntax::{Code, Diagnostic, MemSource, TextSource};
 
 /// Programs by number (`O0010`) and by name (`G0200`, `M0123`).
 #[derive(Default)]
@@ -88,4 +91,58 @@ pub fn ended(r: &Ran) {
         r.outcome,
         r.events
     );
+}
+
+/// Runs `program` under `dialect` on the built-in mill: its events and how
+/// it ended.
+pub fn run_str(dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
+    let m = Machine::default_mill();
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&m, dialect, Options::default()).run_str(program, &mut sink);
+    (sink.0, out)
+}
+
+/// The alarm of a run, checked to be the last event (no motion after it).
+pub fn alarm(r: &Ran) -> &Diagnostic {
+    let Outcome::Alarm(d) = &r.outcome else {
+        panic!("no alarm: {:?}\n{:?}", r.outcome, r.events);
+    };
+    assert!(matches!(r.events.last(), Some(Event::Alarm(a)) if a == d));
+    d
+}
+
+/// Where an alarm points: (code, line, column).
+pub fn at(d: &Diagnostic) -> (Code, u64, u32) {
+    (d.code, d.line, d.column)
+}
+
+/// The alarm of a run and where it points.
+pub fn alarm_of(r: &Ran) -> (Code, u64, u32) {
+    at(alarm(r))
+}
+
+/// End points of the motion events, X only, to the micrometre.
+pub fn xs(events: &[Event]) -> Vec<f64> {
+    events
+        .iter()
+        .filter_map(Event::motion_end)
+        .map(|p| (p.get(0) * 1e6).round() / 1e6)
+        .collect()
+}
+
+/// The end points of the rapids, feeds and arcs of line `line`.
+pub fn ends(events: &[Event], line: u64) -> Vec<Pos> {
+    events
+        .iter()
+        .filter(|e| e.loc().is_some_and(|l| l.line == line))
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } | Event::Rapid { to, .. } | Event::Arc { to, .. } => Some(*to),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Whether `p` is (x, y, z) within a nanometre.
+pub fn near(p: Pos, x: f64, y: f64, z: f64) -> bool {
+    (p.0[0] - x).abs() < 1e-6 && (p.0[1] - y).abs() < 1e-6 && (p.0[2] - z).abs() < 1e-6
 }
