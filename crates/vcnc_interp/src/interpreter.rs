@@ -550,16 +550,20 @@ impl<'a> Interpreter<'a> {
         // and the tables' writes are undone if the block alarms.
         let jumps = self.flow.jumps;
         let comp_engaged = self.comp.engaged();
-        if comp_engaged {
+        let plain = words.is_plain_motion(self.axis_mask);
+        let in_place = plain && self.moves_in_place(&words, comp_engaged);
+        if comp_engaged && !in_place {
             self.comp_saved.clone_from(&self.comp);
         }
         self.pending.clear();
-        let result = if !words.is_plain_motion(self.axis_mask) {
+        let result = if !plain {
             self.keeping_state(|s| s.execute(&words, here, next, store))
-        } else if self.moves_in_place(&words, comp_engaged) {
+        } else if in_place {
             // A plain G00/G01 keeps only what it changes before its last
-            // check (the copy of the state is most of its cost).
-            self.move_in_place(&words).map(|()| Step::Next)
+            // check (the copy of the state is most of its cost); it undoes
+            // the compensation stage itself.
+            self.move_in_place(&words, comp_engaged)
+                .map(|()| Step::Next)
         } else {
             // Only axis words, F and a motion code: nothing but a move.
             self.keeping_state(|s| s.execute_motion_only(&words))
@@ -583,7 +587,9 @@ impl<'a> Interpreter<'a> {
             Err(_) => {
                 self.flow.jumps = jumps;
                 self.tables.rollback();
-                if comp_engaged {
+                if in_place && comp_engaged {
+                    // Undone by the block's own `CompMoveUndo`.
+                } else if comp_engaged {
                     std::mem::swap(&mut self.comp, &mut self.comp_saved);
                 } else {
                     self.comp = crate::motion::comp::Comp::default();

@@ -100,3 +100,79 @@ proptest! {
         prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
     }
 }
+
+/// Blocks cut under G41, among them plain moves that alarm once the
+/// compensation stage has handed its held move on (over-travel of the move
+/// released, of the corner, a zero feed, a reversal the tool cannot follow):
+/// such blocks undo the stage through its mark instead of a copy.
+const COMP_BLOCKS: &[&str] = &[
+    "X20. Y0.",
+    "X20. Y20.",
+    "X0. Y20.",
+    "X0. Y0.",
+    "X35. Y5.",
+    "G91 X4. Y-3.",
+    "G90",
+    "Z-2.",
+    "Z1.",
+    "M08",
+    "G04 X0.1",
+    "F250.",
+    "G02 X10. Y10. R30.",
+    "G00 X15. Y12.",
+    "G01 X30. Y30.",
+    // These alarm part-way.
+    "X995. Y0.",
+    "X0. Y998.5",
+    "X5000. F7.",
+    "G01 Y2. F0.",
+    "X20.0001 Y0.",
+    "G91 X0.5 Y0. G90",
+    "G91 X-0.5 Y0. G90",
+];
+
+/// A block that alarms without changing anything (program 9999 does not
+/// exist), so that a program stops where a prefix ends without the end of
+/// program releasing the move held by the compensation.
+const STOP: &str = "M98 P9999";
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn an_alarming_block_under_compensation_changes_nothing(
+        picks in proptest::collection::vec(0..COMP_BLOCKS.len(), 1..25),
+    ) {
+        let machine = Machine::from_toml(include_str!(
+            "../../../tests/fixtures/machines/mill_travel_limits.toml"
+        ))
+        .unwrap();
+        let mut lines = vec!["G10 L12 P1 R2.", "G00 X-10. Y-10.", "G41 D1 G01 X0. Y0. F300."];
+        lines.extend(picks.iter().map(|&i| COMP_BLOCKS[i]));
+        lines.push("M30");
+        // The first n lines, then STOP.
+        let stopped = |n: usize| {
+            let mut text = lines[..n].join("\n");
+            text.push('\n');
+            text.push_str(STOP);
+            text.push('\n');
+            run(&machine, &text)
+        };
+        // The first line that alarms itself (an alarm can name the block
+        // of the move the compensation held before it).
+        let Some(trigger) = (1..=lines.len()).find(|&n| {
+            matches!(&stopped(n).1, Outcome::Alarm(d) if d.line != n as u64 + 1)
+        }) else {
+            return Ok(());
+        };
+        // Debug builds also check, after every alarm of a plain move, that
+        // its undo restored the state and the stage exactly.
+        let (events, _, state, tables) = stopped(trigger);
+        let (p_events, _, p_state, p_tables) = stopped(trigger - 1);
+        let program = lines[..trigger].join("\n");
+        prop_assert_eq!(state, p_state, "state after the alarm in:\n{}", program);
+        prop_assert_eq!(tables, p_tables, "tables after the alarm in:\n{}", program);
+        // Same events, but for the alarm.
+        prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
+    }
+}

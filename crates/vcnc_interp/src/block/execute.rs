@@ -23,7 +23,7 @@ use crate::dialect::{
     AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ToolLengthChange, ToolWords,
     bit,
 };
-use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
+use crate::events::{EndCode, Event, PathMode, Plane, Pos, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use crate::state::{Motion, State};
@@ -81,15 +81,36 @@ impl MoveUndo {
     }
 }
 
+/// What a plain G00/G01 under compensation may change before its last
+/// check, beyond [`MoveUndo`]'s fields: the compensation stage hands the
+/// held move on and releases it (moving the tool) before the corner after
+/// it, or the travel limits, can alarm; the programmed point and the frame
+/// report move first. The stage itself is undone by its [`Mark`].
+///
+/// [`Mark`]: crate::motion::comp::Mark
+#[derive(Clone, Copy)]
+pub(crate) struct CompMoveUndo {
+    plain: MoveUndo,
+    pos: Pos,
+    prog: Pos,
+    nominal: Pos,
+    detached: bool,
+    frame_dirty: bool,
+    reported: u64,
+    comp: crate::motion::comp::Mark,
+}
+
 impl Interpreter<'_> {
-    /// Whether a plain motion block `w` is a G00/G01 that [`MoveUndo`] can
-    /// undo: no compensation, canned cycle, lathe corner or G96 in force
-    /// (each changes more before it can alarm), and nothing in the block
-    /// beyond axes, F and N (no arc word, D or `,C`/`,R`).
+    /// Whether a plain motion block `w` is a G00/G01 that [`MoveUndo`] (or
+    /// under compensation [`CompMoveUndo`]) can undo: no canned cycle,
+    /// lathe corner or G96 in force (each changes more before it can
+    /// alarm), compensation either off or holding a move with nothing
+    /// queued behind it, and nothing in the block beyond axes, F and N (no
+    /// arc word, D or `,C`/`,R`).
     #[inline]
     pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
         let s = &self.state;
-        if comp_engaged
+        if (comp_engaged && !self.comp.can_mark())
             || s.cycle.code.is_some()
             || s.lathe.corner.is_some()
             || s.modal.css
@@ -107,7 +128,14 @@ impl Interpreter<'_> {
     /// accepted, all or nothing with a [`MoveUndo`] instead of a copy of
     /// the state.
     #[inline(always)]
-    pub(crate) fn move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+    pub(crate) fn move_in_place(
+        &mut self,
+        w: &Words<'_>,
+        comp_engaged: bool,
+    ) -> Result<(), Diagnostic> {
+        if comp_engaged {
+            return self.compensated_move_in_place(w);
+        }
         let undo = MoveUndo::of(&self.state);
         #[cfg(debug_assertions)]
         let whole = self.state;
@@ -121,6 +149,47 @@ impl Interpreter<'_> {
             );
         }
         result
+    }
+
+    /// [`move_in_place`](Self::move_in_place) under compensation.
+    #[inline(never)]
+    fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let s = &self.state;
+        let undo = CompMoveUndo {
+            plain: MoveUndo::of(s),
+            pos: s.pos,
+            prog: s.prog,
+            nominal: s.nominal,
+            detached: s.detached,
+            frame_dirty: s.frame_dirty,
+            reported: s.reported,
+            comp: self.comp.mark(),
+        };
+        #[cfg(debug_assertions)]
+        let whole = (self.state, self.comp.clone());
+        let result = self.execute_motion_only(w);
+        if result.is_err() {
+            self.undo_compensated_move(undo);
+            #[cfg(debug_assertions)]
+            debug_assert!(
+                self.state == whole.0 && self.comp == whole.1,
+                "a compensated move changed a field that CompMoveUndo does not keep"
+            );
+        }
+        result
+    }
+
+    #[cold]
+    fn undo_compensated_move(&mut self, undo: CompMoveUndo) {
+        let s = &mut self.state;
+        undo.plain.restore(s);
+        s.pos = undo.pos;
+        s.prog = undo.prog;
+        s.nominal = undo.nominal;
+        s.detached = undo.detached;
+        s.frame_dirty = undo.frame_dirty;
+        s.reported = undo.reported;
+        self.comp.restore(undo.comp);
     }
 
     /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.

@@ -155,6 +155,7 @@ impl Interpreter<'_> {
 ///     │      ╱                 after X arrives only Y moves on.
 ///     └──╱─────▶ X
 /// ```
+#[inline(never)]
 pub(crate) fn dog_leg(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AXES], usize) {
     let n = machine.axes.len().min(MAX_AXES);
     let mut times = [0.0f64; MAX_AXES];
@@ -201,6 +202,7 @@ pub(crate) fn dog_leg(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AXES]
 ///     │      2 ╱────────┤ (X, Y: 45°, then the longer axis)
 ///     └──────────────────▶ X/Y
 /// ```
+#[inline(never)]
 pub(crate) fn z_priority(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AXES], usize) {
     let mut legs = [to; MAX_AXES];
     let mut count = 0;
@@ -244,6 +246,7 @@ pub(crate) fn z_priority(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AX
 }
 
 /// The earliest fraction of `from → to` at which a skip trigger fires.
+#[inline(never)]
 pub(crate) fn skip_fraction(machine: &Machine, from: Pos, to: Pos) -> Option<f64> {
     machine
         .skip

@@ -164,25 +164,7 @@ impl Interpreter<'_> {
         let (prog_to, mm) = self.to_machine_move(&mv)?;
         // 2 compensation
         if self.comp.engaged() {
-            self.accept_move(prog_to, mm.to, mv.to);
-            if !matches!(mv.to, Target::Machine(_)) {
-                return self.compensate(mm, mv.cmd);
-            }
-            // A move to a machine point (G28's second leg, G53) is not
-            // compensated: the held move ends square to its path, and the
-            // next move in the plane starts compensation again.
-            self.comp_finish()?;
-            if self.state.modal.comp != crate::state::CompSide::Off {
-                self.comp.mode = comp::Mode::Starting;
-            }
-            self.keep_programmed_plane(&mm, mv.cmd)?;
-            let at = comp::Origin {
-                loc: self.flow.loc.clone(),
-                src: 0,
-                line: None,
-                cmd: mv.cmd,
-            };
-            return self.release(mm, &at, Some(w));
+            return self.commit_compensated(prog_to, mm, &mv, w);
         }
         // 3 travel, before anything changes: a move that leaves the
         // machine's limits leaves the state as the block found it (which a
@@ -199,6 +181,36 @@ impl Interpreter<'_> {
         let loc = self.flow.loc.clone();
         self.emit_released(&mm, loc);
         Ok(())
+    }
+
+    /// Stage 2 and on for a move while compensation is engaged.
+    #[inline(never)]
+    fn commit_compensated(
+        &mut self,
+        prog_to: Pos,
+        mm: MachineMove,
+        mv: &Move,
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        self.accept_move(prog_to, mm.to, mv.to);
+        if !matches!(mv.to, Target::Machine(_)) {
+            return self.compensate(mm, mv.cmd);
+        }
+        // A move to a machine point (G28's second leg, G53) is not
+        // compensated: the held move ends square to its path, and the
+        // next move in the plane starts compensation again.
+        self.comp_finish()?;
+        if self.state.modal.comp != crate::state::CompSide::Off {
+            self.comp.mode = comp::Mode::Starting;
+        }
+        self.keep_programmed_plane(&mm, mv.cmd)?;
+        let at = comp::Origin {
+            loc: self.flow.loc.clone(),
+            src: 0,
+            line: None,
+            cmd: mv.cmd,
+        };
+        self.release(mm, &at, Some(w))
     }
 
     /// Stage 1's bookkeeping once a move is accepted: the programmed and
@@ -272,6 +284,9 @@ impl Interpreter<'_> {
     /// Stages 3 and 4: the travel check and the events of a machine move,
     /// from where the tool is. A travel alarm points at the axis word of
     /// `w` when the move is the current block's, else at `at`'s command.
+    /// One copy out of line: the compensation stage calls it from many
+    /// places, and inlined copies would crowd the instruction cache.
+    #[inline(never)]
     pub(crate) fn release(
         &mut self,
         mm: MachineMove,

@@ -89,13 +89,46 @@ pub(crate) struct Comp {
     pub mode: Mode,
     /// The plane compensation runs in (set by G41/G42).
     pub plane: Plane,
-    held: Option<Held>,
+    /// Boxed, so that a block hands the held move on by swapping pointers
+    /// instead of moving ~360 bytes twice.
+    held: Option<Box<Held>>,
     queue: Vec<Queued>,
     /// Blocks without motion in the plane since the held move.
     idle_blocks: u32,
     /// Whether the current block put a move in the plane.
     moved_in_plane: bool,
     /// A held move is leaving: its events go out at once.
+    releasing: bool,
+    /// The move the current block replaced (see [`Mark`]).
+    scratch: Scratch,
+}
+
+/// Storage, not state: the held move the current block replaced, kept so
+/// that an alarm can put it back without a copy of the stage, and reused
+/// as the box of the next held move. Equal to any other, cloned empty.
+#[derive(Debug, Default)]
+struct Scratch {
+    prev: Option<Box<Held>>,
+    /// Whether `prev` is the move held when the current block began.
+    replaced: bool,
+}
+
+impl PartialEq for Scratch {
+    fn eq(&self, _: &Scratch) -> bool {
+        true
+    }
+}
+
+/// What a plain move block needs to undo the stage when it alarms, taken by
+/// [`Comp::mark`] where [`Comp::can_mark`] allows: such a block changes the
+/// stage only by replacing the held move (kept in [`Scratch`]), queueing
+/// behind it (the queue was empty) and through these fields.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Mark {
+    mode: Mode,
+    plane: Plane,
+    idle_blocks: u32,
+    moved_in_plane: bool,
     releasing: bool,
 }
 
@@ -139,9 +172,14 @@ impl Clone for Held {
 impl Clone for Comp {
     fn clone(&self) -> Comp {
         Comp {
+            mode: self.mode,
+            plane: self.plane,
             held: self.held.clone(),
             queue: self.queue.clone(),
-            ..*self
+            idle_blocks: self.idle_blocks,
+            moved_in_plane: self.moved_in_plane,
+            releasing: self.releasing,
+            scratch: Scratch::default(),
         }
     }
 
@@ -154,6 +192,7 @@ impl Clone for Comp {
             idle_blocks,
             moved_in_plane,
             releasing,
+            scratch: _,
         } = src;
         self.mode = *mode;
         self.plane = *plane;
@@ -175,6 +214,7 @@ impl Default for Comp {
             idle_blocks: 0,
             moved_in_plane: false,
             releasing: false,
+            scratch: Scratch::default(),
         }
     }
 }
@@ -190,6 +230,41 @@ impl Comp {
     #[inline]
     pub fn holding(&self) -> bool {
         self.held.is_some() && !self.releasing
+    }
+
+    /// Whether a plain move block may [`mark`](Self::mark) the stage
+    /// instead of copying it: compensating, a move held and nothing queued.
+    #[inline]
+    pub fn can_mark(&self) -> bool {
+        self.mode == Mode::On && self.held.is_some() && self.queue.is_empty()
+    }
+
+    /// Begins a block that [`restore`](Self::restore) can undo.
+    #[inline]
+    pub fn mark(&mut self) -> Mark {
+        self.scratch.replaced = false;
+        Mark {
+            mode: self.mode,
+            plane: self.plane,
+            idle_blocks: self.idle_blocks,
+            moved_in_plane: self.moved_in_plane,
+            releasing: self.releasing,
+        }
+    }
+
+    /// Puts the stage back as it was at [`mark`](Self::mark).
+    #[cold]
+    pub fn restore(&mut self, m: Mark) {
+        if self.scratch.replaced {
+            std::mem::swap(&mut self.held, &mut self.scratch.prev);
+            self.scratch.replaced = false;
+        }
+        self.queue.clear();
+        self.mode = m.mode;
+        self.plane = m.plane;
+        self.idle_blocks = m.idle_blocks;
+        self.moved_in_plane = m.moved_in_plane;
+        self.releasing = m.releasing;
     }
 
     /// Queues an event behind the held move.
@@ -292,7 +367,7 @@ impl Interpreter<'_> {
         match self.comp.mode {
             Mode::Starting => {
                 self.comp.mode = Mode::On;
-                self.comp.held = Some(Held {
+                self.comp.held = Some(Box::new(Held {
                     mm,
                     seg,
                     start: seg.a,
@@ -302,7 +377,7 @@ impl Interpreter<'_> {
                     startup: true,
                     shift: self.nose_shift(r),
                     at,
-                });
+                }));
                 Ok(())
             }
             Mode::Cancelling => {
@@ -324,57 +399,81 @@ impl Interpreter<'_> {
                     // The corner before it uses the old radius, its end the new.
                     return Err(alarms::comp_radius_change_on_arc(cmd, h.r, r));
                 }
-                let next = Held {
-                    mm,
-                    seg,
-                    start: seg.a,
-                    lead_in: None,
-                    side,
-                    r,
-                    startup: false,
-                    shift: self.nose_shift(r),
-                    at,
-                };
-                self.advance(next)
+                self.advance(mm, seg, side, r, at)
             }
         }
     }
 
-    /// Settles the corner between the held move and `next`, sends the
-    /// held one and holds `next`.
-    fn advance(&mut self, mut next: Held) -> Result<(), Diagnostic> {
-        let Some(held) = self.comp.held.as_ref() else {
+    /// Settles the corner between the held move and the next move in the
+    /// plane (`mm`, `seg`, `side`, `r`, `at`), sends the held one and holds
+    /// the next.
+    fn advance(
+        &mut self,
+        mm: MachineMove,
+        seg: Seg,
+        side: f64,
+        r: f64,
+        at: Origin,
+    ) -> Result<(), Diagnostic> {
+        let Some(held) = self.comp.held.as_deref() else {
             return Ok(());
         };
         // A corner the tool cannot reach is the fault of the block that
         // leads into it (the one being read, as the controller finds it).
         let corner = if held.startup {
             // The start-up ends where the next block's offset path starts.
-            geom::startup(&held.seg, &next.seg, next.side, next.r).map(Corner::At)
+            geom::startup(&held.seg, &seg, side, r).map(Corner::At)
         } else {
-            geom::corner(&held.seg, held.side, &next.seg, next.side, held.r)
+            geom::corner(&held.seg, held.side, &seg, side, held.r)
         };
         let corner = match corner {
             Ok(c) => c,
-            Err(f) => return Err(self.fault(f, &next.at)),
+            Err(f) => return Err(self.fault(f, &at)),
         };
-        let (end, extension) = match corner {
-            Corner::At(p) => {
-                next.start = p;
-                (p, None)
-            }
-            Corner::Around { p1, l1, l2, p2 } => {
-                next.start = p2;
-                next.lead_in = Some(l2);
-                (p1, Some(l1))
-            }
+        // Where the held move ends (then on to an extension), where the
+        // next one starts (after a lead-in).
+        let (end, extension, start, lead_in) = match corner {
+            Corner::At(p) => (p, None, p, None),
+            Corner::Around { p1, l1, l2, p2 } => (p1, Some(l1), p2, Some(l2)),
         };
         self.comp.idle_blocks = 0;
+        let shift = self.nose_shift(r);
+        // The next move is written into the box of the move the last block
+        // replaced, field by field; the one leaving is kept until the next
+        // block (see `Scratch`).
+        let mut held = match self.comp.scratch.prev.take() {
+            Some(mut b) => {
+                b.mm = mm;
+                b.seg = seg;
+                b.start = start;
+                b.lead_in = lead_in;
+                b.side = side;
+                b.r = r;
+                b.startup = false;
+                b.shift = shift;
+                b.at = at;
+                b
+            }
+            None => Box::new(Held {
+                mm,
+                seg,
+                start,
+                lead_in,
+                side,
+                r,
+                startup: false,
+                shift,
+                at,
+            }),
+        };
         let Some(slot) = self.comp.held.as_mut() else {
             return Ok(());
         };
-        let held = std::mem::replace(slot, next);
-        self.release_held(&held, end, extension)
+        std::mem::swap(slot, &mut held);
+        let out = self.release_held(&held, end, extension);
+        self.comp.scratch.prev = Some(held);
+        self.comp.scratch.replaced = true;
+        out
     }
 
     /// Where the held move ends before the cancel move `c`.
@@ -555,6 +654,9 @@ impl Interpreter<'_> {
                 exact_stop: false,
             };
             self.release(ext, &held.at, None)?;
+        }
+        if self.comp.queue.is_empty() {
+            return Ok(());
         }
         let mut queue = std::mem::take(&mut self.comp.queue);
         for q in queue.drain(..) {
