@@ -551,19 +551,20 @@ impl<'a> Interpreter<'a> {
         let jumps = self.flow.jumps;
         let comp_engaged = self.comp.engaged();
         let plain = words.is_plain_motion(self.axis_mask);
-        let in_place = plain && self.moves_in_place(&words, comp_engaged);
-        if comp_engaged && !in_place {
+        // Under compensation a plain G00/G01 undoes the stage by itself.
+        let comp_in_place = comp_engaged && plain && self.moves_in_place(&words, true);
+        if comp_engaged && !comp_in_place {
             self.comp_saved.clone_from(&self.comp);
         }
         self.pending.clear();
         let result = if !plain {
             self.keeping_state(|s| s.execute(&words, here, next, store))
-        } else if in_place {
+        } else if comp_in_place {
+            self.compensated_move_in_place(&words).map(|()| Step::Next)
+        } else if !comp_engaged && self.moves_in_place(&words, false) {
             // A plain G00/G01 keeps only what it changes before its last
-            // check (the copy of the state is most of its cost); it undoes
-            // the compensation stage itself.
-            self.move_in_place(&words, comp_engaged)
-                .map(|()| Step::Next)
+            // check (the copy of the state is most of its cost).
+            self.move_in_place(&words).map(|()| Step::Next)
         } else {
             // Only axis words, F and a motion code: nothing but a move.
             self.keeping_state(|s| s.execute_motion_only(&words))
@@ -587,7 +588,7 @@ impl<'a> Interpreter<'a> {
             Err(_) => {
                 self.flow.jumps = jumps;
                 self.tables.rollback();
-                if in_place && comp_engaged {
+                if comp_in_place {
                     // Undone by the block's own `CompMoveUndo`.
                 } else if comp_engaged {
                     std::mem::swap(&mut self.comp, &mut self.comp_saved);

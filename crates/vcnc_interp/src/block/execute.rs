@@ -128,14 +128,7 @@ impl Interpreter<'_> {
     /// accepted, all or nothing with a [`MoveUndo`] instead of a copy of
     /// the state.
     #[inline(always)]
-    pub(crate) fn move_in_place(
-        &mut self,
-        w: &Words<'_>,
-        comp_engaged: bool,
-    ) -> Result<(), Diagnostic> {
-        if comp_engaged {
-            return self.compensated_move_in_place(w);
-        }
+    pub(crate) fn move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let undo = MoveUndo::of(&self.state);
         #[cfg(debug_assertions)]
         let whole = self.state;
@@ -151,9 +144,10 @@ impl Interpreter<'_> {
         result
     }
 
-    /// [`move_in_place`](Self::move_in_place) under compensation.
+    /// [`move_in_place`](Self::move_in_place) under compensation, for a
+    /// block that [`moves_in_place`](Self::moves_in_place) accepts.
     #[inline(never)]
-    fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+    pub(crate) fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let s = &self.state;
         let undo = CompMoveUndo {
             plain: MoveUndo::of(s),

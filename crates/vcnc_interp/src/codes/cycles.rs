@@ -127,6 +127,7 @@ impl Interpreter<'_> {
 
     /// A block in cycle mode: drill K holes if it has an axis word of the
     /// plane or the drilling axis, else only check its words.
+    #[inline(never)]
     pub(crate) fn drill(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let cmd = w.group(Group::Cycle).map_or(cmd, |c| c.span);
         let axes = self.cycle_axes(cmd)?;

@@ -43,6 +43,7 @@ pub(crate) struct NurbsBuild {
 
 impl Interpreter<'_> {
     /// One block under the modal G06.2.
+    #[inline(never)]
     pub(crate) fn nurbs_block(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let starts = w
             .group(Group::Motion)

@@ -95,6 +95,7 @@ impl Interpreter<'_> {
     }
 
     /// One block under G90, G92 or G94.
+    #[inline(never)]
     pub(crate) fn single_cycle(
         &mut self,
         w: &Words<'_>,

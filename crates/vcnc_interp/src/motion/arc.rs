@@ -49,6 +49,7 @@ struct PlaneIdx {
 
 impl Interpreter<'_> {
     /// One G02/G03 block (a block with no arc words only sets the mode).
+    #[inline(never)]
     pub(crate) fn arc(&mut self, w: &Words<'_>, cmd: Span, cw: bool) -> Result<(), Diagnostic> {
         let plane = self.state.modal.plane;
         let [oa, ob] = center_letters(plane);
@@ -175,6 +176,7 @@ impl Interpreter<'_> {
 
     /// Lathe G05: the arc from here through the middle point (IX, IZ) to
     /// the end point; its direction is the turn the three points make.
+    #[inline(never)]
     pub(crate) fn three_point_arc(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let goal = self.target(w, self.state.modal.incremental);
         let (to, named) = (goal.prog, goal.named);

@@ -348,6 +348,7 @@ pub(crate) fn corner(a: &Seg, sa: f64, b: &Seg, sb: f64, r: f64) -> Result<Corne
 /// Where a start-up block `u` (a line, from the uncompensated point) ends
 /// before block `b`: square to `b` at its start when the corner is outside
 /// (type A), the intersection of the offsets when it is inside.
+#[inline(never)]
 pub(crate) fn startup(u: &Seg, b: &Seg, s: f64, r: f64) -> Result<V2, Fault> {
     if kind(u.tangent(true), b.tangent(false), s) != Kind::Inside || u.a.dist(u.b) < EPS {
         return Ok(b.perpendicular(false, s, r));
@@ -358,6 +359,7 @@ pub(crate) fn startup(u: &Seg, b: &Seg, s: f64, r: f64) -> Result<V2, Fault> {
 /// Where the last compensated block `a` ends before the cancel block `c`
 /// (a line to the uncompensated point): square to `a` at its end when the
 /// corner is outside, the intersection with `c`'s offset when inside.
+#[inline(never)]
 pub(crate) fn cancel(a: &Seg, c: &Seg, s: f64, r: f64) -> Result<V2, Fault> {
     if kind(a.tangent(true), c.tangent(false), s) != Kind::Inside || c.a.dist(c.b) < EPS {
         return Ok(a.perpendicular(true, s, r));

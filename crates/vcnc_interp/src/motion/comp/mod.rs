@@ -477,6 +477,7 @@ impl Interpreter<'_> {
     }
 
     /// Where the held move ends before the cancel move `c`.
+    #[inline(never)]
     fn settle_cancel(&mut self, held: &Held, c: &Seg, at: &Origin) -> Result<V2, Diagnostic> {
         if held.startup {
             // Cancelled right after the start-up: square to the start-up.
@@ -487,6 +488,7 @@ impl Interpreter<'_> {
 
     /// G40 without a move in the plane, the end of the program, or a move
     /// to a machine point: the held move ends square to its path.
+    #[inline(never)]
     pub(crate) fn comp_finish(&mut self) -> Result<(), Diagnostic> {
         if let Some(held) = self.comp.held.take() {
             let end = held.seg.perpendicular(true, held.side, held.r);
@@ -516,6 +518,7 @@ impl Interpreter<'_> {
     /// compensation vector on it: that axis keeps its programmed value
     /// (the uncompensated `mm.from`), so the vector never becomes part of
     /// the programmed position that later increments add to.
+    #[inline(never)]
     pub(crate) fn keep_programmed_plane(
         &mut self,
         mm: &MachineMove,
