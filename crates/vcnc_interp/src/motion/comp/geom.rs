@@ -86,6 +86,9 @@ pub(crate) struct Seg {
     pub b: V2,
     /// `None` for a line; the centre and direction of an arc.
     pub arc: Option<(V2, bool)>,
+    /// A line's unit direction, worked out once (every corner needs it
+    /// twice for each of its two blocks); zero for an arc.
+    dir: V2,
 }
 
 /// An offset path: a line through `p` along unit `d`, or a circle.
@@ -108,13 +111,28 @@ pub(crate) enum Fault {
 impl Seg {
     /// A line from `a` to `b`.
     pub fn line(a: V2, b: V2) -> Seg {
-        Seg { a, b, arc: None }
+        Seg {
+            a,
+            b,
+            arc: None,
+            dir: b.sub(a).unit(),
+        }
+    }
+
+    /// An arc from `a` to `b` about `c`, counter-clockwise when `ccw`.
+    pub fn arc(a: V2, b: V2, c: V2, ccw: bool) -> Seg {
+        Seg {
+            a,
+            b,
+            arc: Some((c, ccw)),
+            dir: V2::default(),
+        }
     }
 
     /// The unit tangent at the start (`at_end` false) or end.
     pub fn tangent(&self, at_end: bool) -> V2 {
         match self.arc {
-            None => self.b.sub(self.a).unit(),
+            None => self.dir,
             Some((c, ccw)) => {
                 let p = if at_end { self.b } else { self.a };
                 let radial = p.sub(c).unit().left();
@@ -196,7 +214,8 @@ impl Seg {
     /// (its corners take all of its sweep): it must not leave as an arc
     /// from a point to itself, which reads as a full circle.
     pub fn collapses(&self, s2: V2, e2: V2) -> bool {
-        s2.dist(e2) < 1e-6
+        self.arc.is_some()
+            && s2.dist(e2) < 1e-6
             && self
                 .compensated_sweep(s2, e2)
                 .is_some_and(|sweep| sweep < PI)
@@ -413,16 +432,8 @@ mod tests {
     #[test]
     fn arcs_meet_where_their_offset_circles_cross() {
         // Figure iv, G41: G02 about 0,-30 then G02 about -20,-20 at 0,0.
-        let a = Seg {
-            a: v(-30.0, -30.0),
-            b: v(0.0, 0.0),
-            arc: Some((v(0.0, -30.0), false)),
-        };
-        let b = Seg {
-            a: v(0.0, 0.0),
-            b: v(20.0, -40.0),
-            arc: Some((v(-20.0, -20.0), false)),
-        };
+        let a = Seg::arc(v(-30.0, -30.0), v(0.0, 0.0), v(0.0, -30.0), false);
+        let b = Seg::arc(v(0.0, 0.0), v(20.0, -40.0), v(-20.0, -20.0), false);
         let c = corner(&a, 1.0, &b, 1.0, 5.0).unwrap();
         assert!(
             matches!(c, Corner::At(p) if close(p, v(2.041279, 4.940423))),
@@ -456,11 +467,7 @@ mod tests {
         let bottom = Seg::line(v(20.0, -10.0), v(28.0, -10.0));
         assert!(!bottom.keeps_direction(v(25.0, -5.0), v(23.0, -5.0)));
         assert!(bottom.keeps_direction(v(23.0, -5.0), v(25.0, -5.0)));
-        let small = Seg {
-            a: v(30.0, 0.0),
-            b: v(30.0, -8.0),
-            arc: Some((v(30.0, -4.0), false)),
-        };
+        let small = Seg::arc(v(30.0, 0.0), v(30.0, -8.0), v(30.0, -4.0), false);
         assert_eq!(small.check(-1.0, 5.0), Err(Fault::ArcTooSmall));
         assert_eq!(small.check(1.0, 5.0), Ok(()));
     }

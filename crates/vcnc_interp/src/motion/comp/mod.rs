@@ -290,14 +290,12 @@ impl Interpreter<'_> {
         match mm.kind {
             MachineKind::Arc {
                 center, plane, dir, ..
-            } if plane == self.comp.plane => Some(Seg {
+            } if plane == self.comp.plane => Some(Seg::arc(
                 a,
                 b,
-                arc: Some((
-                    V2::new(center.0, center.1),
-                    dir == crate::events::ArcDir::Ccw,
-                )),
-            }),
+                V2::new(center.0, center.1),
+                dir == crate::events::ArcDir::Ccw,
+            )),
             _ if a.dist(b) > PLANE_EPS => Some(Seg::line(a, b)),
             _ => None,
         }
