@@ -188,9 +188,10 @@ impl Interpreter<'_> {
 
     /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
     pub(crate) fn execute_motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if self.comp.engaged() || w.get(b'D').is_some() {
+        if w.get(b'D').is_some() {
             // A D word (a new radius, or outside G41/G42 the offset the
-            // next G41/G42 uses) reaches the compensation stage.
+            // next G41/G42 uses) reaches the compensation stage; a plain
+            // block has no G40/G41/G42, so without D there is nothing to do.
             self.comp_codes(w)?;
         }
         if let Some(motion) = w.group(Group::Motion) {
