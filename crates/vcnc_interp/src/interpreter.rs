@@ -551,8 +551,9 @@ impl<'a> Interpreter<'a> {
         let jumps = self.flow.jumps;
         let comp_engaged = self.comp.engaged();
         let plain = words.is_plain_motion(self.axis_mask);
-        // Under compensation a plain G00/G01 undoes the stage by itself.
-        let comp_in_place = comp_engaged && plain && self.moves_in_place(&words, true);
+        let in_place = plain && self.moves_in_place(&words, comp_engaged);
+        // Under compensation such a block undoes the stage by itself.
+        let comp_in_place = comp_engaged && in_place;
         if comp_engaged && !comp_in_place {
             self.comp_saved.clone_from(&self.comp);
         }
@@ -561,7 +562,7 @@ impl<'a> Interpreter<'a> {
             self.keeping_state(|s| s.execute(&words, here, next, store))
         } else if comp_in_place {
             self.compensated_move_in_place(&words).map(|()| Step::Next)
-        } else if !comp_engaged && self.moves_in_place(&words, false) {
+        } else if in_place {
             // A plain G00/G01 keeps only what it changes before its last
             // check (the copy of the state is most of its cost).
             self.move_in_place(&words).map(|()| Step::Next)

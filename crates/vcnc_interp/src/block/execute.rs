@@ -107,7 +107,7 @@ impl Interpreter<'_> {
     /// alarm), compensation either off or holding a move with nothing
     /// queued behind it, and nothing in the block beyond axes, F and N (no
     /// arc word, D or `,C`/`,R`).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
         let s = &self.state;
         if (comp_engaged && !self.comp.can_mark())
