@@ -89,6 +89,7 @@ impl Path {
     }
 
     /// The unit tangent (d point / ds) at distance `s`.
+    #[inline]
     pub fn tangent(&self, s: f64) -> Vector {
         match &self.shape {
             Shape::Line(u) => *u,
@@ -132,6 +133,7 @@ impl Path {
 
     /// The largest |d axis / ds| of each axis along the path: how fast each
     /// axis moves, at most, relative to the path speed.
+    #[inline]
     pub fn axis_share(&self) -> Vector {
         match &self.shape {
             Shape::Line(u) => u.map(f64::abs),
