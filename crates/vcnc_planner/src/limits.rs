@@ -230,6 +230,7 @@ pub(crate) struct Corner<'a> {
 }
 
 /// [`corner_speed`] from tangents normalised beforehand.
+#[inline]
 pub(crate) fn corner_speed_units(l: &AxisLimits, u1: &Unit, u2: &Unit, c: &Corner) -> f64 {
     let (tol_mm, half_len, vlim, v_cap) = (c.tol_mm, c.half_len, c.vlim, c.v_cap);
     if !(u1.ok && u2.ok) {

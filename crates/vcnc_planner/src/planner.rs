@@ -434,15 +434,19 @@ impl<T: Timeline> Planner<T> {
         let mut i = self.window.len() - 1;
         while i > 0 {
             i -= 1;
-            let Some(p) = self.window.get(i) else { break };
+            let Some(p) = self.window.get_mut(i) else {
+                break;
+            };
             let (kin, len, cap) = (p.seg.kin, p.seg.path.len, p.entry_cap);
             let new = match exit {
                 Ok(x) => kin.reach_capped(x, len, cap),
                 Err(b) if kin.reaches_cap_from(b, len, cap) => cap,
-                Err(_) => kin.reach_capped(self.entry_max_at(i + 1), len, cap),
-            };
-            let Some(p) = self.window.get_mut(i) else {
-                break;
+                Err(_) => {
+                    // Only the newest move's bound can be left as bounds:
+                    // work it out and start again from it.
+                    self.entry_max_at(i + 1);
+                    return self.backward();
+                }
             };
             if p.entry_bounds.is_none() && new == p.entry_max {
                 break;

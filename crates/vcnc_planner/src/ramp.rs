@@ -78,6 +78,7 @@ impl Kin {
     /// move before cannot be shown to enter at its cap whatever the figure
     /// in the bounds ([`Kin::reaches_cap_from`]); on a chain of short moves
     /// it almost always can, and the figure is replaced before it is used.
+    #[inline]
     pub(crate) fn reach_from_rest(self, len: f64, cap: f64) -> Result<f64, (f64, f64)> {
         if cap <= 0.0 || self.ramp_dist(0.0, cap) <= len {
             return Ok(cap);
@@ -109,6 +110,7 @@ impl Kin {
     /// so ½·(min(hi, cap) + cap)·T(cap − lo) bounds the ramp over the whole
     /// interval; the margin of 1e-9 is far above the rounding of either
     /// side.
+    #[inline]
     pub(crate) fn reaches_cap_from(self, (lo, hi): (f64, f64), len: f64, cap: f64) -> bool {
         cap <= lo || 0.5 * (hi.min(cap) + cap) * self.ramp_time(cap - lo) <= len * (1.0 - 1e-9)
     }
