@@ -28,7 +28,7 @@
 //! more readable parameter, as on Syntec's and LinuxCNC's controllers.
 
 use crate::path::Vector;
-use crate::ramp::Kin;
+use crate::ramp::{Kin, finite};
 use vcnc_core::{MAX_AXES, Machine};
 
 /// An arc uses at most this share of the acceleration for the centripetal
@@ -258,7 +258,7 @@ pub(crate) fn corner_speed_units(l: &AxisLimits, u1: &Unit, u2: &Unit, c: &Corne
     // Every axis spans at most all of the plane: with the smallest limits
     // of all axes the corner is already faster than either move may go.
     if l.min_accel * radius >= v_cap * v_cap
-        && (!l.min_jerk.is_finite() || l.min_jerk * radius * radius >= v_cap * v_cap * v_cap)
+        && (!finite(l.min_jerk) || l.min_jerk * radius * radius >= v_cap * v_cap * v_cap)
         && c.vlim_min >= v_cap
     {
         return f64::INFINITY;
@@ -279,7 +279,7 @@ pub(crate) fn corner_speed_units(l: &AxisLimits, u1: &Unit, u2: &Unit, c: &Corne
     let accel = l.along(&l.accel, &span);
     let jerk = l.along(&l.jerk, &span);
     let mut v = (accel * radius).sqrt();
-    if jerk.is_finite() && v * v * v > jerk * radius * radius {
+    if finite(jerk) && v * v * v > jerk * radius * radius {
         v = (jerk * radius * radius).cbrt();
     }
     v.min(l.along(vlim, &span))

@@ -42,7 +42,8 @@ impl Path {
             *di = to.get(i) - from.get(i);
         }
         let len = d.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !(len > ZERO_MM && len.is_finite()) {
+        // `len ≤ f64::MAX`: finite, in one compare (see `ramp::finite`).
+        if !(len > ZERO_MM && len <= f64::MAX) {
             return None;
         }
         for di in &mut d {

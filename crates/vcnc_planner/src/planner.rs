@@ -20,7 +20,12 @@
 //! backward pass is amortised: it walks back only over segments whose bound
 //! changed, and the forward pass is done once per segment at commit time.
 //! Memory is the window (at most `MAX_LOOKAHEAD_BLOCKS` segments) whatever
-//! the program length. The look-ahead follows grbl's planner and Klipper's
+//! the program length, in a ring of reused slots ([`crate::ring`]) that a
+//! segment is written into once. The newest segment's own bound, from
+//! rest, is kept as bounds while they decide the segment before it
+//! ([`Kin::reach_from_rest`]): on a chain of short jerk-limited moves that
+//! saves a cube root per block, and the results are those of the exact
+//! pass. The look-ahead follows grbl's planner and Klipper's
 //! `toolhead.py` in idea (both read, neither copied); the S-curve ramps are
 //! in [`crate::ramp`].
 
@@ -69,6 +74,20 @@ struct Pending {
     u_end: Unit,
     /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
     smooth_mm: f64,
+}
+
+impl Pending {
+    /// Its entry bound as the exit of the move before: worked out here
+    /// (and again later, to the same figure) if it is left as bounds.
+    fn exit_bound(&self) -> f64 {
+        match self.entry_bounds {
+            None => self.entry_max,
+            Some(_) => self
+                .seg
+                .kin
+                .reach_capped(0.0, self.seg.path.len, self.entry_cap),
+        }
+    }
 }
 
 /// What the corner before a move needs of it.
@@ -210,7 +229,8 @@ impl<T: Timeline> Planner<T> {
             Feed::PerRev(f) if turning => f * self.rpm / 60.0,
             Feed::PerRev(_) => 0.0,
         };
-        (v.is_finite() && v > 0.0).then_some(v)
+        // Positive and finite (see `ramp::finite`).
+        (v > 0.0 && v <= f64::MAX).then_some(v)
     }
 
     fn plane_of(&self, plane: Plane) -> Option<vcnc_core::geometry::PlaneAxes> {
@@ -275,7 +295,8 @@ impl<T: Timeline> Planner<T> {
             v_max = v_max.min(v_arc);
             kin = k;
         }
-        let ok = v_max.is_finite() && v_max > 0.0 && kin.accel.is_finite() && kin.accel > 0.0;
+        // Positive and finite, in compares (see `ramp::finite`).
+        let ok = v_max > 0.0 && v_max <= f64::MAX && kin.accel > 0.0 && kin.accel <= f64::MAX;
         ok.then_some((v_max, kin))
     }
 
@@ -444,7 +465,7 @@ impl<T: Timeline> Planner<T> {
                 Err(_) => {
                     // Only the newest move's bound can be left as bounds:
                     // work it out and start again from it.
-                    self.entry_max_at(i + 1);
+                    self.work_out_entry_max(i + 1);
                     return self.backward();
                 }
             };
@@ -457,16 +478,13 @@ impl<T: Timeline> Planner<T> {
         }
     }
 
-    /// The entry bound of the move at `i` in the window, worked out now if
-    /// it was left as bounds.
-    fn entry_max_at(&mut self, i: usize) -> f64 {
-        let Some(p) = self.window.get_mut(i) else {
-            return 0.0;
-        };
-        if p.entry_bounds.take().is_some() {
-            p.entry_max = p.seg.kin.reach_capped(0.0, p.seg.path.len, p.entry_cap);
+    /// Works out the entry bound of the move at `i` in the window if it
+    /// was left as bounds.
+    fn work_out_entry_max(&mut self, i: usize) {
+        if let Some(p) = self.window.get_mut(i) {
+            p.entry_max = p.exit_bound();
+            p.entry_bounds = None;
         }
-        p.entry_max
     }
 
     /// Plans the oldest segment for good and hands it on.
@@ -475,9 +493,9 @@ impl<T: Timeline> Planner<T> {
             return;
         };
         let stops = p.end == End::Stop;
-        let next = if stops { 0.0 } else { self.entry_max_at(1) };
-        let Some(p) = self.window.front() else {
-            return;
+        let next = match self.window.get(1) {
+            Some(n) if !stops => n.exit_bound(),
+            _ => 0.0,
         };
         let len = p.seg.path.len;
         let v0 = self.v_entry.min(p.seg.v_max);

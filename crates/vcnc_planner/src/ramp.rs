@@ -22,6 +22,21 @@
 //! form (Cardano). Reference: Biagiotti & Melchiorri, *Trajectory Planning
 //! for Automatic Machines and Robots* (2008), §3.4 (double-S profile).
 
+/// Whether `x` is finite: `x − x` is 0 for a finite x, NaN for ±∞ and NaN.
+/// The same answer as `f64::is_finite`, in two float instructions:
+/// `is_finite`, and range checks such as `0 < x < ∞`, become an integer
+/// classification of the bits on x86-64 today, a dozen instructions, and
+/// the planner asks this a dozen times a block. A positive finite figure
+/// is `0 < x ≤ f64::MAX`, two compares.
+#[inline]
+#[allow(
+    clippy::eq_op,
+    reason = "x − x is the test: 0 when finite, NaN otherwise"
+)]
+pub(crate) fn finite(x: f64) -> bool {
+    x - x == 0.0
+}
+
 /// The limits of one profile: acceleration and jerk along the path (jerk
 /// `f64::INFINITY` for a trapezoid).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,7 +50,7 @@ pub struct Kin {
 impl Kin {
     /// The speed change at which the acceleration saturates: a²/j.
     fn saturating_dv(self) -> f64 {
-        if self.jerk.is_finite() {
+        if finite(self.jerk) {
             self.accel * self.accel / self.jerk
         } else {
             0.0
@@ -47,7 +62,7 @@ impl Kin {
         let dv = dv.max(0.0);
         if dv >= self.saturating_dv() {
             dv / self.accel
-                + if self.jerk.is_finite() {
+                + if finite(self.jerk) {
                     self.accel / self.jerk
                 } else {
                     0.0
@@ -86,7 +101,7 @@ impl Kin {
         let (a, j) = (self.accel, self.jerk);
         let len = len.max(0.0);
         // `reach(0, len)` takes its cubic branch with p = 0: s = ∛z.
-        let cubic = j.is_finite() && j > 0.0 && len <= (a * a / j) * a / j;
+        let cubic = j > 0.0 && j <= f64::MAX && len <= (a * a / j) * a / j;
         if !cubic {
             return Ok(self.reach(0.0, len).min(cap));
         }
@@ -119,7 +134,7 @@ impl Kin {
     /// reachable) within `len` mm.
     pub fn reach(self, v0: f64, len: f64) -> f64 {
         let len = len.max(0.0);
-        if !self.jerk.is_finite() {
+        if !finite(self.jerk) {
             return (v0 * v0 + 2.0 * self.accel * len).sqrt();
         }
         let (a, j) = (self.accel, self.jerk);
@@ -270,7 +285,7 @@ impl Profile {
         // when a ramp by nothing takes no time, the general case comes to
         // exactly this (no ramps, len/v of cruise). In line, for the
         // caller to keep only what it reads.
-        let through = v0 == v_max && v1 == v_max && v_max.is_finite() && v_max > 0.0 && len > 0.0;
+        let through = v0 == v_max && v1 == v_max && v_max > 0.0 && v_max <= f64::MAX && len > 0.0;
         if through && kin.ramp_time(0.0) == 0.0 {
             let flat = Ramp::new(v_max, v_max, kin);
             return Profile {
@@ -409,6 +424,26 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn finite_is_is_finite() {
+        let specials = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+        ];
+        let odd = [f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        for x in specials.into_iter().chain(odd) {
+            assert_eq!(finite(x), x.is_finite(), "{x}");
+            let positive = x > 0.0 && x <= f64::MAX;
+            assert_eq!(positive, x.is_finite() && x > 0.0, "{x}");
         }
     }
 
