@@ -15,6 +15,7 @@ mod limits;
 mod path;
 mod planner;
 mod ramp;
+mod ring;
 mod time;
 mod timeline;
 mod trace;

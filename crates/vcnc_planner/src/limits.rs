@@ -28,7 +28,7 @@
 //! more readable parameter, as on Syntec's and LinuxCNC's controllers.
 
 use crate::path::Vector;
-use crate::ramp::Kin;
+use crate::ramp::{Kin, finite};
 use vcnc_core::{MAX_AXES, Machine};
 
 /// An arc uses at most this share of the acceleration for the centripetal
@@ -120,6 +120,57 @@ impl AxisLimits {
             jerk: self.along(&self.jerk, share),
         }
     }
+
+    /// [`AxisLimits::kin_along`] and `along(speed, share)` in one pass over
+    /// the axes (each minimum is taken in the same order, so the results
+    /// are those of the separate calls): what every move needs.
+    pub(crate) fn kin_and_speed_along(&self, speed: &Vector, share: &Vector) -> (Kin, f64) {
+        let (mut accel, mut jerk, mut v) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+        for i in 0..self.n {
+            if share[i] > TINY {
+                accel = accel.min(self.accel[i] / share[i]);
+                jerk = jerk.min(self.jerk[i] / share[i]);
+                v = v.min(speed[i] / share[i]);
+            }
+        }
+        (Kin { accel, jerk }, v)
+    }
+}
+
+/// A move's tangent at one end as a corner needs it, normalised once per
+/// move rather than once per corner (a line's two ends share it).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Unit {
+    /// The unit vector; zero beyond `m`.
+    e: Vector,
+    /// Whether the tangent had a length at all (above [`TINY`]).
+    ok: bool,
+    /// The axes from `m` on do not move: the sums of a corner stop there
+    /// (the terms they would add are zeros, which change no sum).
+    m: usize,
+}
+
+impl Unit {
+    /// The unit vector of `u` over the machine's axes.
+    pub(crate) fn new(l: &AxisLimits, u: &Vector) -> Unit {
+        let (mut norm, mut m) = (0.0, 0);
+        for (i, ui) in u.iter().enumerate().take(l.n) {
+            norm += ui * ui;
+            if *ui != 0.0 {
+                m = i + 1;
+            }
+        }
+        let norm: f64 = norm.sqrt();
+        let mut e = [0.0; MAX_AXES];
+        for (ei, ui) in e.iter_mut().zip(u).take(m) {
+            *ei = ui / norm;
+        }
+        Unit {
+            e,
+            ok: norm > TINY,
+            m,
+        }
+    }
 }
 
 /// Speed limit and tangential limits of an arc of curvature `kappa` in the
@@ -157,22 +208,38 @@ pub fn corner_speed(
     vlim: &Vector,
     v_cap: f64,
 ) -> f64 {
-    let (mut n1, mut n2) = (0.0, 0.0);
-    for i in 0..l.n {
-        n1 += u1[i] * u1[i];
-        n2 += u2[i] * u2[i];
-    }
-    let (n1, n2) = (n1.sqrt(), n2.sqrt());
-    if !(n1 > TINY && n2 > TINY) {
+    let (u1, u2) = (Unit::new(l, u1), Unit::new(l, u2));
+    let corner = Corner {
+        tol_mm,
+        half_len,
+        vlim,
+        vlim_min: l.n_min(vlim),
+        v_cap,
+    };
+    corner_speed_units(l, &u1, &u2, &corner)
+}
+
+/// A corner's limits besides its tangents (see [`corner_speed`]).
+pub(crate) struct Corner<'a> {
+    pub tol_mm: f64,
+    pub half_len: f64,
+    pub vlim: &'a Vector,
+    /// The smallest of `vlim` over the machine's axes.
+    pub vlim_min: f64,
+    pub v_cap: f64,
+}
+
+/// [`corner_speed`] from tangents normalised beforehand.
+#[inline]
+pub(crate) fn corner_speed_units(l: &AxisLimits, u1: &Unit, u2: &Unit, c: &Corner) -> f64 {
+    let (tol_mm, half_len, vlim, v_cap) = (c.tol_mm, c.half_len, c.vlim, c.v_cap);
+    if !(u1.ok && u2.ok) {
         return 0.0;
     }
     // e1, e2: the unit tangents; |e2 − e1| = 2·sin(θ/2), |e2 + e1| = 2·cos(θ/2).
-    let mut e1 = [0.0; MAX_AXES];
-    let mut e2 = [0.0; MAX_AXES];
+    let (e1, e2, m) = (&u1.e, &u2.e, u1.m.max(u2.m));
     let (mut chord, mut sum, mut dot) = (0.0, 0.0, 0.0);
-    for i in 0..l.n {
-        e1[i] = u1[i] / n1;
-        e2[i] = u2[i] / n2;
+    for i in 0..m {
         chord += (e2[i] - e1[i]) * (e2[i] - e1[i]);
         sum += (e2[i] + e1[i]) * (e2[i] + e1[i]);
         dot += e1[i] * e2[i];
@@ -191,28 +258,28 @@ pub fn corner_speed(
     // Every axis spans at most all of the plane: with the smallest limits
     // of all axes the corner is already faster than either move may go.
     if l.min_accel * radius >= v_cap * v_cap
-        && (!l.min_jerk.is_finite() || l.min_jerk * radius * radius >= v_cap * v_cap * v_cap)
-        && l.n_min(vlim) >= v_cap
+        && (!finite(l.min_jerk) || l.min_jerk * radius * radius >= v_cap * v_cap * v_cap)
+        && c.vlim_min >= v_cap
     {
         return f64::INFINITY;
     }
     // The corner's plane: e1 and the unit part of e2 orthogonal to it.
     let mut w = [0.0; MAX_AXES];
     let mut wn = 0.0;
-    for i in 0..l.n {
+    for i in 0..m {
         w[i] = e2[i] - dot * e1[i];
         wn += w[i] * w[i];
     }
     let wn = wn.sqrt();
     let mut span = [0.0; MAX_AXES];
-    for i in 0..l.n {
+    for i in 0..m {
         let wi = if wn > TINY { w[i] / wn } else { 0.0 };
         span[i] = (e1[i] * e1[i] + wi * wi).sqrt();
     }
     let accel = l.along(&l.accel, &span);
     let jerk = l.along(&l.jerk, &span);
     let mut v = (accel * radius).sqrt();
-    if jerk.is_finite() && v * v * v > jerk * radius * radius {
+    if finite(jerk) && v * v * v > jerk * radius * radius {
         v = (jerk * radius * radius).cbrt();
     }
     v.min(l.along(vlim, &span))

@@ -42,7 +42,8 @@ impl Path {
             *di = to.get(i) - from.get(i);
         }
         let len = d.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if !(len > ZERO_MM && len.is_finite()) {
+        // `len ≤ f64::MAX`: finite, in one compare (see `ramp::finite`).
+        if !(len > ZERO_MM && len <= f64::MAX) {
             return None;
         }
         for di in &mut d {
@@ -89,6 +90,7 @@ impl Path {
     }
 
     /// The unit tangent (d point / ds) at distance `s`.
+    #[inline]
     pub fn tangent(&self, s: f64) -> Vector {
         match &self.shape {
             Shape::Line(u) => *u,
@@ -132,6 +134,7 @@ impl Path {
 
     /// The largest |d axis / ds| of each axis along the path: how fast each
     /// axis moves, at most, relative to the path speed.
+    #[inline]
     pub fn axis_share(&self) -> Vector {
         match &self.shape {
             Shape::Line(u) => u.map(f64::abs),

@@ -20,15 +20,20 @@
 //! backward pass is amortised: it walks back only over segments whose bound
 //! changed, and the forward pass is done once per segment at commit time.
 //! Memory is the window (at most `MAX_LOOKAHEAD_BLOCKS` segments) whatever
-//! the program length. The look-ahead follows grbl's planner and Klipper's
+//! the program length, in a ring of reused slots ([`crate::ring`]) that a
+//! segment is written into once. The newest segment's own bound, from
+//! rest, is kept as bounds while they decide the segment before it
+//! ([`Kin::reach_from_rest`]): on a chain of short jerk-limited moves that
+//! saves a cube root per block, and the results are those of the exact
+//! pass. The look-ahead follows grbl's planner and Klipper's
 //! `toolhead.py` in idea (both read, neither copied); the S-curve ramps are
 //! in [`crate::ramp`].
 
-use crate::limits::{AxisLimits, arc_limits, corner_speed, settle_time};
-use crate::path::{Path, Vector, plane_axes};
+use crate::limits::{AxisLimits, Corner, Unit, arc_limits, corner_speed_units, settle_time};
+use crate::path::{Path, Shape, Vector, plane_axes};
 use crate::ramp::{Kin, Profile};
+use crate::ring::Ring;
 use crate::timeline::{Attr, AxesMove, MoveKind, Pause, PauseKind, Segment, Timeline};
-use std::collections::VecDeque;
 use std::sync::Arc;
 use vcnc_core::motion::Profile as ProfileShape;
 use vcnc_core::{Event, Feed, Loc, MAX_AXES, Machine, PathMode, Plane, Pos, Sink, SpindleDir};
@@ -62,9 +67,37 @@ struct Pending {
     /// Highest entry speed from which everything after it can still stop
     /// in time (the backward pass).
     entry_max: f64,
-    u_end: Vector,
+    /// Bounds on `entry_max` while it is not worked out: only the newest
+    /// move's can be, as [`Kin::reach_from_rest`] says.
+    entry_bounds: Option<(f64, f64)>,
+    /// The unit tangent at its end.
+    u_end: Unit,
     /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
     smooth_mm: f64,
+}
+
+impl Pending {
+    /// Its entry bound as the exit of the move before: worked out here
+    /// (and again later, to the same figure) if it is left as bounds.
+    fn exit_bound(&self) -> f64 {
+        match self.entry_bounds {
+            None => self.entry_max,
+            Some(_) => self
+                .seg
+                .kin
+                .reach_capped(0.0, self.seg.path.len, self.entry_cap),
+        }
+    }
+}
+
+/// What the corner before a move needs of it.
+struct Next {
+    kind: MoveKind,
+    v_max: f64,
+    /// Path length, mm.
+    len: f64,
+    /// The corner tolerance, mm.
+    tol_mm: f64,
 }
 
 /// Settings from the machine file and G05.
@@ -83,11 +116,13 @@ struct Settings {
 #[derive(Debug)]
 pub struct Planner<T: Timeline> {
     lim: AxisLimits,
+    /// The smallest maximum feed of any axis, mm/s.
+    max_feed_min: f64,
     set: Settings,
     normal: (usize, f64),
     machine_motion: vcnc_core::motion::Motion,
     out: T,
-    window: VecDeque<Pending>,
+    window: Ring<Pending>,
     v_entry: f64,
     pos: Pos,
     rpm: f64,
@@ -116,8 +151,10 @@ impl<T: Timeline> Planner<T> {
     pub fn with_profile(machine: &Machine, shape: ProfileShape, out: T) -> Planner<T> {
         let m = &machine.motion;
         let lookahead = usize::try_from(m.lookahead_blocks).unwrap_or(200).max(2);
+        let lim = AxisLimits::new(machine, shape == ProfileShape::Jerk);
         Planner {
-            lim: AxisLimits::new(machine, shape == ProfileShape::Jerk),
+            max_feed_min: lim.n_min(&lim.max_feed),
+            lim,
             set: Settings {
                 lookahead,
                 corner_tolerance_mm: m.corner_tolerance_mm,
@@ -130,7 +167,7 @@ impl<T: Timeline> Planner<T> {
             normal: (lookahead, m.corner_tolerance_mm),
             machine_motion: m.clone(),
             out,
-            window: VecDeque::with_capacity(lookahead + 1),
+            window: Ring::with_capacity(lookahead + 1),
             v_entry: 0.0,
             pos: machine.start,
             rpm: 0.0,
@@ -192,7 +229,8 @@ impl<T: Timeline> Planner<T> {
             Feed::PerRev(f) if turning => f * self.rpm / 60.0,
             Feed::PerRev(_) => 0.0,
         };
-        (v.is_finite() && v > 0.0).then_some(v)
+        // Positive and finite (see `ramp::finite`).
+        (v > 0.0 && v <= f64::MAX).then_some(v)
     }
 
     fn plane_of(&self, plane: Plane) -> Option<vcnc_core::geometry::PlaneAxes> {
@@ -213,7 +251,7 @@ impl<T: Timeline> Planner<T> {
         self.pos = to;
         let Some(path) = path else { return };
         let attr = self.attr(loc);
-        let Some(seg) = self.segment(path, kind, speed, attr.clone()) else {
+        let Some((v_max, kin)) = self.limits_along(&path, kind, speed) else {
             self.flush();
             self.untimed_moves += 1;
             self.out.untimed(from, to, &attr);
@@ -229,67 +267,136 @@ impl<T: Timeline> Planner<T> {
         let settle_s = match end {
             End::Stop if kind == MoveKind::Rapid || self.in_position_check => settle_time(
                 self.set.gain,
-                seg.kin.accel,
-                &seg.path.axis_share(),
+                kin.accel,
+                &path.axis_share(),
                 &window,
                 self.lim.n,
             ),
             _ => 0.0,
         };
-        self.push(seg, end, settle_s);
+        self.push(path, kind, attr, (v_max, kin), end, settle_s);
     }
 
-    /// The segment of `path` with its limits; `None` if it cannot move.
-    fn segment(
-        &self,
-        path: Path,
-        kind: MoveKind,
-        speed: Option<f64>,
-        attr: Attr,
-    ) -> Option<Segment> {
+    /// The highest speed along `path` and its acceleration and jerk;
+    /// `None` if it cannot move.
+    fn limits_along(&self, path: &Path, kind: MoveKind, speed: Option<f64>) -> Option<(f64, Kin)> {
         let share = path.axis_share();
-        let mut kin = self.lim.kin_along(&share);
+        let axis_speed = match kind {
+            MoveKind::Rapid => &self.lim.rapid,
+            MoveKind::Cut => &self.lim.max_feed,
+        };
+        let (mut kin, along) = self.lim.kin_and_speed_along(axis_speed, &share);
         let mut v_max = match kind {
-            MoveKind::Rapid => self.lim.along(&self.lim.rapid, &share),
-            MoveKind::Cut => speed?.min(self.lim.along(&self.lim.max_feed, &share)),
+            MoveKind::Rapid => along,
+            MoveKind::Cut => speed?.min(along),
         };
         if let Some(p) = path.plane() {
             let (v_arc, k) = arc_limits(&self.lim, path.curvature_magnitude(), p.a, p.b, kin);
             v_max = v_max.min(v_arc);
             kin = k;
         }
-        let ok = v_max.is_finite() && v_max > 0.0 && kin.accel.is_finite() && kin.accel > 0.0;
-        ok.then_some(Segment {
-            path,
-            kind,
-            attr,
-            v_max,
-            kin,
-            corner_tolerance_mm: self.set.corner_tolerance_mm,
-        })
+        // Positive and finite, in compares (see `ramp::finite`).
+        let ok = v_max > 0.0 && v_max <= f64::MAX && kin.accel > 0.0 && kin.accel <= f64::MAX;
+        ok.then_some((v_max, kin))
     }
 
     /// Adds a segment to the window: corner cap, backward pass, commit.
-    fn push(&mut self, mut seg: Segment, end: End, settle_s: f64) {
-        let u_start = seg.path.tangent(0.0);
-        let u_end = seg.path.tangent(seg.path.len);
-        seg.corner_tolerance_mm =
+    /// The move is built in its slot of the window, not moved there.
+    fn push(
+        &mut self,
+        path: Path,
+        kind: MoveKind,
+        attr: Attr,
+        (v_max, kin): (f64, Kin),
+        end: End,
+        settle_s: f64,
+    ) {
+        let arc_start;
+        let u_start = match &path.shape {
+            Shape::Line(u) => u,
+            Shape::Arc(_) => {
+                arc_start = path.tangent(0.0);
+                &arc_start
+            }
+        };
+        let e_start = Unit::new(&self.lim, u_start);
+        let u_end = match path.shape {
+            // A line's tangent is the same at both ends.
+            Shape::Line(_) => e_start,
+            Shape::Arc(_) => Unit::new(&self.lim, &path.tangent(path.len)),
+        };
+        let corner_tolerance_mm =
             if self.smooth_next > 0.0 && self.window.back().is_some_and(|p| p.smooth_mm > 0.0) {
                 self.smooth_next
             } else {
                 self.set.corner_tolerance_mm
             };
-        let cap = self.corner_cap(&seg, &u_start).min(seg.v_max);
-        let entry_max = seg.kin.reach_capped(0.0, seg.path.len, cap);
-        self.window.push_back(Pending {
-            seg,
-            end,
-            settle_s,
-            entry_cap: cap,
-            entry_max,
-            u_end,
-            smooth_mm: self.smooth_next,
-        });
+        let next = Next {
+            kind,
+            v_max,
+            len: path.len,
+            tol_mm: corner_tolerance_mm,
+        };
+        let cap = self.corner_cap(&next, u_start, &e_start).min(v_max);
+        let (entry_max, entry_bounds) = match kin.reach_from_rest(path.len, cap) {
+            Ok(v) => (v, None),
+            Err(bounds) => (f64::NAN, Some(bounds)),
+        };
+        let smooth_mm = self.smooth_next;
+        if let Some(slot) = self.window.push_reused() {
+            // Field by field into the slot a committed move left: building
+            // a `Pending` and moving it there copies it twice over. Every
+            // field is named, so a new one cannot be forgotten here.
+            let Pending {
+                seg:
+                    Segment {
+                        path: s_path,
+                        kind: s_kind,
+                        attr: s_attr,
+                        v_max: s_v_max,
+                        kin: s_kin,
+                        corner_tolerance_mm: s_tol,
+                    },
+                end: s_end,
+                settle_s: s_settle,
+                entry_cap: s_cap,
+                entry_max: s_max,
+                entry_bounds: s_bounds,
+                u_end: s_u_end,
+                smooth_mm: s_smooth,
+            } = slot;
+            *s_path = path;
+            *s_kind = kind;
+            *s_attr = attr;
+            *s_v_max = v_max;
+            *s_kin = kin;
+            *s_tol = corner_tolerance_mm;
+            *s_end = end;
+            *s_settle = settle_s;
+            *s_cap = cap;
+            *s_max = entry_max;
+            *s_bounds = entry_bounds;
+            *s_u_end = u_end;
+            *s_smooth = smooth_mm;
+        } else {
+            self.window.push_back(Pending {
+                seg: Segment {
+                    path,
+                    kind,
+                    attr,
+                    v_max,
+                    kin,
+                    corner_tolerance_mm,
+                },
+                end,
+                settle_s,
+                entry_cap: cap,
+                entry_max,
+                entry_bounds,
+                u_end,
+                smooth_mm,
+            });
+        }
         self.backward();
         while self.window.len() > self.set.lookahead {
             self.commit();
@@ -298,9 +405,9 @@ impl<T: Timeline> Planner<T> {
 
     /// The highest speed at the junction between the newest segment in
     /// the window and `seg`; decides how a G99 junction ends.
-    fn corner_cap(&mut self, seg: &Segment, u_start: &Vector) -> f64 {
+    fn corner_cap(&mut self, seg: &Next, u_start: &Vector, e_start: &Unit) -> f64 {
         // Between two smoothed G01 moves the corner tolerance is G05.1's E.
-        let tol = seg.corner_tolerance_mm;
+        let tol = seg.tol_mm;
         let lim = &self.lim;
         let Some(prev) = self.window.back_mut() else {
             return 0.0;
@@ -311,19 +418,18 @@ impl<T: Timeline> Planner<T> {
             return 0.0;
         }
         let v_cap = prev.seg.v_max.min(seg.v_max);
-        let half_len = 0.5 * prev.seg.path.len.min(seg.path.len);
-        let v = corner_speed(
-            lim,
-            &prev.u_end,
-            u_start,
-            tol,
+        let half_len = 0.5 * prev.seg.path.len.min(seg.len);
+        let corner = Corner {
+            tol_mm: tol,
             half_len,
-            &lim.max_feed,
+            vlim: &lim.max_feed,
+            vlim_min: self.max_feed_min,
             v_cap,
-        )
-        .min(v_cap);
+        };
+        let v = corner_speed_units(lim, &prev.u_end, e_start, &corner).min(v_cap);
         if prev.end == End::Tangent {
-            let tangent = cosine(&prev.u_end, u_start) >= TANGENT_COS;
+            let u_end = prev.seg.path.tangent(prev.seg.path.len);
+            let tangent = cosine(&u_end, u_start) >= TANGENT_COS;
             let (a, b) = (prev.seg.v_max, seg.v_max);
             if tangent && a.max(b) <= FEED_RATIO * a.min(b) {
                 prev.end = End::Blend;
@@ -337,39 +443,74 @@ impl<T: Timeline> Planner<T> {
     }
 
     fn backward(&mut self) {
-        let n = self.window.len();
-        let mut i = n - 1;
+        let Some(last) = self.window.back() else {
+            return;
+        };
+        // The entry bound of the move after the one at `i`, or bounds on
+        // it (as `Kin::reach_from_rest` gives them).
+        let mut exit = match last.entry_bounds {
+            Some(bounds) => Err(bounds),
+            None => Ok(last.entry_max),
+        };
+        let mut i = self.window.len() - 1;
         while i > 0 {
             i -= 1;
-            let exit = self.window[i + 1].entry_max;
-            let p = &mut self.window[i];
-            let new = p.seg.kin.reach_capped(exit, p.seg.path.len, p.entry_cap);
-            if new == p.entry_max {
+            let Some(p) = self.window.get_mut(i) else {
+                break;
+            };
+            let (kin, len, cap) = (p.seg.kin, p.seg.path.len, p.entry_cap);
+            let new = match exit {
+                Ok(x) => kin.reach_capped(x, len, cap),
+                Err(b) if kin.reaches_cap_from(b, len, cap) => cap,
+                Err(_) => {
+                    // Only the newest move's bound can be left as bounds:
+                    // work it out and start again from it.
+                    self.work_out_entry_max(i + 1);
+                    return self.backward();
+                }
+            };
+            if p.entry_bounds.is_none() && new == p.entry_max {
                 break;
             }
             p.entry_max = new;
+            p.entry_bounds = None;
+            exit = Ok(new);
+        }
+    }
+
+    /// Works out the entry bound of the move at `i` in the window if it
+    /// was left as bounds.
+    fn work_out_entry_max(&mut self, i: usize) {
+        if let Some(p) = self.window.get_mut(i) {
+            p.entry_max = p.exit_bound();
+            p.entry_bounds = None;
         }
     }
 
     /// Plans the oldest segment for good and hands it on.
     fn commit(&mut self) {
-        let Some(p) = self.window.pop_front() else {
+        let Some(p) = self.window.front() else {
             return;
+        };
+        let stops = p.end == End::Stop;
+        let next = match self.window.get(1) {
+            Some(n) if !stops => n.exit_bound(),
+            _ => 0.0,
         };
         let len = p.seg.path.len;
         let v0 = self.v_entry.min(p.seg.v_max);
-        let stops = p.end == End::Stop;
         let v1 = if stops {
             0.0
         } else {
-            let next = self.window.front().map_or(0.0, |n| n.entry_max);
             p.seg.kin.reach_capped(v0, len, next)
         };
         let profile = Profile::plan(v0, v1, p.seg.v_max, len, p.seg.kin);
         self.out.segment(&p.seg, &profile);
         self.v_entry = v1;
-        if stops && p.settle_s > 0.0 {
-            self.pause(PauseKind::InPosition, p.settle_s, p.seg.attr);
+        let settle = (stops && p.settle_s > 0.0).then(|| (p.settle_s, p.seg.attr.clone()));
+        self.window.pop_front();
+        if let Some((seconds, attr)) = settle {
+            self.pause(PauseKind::InPosition, seconds, attr);
         }
     }
 
@@ -406,7 +547,16 @@ impl<T: Timeline> Planner<T> {
         self.last_leg = leg;
     }
 
+    /// Hands on the dog-leg rapid being built, if there is one (checked in
+    /// line: every event asks).
+    #[inline]
     fn finish_dogleg(&mut self) {
+        if self.dogleg.is_some() {
+            self.finish_dogleg_now();
+        }
+    }
+
+    fn finish_dogleg_now(&mut self) {
         let Some((attr, from, to)) = self.dogleg.take() else {
             return;
         };

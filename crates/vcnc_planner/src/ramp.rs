@@ -22,6 +22,21 @@
 //! form (Cardano). Reference: Biagiotti & Melchiorri, *Trajectory Planning
 //! for Automatic Machines and Robots* (2008), §3.4 (double-S profile).
 
+/// Whether `x` is finite: `x − x` is 0 for a finite x, NaN for ±∞ and NaN.
+/// The same answer as `f64::is_finite`, in two float instructions:
+/// `is_finite`, and range checks such as `0 < x < ∞`, become an integer
+/// classification of the bits on x86-64 today, a dozen instructions, and
+/// the planner asks this a dozen times a block. A positive finite figure
+/// is `0 < x ≤ f64::MAX`, two compares.
+#[inline]
+#[allow(
+    clippy::eq_op,
+    reason = "x − x is the test: 0 when finite, NaN otherwise"
+)]
+pub(crate) fn finite(x: f64) -> bool {
+    x - x == 0.0
+}
+
 /// The limits of one profile: acceleration and jerk along the path (jerk
 /// `f64::INFINITY` for a trapezoid).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,7 +50,7 @@ pub struct Kin {
 impl Kin {
     /// The speed change at which the acceleration saturates: a²/j.
     fn saturating_dv(self) -> f64 {
-        if self.jerk.is_finite() {
+        if finite(self.jerk) {
             self.accel * self.accel / self.jerk
         } else {
             0.0
@@ -47,7 +62,7 @@ impl Kin {
         let dv = dv.max(0.0);
         if dv >= self.saturating_dv() {
             dv / self.accel
-                + if self.jerk.is_finite() {
+                + if finite(self.jerk) {
                     self.accel / self.jerk
                 } else {
                     0.0
@@ -72,11 +87,54 @@ impl Kin {
         }
     }
 
+    /// `reach_capped(0, len, cap)`, or bounds on it where finding it takes
+    /// a cube root (a jerk-limited ramp too short to saturate): the
+    /// look-ahead needs the exact figure of its newest move only when the
+    /// move before cannot be shown to enter at its cap whatever the figure
+    /// in the bounds ([`Kin::reaches_cap_from`]); on a chain of short moves
+    /// it almost always can, and the figure is replaced before it is used.
+    #[inline]
+    pub(crate) fn reach_from_rest(self, len: f64, cap: f64) -> Result<f64, (f64, f64)> {
+        if cap <= 0.0 || self.ramp_dist(0.0, cap) <= len {
+            return Ok(cap);
+        }
+        let (a, j) = (self.accel, self.jerk);
+        let len = len.max(0.0);
+        // `reach(0, len)` takes its cubic branch with p = 0: s = ∛z.
+        let cubic = j > 0.0 && j <= f64::MAX && len <= (a * a / j) * a / j;
+        if !cubic {
+            return Ok(self.reach(0.0, len).min(cap));
+        }
+        // z exactly as `reach` forms it; the cube root to within 1e-11
+        // (checked), and the few roundings after it, keep the figure
+        // within 1e-9 of j·y².
+        let q2 = len / (2.0 * j);
+        let z = q2 + (q2 * q2).sqrt();
+        match cube_root_near(z) {
+            Some(y) => {
+                let v = j * y * y;
+                Err(((v * (1.0 - 1e-9)).min(cap), (v * (1.0 + 1e-9)).min(cap)))
+            }
+            None => Ok(self.reach(0.0, len).min(cap)),
+        }
+    }
+
+    /// Whether `reach_capped(v0, len, cap)` is `cap` for every `v0` in
+    /// `[lo, hi]`. For v0 < cap it is when the ramp up to `cap` fits,
+    /// ½·(v0 + cap)·T(cap − v0) ≤ len, and T grows with the speed change,
+    /// so ½·(min(hi, cap) + cap)·T(cap − lo) bounds the ramp over the whole
+    /// interval; the margin of 1e-9 is far above the rounding of either
+    /// side.
+    #[inline]
+    pub(crate) fn reaches_cap_from(self, (lo, hi): (f64, f64), len: f64, cap: f64) -> bool {
+        cap <= lo || 0.5 * (hi.min(cap) + cap) * self.ramp_time(cap - lo) <= len * (1.0 - 1e-9)
+    }
+
     /// The highest speed reachable from `v0` (or from which `v0` is
     /// reachable) within `len` mm.
     pub fn reach(self, v0: f64, len: f64) -> f64 {
         let len = len.max(0.0);
-        if !self.jerk.is_finite() {
+        if !finite(self.jerk) {
             return (v0 * v0 + 2.0 * self.accel * len).sqrt();
         }
         let (a, j) = (self.accel, self.jerk);
@@ -97,6 +155,25 @@ impl Kin {
             v0 + d
         }
     }
+}
+
+/// ∛z within a relative 1e-11 for a positive normal `z` (`None` when not
+/// shown to be): a guess from the exponent bits (fdlibm's, within 3.2 %),
+/// two Halley steps (cubic convergence: within 1e-14), and a check that
+/// the cube root lies between y·(1 ∓ 1e-11). Much cheaper than the
+/// correctly rounded `cbrt` for a figure only compared against bounds.
+fn cube_root_near(z: f64) -> Option<f64> {
+    if !(1e-200..=1e200).contains(&z) {
+        return None;
+    }
+    let high = u32::try_from(z.to_bits() >> 32).ok()?;
+    let mut y = f64::from_bits(u64::from(high / 3 + 715_094_163) << 32);
+    for _ in 0..2 {
+        let y3 = y * y * y;
+        y *= (y3 + 2.0 * z) / (2.0 * y3 + z);
+    }
+    let (lo, hi) = (y * (1.0 - 1e-11), y * (1.0 + 1e-11));
+    (lo * lo * lo < z && z < hi * hi * hi).then_some(y)
 }
 
 /// A ramp from `v0` to `v1` with its phase times.
@@ -202,7 +279,26 @@ impl Profile {
     /// The fastest profile over `len` mm from `v0` to `v1` that stays at or
     /// below `v_max`. The entry and exit speeds must be reachable from each
     /// other within `len` (the look-ahead guarantees it up to rounding).
+    #[inline]
     pub fn plan(v0: f64, v1: f64, v_max: f64, len: f64, kin: Kin) -> Profile {
+        // Passing through at the top speed (most moves of a long chain):
+        // when a ramp by nothing takes no time, the general case comes to
+        // exactly this (no ramps, len/v of cruise). In line, for the
+        // caller to keep only what it reads.
+        let through = v0 == v_max && v1 == v_max && v_max > 0.0 && v_max <= f64::MAX && len > 0.0;
+        if through && kin.ramp_time(0.0) == 0.0 {
+            let flat = Ramp::new(v_max, v_max, kin);
+            return Profile {
+                up: flat,
+                cruise_s: len / v_max,
+                down: flat,
+            };
+        }
+        Profile::plan_ramps(v0, v1, v_max, len, kin)
+    }
+
+    /// [`Profile::plan`] with ramps.
+    fn plan_ramps(v0: f64, v1: f64, v_max: f64, len: f64, kin: Kin) -> Profile {
         let floor = v0.max(v1);
         let v_max = v_max.max(floor);
         let fits = |vp: f64| kin.ramp_dist(v0, vp) + kin.ramp_dist(vp, v1) <= len;
@@ -298,6 +394,68 @@ mod tests {
                 }
             }
         }
+    }
+
+    proptest::proptest! {
+        /// The bounds `reach_from_rest` leaves hold the exact figure, and
+        /// when they show the move before entering at its cap, the exact
+        /// figure gives that cap too: the look-ahead's lazy entry bound
+        /// changes no result.
+        #[test]
+        fn the_bounds_on_an_entry_speed_hold_it_and_decide_the_move_before(
+            accel in 10.0..20_000.0f64,
+            jerk in 100.0..1e6f64,
+            len in 1e-4..20.0f64,
+            cap in 0.1..500.0f64,
+            prev_len in 1e-4..20.0f64,
+            prev_cap in 0.1..500.0f64,
+            prev_scale in 0.3..3.0f64,
+        ) {
+            let kin = Kin { accel, jerk };
+            let exact = kin.reach_capped(0.0, len, cap);
+            match kin.reach_from_rest(len, cap) {
+                Ok(v) => proptest::prop_assert_eq!(v.to_bits(), exact.to_bits()),
+                Err((lo, hi)) => {
+                    proptest::prop_assert!(lo <= exact && exact <= hi, "{lo} {exact} {hi}");
+                    let prev = Kin { accel: accel * prev_scale, jerk: jerk / prev_scale };
+                    if prev.reaches_cap_from((lo, hi), prev_len, prev_cap) {
+                        let v = prev.reach_capped(exact, prev_len, prev_cap);
+                        proptest::prop_assert_eq!(v.to_bits(), prev_cap.to_bits());
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn finite_is_is_finite() {
+        let specials = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+        ];
+        let odd = [f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        for x in specials.into_iter().chain(odd) {
+            assert_eq!(finite(x), x.is_finite(), "{x}");
+            let positive = x > 0.0 && x <= f64::MAX;
+            assert_eq!(positive, x.is_finite() && x > 0.0, "{x}");
+        }
+    }
+
+    #[test]
+    fn a_cube_root_near_is_near() {
+        for z in [
+            1e-150, 3.7e-9, 0.001, 0.5, 1.0, 2.0, 27.0, 1e5, 6.02e23, 1e150,
+        ] {
+            let y = cube_root_near(z).unwrap();
+            assert!((y - z.cbrt()).abs() <= 1e-11 * z.cbrt(), "{z}: {y}");
+        }
+        assert!(cube_root_near(0.0).is_none() && cube_root_near(f64::INFINITY).is_none());
     }
 
     #[test]

@@ -46,29 +46,43 @@ impl CycleTime {
         CycleTime::default()
     }
 
+    /// Adds `seconds` to the total, its tool and its file: almost always
+    /// the tool and file of the time before, which is checked first.
     fn add(&mut self, seconds: f64, attr: &Attr) {
         self.total_s += seconds;
-        if self.per_tool.get(self.last_tool).map(|e| e.0) != Some(attr.tool) {
-            self.last_tool = match self.per_tool.iter().position(|e| e.0 == attr.tool) {
-                Some(i) => i,
-                None => {
-                    self.per_tool.push((attr.tool, 0.0));
-                    self.per_tool.len() - 1
-                }
-            };
+        match self.per_tool.get_mut(self.last_tool) {
+            Some(e) if e.0 == attr.tool => e.1 += seconds,
+            _ => self.add_other_tool(seconds, attr.tool),
         }
+        match self.per_file.get_mut(self.last_file) {
+            Some(e) if e.0 == attr.file => e.1 += seconds,
+            _ => self.add_other_file(seconds, &attr.file),
+        }
+    }
+
+    #[cold]
+    fn add_other_tool(&mut self, seconds: f64, tool: Option<u32>) {
+        self.last_tool = match self.per_tool.iter().position(|e| e.0 == tool) {
+            Some(i) => i,
+            None => {
+                self.per_tool.push((tool, 0.0));
+                self.per_tool.len() - 1
+            }
+        };
         if let Some(e) = self.per_tool.get_mut(self.last_tool) {
             e.1 += seconds;
         }
-        if self.per_file.get(self.last_file).map(|e| &e.0) != Some(&attr.file) {
-            self.last_file = match self.per_file.iter().position(|e| e.0 == attr.file) {
-                Some(i) => i,
-                None => {
-                    self.per_file.push((attr.file.clone(), 0.0));
-                    self.per_file.len() - 1
-                }
-            };
-        }
+    }
+
+    #[cold]
+    fn add_other_file(&mut self, seconds: f64, file: &Option<Arc<str>>) {
+        self.last_file = match self.per_file.iter().position(|e| e.0 == *file) {
+            Some(i) => i,
+            None => {
+                self.per_file.push((file.clone(), 0.0));
+                self.per_file.len() - 1
+            }
+        };
         if let Some(e) = self.per_file.get_mut(self.last_file) {
             e.1 += seconds;
         }
