@@ -164,6 +164,12 @@ impl<S: Sink> Sink for Tap<S> {
         }
         self.inner.event(e);
     }
+    fn take_events(&mut self, events: &mut Vec<Event>) {
+        for e in events.iter().filter(|e| matches!(e, Event::Warning(_))) {
+            self.warnings.event(e);
+        }
+        self.inner.take_events(events);
+    }
     fn is_done(&self) -> bool {
         self.inner.is_done()
     }

@@ -128,6 +128,26 @@ impl<S: Sink> Sink for Offload<S> {
         }
     }
 
+    /// A block's events move into the chunk: no clone here, no drop in
+    /// the interpreter.
+    #[inline]
+    fn take_events(&mut self, events: &mut Vec<Event>) {
+        match self {
+            Offload::Inline(sink) => sink.take_events(events),
+            Offload::Thread(w) => {
+                if w.chunk.len() + events.len() > CHUNK && !w.chunk.is_empty() {
+                    // Hand over first, so that a chunk never outgrows its
+                    // buffer.
+                    w.hand_over();
+                }
+                w.chunk.append(events);
+                if w.chunk.len() >= CHUNK {
+                    w.hand_over();
+                }
+            }
+        }
+    }
+
     fn is_done(&self) -> bool {
         match self {
             Offload::Inline(sink) => sink.is_done(),
@@ -190,6 +210,40 @@ mod tests {
         }
         assert!(!off.is_done());
         assert_eq!(off.join().unwrap().seen, n);
+    }
+
+    /// Keeps the line numbers of the events it sees.
+    struct Lines(Vec<u64>);
+
+    impl Sink for Lines {
+        fn event(&mut self, e: &Event) {
+            if let Event::Rapid { loc, .. } = e {
+                self.0.push(loc.line);
+            }
+        }
+    }
+
+    #[test]
+    fn blocks_handed_over_by_value_arrive_whole_and_in_order() {
+        // Blocks of 1 to 2 chunks' worth of events, across chunk ends.
+        let sizes = [1, 7, CHUNK - 3, 5, CHUNK, 2 * CHUNK + 1, 3, 1];
+        let mut off = Offload::start(|| Lines(Vec::new()));
+        let mut block = Vec::new();
+        let mut line = 0;
+        for n in sizes {
+            for _ in 0..n {
+                line += 1;
+                block.push(Event::Rapid {
+                    loc: Loc { line, file: None },
+                    to: Pos::default(),
+                    exact_stop: false,
+                });
+            }
+            off.take_events(&mut block);
+            assert!(block.is_empty(), "the events were taken");
+        }
+        let seen = off.join().unwrap().0;
+        assert_eq!(seen, (1..=line).collect::<Vec<_>>());
     }
 
     #[test]

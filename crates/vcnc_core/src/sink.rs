@@ -1,7 +1,10 @@
 //! Where events go: the [`Sink`] trait and two small sinks.
 //!
-//! The interpreter calls [`Sink::event`] once per event, in order, with a
-//! borrowed event, so a sink that only counts or formats never clones. A
+//! The interpreter hands over each block's events in order through
+//! [`Sink::take_events`], which by default calls [`Sink::event`] once per
+//! event with a borrowed event, so a sink that only counts or formats never
+//! clones, and one that keeps them (the CLI's second-core hand-over) moves
+//! them. A
 //! sink that wants no more events (its reader went away: `vcnc run | head`)
 //! says so through [`Sink::is_done`], which the interpreter asks after every
 //! block, and the run stops at once. [`Sink::finish`] is called once after
@@ -14,6 +17,17 @@ use crate::events::Event;
 pub trait Sink {
     /// One event.
     fn event(&mut self, event: &Event);
+
+    /// The events of one block, in order, handed over by value: the
+    /// interpreter calls this (not [`event`](Self::event)) and `events` is
+    /// empty afterwards. A sink that keeps events moves them instead of
+    /// cloning each; by default each goes to [`event`](Self::event).
+    fn take_events(&mut self, events: &mut Vec<Event>) {
+        for e in events.iter() {
+            self.event(e);
+        }
+        events.clear();
+    }
 
     /// Whether the sink wants no further events; the interpreter stops the
     /// run after the current block when it does.
@@ -48,6 +62,9 @@ impl Sink for VecSink {
 impl<S: Sink + ?Sized> Sink for &mut S {
     fn event(&mut self, event: &Event) {
         (**self).event(event);
+    }
+    fn take_events(&mut self, events: &mut Vec<Event>) {
+        (**self).take_events(events);
     }
     fn is_done(&self) -> bool {
         (**self).is_done()

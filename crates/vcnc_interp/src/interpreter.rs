@@ -582,9 +582,7 @@ impl<'a> Interpreter<'a> {
                         .executed
                         .saturating_add(self.pending.len().saturating_sub(1) as u64);
                 }
-                for e in &self.pending {
-                    sink.event(e);
-                }
+                sink.take_events(&mut self.pending);
             }
             Err(_) => {
                 self.flow.jumps = jumps;

@@ -50,10 +50,7 @@ impl Interpreter<'_> {
             Ok(_) => {
                 self.tables.commit();
                 self.report_frame();
-                for e in &self.pending {
-                    sink.event(e);
-                }
-                self.pending.clear();
+                sink.take_events(&mut self.pending);
             }
             Err(_) => {
                 self.tables.rollback();
