@@ -1,6 +1,9 @@
 //! The interpreter's alarms, one named constructor each (codes in
 //! `docs/alarms.md`). Formatting happens only here and only when an alarm is
-//! raised, never on the per-block hot path.
+//! raised, never on the per-block hot path. Every constructor is `#[cold]`:
+//! the compiler then lays the paths that raise an alarm out of the way of
+//! the ones a block takes, which keeps a block's code dense in the
+//! instruction cache.
 
 use vcnc_syntax::{Code, Diagnostic, Span};
 
@@ -13,6 +16,7 @@ fn letter(l: u8) -> char {
 }
 
 /// E106: a physical line too long to read.
+#[cold]
 pub fn line_too_long() -> Diagnostic {
     d(
         Code::E106,
@@ -23,6 +27,7 @@ pub fn line_too_long() -> Diagnostic {
 }
 
 /// E108: a decimal point in a word that counts or numbers things.
+#[cold]
 pub fn no_decimal_point(span: Span, l: u8, why: &str) -> Diagnostic {
     d(
         Code::E108,
@@ -33,6 +38,7 @@ pub fn no_decimal_point(span: Span, l: u8, why: &str) -> Diagnostic {
 }
 
 /// E109: a value outside what the word allows.
+#[cold]
 pub fn value_out_of_range(span: Span, l: u8, value: f64, allowed: &str) -> Diagnostic {
     d(
         Code::E109,
@@ -43,6 +49,7 @@ pub fn value_out_of_range(span: Span, l: u8, value: f64, allowed: &str) -> Diagn
 }
 
 /// E109 for lathe G08/G09 steps leaving 10 %–200 %.
+#[cold]
 pub fn feed_steps_out_of_range(span: Span, pct: i32) -> Diagnostic {
     d(
         Code::E109,
@@ -55,6 +62,7 @@ pub fn feed_steps_out_of_range(span: Span, pct: i32) -> Diagnostic {
 }
 
 /// E201: unknown G code.
+#[cold]
 pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>) -> Diagnostic {
     let help = match elsewhere {
         Some(other) => {
@@ -73,6 +81,7 @@ pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>)
 }
 
 /// E201 for a code the dialect's document lists but vcnc does not run.
+#[cold]
 pub fn unsupported_g(span: Span, why: &str) -> Diagnostic {
     d(
         Code::E201,
@@ -83,6 +92,7 @@ pub fn unsupported_g(span: Span, why: &str) -> Diagnostic {
 }
 
 /// E202: unknown M code.
+#[cold]
 pub fn unknown_m(span: Span, value: f64, dialect: &str) -> Diagnostic {
     d(
         Code::E202,
@@ -93,6 +103,7 @@ pub fn unknown_m(span: Span, value: f64, dialect: &str) -> Diagnostic {
 }
 
 /// E203: a word nothing in the block uses.
+#[cold]
 pub fn word_not_allowed(span: Span, l: u8) -> Diagnostic {
     d(
         Code::E203,
@@ -103,6 +114,7 @@ pub fn word_not_allowed(span: Span, l: u8) -> Diagnostic {
 }
 
 /// E203 for an extended address (`CR=`, `IX`) nothing in the block uses.
+#[cold]
 pub fn extended_not_allowed(span: Span, name: &str) -> Diagnostic {
     d(
         Code::E203,
@@ -113,6 +125,7 @@ pub fn extended_not_allowed(span: Span, name: &str) -> Diagnostic {
 }
 
 /// E203 for a multi-character address the dialect does not have.
+#[cold]
 pub fn address_not_in_dialect(span: Span, dialect: &str) -> Diagnostic {
     d(
         Code::E203,
@@ -123,6 +136,7 @@ pub fn address_not_in_dialect(span: Span, dialect: &str) -> Diagnostic {
 }
 
 /// E204 for an extended address written twice.
+#[cold]
 pub fn duplicate_extended(span: Span, name: &str) -> Diagnostic {
     d(
         Code::E204,
@@ -133,6 +147,7 @@ pub fn duplicate_extended(span: Span, name: &str) -> Diagnostic {
 }
 
 /// E204: an axis written both absolute and incremental (`X10 U5`).
+#[cold]
 pub fn absolute_and_incremental(span: Span, abs: u8, inc: u8) -> Diagnostic {
     d(
         Code::E204,
@@ -148,6 +163,7 @@ pub fn absolute_and_incremental(span: Span, abs: u8, inc: u8) -> Diagnostic {
 }
 
 /// E209: a code that must stand alone shares its block.
+#[cold]
 pub fn not_alone(span: Span, code: Span) -> Diagnostic {
     let _ = code;
     d(
@@ -160,6 +176,7 @@ pub fn not_alone(span: Span, code: Span) -> Diagnostic {
 
 /// E209: a G or M code in the block of a macro call (G65, G66, an
 /// extended G-code or an M-code macro), which passes no G or M argument.
+#[cold]
 pub fn call_not_alone(span: Span, call: &str) -> Diagnostic {
     d(
         Code::E209,
@@ -170,6 +187,7 @@ pub fn call_not_alone(span: Span, call: &str) -> Diagnostic {
 }
 
 /// E313: G05 through three points on one line.
+#[cold]
 pub fn three_points_on_a_line(span: Span) -> Diagnostic {
     d(
         Code::E313,
@@ -180,6 +198,7 @@ pub fn three_points_on_a_line(span: Span) -> Diagnostic {
 }
 
 /// E314: a turning cycle's parameters contradict each other.
+#[cold]
 pub fn cycle_parameters(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E314,
@@ -190,6 +209,7 @@ pub fn cycle_parameters(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E409: G24 with no G20 to return to.
+#[cold]
 pub fn return_without_call(span: Span) -> Diagnostic {
     d(
         Code::E409,
@@ -200,6 +220,7 @@ pub fn return_without_call(span: Span) -> Diagnostic {
 }
 
 /// E204: the same address twice.
+#[cold]
 pub fn duplicate_word(span: Span, l: u8) -> Diagnostic {
     d(
         Code::E204,
@@ -210,6 +231,7 @@ pub fn duplicate_word(span: Span, l: u8) -> Diagnostic {
 }
 
 /// E205: two G codes of one modal group.
+#[cold]
 pub fn same_group(span: Span) -> Diagnostic {
     d(
         Code::E205,
@@ -220,6 +242,7 @@ pub fn same_group(span: Span) -> Diagnostic {
 }
 
 /// E206: two M codes of one group.
+#[cold]
 pub fn same_m_group(span: Span) -> Diagnostic {
     d(
         Code::E206,
@@ -230,6 +253,7 @@ pub fn same_m_group(span: Span) -> Diagnostic {
 }
 
 /// E207: two G codes both taking the axis words.
+#[cold]
 pub fn axis_conflict(span: Span) -> Diagnostic {
     d(
         Code::E207,
@@ -240,6 +264,7 @@ pub fn axis_conflict(span: Span) -> Diagnostic {
 }
 
 /// E208: G92 (a Fanuc lathe's G50, named by `code`) with axes and S.
+#[cold]
 pub fn g92_axes_and_s(span: Span, code: &str) -> Diagnostic {
     d(
         Code::E208,
@@ -252,6 +277,7 @@ pub fn g92_axes_and_s(span: Span, code: &str) -> Diagnostic {
 }
 
 /// E301: zero feed on a cutting move.
+#[cold]
 pub fn zero_feed(span: Span) -> Diagnostic {
     d(
         Code::E301,
@@ -262,6 +288,7 @@ pub fn zero_feed(span: Span) -> Diagnostic {
 }
 
 /// E302: chord longer than the diameter.
+#[cold]
 pub fn radius_too_small(span: Span, r: f64, chord: f64) -> Diagnostic {
     d(
         Code::E302,
@@ -272,6 +299,7 @@ pub fn radius_too_small(span: Span, r: f64, chord: f64) -> Diagnostic {
 }
 
 /// E303: end point off the circle.
+#[cold]
 pub fn end_off_circle(span: Span, r_start: f64, r_end: f64) -> Diagnostic {
     d(
         Code::E303,
@@ -284,6 +312,7 @@ pub fn end_off_circle(span: Span, r_start: f64, r_end: f64) -> Diagnostic {
 }
 
 /// E304: zero radius.
+#[cold]
 pub fn zero_radius(span: Span) -> Diagnostic {
     d(
         Code::E304,
@@ -294,6 +323,7 @@ pub fn zero_radius(span: Span) -> Diagnostic {
 }
 
 /// E305: neither centre nor radius.
+#[cold]
 pub fn arc_without_center(span: Span, plane: &str) -> Diagnostic {
     d(
         Code::E305,
@@ -304,6 +334,7 @@ pub fn arc_without_center(span: Span, plane: &str) -> Diagnostic {
 }
 
 /// E306: R arc from a point to itself.
+#[cold]
 pub fn r_full_circle(span: Span) -> Diagnostic {
     d(
         Code::E306,
@@ -314,6 +345,7 @@ pub fn r_full_circle(span: Span) -> Diagnostic {
 }
 
 /// E307: G29 before any G28/G30.
+#[cold]
 pub fn g29_without_g28(span: Span, axis: u8) -> Diagnostic {
     d(
         Code::E307,
@@ -327,6 +359,7 @@ pub fn g29_without_g28(span: Span, axis: u8) -> Diagnostic {
 }
 
 /// E308: G53 under G91.
+#[cold]
 pub fn g53_incremental(span: Span) -> Diagnostic {
     d(
         Code::E308,
@@ -338,6 +371,7 @@ pub fn g53_incremental(span: Span) -> Diagnostic {
 }
 
 /// E309: M06 without T.
+#[cold]
 pub fn m06_without_tool(span: Span) -> Diagnostic {
     d(
         Code::E309,
@@ -348,6 +382,7 @@ pub fn m06_without_tool(span: Span) -> Diagnostic {
 }
 
 /// E310: G96 without a tool diameter.
+#[cold]
 pub fn css_without_diameter(span: Span) -> Diagnostic {
     d(
         Code::E310,
@@ -358,6 +393,7 @@ pub fn css_without_diameter(span: Span) -> Diagnostic {
 }
 
 /// E311: a thread (G33, a lathe's G32, G76, G92) without a lead.
+#[cold]
 pub fn thread_without_lead(span: Span) -> Diagnostic {
     d(
         Code::E311,
@@ -368,6 +404,7 @@ pub fn thread_without_lead(span: Span) -> Diagnostic {
 }
 
 /// E312: a code that needs axis words has none.
+#[cold]
 pub fn needs_axes(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E312,
@@ -378,6 +415,7 @@ pub fn needs_axes(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E312: a code without a (non-axis) word it needs.
+#[cold]
 pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
     d(
         Code::E312,
@@ -388,6 +426,7 @@ pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
 }
 
 /// E401: program not found.
+#[cold]
 pub fn program_not_found(span: Span, number: u32) -> Diagnostic {
     let mut diag = d(
         Code::E401,
@@ -402,6 +441,7 @@ pub fn program_not_found(span: Span, number: u32) -> Diagnostic {
 }
 
 /// E402: sequence number not found.
+#[cold]
 pub fn sequence_not_found(span: Span, seq: u32) -> Diagnostic {
     d(
         Code::E402,
@@ -412,6 +452,7 @@ pub fn sequence_not_found(span: Span, seq: u32) -> Diagnostic {
 }
 
 /// E403: nesting too deep.
+#[cold]
 pub fn nesting_too_deep(span: Span, max: u32) -> Diagnostic {
     d(
         Code::E403,
@@ -422,6 +463,7 @@ pub fn nesting_too_deep(span: Span, max: u32) -> Diagnostic {
 }
 
 /// E404: too many blocks.
+#[cold]
 pub fn block_limit(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E404,
@@ -434,6 +476,7 @@ pub fn block_limit(span: Span, max: u64) -> Diagnostic {
 }
 
 /// E405: too many jumps.
+#[cold]
 pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E405,
@@ -446,6 +489,7 @@ pub fn jump_limit(span: Span, max: u64) -> Diagnostic {
 }
 
 /// E406: subprogram without its return (M99, or G24 after a lathe G20).
+#[cold]
 pub fn sub_without_return(span: Span, code: &str) -> Diagnostic {
     let mut diag = d(
         Code::E406,
@@ -458,6 +502,7 @@ pub fn sub_without_return(span: Span, code: &str) -> Diagnostic {
 }
 
 /// E408: called program unreadable.
+#[cold]
 pub fn program_unreadable(span: Span, number: u32, err: &std::io::Error) -> Diagnostic {
     d(
         Code::E408,
@@ -468,6 +513,7 @@ pub fn program_unreadable(span: Span, number: u32, err: &std::io::Error) -> Diag
 }
 
 /// E501: soft over-travel.
+#[cold]
 pub fn over_travel(span: Span, axis: u8, value: f64, min: f64, max: f64) -> Diagnostic {
     d(
         Code::E501,
@@ -481,6 +527,7 @@ pub fn over_travel(span: Span, axis: u8, value: f64, min: f64, max: f64) -> Diag
 }
 
 /// E502: reference point not defined.
+#[cold]
 pub fn no_reference(span: Span, n: usize) -> Diagnostic {
     d(
         Code::E502,
@@ -491,6 +538,7 @@ pub fn no_reference(span: Span, n: usize) -> Diagnostic {
 }
 
 /// E503: work offset number out of range.
+#[cold]
 pub fn bad_offset_number(span: Span, p: f64) -> Diagnostic {
     d(
         Code::E503,
@@ -501,6 +549,7 @@ pub fn bad_offset_number(span: Span, p: f64) -> Diagnostic {
 }
 
 /// E503: an H, D or G10 P offset number beyond the machine's offset registers.
+#[cold]
 pub fn bad_tool_offset_number(span: Span, l: u8, value: f64, max: u32) -> Diagnostic {
     d(
         Code::E503,
@@ -514,6 +563,7 @@ pub fn bad_tool_offset_number(span: Span, l: u8, value: f64, max: u32) -> Diagno
 }
 
 /// E210: G92 while a rotation, scaling or mirror is active.
+#[cold]
 pub fn g92_under_transform(span: Span) -> Diagnostic {
     d(
         Code::E210,
@@ -525,6 +575,7 @@ pub fn g92_under_transform(span: Span) -> Diagnostic {
 
 /// E210: G31 while cutter compensation is on (Fanuc PS0035): the skip
 /// stops where the signal fires, off the end the corner was worked out for.
+#[cold]
 pub fn skip_under_comp(span: Span) -> Diagnostic {
     d(
         Code::E210,
@@ -535,6 +586,7 @@ pub fn skip_under_comp(span: Span) -> Diagnostic {
 }
 
 /// E312: tool length compensation on a machine without a Z axis.
+#[cold]
 pub fn tool_length_without_z(span: Span) -> Diagnostic {
     d(
         Code::E312,
@@ -545,6 +597,7 @@ pub fn tool_length_without_z(span: Span) -> Diagnostic {
 }
 
 /// E315: an arc under different scale factors on its plane's axes.
+#[cold]
 pub fn arc_uneven_scale(span: Span) -> Diagnostic {
     d(
         Code::E315,
@@ -556,6 +609,7 @@ pub fn arc_uneven_scale(span: Span) -> Diagnostic {
 }
 
 /// E315: an arc in another plane than the active rotation.
+#[cold]
 pub fn arc_tilted(span: Span) -> Diagnostic {
     d(
         Code::E315,
@@ -566,6 +620,7 @@ pub fn arc_tilted(span: Span) -> Diagnostic {
 }
 
 /// E316: a scale factor of zero or beyond 999.999.
+#[cold]
 pub fn bad_scale_factor(span: Span, l: u8, k: f64) -> Diagnostic {
     d(
         Code::E316,
@@ -579,6 +634,7 @@ pub fn bad_scale_factor(span: Span, l: u8, k: f64) -> Diagnostic {
 }
 
 /// E316: G51 with both P and I/J/K.
+#[cold]
 pub fn scale_p_and_ijk(span: Span) -> Diagnostic {
     d(
         Code::E316,
@@ -590,6 +646,7 @@ pub fn scale_p_and_ijk(span: Span) -> Diagnostic {
 
 /// E316: transforms whose composition cannot be undone (never raised by a
 /// valid factor; a guard for the frame's inverse).
+#[cold]
 pub fn singular_transform(span: Span) -> Diagnostic {
     d(
         Code::E316,
@@ -600,6 +657,7 @@ pub fn singular_transform(span: Span) -> Diagnostic {
 }
 
 /// E317: an arc where compensation starts or ends (or G41/G42/G40 with G02/G03).
+#[cold]
 pub fn comp_arc_startup(span: Span) -> Diagnostic {
     d(
         Code::E317,
@@ -611,6 +669,7 @@ pub fn comp_arc_startup(span: Span) -> Diagnostic {
 }
 
 /// E318: an arc too small for the cutter on its centre's side.
+#[cold]
 pub fn comp_arc_too_small(span: Span) -> Diagnostic {
     d(
         Code::E318,
@@ -622,6 +681,7 @@ pub fn comp_arc_too_small(span: Span) -> Diagnostic {
 }
 
 /// E318: a compensated path that would cut into the part.
+#[cold]
 pub fn comp_overcut(span: Span) -> Diagnostic {
     d(
         Code::E318,
@@ -633,6 +693,7 @@ pub fn comp_overcut(span: Span) -> Diagnostic {
 }
 
 /// E319: too many blocks without motion in the compensation plane.
+#[cold]
 pub fn comp_lookahead(span: Span, limit: u32) -> Diagnostic {
     d(
         Code::E319,
@@ -647,6 +708,7 @@ pub fn comp_lookahead(span: Span, limit: u32) -> Diagnostic {
 /// E320: a new cutter radius in force at an arc while compensating: the
 /// compensated arc would start at one radius from its centre and end at
 /// another (Fanuc PS0020).
+#[cold]
 pub fn comp_radius_change_on_arc(span: Span, old_mm: f64, new_mm: f64) -> Diagnostic {
     d(
         Code::E320,
@@ -659,6 +721,7 @@ pub fn comp_radius_change_on_arc(span: Span, old_mm: f64, new_mm: f64) -> Diagno
 }
 
 /// E320: a code that must not change while cutter compensation is on.
+#[cold]
 pub fn not_while_compensating(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E320,
@@ -670,6 +733,7 @@ pub fn not_while_compensating(span: Span, what: &str) -> Diagnostic {
 
 /// E321: a tapping cycle with the spindle stopped or turning the wrong
 /// way (`cw`: the direction it must turn, `None`: either).
+#[cold]
 pub fn tapping_spindle(span: Span, code: &str, cw: Option<bool>) -> Diagnostic {
     let (msg, help) = match cw {
         Some(true) => (
@@ -693,6 +757,7 @@ pub fn tapping_spindle(span: Span, code: &str, cw: Option<bool>) -> Diagnostic {
 }
 
 /// E322: a hole pattern with no canned cycle to drill its holes.
+#[cold]
 pub fn pattern_without_cycle(span: Span) -> Diagnostic {
     d(
         Code::E322,
@@ -703,6 +768,7 @@ pub fn pattern_without_cycle(span: Span) -> Diagnostic {
 }
 
 /// E323: the hole bottom on the wrong side of the R level.
+#[cold]
 pub fn cycle_direction(span: Span, upward: bool) -> Diagnostic {
     let (msg, help) = if upward {
         (
@@ -719,6 +785,7 @@ pub fn cycle_direction(span: Span, upward: bool) -> Diagnostic {
 }
 
 /// E324: G17/G18/G19 changing the plane while a cycle is active.
+#[cold]
 pub fn cycle_plane(span: Span) -> Diagnostic {
     d(
         Code::E324,
@@ -729,6 +796,7 @@ pub fn cycle_plane(span: Span) -> Diagnostic {
 }
 
 /// E325: a pocket not larger than the tool.
+#[cold]
 pub fn pocket_too_small(span: Span, what: &str, tool_mm: f64) -> Diagnostic {
     d(
         Code::E325,
@@ -739,6 +807,7 @@ pub fn pocket_too_small(span: Span, what: &str, tool_mm: f64) -> Diagnostic {
 }
 
 /// E326: one block asks for more holes than the bound.
+#[cold]
 pub fn too_many_holes(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E326,
@@ -750,6 +819,7 @@ pub fn too_many_holes(span: Span, max: u64) -> Diagnostic {
 
 /// E326: a peck depth so small against the hole depth that the block
 /// would peck more often than the bound.
+#[cold]
 pub fn too_many_pecks(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E326,
@@ -760,6 +830,7 @@ pub fn too_many_pecks(span: Span, max: u64) -> Diagnostic {
 }
 
 /// E326: a pocket with more passes than the bound.
+#[cold]
 pub fn too_many_passes(span: Span, max: u64) -> Diagnostic {
     d(
         Code::E326,
@@ -770,6 +841,7 @@ pub fn too_many_passes(span: Span, max: u64) -> Diagnostic {
 }
 
 /// E326: a lathe cycle with more passes or moves than the bound.
+#[cold]
 pub fn too_many_cycle_moves(span: Span) -> Diagnostic {
     d(
         Code::E326,
@@ -780,6 +852,7 @@ pub fn too_many_cycle_moves(span: Span) -> Diagnostic {
 }
 
 /// E340: a probing move that never tripped.
+#[cold]
 pub fn probe_not_tripped(span: Span) -> Diagnostic {
     d(
         Code::E340,
@@ -790,6 +863,7 @@ pub fn probe_not_tripped(span: Span) -> Diagnostic {
 }
 
 /// E341: a thread too fast for the machine's feed.
+#[cold]
 pub fn thread_too_fast(span: Span, rpm: f64, lead_mm: f64, max_feed: f64) -> Diagnostic {
     d(
         Code::E341,
@@ -808,6 +882,7 @@ pub fn thread_too_fast(span: Span, rpm: f64, lead_mm: f64, max_feed: f64) -> Dia
 /// E342: a feed per revolution or a thread with the spindle stopped.
 /// `per_minute` is the dialect's feed-per-minute code (G94, a Fanuc
 /// lathe's G98); `None` for a thread, which always follows the spindle.
+#[cold]
 pub fn per_rev_spindle_stopped(span: Span, per_minute: Option<f64>) -> Diagnostic {
     let help = match per_minute {
         Some(g) => {
@@ -824,6 +899,7 @@ pub fn per_rev_spindle_stopped(span: Span, per_minute: Option<f64>) -> Diagnosti
 }
 
 /// E210: an M code in G05 high-speed mode.
+#[cold]
 pub fn m_code_in_high_speed(span: Span) -> Diagnostic {
     d(
         Code::E210,
@@ -839,6 +915,7 @@ pub fn m_code_in_high_speed(span: Span) -> Diagnostic {
 
 /// W101: a length without a decimal point where the program writes points.
 /// `shown` is the value read, in `unit` (" mm", " in" or "°").
+#[cold]
 pub fn least_increment_trap(span: Span, l: u8, value: f64, shown: f64, unit: &str) -> Diagnostic {
     let shown = (shown * 1e6).round() / 1e6;
     d(
@@ -856,6 +933,7 @@ pub fn least_increment_trap(span: Span, l: u8, value: f64, shown: f64, unit: &st
 }
 
 /// W102: a feed above the machine's maximum, clamped.
+#[cold]
 pub fn feed_clamped(span: Span, asked: f64, max: f64) -> Diagnostic {
     d(
         Code::W102,
@@ -868,6 +946,7 @@ pub fn feed_clamped(span: Span, asked: f64, max: f64) -> Diagnostic {
 }
 
 /// W103: a spindle speed above the machine's maximum, clamped.
+#[cold]
 pub fn spindle_clamped(span: Span, asked: f64, max: f64) -> Diagnostic {
     d(
         Code::W103,
@@ -880,6 +959,7 @@ pub fn spindle_clamped(span: Span, asked: f64, max: f64) -> Diagnostic {
 }
 
 /// W104: a cutting move with the spindle stopped.
+#[cold]
 pub fn cut_spindle_stopped(span: Span) -> Diagnostic {
     d(
         Code::W104,
@@ -890,6 +970,7 @@ pub fn cut_spindle_stopped(span: Span) -> Diagnostic {
 }
 
 /// W105: an M code neither the dialect nor the machine file knows.
+#[cold]
 pub fn unknown_m_ignored(span: Span, value: u32, dialect: &str) -> Diagnostic {
     d(
         Code::W105,
@@ -902,6 +983,7 @@ pub fn unknown_m_ignored(span: Span, value: u32, dialect: &str) -> Diagnostic {
 }
 
 /// W106: the program ends without M02 or M30.
+#[cold]
 pub fn no_program_end(span: Span) -> Diagnostic {
     d(
         Code::W106,
@@ -912,6 +994,7 @@ pub fn no_program_end(span: Span) -> Diagnostic {
 }
 
 /// W107: M99 in the main program repeats it for ever on a machine.
+#[cold]
 pub fn main_program_repeats(span: Span) -> Diagnostic {
     d(
         Code::W107,
@@ -922,6 +1005,7 @@ pub fn main_program_repeats(span: Span) -> Diagnostic {
 }
 
 /// E327: G05.1 Q1 under G61 or G63 (Syntec 1.2.7, condition 1).
+#[cold]
 pub fn smoothing_in_exact_stop(span: Span) -> Diagnostic {
     d(
         Code::E327,
@@ -932,6 +1016,7 @@ pub fn smoothing_in_exact_stop(span: Span) -> Diagnostic {
 }
 
 /// E328: G06.2 outside G05 P10000 (Syntec 1.2.8).
+#[cold]
 pub fn nurbs_outside_high_speed(span: Span) -> Diagnostic {
     d(
         Code::E328,
@@ -942,6 +1027,7 @@ pub fn nurbs_outside_high_speed(span: Span) -> Diagnostic {
 }
 
 /// E329: a NURBS definition that cannot be a curve.
+#[cold]
 pub fn bad_nurbs(span: Span, why: &str) -> Diagnostic {
     d(
         Code::E329,
@@ -955,6 +1041,7 @@ pub fn bad_nurbs(span: Span, why: &str) -> Diagnostic {
 
 /// E204: an argument letter twice in a macro call (Fanuc's argument
 /// specification II, I J K repeated, is not supported).
+#[cold]
 pub fn duplicate_argument(span: Span, l: u8) -> Diagnostic {
     d(
         Code::E204,
@@ -965,6 +1052,7 @@ pub fn duplicate_argument(span: Span, l: u8) -> Diagnostic {
 }
 
 /// E401: the file of an extended G-code or an M-code macro is missing.
+#[cold]
 pub fn macro_file_not_found(span: Span, name: &str) -> Diagnostic {
     let mut diag = d(
         Code::E401,
@@ -977,6 +1065,7 @@ pub fn macro_file_not_found(span: Span, name: &str) -> Diagnostic {
 }
 
 /// E603: a Syntec statement that never ends.
+#[cold]
 pub fn statement_too_long(span: Span, lines: usize, bytes: usize) -> Diagnostic {
     d(
         Code::E603,
@@ -987,6 +1076,7 @@ pub fn statement_too_long(span: Span, lines: usize, bytes: usize) -> Diagnostic 
 }
 
 /// E605: a variable number the controller does not have.
+#[cold]
 pub fn no_such_variable(span: Span, sigil: char, n: f64) -> Diagnostic {
     d(
         Code::E605,
@@ -997,6 +1087,7 @@ pub fn no_such_variable(span: Span, sigil: char, n: f64) -> Diagnostic {
 }
 
 /// E605: a system variable that exists but cannot be used as written.
+#[cold]
 pub fn no_such_variable_why(span: Span, n: u32, why: &str) -> Diagnostic {
     d(
         Code::E605,
@@ -1008,6 +1099,7 @@ pub fn no_such_variable_why(span: Span, n: u32, why: &str) -> Diagnostic {
 
 /// E605: a system variable vcnc does not provide (I/O signals, the date,
 /// the real machine's data).
+#[cold]
 pub fn system_variable_missing(span: Span, n: u32) -> Diagnostic {
     d(
         Code::E605,
@@ -1020,6 +1112,7 @@ pub fn system_variable_missing(span: Span, n: u32) -> Diagnostic {
 }
 
 /// E606: a write to a read-only variable.
+#[cold]
 pub fn read_only_variable(span: Span, sigil: char, n: u32) -> Diagnostic {
     d(
         Code::E606,
@@ -1030,6 +1123,7 @@ pub fn read_only_variable(span: Span, sigil: char, n: u32) -> Diagnostic {
 }
 
 /// E607: a vacant value where a number is required.
+#[cold]
 pub fn vacant_value(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E607,
@@ -1040,6 +1134,7 @@ pub fn vacant_value(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E608: division by zero.
+#[cold]
 pub fn division_by_zero(span: Span) -> Diagnostic {
     d(
         Code::E608,
@@ -1050,6 +1145,7 @@ pub fn division_by_zero(span: Span) -> Diagnostic {
 }
 
 /// E609: a function outside its domain.
+#[cold]
 pub fn macro_domain(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E609,
@@ -1060,6 +1156,7 @@ pub fn macro_domain(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E609: a result out of range.
+#[cold]
 pub fn macro_range(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E609,
@@ -1070,6 +1167,7 @@ pub fn macro_range(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E610: an operator that needs whole numbers (Syntec Longs) got a Double.
+#[cold]
 pub fn type_mismatch(span: Span, op: &str) -> Diagnostic {
     d(
         Code::E610,
@@ -1082,11 +1180,13 @@ pub fn type_mismatch(span: Span, op: &str) -> Diagnostic {
 }
 
 /// E611: loops or branches that do not pair.
+#[cold]
 pub fn bad_structure(span: Span, what: String, help: &str) -> Diagnostic {
     d(Code::E611, span, what, help)
 }
 
 /// E612: an alarm the program raises (#3000, ALARM()).
+#[cold]
 pub fn program_alarm(span: Span, id: f64, text: &str) -> Diagnostic {
     let message = if text.is_empty() {
         format!("program alarm {id}")
@@ -1102,6 +1202,7 @@ pub fn program_alarm(span: Span, id: f64, text: &str) -> Diagnostic {
 }
 
 /// E613: the PUSH stack is full.
+#[cold]
 pub fn macro_stack_full(span: Span, max: usize) -> Diagnostic {
     d(
         Code::E613,
@@ -1113,6 +1214,7 @@ pub fn macro_stack_full(span: Span, max: usize) -> Diagnostic {
 
 /// E614: a Macro B GOTO whose target lies inside a DO–END loop that does
 /// not hold the GOTO.
+#[cold]
 pub fn goto_into_loop(span: Span, n: u32, m: u8, line: u64) -> Diagnostic {
     d(
         Code::E614,
@@ -1129,6 +1231,7 @@ pub fn goto_into_loop(span: Span, n: u32, m: u8, line: u64) -> Diagnostic {
 /// E343: the profile (P..Q) of a turning cycle cannot be cut: not
 /// monotone where the cycle needs it, a first block the cycle does not
 /// accept, a start point on the wrong side.
+#[cold]
 pub fn profile_not_cut(span: Span, why: &str) -> Diagnostic {
     d(
         Code::E343,
@@ -1139,6 +1242,7 @@ pub fn profile_not_cut(span: Span, why: &str) -> Diagnostic {
 }
 
 /// E344: a code or word a profile block may not carry.
+#[cold]
 pub fn profile_word(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E344,
@@ -1149,6 +1253,7 @@ pub fn profile_word(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E345: the profile's last block (N of Q) is not found after its first.
+#[cold]
 pub fn profile_end_missing(span: Span, nf: u32) -> Diagnostic {
     d(
         Code::E345,
@@ -1161,6 +1266,7 @@ pub fn profile_end_missing(span: Span, nf: u32) -> Diagnostic {
 }
 
 /// E345: a profile longer than the bound.
+#[cold]
 pub fn profile_too_long(span: Span, max: usize) -> Diagnostic {
     d(
         Code::E345,
@@ -1171,6 +1277,7 @@ pub fn profile_too_long(span: Span, max: usize) -> Diagnostic {
 }
 
 /// E346: a depth of cut, step or pass count of zero.
+#[cold]
 pub fn zero_amount(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E346,
@@ -1181,6 +1288,7 @@ pub fn zero_amount(span: Span, what: &str) -> Diagnostic {
 }
 
 /// E347: a chamfer or corner R (`,C`/`,R`) that cannot be made.
+#[cold]
 pub fn corner_fault(span: Span, why: &str) -> Diagnostic {
     d(
         Code::E347,
@@ -1191,6 +1299,7 @@ pub fn corner_fault(span: Span, why: &str) -> Diagnostic {
 }
 
 /// E348: G96 at diameter 0 with no clamp and no spindle maximum.
+#[cold]
 pub fn css_at_center_unclamped(span: Span) -> Diagnostic {
     d(
         Code::E348,
