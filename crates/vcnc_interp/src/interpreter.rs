@@ -125,7 +125,8 @@ pub struct Interpreter<'a> {
     /// Moves committed so far (a block compares it to know if it moved).
     pub(crate) moves: u64,
     /// The cutter compensation stage, and its copy taken before a block
-    /// while it is engaged.
+    /// while it is engaged (not before a plain move that undoes the stage
+    /// by its `Mark`: the copy is then stale until the next block takes one).
     pub(crate) comp: crate::motion::comp::Comp,
     comp_saved: crate::motion::comp::Comp,
     /// The source and line of the block being executed (for alarms about

@@ -176,3 +176,86 @@ proptest! {
         prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
     }
 }
+
+/// Blocks turned under G42 with a tool nose (fanuc-lathe: the radius and
+/// the imaginary tip come from the T offset, and the compensated points are
+/// shifted from the nose centre to the tip before they leave), among them
+/// plain moves that alarm after the stage handed its held move on.
+const NOSE_BLOCKS: &[&str] = &[
+    "X40. Z-10.",
+    "Z-20.",
+    "X60.",
+    "X50. Z-30.",
+    "U2. W-3.",
+    "W-5.",
+    "G00 X70. Z-25.",
+    "G01 X30. Z-40.",
+    "G02 X80. Z-45. R8.",
+    "M08",
+    "G04 U0.1",
+    "F0.3",
+    "T0202",
+    // These alarm part-way.
+    "X301. Z-30.",
+    "X299.5",
+    "Z-299.8",
+    "G01 Z-5. F0.",
+    "X40.0001 Z-10.",
+    "W0.5",
+    "W-0.5",
+];
+
+/// The built-in fanuc-lathe with travel limits: X radius -5..150, Z -300..250.
+fn lathe_with_limits() -> Machine {
+    let text = include_str!("../../vcnc_core/src/default_fanuc_lathe.toml")
+        .replace(
+            "letter = \"x\"\n",
+            "letter = \"x\"\nmin_mm = -5.0\nmax_mm = 150.0\n",
+        )
+        .replace(
+            "letter = \"z\"\n",
+            "letter = \"z\"\nmin_mm = -300.0\nmax_mm = 250.0\n",
+        );
+    // Without the limits the over-travel blocks would not alarm.
+    assert_eq!(text.matches("max_mm = ").count(), 2, "{text}");
+    Machine::from_toml(&text).unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    #[test]
+    fn an_alarming_block_under_nose_radius_compensation_changes_nothing(
+        picks in proptest::collection::vec(0..NOSE_BLOCKS.len(), 1..25),
+    ) {
+        let machine = lathe_with_limits();
+        let d = Dialect::fanuc_lathe();
+        let run = |text: &str| {
+            let mut sink = VecSink::default();
+            let mut interp = Interpreter::new(&machine, &d, Options::default());
+            let out = interp.run_str(text, &mut sink);
+            (sink.0, out, *interp.state(), interp.tables().clone())
+        };
+        let mut lines = vec!["T0101", "M03 S800", "G00 X60. Z5.", "G42 G01 X50. Z2. F0.2"];
+        lines.extend(picks.iter().map(|&i| NOSE_BLOCKS[i]));
+        lines.push("M30");
+        let stopped = |n: usize| {
+            let mut text = lines[..n].join("\n");
+            text.push('\n');
+            text.push_str(STOP);
+            text.push('\n');
+            run(&text)
+        };
+        let Some(trigger) = (1..=lines.len()).find(|&n| {
+            matches!(&stopped(n).1, Outcome::Alarm(d) if d.line != n as u64 + 1)
+        }) else {
+            return Ok(());
+        };
+        let (events, _, state, tables) = stopped(trigger);
+        let (p_events, _, p_state, p_tables) = stopped(trigger - 1);
+        let program = lines[..trigger].join("\n");
+        prop_assert_eq!(state, p_state, "state after the alarm in:\n{}", program);
+        prop_assert_eq!(tables, p_tables, "tables after the alarm in:\n{}", program);
+        prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
+    }
+}

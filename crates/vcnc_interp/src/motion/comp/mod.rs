@@ -16,8 +16,9 @@
 //! swaps the side (manual 1.2.21). The queue is bounded: more than
 //! `parameters.comp_lookahead_blocks` blocks without motion in the plane
 //! alarm. A block that alarms restores the whole stage (the interpreter
-//! saves it before each block while compensation is engaged), so moves
-//! still held when a later block alarms never reach the output.
+//! copies it before each block while compensation is engaged, but for a
+//! plain G00/G01 behind a held move, which undoes it by a `Mark`), so
+//! moves still held when a later block alarms never reach the output.
 
 pub(crate) mod geom;
 pub(crate) mod nose;
@@ -133,7 +134,8 @@ pub(crate) struct Mark {
 }
 
 // `Held` and `Comp` spell out `clone_from`: the interpreter saves the stage
-// before every block while compensation is engaged (an alarm puts it back),
+// before a block while compensation is engaged (an alarm puts it back; a
+// plain move behind a held one uses a `Mark` instead),
 // and the derived `clone_from` builds a whole new value, then drops the old
 // one. These assign in place and keep the queue's buffer; they name every
 // field, so a new field fails to compile until it is copied here too.
