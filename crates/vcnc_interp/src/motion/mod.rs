@@ -161,17 +161,26 @@ impl Interpreter<'_> {
             }
         }
         // 1 frame
-        let (prog_to, mm) = self.to_machine_move(&mv)?;
-        // 2 compensation
+        let (prog_to, to) = self.machine_target(mv.to);
+        let kind = self.machine_kind(&mv)?;
+        // 2 compensation: from the uncompensated point.
         if self.comp.engaged() {
+            let mm = MachineMove {
+                kind,
+                from: self.state.nominal,
+                to,
+                exact_stop: mv.exact_stop,
+            };
             return self.commit_compensated(prog_to, mm, &mv, w);
         }
         // 3 travel, before anything changes: a move that leaves the
         // machine's limits leaves the state as the block found it (which a
         // plain move block relies on, see `Interpreter::block`).
         let mm = MachineMove {
+            kind,
             from: self.state.pos,
-            ..mm
+            to,
+            exact_stop: mv.exact_stop,
         };
         if self.travel_limited {
             self.travel_alarm(&mm, mv.cmd, Some(w))?;
@@ -330,19 +339,26 @@ impl Interpreter<'_> {
             .map(|word| word.span)
     }
 
-    /// Stage 1: the programmed end point, and the move in machine coordinates.
-    fn to_machine_move(&self, mv: &Move) -> Result<(Pos, MachineMove), Diagnostic> {
+    /// Stage 1: the programmed end point of a move to `to`, and its end in
+    /// machine coordinates.
+    #[inline(always)]
+    fn machine_target(&self, to: Target) -> (Pos, Pos) {
         let frame = &self.state.frame;
-        let from = self.state.nominal;
-        let (prog_to, to) = match mv.to {
+        match to {
             Target::Program(p) => (p, frame.machine_of(p)),
             Target::Relative(delta) => (
                 self.state.prog.plus(delta),
-                from.plus(frame.vector_to_machine(delta)),
+                self.state.nominal.plus(frame.vector_to_machine(delta)),
             ),
             Target::Machine(m) => (frame.program_of(m), m),
-        };
-        let kind = match mv.kind {
+        }
+    }
+
+    /// Stage 1: the path of a move in machine coordinates (an arc's centre
+    /// from the uncompensated start, its direction under mirror).
+    #[inline(always)]
+    fn machine_kind(&self, mv: &Move) -> Result<MachineKind, Diagnostic> {
+        Ok(match mv.kind {
             MoveKind::Rapid => MachineKind::Rapid(true),
             MoveKind::StraightRapid => MachineKind::Rapid(false),
             MoveKind::Feed(f) => MachineKind::Feed(f),
@@ -353,33 +369,38 @@ impl Interpreter<'_> {
                 plane,
                 cw,
                 feed,
-            } => {
-                let reversed = match frame.arc_map(plane) {
-                    ArcMap::Similar { reversed } => reversed,
-                    ArcMap::Uneven => return Err(alarms::arc_uneven_scale(mv.cmd)),
-                    ArcMap::Tilted => return Err(alarms::arc_tilted(mv.cmd)),
-                };
-                let axes = self.plane_axes(plane, mv.cmd)?;
-                let c = from.plus(frame.vector_to_machine(offset));
-                MachineKind::Arc {
-                    center: (c.get(axes.a), c.get(axes.b)),
-                    plane,
-                    dir: if cw != reversed {
-                        ArcDir::Cw
-                    } else {
-                        ArcDir::Ccw
-                    },
-                    feed,
-                }
-            }
+            } => self.machine_arc(offset, plane, cw, feed, mv.cmd)?,
+        })
+    }
+
+    /// [`machine_kind`](Self::machine_kind) of an arc, out of line.
+    #[inline(never)]
+    fn machine_arc(
+        &self,
+        offset: Pos,
+        plane: Plane,
+        cw: bool,
+        feed: Feed,
+        cmd: Span,
+    ) -> Result<MachineKind, Diagnostic> {
+        let frame = &self.state.frame;
+        let reversed = match frame.arc_map(plane) {
+            ArcMap::Similar { reversed } => reversed,
+            ArcMap::Uneven => return Err(alarms::arc_uneven_scale(cmd)),
+            ArcMap::Tilted => return Err(alarms::arc_tilted(cmd)),
         };
-        let mm = MachineMove {
-            kind,
-            from,
-            to,
-            exact_stop: mv.exact_stop,
-        };
-        Ok((prog_to, mm))
+        let axes = self.plane_axes(plane, cmd)?;
+        let c = self.state.nominal.plus(frame.vector_to_machine(offset));
+        Ok(MachineKind::Arc {
+            center: (c.get(axes.a), c.get(axes.b)),
+            plane,
+            dir: if cw != reversed {
+                ArcDir::Cw
+            } else {
+                ArcDir::Ccw
+            },
+            feed,
+        })
     }
 
     /// The machine axes of a plane (E305 when the machine lacks one).
