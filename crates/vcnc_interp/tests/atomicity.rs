@@ -60,7 +60,7 @@ const BLOCKS: &[&str] = &[
     "X9000. Y30.",
 ];
 
-fn run(machine: &Machine, program: &str) -> (Vec<Event>, Outcome, State, Tables) {
+fn run(machine: &Machine, program: &str) -> Run {
     let d = Dialect::fanuc();
     let mut sink = VecSink::default();
     let mut interp = Interpreter::new(machine, &d, Options::default());
@@ -136,6 +136,37 @@ const COMP_BLOCKS: &[&str] = &[
 /// program releasing the move held by the compensation.
 const STOP: &str = "M98 P9999";
 
+/// What a run leaves: its events, how it ended, the state and the tables.
+type Run = (Vec<Event>, Outcome, State, Tables);
+
+/// Finds the first of `lines` that alarms itself (an alarm can name the
+/// block of the move the compensation held before it) and compares the
+/// run up to it with the run of the lines before it, each followed by
+/// [`STOP`]: the same state, tables and events but for the alarm. Debug
+/// builds also check, after every alarm of a plain move, that its undo
+/// restored the state and the compensation stage exactly.
+fn alarm_changes_nothing(run: impl Fn(&str) -> Run, lines: &[&str]) -> Result<(), TestCaseError> {
+    let stopped = |n: usize| {
+        let mut text = lines[..n].join("\n");
+        text.push('\n');
+        text.push_str(STOP);
+        text.push('\n');
+        run(&text)
+    };
+    let Some(trigger) = (1..=lines.len())
+        .find(|&n| matches!(&stopped(n).1, Outcome::Alarm(d) if d.line != n as u64 + 1))
+    else {
+        return Ok(());
+    };
+    let (events, _, state, tables) = stopped(trigger);
+    let (p_events, _, p_state, p_tables) = stopped(trigger - 1);
+    let program = lines[..trigger].join("\n");
+    prop_assert_eq!(state, p_state, "state after the alarm in:\n{}", program);
+    prop_assert_eq!(tables, p_tables, "tables after the alarm in:\n{}", program);
+    prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
 
@@ -150,30 +181,7 @@ proptest! {
         let mut lines = vec!["G10 L12 P1 R2.", "G00 X-10. Y-10.", "G41 D1 G01 X0. Y0. F300."];
         lines.extend(picks.iter().map(|&i| COMP_BLOCKS[i]));
         lines.push("M30");
-        // The first n lines, then STOP.
-        let stopped = |n: usize| {
-            let mut text = lines[..n].join("\n");
-            text.push('\n');
-            text.push_str(STOP);
-            text.push('\n');
-            run(&machine, &text)
-        };
-        // The first line that alarms itself (an alarm can name the block
-        // of the move the compensation held before it).
-        let Some(trigger) = (1..=lines.len()).find(|&n| {
-            matches!(&stopped(n).1, Outcome::Alarm(d) if d.line != n as u64 + 1)
-        }) else {
-            return Ok(());
-        };
-        // Debug builds also check, after every alarm of a plain move, that
-        // its undo restored the state and the stage exactly.
-        let (events, _, state, tables) = stopped(trigger);
-        let (p_events, _, p_state, p_tables) = stopped(trigger - 1);
-        let program = lines[..trigger].join("\n");
-        prop_assert_eq!(state, p_state, "state after the alarm in:\n{}", program);
-        prop_assert_eq!(tables, p_tables, "tables after the alarm in:\n{}", program);
-        // Same events, but for the alarm.
-        prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
+        alarm_changes_nothing(|text| run(&machine, text), &lines)?;
     }
 }
 
@@ -239,23 +247,6 @@ proptest! {
         let mut lines = vec!["T0101", "M03 S800", "G00 X60. Z5.", "G42 G01 X50. Z2. F0.2"];
         lines.extend(picks.iter().map(|&i| NOSE_BLOCKS[i]));
         lines.push("M30");
-        let stopped = |n: usize| {
-            let mut text = lines[..n].join("\n");
-            text.push('\n');
-            text.push_str(STOP);
-            text.push('\n');
-            run(&text)
-        };
-        let Some(trigger) = (1..=lines.len()).find(|&n| {
-            matches!(&stopped(n).1, Outcome::Alarm(d) if d.line != n as u64 + 1)
-        }) else {
-            return Ok(());
-        };
-        let (events, _, state, tables) = stopped(trigger);
-        let (p_events, _, p_state, p_tables) = stopped(trigger - 1);
-        let program = lines[..trigger].join("\n");
-        prop_assert_eq!(state, p_state, "state after the alarm in:\n{}", program);
-        prop_assert_eq!(tables, p_tables, "tables after the alarm in:\n{}", program);
-        prop_assert_eq!(&events[..events.len() - 1], &p_events[..p_events.len() - 1]);
+        alarm_changes_nothing(run, &lines)?;
     }
 }
