@@ -191,11 +191,15 @@ impl Interpreter<'_> {
                 }
             }
         } else if self.points.warned < PointStyle::MAX_WARNINGS {
-            let d = alarms::least_increment_trap(word.span, word.addr.0, word.value, shown, unit);
+            // Built only when it is kept: in a program without points
+            // every length word comes here, and the constructor formats.
+            let d =
+                || alarms::least_increment_trap(word.span, word.addr.0, word.value, shown, unit);
             if self.points.seen_point {
                 self.points.warned += 1;
-                self.warn(d);
+                self.warn(d());
             } else if self.points.first_plain.is_none() {
+                let d = d();
                 let d = match self.cur_line {
                     Some((src, line)) => self.locate(d, src, &line),
                     None => d,
