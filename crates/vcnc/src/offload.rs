@@ -270,7 +270,11 @@ mod tests {
         off.take_events(&mut block);
         assert!(block.is_empty(), "the events were taken");
         if let Offload::Thread(w) = &off {
-            assert!(w.chunk.len() < CHUNK, "left in the chunk: {}", w.chunk.len());
+            assert!(
+                w.chunk.len() < CHUNK,
+                "left in the chunk: {}",
+                w.chunk.len()
+            );
         }
         let seen = off.join().unwrap().seen;
         assert_eq!(seen, CHUNK, "a done sink sees one chunk");
