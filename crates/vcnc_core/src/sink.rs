@@ -4,11 +4,11 @@
 //! [`Sink::take_events`], which by default calls [`Sink::event`] once per
 //! event with a borrowed event, so a sink that only counts or formats never
 //! clones, and one that keeps them (the CLI's second-core hand-over) moves
-//! them. A
-//! sink that wants no more events (its reader went away: `vcnc run | head`)
-//! says so through [`Sink::is_done`], which the interpreter asks after every
-//! block, and the run stops at once. [`Sink::finish`] is called once after
-//! the last event, so buffered writers flush and report their errors.
+//! them. A sink that wants no more events (its reader went away:
+//! `vcnc run | head`) says so through [`Sink::is_done`], which the
+//! interpreter asks after every block, and the run stops at once.
+//! [`Sink::finish`] is called once after the last event, so buffered
+//! writers flush and report their errors.
 //! Output formats live in `vcnc_output`; the CLI wires them up.
 
 use crate::events::Event;

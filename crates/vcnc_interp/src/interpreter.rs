@@ -588,12 +588,14 @@ impl<'a> Interpreter<'a> {
             Err(_) => {
                 self.flow.jumps = jumps;
                 self.tables.rollback();
-                if comp_in_place {
-                    // Undone by the block's own `CompMoveUndo`.
-                } else if comp_engaged {
-                    std::mem::swap(&mut self.comp, &mut self.comp_saved);
-                } else {
-                    self.comp = crate::motion::comp::Comp::default();
+                // A plain move under compensation undid the stage itself
+                // (`CompMoveUndo`).
+                if !comp_in_place {
+                    if comp_engaged {
+                        std::mem::swap(&mut self.comp, &mut self.comp_saved);
+                    } else {
+                        self.comp = crate::motion::comp::Comp::default();
+                    }
                 }
             }
         }
