@@ -12,7 +12,7 @@
 //! The channel is bounded and the emptied chunks come back to be refilled,
 //! so memory stays flat and nothing is allocated per chunk once the first
 //! few exist. When the worker's sink is done (the reader of stdout went
-//! away), the flag tells the interpreter, which stops after its block; the
+//! away), the flag tells the interpreter, which stops after its next block; the
 //! worker drops what still arrives so the interpreter never waits on it.
 //! On one core, or if no thread can be started, the sink runs in line.
 
@@ -22,11 +22,12 @@ use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::thread::JoinHandle;
 use vcnc_interp::{Event, Sink};
 
-/// Events a chunk carries. Large enough that the two channel operations
-/// a chunk costs vanish beside its events (~1 µs against ~0.3 ms of
-/// interpretation), small enough that the chunks in flight stay a few
-/// hundred KB.
-const CHUNK: usize = 1024;
+/// Events a chunk carries: what the interpreter gathers before it hands
+/// them over, so that each batch it hands over is a chunk. Large enough
+/// that the two channel operations a chunk costs vanish beside its events
+/// (~1 µs against ~0.3 ms of interpretation), small enough that the chunks
+/// in flight stay a few hundred KB.
+const CHUNK: usize = vcnc_interp::HAND_OVER;
 
 /// Chunks the interpreter may run ahead of the worker.
 const IN_FLIGHT: usize = 4;
@@ -128,13 +129,23 @@ impl<S: Sink> Sink for Offload<S> {
         }
     }
 
-    /// A block's events move into the chunk: no clone here, no drop in
-    /// the interpreter.
+    /// The interpreter's events move into the chunk: no clone here, no
+    /// drop in the interpreter. A batch of about a chunk (what the
+    /// interpreter hands over) takes the empty chunk's place, buffer and
+    /// all, and leaves it the emptied buffer to fill: not one event is
+    /// copied.
     #[inline]
     fn take_events(&mut self, events: &mut Vec<Event>) {
         match self {
             Offload::Inline(sink) => sink.take_events(events),
             Offload::Thread(w) => {
+                if w.chunk.is_empty() && events.len() <= 2 * CHUNK {
+                    std::mem::swap(&mut w.chunk, events);
+                    if w.chunk.len() >= CHUNK {
+                        w.hand_over();
+                    }
+                    return;
+                }
                 if w.chunk.len() + events.len() < CHUNK {
                     w.chunk.append(events);
                     return;

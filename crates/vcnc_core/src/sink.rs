@@ -1,12 +1,14 @@
 //! Where events go: the [`Sink`] trait and two small sinks.
 //!
-//! The interpreter hands over each block's events in order through
-//! [`Sink::take_events`], which by default calls [`Sink::event`] once per
-//! event with a borrowed event, so a sink that only counts or formats never
-//! clones, and one that keeps them (the CLI's second-core hand-over) moves
-//! them. A sink that wants no more events (its reader went away:
-//! `vcnc run | head`) says so through [`Sink::is_done`], which the
-//! interpreter asks after every block, and the run stops at once.
+//! The interpreter gathers the events of the blocks that succeeded and
+//! hands them over in order, a thousand or so at a time and the rest when
+//! the run ends, through [`Sink::take_events`]. By default that calls
+//! [`Sink::event`] once per event with a borrowed event, so a sink that
+//! only counts or formats never clones, and one that keeps them (the CLI's
+//! second-core hand-over) moves them. A sink that wants no more events
+//! (its reader went away: `vcnc run | head`) says so through
+//! [`Sink::is_done`], which the interpreter asks after every block, and
+//! the run stops there: within a batch of the event that made it done.
 //! [`Sink::finish`] is called once after the last event, so buffered
 //! writers flush and report their errors.
 //! Output formats live in `vcnc_output`; the CLI wires them up.
@@ -18,9 +20,9 @@ pub trait Sink {
     /// One event.
     fn event(&mut self, event: &Event);
 
-    /// The events of one block, in order, handed over by value: the
-    /// interpreter calls this (not [`event`](Self::event)) and `events` is
-    /// empty afterwards. A sink that keeps events moves them instead of
+    /// Events of one or more whole blocks, in order, handed over by value:
+    /// the interpreter calls this (not [`event`](Self::event)) and `events`
+    /// is empty afterwards (it may hold another buffer, of any capacity). A sink that keeps events moves them instead of
     /// cloning each; by default each goes to [`event`](Self::event).
     fn take_events(&mut self, events: &mut Vec<Event>) {
         for e in events.iter() {

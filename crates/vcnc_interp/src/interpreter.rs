@@ -26,6 +26,14 @@ use vcnc_syntax::{
     lex_block,
 };
 
+/// Events the interpreter gathers before it hands them to the sink
+/// ([`Sink::take_events`]): most blocks make one event, and one call per
+/// thousand events costs less than one per block; a sink that moves the
+/// events to another thread (the CLI's second core) takes the whole buffer
+/// without copying one. A sink that is done is noticed at the next block
+/// after a hand-over, so within this many events.
+pub const HAND_OVER: usize = 1024;
+
 /// How one machine axis is addressed in the dialect.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct AxisWord {
@@ -132,7 +140,10 @@ pub struct Interpreter<'a> {
     /// The source and line of the block being executed (for alarms about
     /// moves that compensation releases later).
     pub(crate) cur_line: Option<(usize, Line)>,
-    /// Events of the block being executed, sent when it succeeds.
+    /// Events of blocks that succeeded and not yet handed to the sink,
+    /// then those of the block being executed (from the mark its start
+    /// took; they are dropped if it alarms). Handed over once they reach
+    /// [`HAND_OVER`] and when the run ends.
     pub(crate) pending: Vec<Event>,
     /// What the program's length words look like (warning W101).
     pub(crate) points: crate::block::convert::PointStyle,
@@ -220,6 +231,8 @@ impl<'a> Interpreter<'a> {
     ) -> Outcome {
         self.flow = Flow::new(main);
         let result = self.run_loop(store, sink);
+        // What the blocks before the end or the alarm made.
+        self.hand_over(sink);
         match result {
             Ok(Some(code)) => Outcome::Ended(code),
             Ok(None) => Outcome::Stopped,
@@ -386,33 +399,48 @@ impl<'a> Interpreter<'a> {
         }
     }
 
-    /// The next line of source `src`.
+    /// The next line of source `src`. In line, so that the line comes
+    /// back in registers: a call returned it through memory, written in
+    /// 8-byte stores and read back in 16-byte loads, which waited for the
+    /// stores on every line.
+    #[inline(always)]
     fn next_line(&mut self, src: usize) -> Result<Option<Line>, Diagnostic> {
         let Some(source) = self.flow.source(src) else {
             return Ok(None);
         };
         match source.reader.next_line() {
             Ok(line) => Ok(line),
-            Err(ReadError::TooLong { offset, line }) => {
-                let file = self.flow.loc.file.clone();
+            Err(e) => Err(self.read_error(src, e)),
+        }
+    }
+
+    /// The alarm for a line that could not be read.
+    #[cold]
+    #[inline(never)]
+    fn read_error(&mut self, src: usize, e: ReadError) -> Diagnostic {
+        let mut d = match e {
+            ReadError::TooLong { offset, line } => {
                 let mut d = alarms::line_too_long();
                 d.line = line;
-                d.column = 1;
                 d.line_offset = offset;
-                d.file = file.as_deref().map(str::to_string);
-                Err(d)
+                d.file = self.flow.loc.file.as_deref().map(str::to_string);
+                d
             }
-            Err(ReadError::Io(e)) => {
-                let at = source.reader.position();
-                let mut d =
-                    alarms::program_unreadable(Span::new(0, 1), source.number.unwrap_or(0), &e);
-                d.line = at.line;
-                d.column = 1;
-                d.line_offset = at.offset;
-                d.file = source.name.as_deref().map(str::to_string);
-                Err(d)
+            ReadError::Io(e) => {
+                let source = self.flow.source(src);
+                let number = source.as_ref().and_then(|s| s.number).unwrap_or(0);
+                let mut d = alarms::program_unreadable(Span::new(0, 1), number, &e);
+                if let Some(s) = source {
+                    let at = s.reader.position();
+                    d.line = at.line;
+                    d.line_offset = at.offset;
+                    d.file = s.name.as_deref().map(str::to_string);
+                }
+                d
             }
-        }
+        };
+        d.column = 1;
+        d
     }
 
     /// The bytes of `line` of source `src`, read again (cold paths only).
@@ -558,7 +586,7 @@ impl<'a> Interpreter<'a> {
         if comp_engaged && !comp_in_place {
             self.comp_saved.clone_from(&self.comp);
         }
-        self.pending.clear();
+        let mark = self.pending.len();
         let result = if !plain {
             self.keeping_state(|s| s.execute(&words, here, next, store))
         } else if comp_in_place {
@@ -579,13 +607,15 @@ impl<'a> Interpreter<'a> {
             Ok(_) => {
                 self.tables.commit();
                 if self.rereading {
-                    self.executed = self
-                        .executed
-                        .saturating_add(self.pending.len().saturating_sub(1) as u64);
+                    let made = self.pending.len() - mark;
+                    self.executed = self.executed.saturating_add(made.saturating_sub(1) as u64);
                 }
-                sink.take_events(&mut self.pending);
+                if self.pending.len() >= HAND_OVER {
+                    self.hand_over(sink);
+                }
             }
             Err(_) => {
+                self.pending.truncate(mark);
                 self.flow.jumps = jumps;
                 self.tables.rollback();
                 // A plain move under compensation undid the stage itself
@@ -688,6 +718,8 @@ impl<'a> Interpreter<'a> {
             None => self.flow.loc.line = self.flow.loc.line.max(1),
         }
         self.flow.loc.file = self.flow.source(frame.source).and_then(|s| s.name.clone());
+        // What the end makes is dropped if it alarms, as a block's is.
+        let mark = self.pending.len();
         if self.flow.frames.len() == 1 {
             let mut w = alarms::no_program_end(span);
             match last {
@@ -699,25 +731,27 @@ impl<'a> Interpreter<'a> {
                     w.file = self.flow.loc.file.as_deref().map(str::to_string);
                 }
             }
-            self.pending.clear();
             self.pending.push(Event::Warning(w));
         }
         match self.finish_program(span, sink) {
             Ok(Step::End(code)) => Ok(Some(code)),
             Ok(_) => Ok(None),
-            Err(d) => Err(match last {
-                Some((line, _)) => self.locate(d, frame.source, &line),
-                // A program without a block (an empty subprogram): its start.
-                None if !d.is_located() => {
-                    let mut d = d;
-                    d.line = frame.program.line.max(1);
-                    d.column = 1;
-                    d.line_offset = frame.program.offset;
-                    d.file = self.flow.loc.file.as_deref().map(str::to_string);
-                    d
-                }
-                None => d,
-            }),
+            Err(d) => {
+                self.pending.truncate(mark);
+                Err(match last {
+                    Some((line, _)) => self.locate(d, frame.source, &line),
+                    // A program without a block (an empty subprogram): its start.
+                    None if !d.is_located() => {
+                        let mut d = d;
+                        d.line = frame.program.line.max(1);
+                        d.column = 1;
+                        d.line_offset = frame.program.offset;
+                        d.file = self.flow.loc.file.as_deref().map(str::to_string);
+                        d
+                    }
+                    None => d,
+                })
+            }
         }
     }
 
@@ -745,6 +779,13 @@ impl<'a> Interpreter<'a> {
             code: EndCode::Eof,
         });
         Ok(Step::End(EndCode::Eof))
+    }
+
+    /// Hands the events waiting in `pending` to the sink.
+    pub(crate) fn hand_over<S: Sink>(&mut self, sink: &mut S) {
+        if !self.pending.is_empty() {
+            sink.take_events(&mut self.pending);
+        }
     }
 
     /// Counts a jump against the runaway limit.

@@ -43,16 +43,19 @@ impl Interpreter<'_> {
             f.started = true;
         }
         self.count_executed(c.st.first)?;
-        self.pending.clear();
+        let mark = self.pending.len();
         let jumps = self.flow.jumps;
         let result = self.statement(c, src);
         match &result {
             Ok(_) => {
                 self.tables.commit();
                 self.report_frame();
-                sink.take_events(&mut self.pending);
+                if self.pending.len() >= crate::interpreter::HAND_OVER {
+                    self.hand_over(sink);
+                }
             }
             Err(_) => {
+                self.pending.truncate(mark);
                 self.tables.rollback();
                 self.flow.jumps = jumps;
             }
