@@ -544,8 +544,8 @@ impl<'a> Interpreter<'a> {
         if let Some(f) = self.flow.frames.last_mut() {
             f.started = true;
         }
-        self.count_executed(block.first_span())?;
         let mut words = Words::new(block);
+        self.count_executed(words.first)?;
         if let Err(d) = words.fill(self.dialect, self.machine, self.axis_mask) {
             // Syntec's G200–G999 call macro files of the program directory.
             if d.code == vcnc_syntax::Code::E201
@@ -600,21 +600,12 @@ impl<'a> Interpreter<'a> {
             self.keeping_state(|s| s.execute_motion_only(&words))
                 .map(|()| Step::Next)
         };
-        // Under G66 a block that moves calls the macro after its move.
-        let modal_call =
-            self.state.modal.macro_call && words.any(self.axis_mask) && words.axis_user.is_none();
-        match &result {
-            Ok(_) => {
-                self.tables.commit();
-                if self.rereading {
-                    let made = self.pending.len() - mark;
-                    self.executed = self.executed.saturating_add(made.saturating_sub(1) as u64);
-                }
-                if self.pending.len() >= HAND_OVER {
-                    self.hand_over(sink);
-                }
-            }
-            Err(_) => {
+        // By value, and the step rebuilt below: moving the whole `Result`
+        // on (a `Diagnostic`'s size) read it back in 16-byte loads that
+        // waited for the narrower stores that wrote it, on every block.
+        let step = match result {
+            Ok(step) => step,
+            Err(d) => {
                 self.pending.truncate(mark);
                 self.flow.jumps = jumps;
                 self.tables.rollback();
@@ -627,12 +618,24 @@ impl<'a> Interpreter<'a> {
                         self.comp = crate::motion::comp::Comp::default();
                     }
                 }
+                return Err(d);
             }
+        };
+        self.tables.commit();
+        if self.rereading {
+            let made = self.pending.len() - mark;
+            self.executed = self.executed.saturating_add(made.saturating_sub(1) as u64);
         }
-        if modal_call && matches!(result, Ok(Step::Next)) {
+        if self.pending.len() >= HAND_OVER {
+            self.hand_over(sink);
+        }
+        // Under G66 a block that moves calls the macro after its move.
+        let modal_call =
+            self.state.modal.macro_call && words.any(self.axis_mask) && words.axis_user.is_none();
+        if modal_call && matches!(step, Step::Next) {
             return self.modal_macro_call(next, store);
         }
-        result
+        Ok(step)
     }
 
     /// Runs `f` on the state, which is restored whole if it alarms.

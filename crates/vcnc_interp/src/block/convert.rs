@@ -215,6 +215,10 @@ impl Interpreter<'_> {
     /// coordinate. Under G16 the plane's first and second axis words are a
     /// radius and an angle.
     pub(crate) fn target(&mut self, w: &Words<'_>, incremental: bool) -> Goal {
+        // The flags are locals, not fields of `goal` updated in place: the
+        // caller reads `named` and `all_incremental` back as one 8-byte
+        // word, which had to wait for their last 4- and 1-byte stores.
+        let (mut named, mut all_incremental) = (0u32, true);
         let mut goal = Goal {
             prog: self.state.prog,
             named: 0,
@@ -239,18 +243,22 @@ impl Interpreter<'_> {
                 goal.delta.set(i, v);
             } else {
                 goal.prog.set(i, v);
-                goal.all_incremental = false;
+                all_incremental = false;
             }
-            goal.named |= 1 << i;
+            named |= 1 << i;
         }
         if self.state.modal.polar {
             let polar = self.polar_target(w, incremental, &mut goal.prog);
             if polar != 0 {
-                goal.named |= polar;
-                goal.all_incremental = false;
+                named |= polar;
+                all_incremental = false;
             }
         }
-        goal
+        Goal {
+            named,
+            all_incremental,
+            ..goal
+        }
     }
 
     /// The target of a move to `goal`: an increment from where the tool is
