@@ -195,6 +195,7 @@ impl Block {
         self.special == 0
     }
     /// The first word's span, or the block's start when it has none.
+    #[inline]
     pub fn first_span(&self) -> Span {
         self.words().first().map_or(
             Span::new(self.span.start as usize, self.span.start as usize + 1),
