@@ -262,6 +262,39 @@ mod tests {
         assert_eq!(seen, (1..=line).collect::<Vec<_>>());
     }
 
+    /// What the interpreter hands over (a chunk's worth of whole blocks,
+    /// up to two chunks) takes the chunk's place without a copy: the
+    /// caller is left the chunk's empty buffer to fill next.
+    #[test]
+    fn a_batch_of_a_chunk_changes_hands_whole() {
+        let mut off = Offload::start(|| Lines(Vec::new()));
+        if matches!(off, Offload::Inline(_)) {
+            return;
+        }
+        let mut line = 0;
+        for n in [CHUNK, CHUNK + 5, 2 * CHUNK] {
+            let mut batch: Vec<Event> = (0..n)
+                .map(|_| {
+                    line += 1;
+                    Event::Rapid {
+                        loc: Loc { line, file: None },
+                        to: Pos::default(),
+                        exact_stop: false,
+                    }
+                })
+                .collect();
+            let filled = batch.as_ptr();
+            off.take_events(&mut batch);
+            assert!(batch.is_empty(), "the events were taken");
+            assert_ne!(batch.as_ptr(), filled, "the batch was copied");
+            if let Offload::Thread(w) = &off {
+                assert!(w.chunk.is_empty(), "the batch went over at once");
+            }
+        }
+        let seen = off.join().unwrap().0;
+        assert_eq!(seen, (1..=line).collect::<Vec<_>>());
+    }
+
     /// A block of more events than a chunk holds (G83 with many holes and
     /// pecks) goes over in chunks: a sink that is done after its first
     /// event sees the first chunk only, and no chunk outgrows its buffer
