@@ -365,7 +365,18 @@ impl<T: Timeline> Planner<T> {
                 u_end: s_u_end,
                 smooth_mm: s_smooth,
             } = slot;
-            *s_path = path;
+            // A line fills a third of a path's room (sized for an arc):
+            // copy only what it has, into a slot a line left if it can
+            // (assigning a whole `Shape` copies all of its room).
+            match (path.shape, &mut s_path.shape) {
+                (Shape::Line(u), Shape::Line(s_u)) => {
+                    s_path.from = path.from;
+                    s_path.to = path.to;
+                    s_path.len = path.len;
+                    *s_u = u;
+                }
+                _ => *s_path = path,
+            }
             *s_kind = kind;
             *s_attr = attr;
             *s_v_max = v_max;
