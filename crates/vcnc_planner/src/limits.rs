@@ -137,8 +137,8 @@ impl AxisLimits {
     }
 }
 
-/// A move's tangent at one end as a corner needs it, normalised once per
-/// move rather than once per corner (a line's two ends share it).
+/// A move's tangent at one end as [`corner_speed_units`] needs it:
+/// normalised only for the corners [`corner_is_free`] cannot show free.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Unit {
     /// The unit vector; zero beyond `m`.
@@ -229,6 +229,77 @@ pub(crate) struct Corner<'a> {
     pub v_cap: f64,
 }
 
+/// Whether [`corner_speed_units`] of the tangents `u1` and `u2`, once
+/// normalised, is infinite (the corner is faster than either move may go),
+/// shown without normalising them and without a square root or a
+/// division; false when not shown, and the caller works it out. Most
+/// corners of a chain of short moves are such, and normalising both
+/// tangents and finding sin(θ/2) and cos(θ/2) (the radius) is a chain of
+/// three square roots and two divisions.
+///
+/// The tangents must be unit within 1e-12 (a line's direction, an arc's
+/// tangent are, to rounding): each normalised one is then within
+/// δ/2 = 0.51e-12 of its raw self, rounding included. The raw
+/// c = |u₂ − u₁|² = n₁ + n₂ − 2·u₁·u₂ and s = |u₂ + u₁|² = n₁ + n₂ + 2·u₁·u₂
+/// come from three sums (nᵢ = |uᵢ|²) to within 2e-14 (the cancellation
+/// in c is absolute, not relative), so with μ = 1e-6
+///
+/// ```text
+///   4·sin²(θ/2) = |e₂ − e₁|² ≤ (c + 2e-14)·(1 + μ) + δ²·(1 + 1/μ) ≤ c·(1 + μ) + 1e-13 = 4·S
+///   4·cos²(θ/2) = |e₂ + e₁|² ≥ (s − 2e-14)·(1 − μ) − δ²/μ        ≥ s·(1 − μ) − 1e-13 = 4·C
+/// ```
+///
+/// and cos(θ/2) ≥ cos²(θ/2) ≥ C. [`corner_speed_units`]'s test on its
+/// radius min(δ_c·ch·(1 + ch)/sh², (L/2)·ch/sh), with sh, ch = sin, cos
+/// of θ/2, is then implied, squared where it has a square root, by
+///
+/// ```text
+///   a·δ_c·C·(1 + C) ≥ v²·S            a²·(L/2)²·C ≥ v⁴·S
+///   j·(δ_c·C·(1 + C))² ≥ v³·S²         j·(L/2)²·C ≥ v³·S
+/// ```
+///
+/// (a, j the smallest axis limits, v the moves' cap; the jerk pair only
+/// under a finite jerk) each with a margin of 1e-9, far above the
+/// rounding of either computation. Figures within 1e±30 keep every
+/// product normal; out of it, the answer is false.
+#[inline]
+pub(crate) fn corner_is_free(l: &AxisLimits, u1: &Vector, u2: &Vector, c: &Corner) -> bool {
+    let ordinary = |x: f64| (1e-30..=1e30).contains(&x);
+    let jerk_limited = finite(l.min_jerk);
+    let inputs = ordinary(c.tol_mm)
+        && ordinary(c.half_len)
+        && ordinary(c.v_cap)
+        && ordinary(l.min_accel)
+        && (ordinary(l.min_jerk) || !jerk_limited)
+        && c.vlim_min >= c.v_cap;
+    let (mut n1, mut n2, mut dot) = (0.0, 0.0, 0.0);
+    for (a, b) in u1.iter().zip(u2).take(l.n) {
+        n1 += a * a;
+        n2 += b * b;
+        dot += a * b;
+    }
+    let unit = |n: f64| (1.0 - 1e-12..=1.0 + 1e-12).contains(&n);
+    if !(inputs && unit(n1) && unit(n2)) {
+        return false;
+    }
+    let (chord, sum) = (n1 + n2 - 2.0 * dot, n1 + n2 + 2.0 * dot);
+    let sin2 = 0.25 * (chord * (1.0 + 1e-6) + 1e-13);
+    let cos2 = 0.25 * (sum * (1.0 - 1e-6) - 1e-13);
+    // Finite: both tangents passed the unit test.
+    if cos2 <= 0.0 {
+        return false;
+    }
+    let (a, v, half) = (l.min_accel, c.v_cap, c.half_len);
+    let round = c.tol_mm * cos2 * (1.0 + cos2);
+    let v2 = v * v * (1.0 + 1e-9);
+    let accel = a * round >= v2 * sin2 && (a * half) * (a * half) * cos2 >= v2 * v2 * sin2;
+    if !jerk_limited {
+        return accel;
+    }
+    let (j, v3) = (l.min_jerk, v * v * v * (1.0 + 1e-9));
+    accel && j * round * round >= v3 * sin2 * sin2 && j * half * half * cos2 >= v3 * sin2
+}
+
 /// [`corner_speed`] from tangents normalised beforehand.
 #[inline]
 pub(crate) fn corner_speed_units(l: &AxisLimits, u1: &Unit, u2: &Unit, c: &Corner) -> f64 {
@@ -317,6 +388,74 @@ mod tests {
         let c = std::f64::consts::FRAC_1_SQRT_2;
         let r = 0.02 * c / (1.0 - c);
         assert!((v - (2000.0 * r).sqrt()).abs() < 1e-9, "{v}");
+    }
+
+    proptest::proptest! {
+        /// A corner `corner_is_free` shows free is free when worked out in
+        /// full, at every angle from none to a reversal, with and without
+        /// a jerk limit.
+        #[test]
+        fn a_corner_shown_free_is_free(
+            jerk: bool,
+            from in proptest::array::uniform3(-1.0..1.0f64),
+            turn in proptest::array::uniform3(-1.0..1.0f64),
+            log_angle in -10.0..0.5f64,
+            tol_mm in 1e-4..0.5f64,
+            half_len in 1e-3..50.0f64,
+            v_cap in 0.1..140.0f64,
+            edge in proptest::option::of(-1e-6..1e-6f64),
+        ) {
+            let angle = 10f64.powf(log_angle);
+            let l = AxisLimits::new(&Machine::default_mill(), jerk);
+            // Unit to rounding, as a line's direction is.
+            let unit = |v: [f64; 3]| {
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                [v[0] / n, v[1] / n, v[2] / n, 0.0, 0.0, 0.0]
+            };
+            let u1 = unit(from);
+            let u2 = unit([0, 1, 2].map(|i| u1[i] + angle * turn[i]));
+            let (e1, e2) = (Unit::new(&l, &u1), Unit::new(&l, &u2));
+            // Half the time, a cap at the edge of the test on the radius.
+            let v_cap = match edge {
+                Some(edge) => {
+                    let chord: f64 = (0..3).map(|i| (e2.e[i] - e1.e[i]).powi(2)).sum();
+                    let sum: f64 = (0..3).map(|i| (e2.e[i] + e1.e[i]).powi(2)).sum();
+                    let (sh, ch) = (0.5 * chord.sqrt(), 0.5 * sum.sqrt());
+                    let r = (tol_mm * ch * (1.0 + ch) / (sh * sh)).min(half_len * ch / sh);
+                    let v = (l.min_accel * r).sqrt().min((l.min_jerk * r * r).cbrt());
+                    v * (1.0 + edge)
+                }
+                None => v_cap,
+            };
+            let c = Corner { tol_mm, half_len, vlim: &l.max_feed, vlim_min: 1e9, v_cap };
+            if u1.iter().chain(&u2).all(|x| x.is_finite()) && corner_is_free(&l, &u1, &u2, &c) {
+                let v = corner_speed_units(&l, &e1, &e2, &c);
+                proptest::prop_assert!(v.is_infinite(), "{v}");
+            }
+        }
+    }
+
+    /// The shortcut is taken where it pays: a corner of a chain of short
+    /// moves turning by a tenth of a degree.
+    #[test]
+    fn a_slight_corner_of_short_moves_is_shown_free() {
+        for jerk in [false, true] {
+            let l = AxisLimits::new(&Machine::default_mill(), jerk);
+            let a: f64 = 0.1f64.to_radians();
+            let u1 = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            let u2 = [a.cos(), a.sin(), 0.0, 0.0, 0.0, 0.0];
+            let c = Corner {
+                tol_mm: 0.02,
+                half_len: 0.25,
+                vlim: &l.max_feed,
+                vlim_min: l.n_min(&l.max_feed),
+                v_cap: 25.0,
+            };
+            assert!(corner_is_free(&l, &u1, &u2, &c));
+            assert!(
+                corner_speed_units(&l, &Unit::new(&l, &u1), &Unit::new(&l, &u2), &c).is_infinite()
+            );
+        }
     }
 
     #[test]

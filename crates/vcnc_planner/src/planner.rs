@@ -25,11 +25,16 @@
 //! rest, is kept as bounds while they decide the segment before it
 //! ([`Kin::reach_from_rest`]): on a chain of short jerk-limited moves that
 //! saves a cube root per block, and the results are those of the exact
-//! pass. The look-ahead follows grbl's planner and Klipper's
+//! pass. Likewise a corner is first tested, on its raw tangents and with
+//! multiplications only, for being faster than either move may go
+//! ([`corner_is_free`]); only the others are worked out in full. The
+//! look-ahead follows grbl's planner and Klipper's
 //! `toolhead.py` in idea (both read, neither copied); the S-curve ramps are
 //! in [`crate::ramp`].
 
-use crate::limits::{AxisLimits, Corner, Unit, arc_limits, corner_speed_units, settle_time};
+use crate::limits::{
+    AxisLimits, Corner, Unit, arc_limits, corner_is_free, corner_speed_units, settle_time,
+};
 use crate::path::{Path, Shape, Vector, plane_axes};
 use crate::ramp::{Kin, Profile};
 use crate::ring::Ring;
@@ -70,13 +75,22 @@ struct Pending {
     /// Bounds on `entry_max` while it is not worked out: only the newest
     /// move's can be, as [`Kin::reach_from_rest`] says.
     entry_bounds: Option<(f64, f64)>,
-    /// The unit tangent at its end.
-    u_end: Unit,
+    /// The tangent at the end of an arc, unit to rounding (a line's is
+    /// its direction, in its path: see [`Pending::end_tangent`]).
+    arc_end: Vector,
     /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
     smooth_mm: f64,
 }
 
 impl Pending {
+    /// The tangent at its end, unit to rounding.
+    fn end_tangent(&self) -> &Vector {
+        match &self.seg.path.shape {
+            Shape::Line(u) => u,
+            Shape::Arc(_) => &self.arc_end,
+        }
+    }
+
     /// Its entry bound as the exit of the move before: worked out here
     /// (and again later, to the same figure) if it is left as bounds.
     fn exit_bound(&self) -> f64 {
@@ -319,11 +333,9 @@ impl<T: Timeline> Planner<T> {
                 &arc_start
             }
         };
-        let e_start = Unit::new(&self.lim, u_start);
-        let u_end = match path.shape {
-            // A line's tangent is the same at both ends.
-            Shape::Line(_) => e_start,
-            Shape::Arc(_) => Unit::new(&self.lim, &path.tangent(path.len)),
+        let arc_end = match path.shape {
+            Shape::Line(_) => None,
+            Shape::Arc(_) => Some(path.tangent(path.len)),
         };
         let corner_tolerance_mm =
             if self.smooth_next > 0.0 && self.window.back().is_some_and(|p| p.smooth_mm > 0.0) {
@@ -337,8 +349,13 @@ impl<T: Timeline> Planner<T> {
             len: path.len,
             tol_mm: corner_tolerance_mm,
         };
-        let cap = self.corner_cap(&next, u_start, &e_start).min(v_max);
-        let (entry_max, entry_bounds) = match kin.reach_from_rest(path.len, cap) {
+        let cap = self.corner_cap(&next, u_start).min(v_max);
+        let from_rest = if exact_only() {
+            Ok(kin.reach_capped(0.0, path.len, cap))
+        } else {
+            kin.reach_from_rest(path.len, cap)
+        };
+        let (entry_max, entry_bounds) = match from_rest {
             Ok(v) => (v, None),
             Err(bounds) => (f64::NAN, Some(bounds)),
         };
@@ -362,10 +379,21 @@ impl<T: Timeline> Planner<T> {
                 entry_cap: s_cap,
                 entry_max: s_max,
                 entry_bounds: s_bounds,
-                u_end: s_u_end,
+                arc_end: s_arc_end,
                 smooth_mm: s_smooth,
             } = slot;
-            *s_path = path;
+            // A line fills a third of a path's room (sized for an arc):
+            // copy only what it has, into a slot a line left if it can
+            // (assigning a whole `Shape` copies all of its room).
+            match (path.shape, &mut s_path.shape) {
+                (Shape::Line(u), Shape::Line(s_u)) => {
+                    s_path.from = path.from;
+                    s_path.to = path.to;
+                    s_path.len = path.len;
+                    *s_u = u;
+                }
+                _ => *s_path = path,
+            }
             *s_kind = kind;
             *s_attr = attr;
             *s_v_max = v_max;
@@ -376,7 +404,9 @@ impl<T: Timeline> Planner<T> {
             *s_cap = cap;
             *s_max = entry_max;
             *s_bounds = entry_bounds;
-            *s_u_end = u_end;
+            if let Some(t) = arc_end {
+                *s_arc_end = t;
+            }
             *s_smooth = smooth_mm;
         } else {
             self.window.push_back(Pending {
@@ -393,7 +423,7 @@ impl<T: Timeline> Planner<T> {
                 entry_cap: cap,
                 entry_max,
                 entry_bounds,
-                u_end,
+                arc_end: arc_end.unwrap_or_default(),
                 smooth_mm,
             });
         }
@@ -405,7 +435,7 @@ impl<T: Timeline> Planner<T> {
 
     /// The highest speed at the junction between the newest segment in
     /// the window and `seg`; decides how a G99 junction ends.
-    fn corner_cap(&mut self, seg: &Next, u_start: &Vector, e_start: &Unit) -> f64 {
+    fn corner_cap(&mut self, seg: &Next, u_start: &Vector) -> f64 {
         // Between two smoothed G01 moves the corner tolerance is G05.1's E.
         let tol = seg.tol_mm;
         let lim = &self.lim;
@@ -426,7 +456,16 @@ impl<T: Timeline> Planner<T> {
             vlim_min: self.max_feed_min,
             v_cap,
         };
-        let v = corner_speed_units(lim, &prev.u_end, e_start, &corner).min(v_cap);
+        // Most corners are shown to be free without normalising the
+        // tangents; the others are worked out in full.
+        let u_end = prev.end_tangent();
+        let v = if !exact_only() && corner_is_free(lim, u_end, u_start, &corner) {
+            f64::INFINITY
+        } else {
+            let (e_end, e_start) = (Unit::new(lim, u_end), Unit::new(lim, u_start));
+            corner_speed_units(lim, &e_end, &e_start, &corner)
+        };
+        let v = v.min(v_cap);
         if prev.end == End::Tangent {
             let u_end = prev.seg.path.tangent(prev.seg.path.len);
             let tangent = cosine(&u_end, u_start) >= TANGENT_COS;
@@ -663,6 +702,25 @@ impl<T: Timeline> Planner<T> {
     }
 }
 
+#[cfg(test)]
+thread_local! {
+    /// In this crate's tests: plan without the shortcuts, every figure
+    /// worked out in full, to compare the planner against.
+    static EXACT_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether to plan without the shortcuts (only ever in tests).
+#[cfg(test)]
+fn exact_only() -> bool {
+    EXACT_ONLY.with(std::cell::Cell::get)
+}
+
+#[cfg(not(test))]
+#[inline(always)]
+fn exact_only() -> bool {
+    false
+}
+
 /// The direction of each axis from `a` to `b`.
 fn leg_signs(a: &Pos, b: &Pos, n: usize) -> [i8; MAX_AXES] {
     let mut out = [0; MAX_AXES];
@@ -801,5 +859,141 @@ impl<T: Timeline> Sink for Planner<T> {
     fn finish(&mut self) -> std::io::Result<()> {
         self.flush();
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+    use vcnc_core::ArcDir;
+
+    /// Every planned move as bits: the shortcuts must not change one.
+    #[derive(Default)]
+    struct Bits(Vec<u64>);
+
+    impl Timeline for Bits {
+        fn segment(&mut self, seg: &Segment, p: &Profile) {
+            let figures = [
+                seg.path.len,
+                seg.v_max,
+                p.up.v0,
+                p.up.v1,
+                p.up.tj,
+                p.up.ta,
+                p.cruise_s,
+                p.down.v1,
+                p.down.tj,
+                p.down.ta,
+            ];
+            self.0.extend(figures.map(f64::to_bits));
+        }
+        fn axes(&mut self, mv: &AxesMove) {
+            self.0.push(mv.duration_s.to_bits());
+        }
+        fn pause(&mut self, p: &Pause) {
+            self.0.push(p.seconds.to_bits());
+        }
+    }
+
+    /// Plans `events` twice in step, with the shortcuts and without, and
+    /// checks after every event that the look-ahead holds the same figures
+    /// (the newest move's entry bound, if left as bounds, around the full
+    /// figure); then that every planned move has the same bits.
+    fn plan_both(machine: &Machine, shape: ProfileShape, events: &[Event]) -> Result<(), String> {
+        let mut fast = Planner::with_profile(machine, shape, Bits::default());
+        let mut exact = Planner::with_profile(machine, shape, Bits::default());
+        for (k, e) in events.iter().enumerate() {
+            fast.event(e);
+            EXACT_ONLY.with(|x| x.set(true));
+            exact.event(e);
+            EXACT_ONLY.with(|x| x.set(false));
+            if fast.window.len() != exact.window.len() {
+                return Err(format!("event {k}: window lengths differ"));
+            }
+            for i in 0..fast.window.len() {
+                let (f, x) = (&fast.window[i], &exact.window[i]);
+                let same = match f.entry_bounds {
+                    None => f.entry_max.to_bits() == x.entry_max.to_bits(),
+                    Some((lo, hi)) => lo <= x.entry_max && x.entry_max <= hi,
+                };
+                if !same || f.entry_cap.to_bits() != x.entry_cap.to_bits() {
+                    return Err(format!(
+                        "event {k}, move {i}: {:?} {:?} against {} {}",
+                        f.entry_max, f.entry_bounds, x.entry_max, x.entry_cap
+                    ));
+                }
+            }
+        }
+        let (fast, exact) = (fast.into_timeline().0, exact.into_timeline().0);
+        if fast.is_empty() || fast != exact {
+            return Err("the planned moves differ".into());
+        }
+        Ok(())
+    }
+
+    /// A chain of short moves turning a little at each corner, now and
+    /// then sharply or by a half circle, at feeds that the moves reach or
+    /// do not.
+    fn chain() -> impl Strategy<Value = Vec<Event>> {
+        let step = (
+            0.005..3.0f64,
+            -0.2..0.2f64,
+            -0.05..0.05f64,
+            prop::bool::weighted(0.05),
+            prop::bool::weighted(0.05),
+            prop::sample::select(vec![300.0, 1500.0, 6000.0, 20_000.0]),
+        );
+        prop::collection::vec(step, 2..60).prop_map(|steps| {
+            let (mut p, mut heading) = ([0.0; 6], 0.0f64);
+            let mut events = Vec::new();
+            for (len, turn, dz, sharp, arc, feed) in steps {
+                heading += if sharp { 2.0 + turn } else { turn };
+                let mut to = p;
+                to[0] += len * heading.cos();
+                to[1] += len * heading.sin();
+                let (loc, feed) = (Loc::default(), Feed::PerMin(feed));
+                if arc {
+                    // A half circle to the left of the heading.
+                    let mut center = p;
+                    center[0] = 0.5 * (p[0] + to[0]);
+                    center[1] = 0.5 * (p[1] + to[1]);
+                    heading += std::f64::consts::PI;
+                    events.push(Event::Arc {
+                        loc,
+                        to: Pos(to),
+                        center: Pos(center),
+                        plane: Plane::Xy,
+                        dir: ArcDir::Ccw,
+                        feed,
+                        exact_stop: false,
+                    });
+                } else {
+                    to[2] += dz * len;
+                    events.push(Event::Feed {
+                        loc,
+                        to: Pos(to),
+                        feed,
+                        exact_stop: false,
+                    });
+                }
+                p = to;
+            }
+            events
+        })
+    }
+
+    proptest! {
+        /// The lazy entry bounds (`Kin::reach_from_rest`) and the corners
+        /// shown free without normalising (`corner_is_free`) plan every
+        /// move to the same bits as working everything out.
+        #[test]
+        fn the_shortcuts_plan_what_the_full_figures_plan(events in chain(), jerk: bool) {
+            let machine = Machine::default_mill();
+            let shape = if jerk { ProfileShape::Jerk } else { ProfileShape::Trapezoid };
+            if let Err(e) = plan_both(&machine, shape, &events) {
+                return Err(TestCaseError::fail(e));
+            }
+        }
     }
 }

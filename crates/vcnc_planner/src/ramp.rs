@@ -72,6 +72,16 @@ impl Kin {
         }
     }
 
+    /// `ramp_time(0.0) == 0.0` (a ramp by nothing takes no time), without
+    /// its two divisions and square root for limits within 1e±60, where it
+    /// holds: 2·√(0/j) under a jerk, 0/a under none. Asked of every move
+    /// passed through at its top speed.
+    #[inline]
+    fn stays_in_no_time(self) -> bool {
+        let ordinary = in_range(self.accel) && (in_range(self.jerk) || self.jerk == f64::INFINITY);
+        ordinary || self.ramp_time(0.0) == 0.0
+    }
+
     /// Distance of a ramp between `v0` and `v1` (either order).
     pub fn ramp_dist(self, v0: f64, v1: f64) -> f64 {
         0.5 * (v0 + v1) * self.ramp_time((v1 - v0).abs())
@@ -93,30 +103,36 @@ impl Kin {
     /// move before cannot be shown to enter at its cap whatever the figure
     /// in the bounds ([`Kin::reaches_cap_from`]); on a chain of short moves
     /// it almost always can, and the figure is replaced before it is used.
+    ///
+    /// Such a ramp from rest reaches v with v³ = j·len² (s = ∛(len/j) in
+    /// [`Kin::reach`], v = j·s²): the bounds are bounds on ∛(j·len²), with
+    /// one division in all ([`cube_root_bounds`]). The ramp to `cap` needs
+    /// no test of its own (a division and a square root): it fits exactly
+    /// when the reach is at least `cap`, up to rounding far inside the
+    /// margin, so bounds on the reach, capped, bound `reach_capped`.
     #[inline]
     pub(crate) fn reach_from_rest(self, len: f64, cap: f64) -> Result<f64, (f64, f64)> {
-        if cap <= 0.0 || self.ramp_dist(0.0, cap) <= len {
-            return Ok(cap);
-        }
         let (a, j) = (self.accel, self.jerk);
-        let len = len.max(0.0);
-        // `reach(0, len)` takes its cubic branch with p = 0: s = ∛z.
-        let cubic = j > 0.0 && j <= f64::MAX && len <= (a * a / j) * a / j;
-        if !cubic {
-            return Ok(self.reach(0.0, len).min(cap));
+        // Inside the cubic branch of `reach` by a margin, so that `reach`
+        // takes it too (tested first: a long move leaves here). Within
+        // 1e±60 nothing below over- or underflows (j·len², a³, and
+        // `reach`'s q2² all stay normal).
+        let cubic = len * j * j <= a * a * a * (1.0 - 1e-12)
+            && in_range(len)
+            && in_range(j)
+            && in_range(a)
+            && cap > 0.0;
+        if cubic && let Some((lo, hi)) = cube_root_bounds(j * len * len) {
+            // `reach` rounds a few times (its cube root within an ulp):
+            // far inside 1e-12.
+            let (lo, hi) = (lo * (1.0 - 1e-12), hi * (1.0 + 1e-12));
+            return if lo >= cap {
+                Ok(cap)
+            } else {
+                Err((lo, hi.min(cap)))
+            };
         }
-        // z exactly as `reach` forms it; the cube root to within 1e-11
-        // (checked), and the few roundings after it, keep the figure
-        // within 1e-9 of j·y².
-        let q2 = len / (2.0 * j);
-        let z = q2 + (q2 * q2).sqrt();
-        match cube_root_near(z) {
-            Some(y) => {
-                let v = j * y * y;
-                Err(((v * (1.0 - 1e-9)).min(cap), (v * (1.0 + 1e-9)).min(cap)))
-            }
-            None => Ok(self.reach(0.0, len).min(cap)),
-        }
+        Ok(self.reach_capped(0.0, len, cap))
     }
 
     /// Whether `reach_capped(v0, len, cap)` is `cap` for every `v0` in
@@ -124,10 +140,39 @@ impl Kin {
     /// ½·(v0 + cap)·T(cap − v0) ≤ len, and T grows with the speed change,
     /// so ½·(min(hi, cap) + cap)·T(cap − lo) bounds the ramp over the whole
     /// interval; the margin of 1e-9 is far above the rounding of either
-    /// side.
+    /// side. Asked for every block, it multiplies out T's division and
+    /// square root (a chain of ~40 cycles): with m = ½·(min(hi, cap) +
+    /// cap), d = cap − lo and l = len·(1 − 1e-9),
+    ///
+    /// ```text
+    ///   trapezoid         m·d/a ≤ l              ⇔  m·d ≤ l·a
+    ///   d ≥ a²/j          m·(d/a + a/j) ≤ l      ⇔  m·(d·j + a²) ≤ l·a·j
+    ///   d < a²/j          m·2·√(d/j) ≤ l         ⇔  4·m²·d ≤ l²·j
+    /// ```
+    ///
+    /// (the two jerk-limited forms meet at d = a²/j), for figures within
+    /// 1e±60, where no product over- or underflows.
     #[inline]
     pub(crate) fn reaches_cap_from(self, (lo, hi): (f64, f64), len: f64, cap: f64) -> bool {
-        cap <= lo || 0.5 * (hi.min(cap) + cap) * self.ramp_time(cap - lo) <= len * (1.0 - 1e-9)
+        if cap <= lo {
+            return true;
+        }
+        let (a, j) = (self.accel, self.jerk);
+        let m = 0.5 * (hi.min(cap) + cap);
+        let l = len * (1.0 - 1e-9);
+        if !(in_range(a) && in_range(len) && in_range(cap) && lo >= 0.0) {
+            return m * self.ramp_time(cap - lo) <= l;
+        }
+        let d = cap - lo;
+        if !finite(j) {
+            m * d <= l * a
+        } else if !in_range(j) {
+            m * self.ramp_time(d) <= l
+        } else if d * j >= a * a {
+            m * (d * j + a * a) <= l * a * j
+        } else {
+            4.0 * m * m * d <= l * l * j
+        }
     }
 
     /// The highest speed reachable from `v0` (or from which `v0` is
@@ -157,23 +202,38 @@ impl Kin {
     }
 }
 
-/// ∛z within a relative 1e-11 for a positive normal `z` (`None` when not
-/// shown to be): a guess from the exponent bits (fdlibm's, within 3.2 %),
-/// two Halley steps (cubic convergence: within 1e-14), and a check that
-/// the cube root lies between y·(1 ∓ 1e-11). Much cheaper than the
-/// correctly rounded `cbrt` for a figure only compared against bounds.
-fn cube_root_near(z: f64) -> Option<f64> {
-    if !(1e-200..=1e200).contains(&z) {
+/// Whether `x` lies within 1e±60 (false for NaN): figures whose products
+/// of four stay normal floats.
+#[inline]
+fn in_range(x: f64) -> bool {
+    (1e-60..=1e60).contains(&x)
+}
+
+/// How far [`cube_root_bounds`]'s figure may be from ∛w: a guess within
+/// 3.3 % leaves one Halley step within 2.1e-5 (measured over 1e±180).
+const CUBE_ROOT_STEP_ERROR: f64 = 3e-5;
+
+/// Bounds `lo < ∛w < hi`, a relative 6e-5 apart, for a positive normal `w`
+/// (`None` when not shown to be): a guess from the exponent bits
+/// (fdlibm's, within 3.3 %), one Halley step (cubic convergence), and a
+/// check of the bounds by cubing them, which holds whatever the step's
+/// error. The bounds only have to decide a comparison with a margin, for
+/// which one step does: each step is a division on the look-ahead's
+/// longest chain of dependent instructions.
+#[inline]
+fn cube_root_bounds(w: f64) -> Option<(f64, f64)> {
+    if !(1e-200..=1e200).contains(&w) {
         return None;
     }
-    let high = u32::try_from(z.to_bits() >> 32).ok()?;
-    let mut y = f64::from_bits(u64::from(high / 3 + 715_094_163) << 32);
-    for _ in 0..2 {
-        let y3 = y * y * y;
-        y *= (y3 + 2.0 * z) / (2.0 * y3 + z);
-    }
-    let (lo, hi) = (y * (1.0 - 1e-11), y * (1.0 + 1e-11));
-    (lo * lo * lo < z && z < hi * hi * hi).then_some(y)
+    let high = u32::try_from(w.to_bits() >> 32).ok()?;
+    let y = f64::from_bits(u64::from(high / 3 + 715_094_163) << 32);
+    let y3 = y * y * y;
+    let y = y * ((y3 + 2.0 * w) / (2.0 * y3 + w));
+    let (lo, hi) = (
+        y * (1.0 - CUBE_ROOT_STEP_ERROR),
+        y * (1.0 + CUBE_ROOT_STEP_ERROR),
+    );
+    (lo * lo * lo < w && w < hi * hi * hi).then_some((lo, hi))
 }
 
 /// A ramp from `v0` to `v1` with its phase times.
@@ -286,7 +346,7 @@ impl Profile {
         // exactly this (no ramps, len/v of cruise). In line, for the
         // caller to keep only what it reads.
         let through = v0 == v_max && v1 == v_max && v_max > 0.0 && v_max <= f64::MAX && len > 0.0;
-        if through && kin.ramp_time(0.0) == 0.0 {
+        if through && kin.stays_in_no_time() {
             let flat = Ramp::new(v_max, v_max, kin);
             return Profile {
                 up: flat,
@@ -427,6 +487,66 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// The same at the edge, where it counts: the move before is just
+        /// long enough, or just too short, to ramp from the newest move's
+        /// entry speed up to its cap (under a jerk, a trapezoid, or a jerk
+        /// it saturates).
+        #[test]
+        fn the_bounds_decide_only_rightly_at_the_edge(
+            accel in 10.0..20_000.0f64,
+            jerk in 100.0..1e6f64,
+            len in 1e-4..20.0f64,
+            cap in 0.1..500.0f64,
+            prev_cap in 0.1..500.0f64,
+            prev_kind in 0..3u8,
+            edge in -1e-8..1e-8f64,
+        ) {
+            let kin = Kin { accel, jerk };
+            if let Err(bounds) = kin.reach_from_rest(len, cap) {
+                let exact = kin.reach_capped(0.0, len, cap);
+                let prev = match prev_kind {
+                    0 => kin,
+                    1 => Kin { accel, jerk: f64::INFINITY },
+                    _ => Kin { accel: accel * 0.01, jerk },
+                };
+                let prev_len = prev.ramp_dist(exact, prev_cap) * (1.0 + edge);
+                // The bounds found, and the narrowest there are.
+                for bounds in [bounds, (exact, exact)] {
+                    if prev.reaches_cap_from(bounds, prev_len, prev_cap) {
+                        let v = prev.reach_capped(exact, prev_len, prev_cap);
+                        proptest::prop_assert_eq!(v.to_bits(), prev_cap.to_bits());
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn stays_in_no_time_is_a_ramp_by_nothing_in_no_time() {
+        let figures = [
+            0.0,
+            -1.0,
+            1e-61,
+            1e-60,
+            f64::MIN_POSITIVE,
+            1.0,
+            2000.0,
+            1e60,
+            1e61,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        for accel in figures {
+            for jerk in figures {
+                let kin = Kin { accel, jerk };
+                let slow = kin.ramp_time(0.0) == 0.0;
+                assert_eq!(kin.stays_in_no_time(), slow, "{accel} {jerk}");
+            }
+        }
+    }
+
     #[test]
     fn finite_is_is_finite() {
         let specials = [
@@ -448,14 +568,19 @@ mod tests {
     }
 
     #[test]
-    fn a_cube_root_near_is_near() {
-        for z in [
-            1e-150, 3.7e-9, 0.001, 0.5, 1.0, 2.0, 27.0, 1e5, 6.02e23, 1e150,
-        ] {
-            let y = cube_root_near(z).unwrap();
-            assert!((y - z.cbrt()).abs() <= 1e-11 * z.cbrt(), "{z}: {y}");
+    fn cube_root_bounds_hold_the_cube_root() {
+        let mut z: f64 = 1.7e-199;
+        while z < 1e199 {
+            for w in [z, z * 1.0001, z * 1.26, z * 1.587, z * 1.9999] {
+                let (lo, hi) = cube_root_bounds(w).unwrap();
+                let y = w.cbrt();
+                assert!(lo < y && y < hi && hi - lo < 7e-5 * y, "{w}: {lo} {y} {hi}");
+            }
+            z *= 2.0;
         }
-        assert!(cube_root_near(0.0).is_none() && cube_root_near(f64::INFINITY).is_none());
+        for w in [0.0, 1e-201, 1e201, f64::INFINITY, f64::NAN, -1.0] {
+            assert!(cube_root_bounds(w).is_none(), "{w}");
+        }
     }
 
     #[test]
