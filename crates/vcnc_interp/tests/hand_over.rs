@@ -127,3 +127,49 @@ fn a_done_sink_stops_the_run_within_a_batch() {
     );
     assert!(!sink.events.is_empty());
 }
+
+/// Runs `program` under the Syntec dialect.
+fn run_syntec(program: &str, sink: &mut Batches) -> Outcome {
+    let (machine, dialect) = (Machine::default_mill(), Dialect::syntec());
+    let mut interp = Interpreter::new(&machine, &dialect, Options::default());
+    interp.run_str(program, sink)
+}
+
+#[test]
+fn a_message_made_while_evaluating_a_word_block_is_dropped_as_before() {
+    // A Syntec MSG() in a word's expression runs before the block's mark:
+    // the block's start used to clear it away, so no `message` reached the
+    // sink, whether the block then ran, was empty or alarmed. Kept in
+    // `pending`, it would now be handed over with the batch.
+    for tail in [
+        "G01 X(MSG(\"in a move\")+1.) Y1. F100;\nM30;\n",
+        "G01 X[MSG(\"all vacant\")];\nM30;\n",
+        "G01 X(MSG(\"then an alarm\")+1.) F0;\nM30;\n",
+        "G01 X(MSG(\"then no end\")+1.) Y1. F100;\n",
+    ] {
+        for before in [0, 1500] {
+            let mut p = String::from("%@MACRO\nS1000 M03;\n");
+            for i in 0..before {
+                p.push_str(&format!("G01 X{}. Y{}. F500.;\n", i % 97, i % 89));
+            }
+            p.push_str(tail);
+            let mut sink = Batches::default();
+            run_syntec(&p, &mut sink);
+            assert!(
+                !sink
+                    .events
+                    .iter()
+                    .any(|e| matches!(e, Event::Message { .. })),
+                "{tail:?} after {before} moves: a message reached the sink"
+            );
+        }
+    }
+    // A MSG statement of its own still speaks.
+    let mut sink = Batches::default();
+    run_syntec("%@MACRO\nMSG(\"alone\");\nM30;\n", &mut sink);
+    assert!(
+        sink.events
+            .iter()
+            .any(|e| matches!(e, Event::Message { .. }))
+    );
+}

@@ -337,7 +337,14 @@ impl Interpreter<'_> {
         }
         match &c.st.kind {
             StmtKind::Words(words) => {
-                self.eval_words(words, c.lang, block)?;
+                // What evaluating the words emits (a Syntec `MSG()` in an
+                // expression) comes before the block's mark: it was always
+                // dropped (the block's start cleared `pending`), and must
+                // not now stay behind to reach the sink.
+                let mark = self.pending.len();
+                let evaluated = self.eval_words(words, c.lang, block);
+                self.pending.truncate(mark);
+                evaluated?;
                 if block.is_empty() {
                     return Ok(Step::Next);
                 }
