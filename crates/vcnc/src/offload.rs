@@ -23,7 +23,8 @@ use std::thread::JoinHandle;
 use vcnc_interp::{Event, Sink};
 
 /// Events a chunk carries: what the interpreter gathers before it hands
-/// them over, so that each batch it hands over is a chunk. Large enough
+/// them over, so that a batch it hands over (a chunk's worth of whole
+/// blocks, rarely more) is a chunk. Large enough
 /// that the two channel operations a chunk costs vanish beside its events
 /// (~1 µs against ~0.3 ms of interpretation), small enough that the chunks
 /// in flight stay a few hundred KB.
@@ -150,7 +151,8 @@ impl<S: Sink> Sink for Offload<S> {
                     w.chunk.append(events);
                     return;
                 }
-                // The block fills the chunk: it goes over in chunks as
+                // The events overfill the chunk (or are a block of more
+                // than two chunks' worth): they go over in chunks as
                 // event() sends them, so that a chunk never outgrows its
                 // buffer (a G83 of many holes is hundreds of thousands of
                 // events) and a done sink stops at the end of one.

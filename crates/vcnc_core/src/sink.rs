@@ -8,7 +8,8 @@
 //! second-core hand-over) moves them. A sink that wants no more events
 //! (its reader went away: `vcnc run | head`) says so through
 //! [`Sink::is_done`], which the interpreter asks after every block, and
-//! the run stops there: within a batch of the event that made it done.
+//! the run stops at the first block after the batch that made it done (a
+//! sink on another thread may say so a few batches late).
 //! [`Sink::finish`] is called once after the last event, so buffered
 //! writers flush and report their errors.
 //! Output formats live in `vcnc_output`; the CLI wires them up.
@@ -22,7 +23,8 @@ pub trait Sink {
 
     /// Events of one or more whole blocks, in order, handed over by value:
     /// the interpreter calls this (not [`event`](Self::event)) and `events`
-    /// is empty afterwards (it may hold another buffer, of any capacity). A sink that keeps events moves them instead of
+    /// is empty afterwards (it may hold another buffer, of any
+    /// capacity). A sink that keeps events moves them instead of
     /// cloning each; by default each goes to [`event`](Self::event).
     fn take_events(&mut self, events: &mut Vec<Event>) {
         for e in events.iter() {

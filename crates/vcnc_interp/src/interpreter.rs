@@ -30,8 +30,10 @@ use vcnc_syntax::{
 /// ([`Sink::take_events`]): most blocks make one event, and one call per
 /// thousand events costs less than one per block; a sink that moves the
 /// events to another thread (the CLI's second core) takes the whole buffer
-/// without copying one. A sink that is done is noticed at the next block
-/// after a hand-over, so within this many events.
+/// without copying one. A batch is whole blocks, so one block of more
+/// events (a G83 of many holes) goes over as one batch. A sink that is
+/// done is asked after every block, so it is noticed at the first block
+/// after the batch that made it done.
 pub const HAND_OVER: usize = 1024;
 
 /// How one machine axis is addressed in the dialect.

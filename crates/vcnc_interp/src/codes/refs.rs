@@ -162,9 +162,13 @@ impl Interpreter<'_> {
     /// work (contact made) or away (contact lost): the signal changes where
     /// the path crosses it. G38.2/G38.4 alarm when it does not.
     fn probe(&mut self, w: &Words<'_>, cmd: Span, must_trip: bool) -> Result<(), Diagnostic> {
+        // Only this move's events: `pending` also holds earlier blocks'.
+        let from = self.pending.len();
         self.skip(w, cmd)?;
         let tripped = self
             .pending
+            .get(from..)
+            .unwrap_or_default()
             .iter()
             .rev()
             .find_map(|e| match e {
