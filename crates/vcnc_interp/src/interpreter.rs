@@ -50,6 +50,9 @@ pub(crate) struct AxisWord {
     /// `letter` and `inc` as a letter mask (bit 0 = 'A'): a block without
     /// either skips the axis with one test.
     pub mask: u32,
+    /// The masks of this axis and the ones after it: a block that names
+    /// none of them is done with its axis words here.
+    pub rest: u32,
 }
 
 impl AxisWord {
@@ -65,6 +68,7 @@ impl AxisWord {
             diameter: dialect.diameter.axis == Some(letter),
             rotary: matches!(letter, b'A' | b'B' | b'C'),
             mask: crate::dialect::bit(letter) | inc.map_or(0, crate::dialect::bit),
+            rest: 0,
         }
     }
 }
@@ -170,11 +174,16 @@ pub struct Interpreter<'a> {
 impl<'a> Interpreter<'a> {
     /// An interpreter at power-on state.
     pub fn new(machine: &'a Machine, dialect: &'a Dialect, opts: Options) -> Interpreter<'a> {
-        let axis_words: Vec<AxisWord> = machine
+        let mut axis_words: Vec<AxisWord> = machine
             .axes
             .iter()
             .map(|a| AxisWord::of(a.letter, dialect))
             .collect();
+        let mut rest = 0;
+        for a in axis_words.iter_mut().rev() {
+            rest |= a.mask;
+            a.rest = rest;
+        }
         Interpreter {
             machine,
             dialect,

@@ -227,6 +227,9 @@ impl Interpreter<'_> {
         };
         let present = w.present();
         for (i, a) in self.axis_words.iter().enumerate() {
+            if present & a.rest == 0 {
+                break;
+            }
             if present & a.mask == 0 {
                 continue;
             }
