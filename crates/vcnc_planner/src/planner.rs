@@ -78,6 +78,8 @@ struct Pending {
     /// The tangent at the end of an arc, unit to rounding (a line's is
     /// its direction, in its path: see [`Pending::end_tangent`]).
     arc_end: Vector,
+    /// |end tangent|² ([`AxisLimits::norm2`]), for the corner after it.
+    end_norm2: f64,
     /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
     smooth_mm: f64,
 }
@@ -337,6 +339,8 @@ impl<T: Timeline> Planner<T> {
             Shape::Line(_) => None,
             Shape::Arc(_) => Some(path.tangent(path.len)),
         };
+        let start_norm2 = self.lim.norm2(u_start);
+        let end_norm2 = arc_end.as_ref().map_or(start_norm2, |t| self.lim.norm2(t));
         let corner_tolerance_mm =
             if self.smooth_next > 0.0 && self.window.back().is_some_and(|p| p.smooth_mm > 0.0) {
                 self.smooth_next
@@ -349,7 +353,7 @@ impl<T: Timeline> Planner<T> {
             len: path.len,
             tol_mm: corner_tolerance_mm,
         };
-        let cap = self.corner_cap(&next, u_start).min(v_max);
+        let cap = self.corner_cap(&next, (u_start, start_norm2)).min(v_max);
         let from_rest = if exact_only() {
             Ok(kin.reach_capped(0.0, path.len, cap))
         } else {
@@ -380,6 +384,7 @@ impl<T: Timeline> Planner<T> {
                 entry_max: s_max,
                 entry_bounds: s_bounds,
                 arc_end: s_arc_end,
+                end_norm2: s_end_norm2,
                 smooth_mm: s_smooth,
             } = slot;
             // A line fills a third of a path's room (sized for an arc):
@@ -407,6 +412,7 @@ impl<T: Timeline> Planner<T> {
             if let Some(t) = arc_end {
                 *s_arc_end = t;
             }
+            *s_end_norm2 = end_norm2;
             *s_smooth = smooth_mm;
         } else {
             self.window.push_back(Pending {
@@ -424,6 +430,7 @@ impl<T: Timeline> Planner<T> {
                 entry_max,
                 entry_bounds,
                 arc_end: arc_end.unwrap_or_default(),
+                end_norm2,
                 smooth_mm,
             });
         }
@@ -435,7 +442,7 @@ impl<T: Timeline> Planner<T> {
 
     /// The highest speed at the junction between the newest segment in
     /// the window and `seg`; decides how a G99 junction ends.
-    fn corner_cap(&mut self, seg: &Next, u_start: &Vector) -> f64 {
+    fn corner_cap(&mut self, seg: &Next, (u_start, start_norm2): (&Vector, f64)) -> f64 {
         // Between two smoothed G01 moves the corner tolerance is G05.1's E.
         let tol = seg.tol_mm;
         let lim = &self.lim;
@@ -459,7 +466,15 @@ impl<T: Timeline> Planner<T> {
         // Most corners are shown to be free without normalising the
         // tangents; the others are worked out in full.
         let u_end = prev.end_tangent();
-        let v = if !exact_only() && corner_is_free(lim, u_end, u_start, &corner) {
+        let free = || {
+            corner_is_free(
+                lim,
+                (u_end, prev.end_norm2),
+                (u_start, start_norm2),
+                &corner,
+            )
+        };
+        let v = if !exact_only() && free() {
             f64::INFINITY
         } else {
             let (e_end, e_start) = (Unit::new(lim, u_end), Unit::new(lim, u_start));
