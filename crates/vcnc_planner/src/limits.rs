@@ -64,6 +64,10 @@ pub struct AxisLimits {
     pub min_accel: f64,
     /// The smallest jerk of any axis.
     pub min_jerk: f64,
+    /// Whether [`corner_is_free`] may use `min_accel` and `min_jerk`
+    /// (figures within 1e±30, the jerk only when finite): they are the
+    /// machine's, so this is settled once rather than at every corner.
+    pub(crate) corner_limits_ordinary: bool,
 }
 
 impl AxisLimits {
@@ -80,6 +84,7 @@ impl AxisLimits {
             letters: machine.axes.iter().map(|a| a.letter).collect(),
             min_accel: f64::INFINITY,
             min_jerk: f64::INFINITY,
+            corner_limits_ordinary: false,
         };
         for (i, a) in machine.axes.iter().enumerate().take(MAX_AXES) {
             l.rapid[i] = a.rapid_mm_per_min / 60.0;
@@ -93,7 +98,22 @@ impl AxisLimits {
         }
         l.min_accel = l.n_min(&l.accel);
         l.min_jerk = l.n_min(&l.jerk);
+        l.corner_limits_ordinary =
+            ordinary(l.min_accel) && (ordinary(l.min_jerk) || !finite(l.min_jerk));
         l
+    }
+
+    /// |u|² over the machine's axes, summed in axis order: what
+    /// [`corner_is_free`] takes with each tangent, worked out once per
+    /// move when it is pushed (its end tangent is asked again at the
+    /// corner after it).
+    #[inline]
+    pub(crate) fn norm2(&self, u: &Vector) -> f64 {
+        let mut n = 0.0;
+        for x in u.iter().take(self.n) {
+            n += x * x;
+        }
+        n
     }
 
     /// The smallest of `v` over the machine's axes.
@@ -229,6 +249,13 @@ pub(crate) struct Corner<'a> {
     pub v_cap: f64,
 }
 
+/// `x` within 1e±30: figures whose products in [`corner_is_free`] stay
+/// normal.
+#[inline]
+fn ordinary(x: f64) -> bool {
+    (1e-30..=1e30).contains(&x)
+}
+
 /// Whether [`corner_speed_units`] of the tangents `u1` and `u2`, once
 /// normalised, is infinite (the corner is faster than either move may go),
 /// shown without normalising them and without a square root or a
@@ -262,25 +289,30 @@ pub(crate) struct Corner<'a> {
 /// under a finite jerk) each with a margin of 1e-9, far above the
 /// rounding of either computation. Figures within 1e±30 keep every
 /// product normal; out of it, the answer is false.
-#[inline]
-pub(crate) fn corner_is_free(l: &AxisLimits, u1: &Vector, u2: &Vector, c: &Corner) -> bool {
-    let ordinary = |x: f64| (1e-30..=1e30).contains(&x);
+///
+/// Each tangent comes with |u|² ([`AxisLimits::norm2`]): the planner sums
+/// a move's once, when it is pushed, and the function is inlined into the
+/// push (a call passes the corner through memory, read back at once).
+#[inline(always)]
+pub(crate) fn corner_is_free(
+    l: &AxisLimits,
+    (u1, n1): (&Vector, f64),
+    (u2, n2): (&Vector, f64),
+    c: &Corner,
+) -> bool {
     let jerk_limited = finite(l.min_jerk);
-    let inputs = ordinary(c.tol_mm)
+    let inputs = l.corner_limits_ordinary
+        && ordinary(c.tol_mm)
         && ordinary(c.half_len)
         && ordinary(c.v_cap)
-        && ordinary(l.min_accel)
-        && (ordinary(l.min_jerk) || !jerk_limited)
         && c.vlim_min >= c.v_cap;
-    let (mut n1, mut n2, mut dot) = (0.0, 0.0, 0.0);
-    for (a, b) in u1.iter().zip(u2).take(l.n) {
-        n1 += a * a;
-        n2 += b * b;
-        dot += a * b;
-    }
     let unit = |n: f64| (1.0 - 1e-12..=1.0 + 1e-12).contains(&n);
     if !(inputs && unit(n1) && unit(n2)) {
         return false;
+    }
+    let mut dot = 0.0;
+    for (a, b) in u1.iter().zip(u2).take(l.n) {
+        dot += a * b;
     }
     let (chord, sum) = (n1 + n2 - 2.0 * dot, n1 + n2 + 2.0 * dot);
     let sin2 = 0.25 * (chord * (1.0 + 1e-6) + 1e-13);
@@ -428,7 +460,10 @@ mod tests {
                 None => v_cap,
             };
             let c = Corner { tol_mm, half_len, vlim: &l.max_feed, vlim_min: 1e9, v_cap };
-            if u1.iter().chain(&u2).all(|x| x.is_finite()) && corner_is_free(&l, &u1, &u2, &c) {
+            let (n1, n2) = (l.norm2(&u1), l.norm2(&u2));
+            if u1.iter().chain(&u2).all(|x| x.is_finite())
+                && corner_is_free(&l, (&u1, n1), (&u2, n2), &c)
+            {
                 let v = corner_speed_units(&l, &e1, &e2, &c);
                 proptest::prop_assert!(v.is_infinite(), "{v}");
             }
@@ -451,7 +486,12 @@ mod tests {
                 vlim_min: l.n_min(&l.max_feed),
                 v_cap: 25.0,
             };
-            assert!(corner_is_free(&l, &u1, &u2, &c));
+            assert!(corner_is_free(
+                &l,
+                (&u1, l.norm2(&u1)),
+                (&u2, l.norm2(&u2)),
+                &c
+            ));
             assert!(
                 corner_speed_units(&l, &Unit::new(&l, &u1), &Unit::new(&l, &u2), &c).is_infinite()
             );

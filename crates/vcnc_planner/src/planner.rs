@@ -78,6 +78,9 @@ struct Pending {
     /// The tangent at the end of an arc, unit to rounding (a line's is
     /// its direction, in its path: see [`Pending::end_tangent`]).
     arc_end: Vector,
+    /// |end tangent|² ([`AxisLimits::norm2`]), for the corner after it
+    /// (NaN for a rapid, whose corners are not worked out).
+    end_norm2: f64,
     /// G05.1 tolerance of a smoothed G01 (0: not smoothed).
     smooth_mm: f64,
 }
@@ -337,6 +340,13 @@ impl<T: Timeline> Planner<T> {
             Shape::Line(_) => None,
             Shape::Arc(_) => Some(path.tangent(path.len)),
         };
+        // A rapid has no corner worked out on either side: no norms.
+        let (start_norm2, end_norm2) = if kind == MoveKind::Cut {
+            let n = self.lim.norm2(u_start);
+            (n, arc_end.as_ref().map_or(n, |t| self.lim.norm2(t)))
+        } else {
+            (f64::NAN, f64::NAN)
+        };
         let corner_tolerance_mm =
             if self.smooth_next > 0.0 && self.window.back().is_some_and(|p| p.smooth_mm > 0.0) {
                 self.smooth_next
@@ -349,7 +359,7 @@ impl<T: Timeline> Planner<T> {
             len: path.len,
             tol_mm: corner_tolerance_mm,
         };
-        let cap = self.corner_cap(&next, u_start).min(v_max);
+        let cap = self.corner_cap(&next, (u_start, start_norm2)).min(v_max);
         let from_rest = if exact_only() {
             Ok(kin.reach_capped(0.0, path.len, cap))
         } else {
@@ -380,6 +390,7 @@ impl<T: Timeline> Planner<T> {
                 entry_max: s_max,
                 entry_bounds: s_bounds,
                 arc_end: s_arc_end,
+                end_norm2: s_end_norm2,
                 smooth_mm: s_smooth,
             } = slot;
             // A line fills a third of a path's room (sized for an arc):
@@ -407,6 +418,7 @@ impl<T: Timeline> Planner<T> {
             if let Some(t) = arc_end {
                 *s_arc_end = t;
             }
+            *s_end_norm2 = end_norm2;
             *s_smooth = smooth_mm;
         } else {
             self.window.push_back(Pending {
@@ -424,6 +436,7 @@ impl<T: Timeline> Planner<T> {
                 entry_max,
                 entry_bounds,
                 arc_end: arc_end.unwrap_or_default(),
+                end_norm2,
                 smooth_mm,
             });
         }
@@ -435,7 +448,7 @@ impl<T: Timeline> Planner<T> {
 
     /// The highest speed at the junction between the newest segment in
     /// the window and `seg`; decides how a G99 junction ends.
-    fn corner_cap(&mut self, seg: &Next, u_start: &Vector) -> f64 {
+    fn corner_cap(&mut self, seg: &Next, (u_start, start_norm2): (&Vector, f64)) -> f64 {
         // Between two smoothed G01 moves the corner tolerance is G05.1's E.
         let tol = seg.tol_mm;
         let lim = &self.lim;
@@ -459,7 +472,15 @@ impl<T: Timeline> Planner<T> {
         // Most corners are shown to be free without normalising the
         // tangents; the others are worked out in full.
         let u_end = prev.end_tangent();
-        let v = if !exact_only() && corner_is_free(lim, u_end, u_start, &corner) {
+        let free = || {
+            corner_is_free(
+                lim,
+                (u_end, prev.end_norm2),
+                (u_start, start_norm2),
+                &corner,
+            )
+        };
+        let v = if !exact_only() && free() {
             f64::INFINITY
         } else {
             let (e_end, e_start) = (Unit::new(lim, u_end), Unit::new(lim, u_start));
@@ -899,7 +920,8 @@ mod tests {
     /// Plans `events` twice in step, with the shortcuts and without, and
     /// checks after every event that the look-ahead holds the same figures
     /// (the newest move's entry bound, if left as bounds, around the full
-    /// figure); then that every planned move has the same bits.
+    /// figure, and each move's |end tangent|² as summed afresh); then that
+    /// every planned move has the same bits.
     fn plan_both(machine: &Machine, shape: ProfileShape, events: &[Event]) -> Result<(), String> {
         let mut fast = Planner::with_profile(machine, shape, Bits::default());
         let mut exact = Planner::with_profile(machine, shape, Bits::default());
@@ -917,6 +939,15 @@ mod tests {
                     None => f.entry_max.to_bits() == x.entry_max.to_bits(),
                     Some((lo, hi)) => lo <= x.entry_max && x.entry_max <= hi,
                 };
+                // The |u|² kept for the next corner is its end tangent's,
+                // in a slot a line or an arc left alike.
+                let norm = fast.lim.norm2(f.end_tangent());
+                if f.seg.kind == MoveKind::Cut && f.end_norm2.to_bits() != norm.to_bits() {
+                    return Err(format!(
+                        "event {k}, move {i}: |u|² {} kept, {norm} now",
+                        f.end_norm2
+                    ));
+                }
                 if !same || f.entry_cap.to_bits() != x.entry_cap.to_bits() {
                     return Err(format!(
                         "event {k}, move {i}: {:?} {:?} against {} {}",
@@ -986,10 +1017,19 @@ mod tests {
     proptest! {
         /// The lazy entry bounds (`Kin::reach_from_rest`) and the corners
         /// shown free without normalising (`corner_is_free`) plan every
-        /// move to the same bits as working everything out.
+        /// move to the same bits as working everything out. A short
+        /// look-ahead commits moves along the way, so that new ones are
+        /// written into the slots committed lines and arcs left.
         #[test]
-        fn the_shortcuts_plan_what_the_full_figures_plan(events in chain(), jerk: bool) {
-            let machine = Machine::default_mill();
+        fn the_shortcuts_plan_what_the_full_figures_plan(
+            events in chain(),
+            jerk: bool,
+            short_lookahead: bool,
+        ) {
+            let mut machine = Machine::default_mill();
+            if short_lookahead {
+                machine.motion.lookahead_blocks = 3;
+            }
             let shape = if jerk { ProfileShape::Jerk } else { ProfileShape::Trapezoid };
             if let Err(e) = plan_both(&machine, shape, &events) {
                 return Err(TestCaseError::fail(e));
