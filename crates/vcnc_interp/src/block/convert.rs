@@ -94,16 +94,24 @@ impl Interpreter<'_> {
     /// that otherwise writes points — the least-increment trap (`X35` is
     /// 0.035 mm). A program that never writes a point is consistent (tape
     /// format) and silent; so are whole-unit dialects.
+    #[inline]
     pub(crate) fn note_points(&mut self, w: &Words<'_>) {
         if !self.points.active {
             return;
         }
-        // The common case costs a few mask tests: no point-less length, and
-        // points already seen (or none in this block either); first on all
-        // letters, which spares the letters' sorting in most blocks.
+        // The common case costs a few mask tests, in the caller: no
+        // point-less length, and points already seen (or none in this
+        // block either); first on all letters, which spares the letters'
+        // sorting in most blocks.
         if w.plain_values() == 0 && (self.points.seen_point || w.pointed() == 0) {
             return;
         }
+        self.note_points_by_letter(w);
+    }
+
+    /// [`note_points`](Self::note_points) past its common case.
+    #[inline(never)]
+    fn note_points_by_letter(&mut self, w: &Words<'_>) {
         let extra = self.length_letters(w);
         let mask = self.axis_mask | extra;
         let plain = w.plain_values() & mask;

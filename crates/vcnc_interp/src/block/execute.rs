@@ -420,8 +420,18 @@ impl Interpreter<'_> {
 
     /// Step 2a: F — a feed, a thread lead under G32/G33, or a code's own
     /// value when the code reads F (lathe G04 F seconds, G31 F percent).
+    #[inline]
     fn feed_word(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        let Some(f) = w.get(b'F') else { return Ok(()) };
+        // Most blocks have no F: that test in the caller, the rest apart.
+        match w.get(b'F') {
+            Some(f) => self.feed_word_given(w, f),
+            None => Ok(()),
+        }
+    }
+
+    /// [`feed_word`](Self::feed_word) for the block's F word `f`.
+    #[inline(never)]
+    fn feed_word_given(&mut self, w: &Words<'_>, f: vcnc_syntax::Word) -> Result<(), Diagnostic> {
         if w.code_letters() & bit(b'F') != 0 {
             return Ok(());
         }

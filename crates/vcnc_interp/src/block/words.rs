@@ -88,9 +88,26 @@ impl<'b> Words<'b> {
 
     /// Collects and checks the block's words. The lexer has already
     /// indexed the letters; only codes, extended addresses and repeated
-    /// letters need a pass over the words.
-    #[inline]
+    /// letters need a pass over the words: a block of single letters
+    /// other than G and M, most blocks, is done with one test here, in
+    /// the caller.
+    #[inline(always)]
     pub fn fill(
+        &mut self,
+        dialect: &Dialect,
+        machine: &Machine,
+        axis_mask: u32,
+    ) -> Result<(), Diagnostic> {
+        if self.block.is_plain() {
+            return Ok(());
+        }
+        self.fill_codes(dialect, machine, axis_mask)
+    }
+
+    /// [`fill`](Self::fill) for a block with codes, extended addresses or
+    /// a repeated letter.
+    #[inline(never)]
+    fn fill_codes(
         &mut self,
         dialect: &Dialect,
         machine: &Machine,
@@ -98,9 +115,6 @@ impl<'b> Words<'b> {
     ) -> Result<(), Diagnostic> {
         let same_group = machine.params.same_group_in_block;
         let block = self.block;
-        if block.is_plain() {
-            return Ok(());
-        }
         let mut seen = 0u32;
         for (k, word) in block.words().iter().enumerate() {
             match word.addr.as_letter() {

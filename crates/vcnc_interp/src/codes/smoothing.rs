@@ -102,6 +102,7 @@ impl Interpreter<'_> {
     }
 
     /// Before a G01: what smoothing it gets, reported when it changes.
+    #[inline]
     pub(crate) fn smoothing_before_linear(&mut self) {
         let s = self.state.smoothing;
         let suspended = matches!(
@@ -119,6 +120,7 @@ impl Interpreter<'_> {
         }
     }
 
+    #[inline(never)]
     fn report_smoothing(&mut self, tolerance_mm: f64) {
         self.state.smoothing.reported_mm = tolerance_mm;
         self.emit(|loc| Event::Smoothing {

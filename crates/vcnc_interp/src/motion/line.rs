@@ -90,6 +90,7 @@ impl Interpreter<'_> {
 
     /// The current feed (clamped to the machine's maximum), or E301 when
     /// it is zero.
+    #[inline]
     pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
         let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
         if f <= 0.0 {
