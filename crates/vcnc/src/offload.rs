@@ -12,8 +12,9 @@
 //! The channel is bounded and the emptied chunks come back to be refilled,
 //! so memory stays flat and nothing is allocated per chunk once the first
 //! few exist. When the worker's sink is done (the reader of stdout went
-//! away), the flag tells the interpreter, which stops after its next block; the
-//! worker drops what still arrives so the interpreter never waits on it.
+//! away), the flag tells the interpreter, which stops after its next
+//! block; the worker drops what still arrives so the interpreter never
+//! waits on it.
 //! On one core, or if no thread can be started, the sink runs in line.
 
 use std::sync::Arc;
@@ -24,10 +25,10 @@ use vcnc_interp::{Event, Sink};
 
 /// Events a chunk carries: what the interpreter gathers before it hands
 /// them over, so that a batch it hands over (a chunk's worth of whole
-/// blocks, rarely more) is a chunk. Large enough
-/// that the two channel operations a chunk costs vanish beside its events
-/// (~1 µs against ~0.3 ms of interpretation), small enough that the chunks
-/// in flight stay a few hundred KB.
+/// blocks, rarely more) is a chunk. Large enough that the two channel
+/// operations a chunk costs vanish beside its events (~1 µs against
+/// ~0.3 ms of interpretation), small enough that the chunks in flight stay
+/// a few hundred KB.
 const CHUNK: usize = vcnc_interp::HAND_OVER;
 
 /// Chunks the interpreter may run ahead of the worker.

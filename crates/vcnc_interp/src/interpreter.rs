@@ -637,9 +637,7 @@ impl<'a> Interpreter<'a> {
             let made = self.pending.len() - mark;
             self.executed = self.executed.saturating_add(made.saturating_sub(1) as u64);
         }
-        if self.pending.len() >= HAND_OVER {
-            self.hand_over(sink);
-        }
+        self.hand_over_when_full(sink);
         // Under G66 a block that moves calls the macro after its move.
         let modal_call =
             self.state.modal.macro_call && words.any(self.axis_mask) && words.axis_user.is_none();
@@ -799,6 +797,15 @@ impl<'a> Interpreter<'a> {
     pub(crate) fn hand_over<S: Sink>(&mut self, sink: &mut S) {
         if !self.pending.is_empty() {
             sink.take_events(&mut self.pending);
+        }
+    }
+
+    /// After a block or statement that succeeded: hands the waiting events
+    /// over once [`HAND_OVER`] have gathered.
+    #[inline]
+    pub(crate) fn hand_over_when_full<S: Sink>(&mut self, sink: &mut S) {
+        if self.pending.len() >= HAND_OVER {
+            self.hand_over(sink);
         }
     }
 

@@ -133,17 +133,11 @@ impl AxisLimits {
     }
 
     /// Acceleration and jerk along a path whose axes move at most `share`
-    /// of the path speed.
-    pub fn kin_along(&self, share: &Vector) -> Kin {
-        Kin {
-            accel: self.along(&self.accel, share),
-            jerk: self.along(&self.jerk, share),
-        }
-    }
-
-    /// [`AxisLimits::kin_along`] and `along(speed, share)` in one pass over
-    /// the axes (each minimum is taken in the same order, so the results
-    /// are those of the separate calls): what every move needs.
+    /// of the path speed, and `along(speed, share)`: the three in one pass
+    /// over the axes, each minimum taken in the order [`along`] takes it,
+    /// so each is what `along` gives (what every move needs).
+    ///
+    /// [`along`]: AxisLimits::along
     pub(crate) fn kin_and_speed_along(&self, speed: &Vector, share: &Vector) -> (Kin, f64) {
         let (mut accel, mut jerk, mut v) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
         for i in 0..self.n {
@@ -408,6 +402,24 @@ mod tests {
 
     fn limits() -> AxisLimits {
         AxisLimits::new(&Machine::default_mill(), false)
+    }
+
+    #[test]
+    fn the_one_pass_limits_are_those_of_along() {
+        let l = limits();
+        let speed = l.rapid;
+        for share in [
+            [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [0.6, 0.8, 0.0, 0.0, 0.0, 0.0],
+            [0.3, 0.2, 0.93, 0.0, 0.0, 0.0],
+            [1e-15, 0.0, 1.0, 0.0, 0.0, 0.0],
+            [0.0; MAX_AXES],
+        ] {
+            let (kin, v) = l.kin_and_speed_along(&speed, &share);
+            assert_eq!(kin.accel.to_bits(), l.along(&l.accel, &share).to_bits());
+            assert_eq!(kin.jerk.to_bits(), l.along(&l.jerk, &share).to_bits());
+            assert_eq!(v.to_bits(), l.along(&speed, &share).to_bits());
+        }
     }
 
     #[test]

@@ -223,16 +223,11 @@ impl Interpreter<'_> {
     /// coordinate. Under G16 the plane's first and second axis words are a
     /// radius and an angle.
     pub(crate) fn target(&mut self, w: &Words<'_>, incremental: bool) -> Goal {
-        // The flags are locals, not fields of `goal` updated in place: the
-        // caller reads `named` and `all_incremental` back as one 8-byte
-        // word, which had to wait for their last 4- and 1-byte stores.
+        // Locals, the goal built at the end: the caller reads `named` and
+        // `all_incremental` back as one 8-byte word, which waited for their
+        // last 4- and 1-byte stores when they were updated in place.
         let (mut named, mut all_incremental) = (0u32, true);
-        let mut goal = Goal {
-            prog: self.state.prog,
-            named: 0,
-            delta: Pos::default(),
-            all_incremental: true,
-        };
+        let (mut prog, mut delta) = (self.state.prog, Pos::default());
         let present = w.present();
         for (i, a) in self.axis_words.iter().enumerate() {
             if present & a.rest == 0 {
@@ -250,25 +245,26 @@ impl Interpreter<'_> {
             };
             let v = self.axis_mm(a, &word);
             if inc {
-                goal.prog.set(i, self.state.prog.get(i) + v);
-                goal.delta.set(i, v);
+                prog.set(i, self.state.prog.get(i) + v);
+                delta.set(i, v);
             } else {
-                goal.prog.set(i, v);
+                prog.set(i, v);
                 all_incremental = false;
             }
             named |= 1 << i;
         }
         if self.state.modal.polar {
-            let polar = self.polar_target(w, incremental, &mut goal.prog);
+            let polar = self.polar_target(w, incremental, &mut prog);
             if polar != 0 {
                 named |= polar;
                 all_incremental = false;
             }
         }
         Goal {
+            prog,
             named,
+            delta,
             all_incremental,
-            ..goal
         }
     }
 

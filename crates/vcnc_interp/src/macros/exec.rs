@@ -50,9 +50,7 @@ impl Interpreter<'_> {
             Ok(_) => {
                 self.tables.commit();
                 self.report_frame();
-                if self.pending.len() >= crate::interpreter::HAND_OVER {
-                    self.hand_over(sink);
-                }
+                self.hand_over_when_full(sink);
             }
             Err(_) => {
                 self.pending.truncate(mark);

@@ -163,25 +163,25 @@ impl Interpreter<'_> {
         // 1 frame
         let (prog_to, to) = self.machine_target(mv.to);
         let kind = self.machine_kind(&mv)?;
-        // 2 compensation: from the uncompensated point.
-        if self.comp.engaged() {
-            let mm = MachineMove {
-                kind,
-                from: self.state.nominal,
-                to,
-                exact_stop: mv.exact_stop,
-            };
+        // 2 compensation works from the uncompensated point, the rest
+        // from where the tool is.
+        let engaged = self.comp.engaged();
+        let mm = MachineMove {
+            kind,
+            from: if engaged {
+                self.state.nominal
+            } else {
+                self.state.pos
+            },
+            to,
+            exact_stop: mv.exact_stop,
+        };
+        if engaged {
             return self.commit_compensated(prog_to, mm, &mv, w);
         }
         // 3 travel, before anything changes: a move that leaves the
         // machine's limits leaves the state as the block found it (which a
         // plain move block relies on, see `Interpreter::block`).
-        let mm = MachineMove {
-            kind,
-            from: self.state.pos,
-            to,
-            exact_stop: mv.exact_stop,
-        };
         if self.travel_limited {
             self.travel_alarm(&mm, mv.cmd, Some(w))?;
         }
