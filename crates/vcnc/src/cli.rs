@@ -100,8 +100,11 @@ pub enum TimeFormat {
 pub enum ProfileArg {
     /// Constant acceleration ramps.
     Trapezoid,
-    /// Jerk-limited S-curve ramps.
+    /// Jerk-limited S-curve ramps in every block.
     Jerk,
+    /// Trapezoid ramps through a moving-average filter (acceleration and
+    /// deceleration after interpolation).
+    Filter,
 }
 
 impl From<ProfileArg> for vcnc_planner::ProfileShape {
@@ -109,6 +112,7 @@ impl From<ProfileArg> for vcnc_planner::ProfileShape {
         match p {
             ProfileArg::Trapezoid => vcnc_planner::ProfileShape::Trapezoid,
             ProfileArg::Jerk => vcnc_planner::ProfileShape::Jerk,
+            ProfileArg::Filter => vcnc_planner::ProfileShape::Filter,
         }
     }
 }

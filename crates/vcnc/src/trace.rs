@@ -8,10 +8,12 @@
 //! ```
 //!
 //! Units: s, mm, mm/s, mm/s². The last row is the end point at rest.
+//! Under the `filter` profile the rows are the plan after the moving
+//! average (acceleration and deceleration after interpolation).
 
 use std::io::Write;
 use vcnc_interp::{Event, Machine, Sink};
-use vcnc_planner::{Planner, ProfileShape, Sample, SampleSink, Sampler};
+use vcnc_planner::{Planner, ProfileShape, Sample, SampleSink, Sampler, Smoothed, filter_time};
 
 /// Formats samples as CSV rows.
 pub struct CsvRows<W: Write> {
@@ -65,7 +67,7 @@ impl<W: Write> SampleSink for CsvRows<W> {
 
 /// The sink behind `--format trace`.
 pub struct TraceSink<W: Write> {
-    planner: Planner<Sampler<CsvRows<W>>>,
+    planner: Planner<Sampler<Smoothed<CsvRows<W>>>>,
 }
 
 impl<W: Write> TraceSink<W> {
@@ -96,8 +98,10 @@ impl<W: Write> TraceSink<W> {
             buf: Vec::with_capacity(1 << 17),
             error,
         };
-        let sampler = Sampler::new(period_s, machine.start, rows);
         let shape = profile.unwrap_or(machine.motion.profile);
+        // The filter profile's moving average (a pass-through otherwise).
+        let filtered = Smoothed::new(filter_time(machine, shape), period_s, machine.start, rows);
+        let sampler = Sampler::new(period_s, machine.start, filtered);
         TraceSink {
             planner: Planner::with_profile(machine, shape, sampler),
         }
@@ -109,13 +113,13 @@ impl<W: Write> Sink for TraceSink<W> {
         self.planner.event(event);
     }
     fn is_done(&self) -> bool {
-        self.planner.timeline().sink().error.is_some()
+        self.planner.timeline().sink().sink().error.is_some()
     }
     fn finish(&mut self) -> std::io::Result<()> {
         self.planner.flush();
         let sampler = self.planner.timeline_mut();
         sampler.finish();
-        let rows = sampler.sink_mut();
+        let rows = sampler.sink_mut().sink_mut();
         rows.flush_buf();
         if let Some(e) = rows.error.take() {
             return Err(e);

@@ -115,7 +115,7 @@ fn check_bracket_prints_the_summary() {
         "\
 program    examples/bracket.nc (syntec dialect, generic mill)
 result     ended by M30
-cycle time 41.9s (planned: jerk profile, look-ahead 200 blocks)
+cycle time 41.7s (planned: filter profile, look-ahead 200 blocks)
 dist/feed  33.7s (distance/feed estimate, no acceleration)
 rapid      167.928 mm
 cutting    349.540 mm

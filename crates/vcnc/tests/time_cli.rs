@@ -118,3 +118,28 @@ fn a_trace_has_one_row_per_period_and_ends_at_rest() {
         );
     }
 }
+
+/// `--profile` picks the planner's profile; the built-in mill's own is
+/// `filter` (trapezoids through a moving average after interpolation),
+/// which only adds its run-out to the trapezoid plan, at each stop.
+#[test]
+fn time_takes_each_profile_and_the_mill_filters_by_default() {
+    let total = |args: &[&str]| {
+        let mut all = vec!["time", "examples/bracket.nc", "--format", "json"];
+        all.extend_from_slice(args);
+        let o = vcnc(&all);
+        assert_eq!(o.status.code(), Some(0));
+        let v: Value = serde_json::from_str(String::from_utf8(o.stdout).unwrap().trim()).unwrap();
+        f(&v, "total_s")
+    };
+    let default = total(&[]);
+    let filter = total(&["--profile", "filter"]);
+    let trapezoid = total(&["--profile", "trapezoid"]);
+    let jerk = total(&["--profile", "jerk"]);
+    assert_eq!(default, filter);
+    assert!(trapezoid < filter, "{trapezoid} {filter}");
+    assert!(filter != jerk, "{filter} {jerk}");
+    let o = vcnc(&["time", "examples/bracket.nc", "--profile", "filter"]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("(generic mill, filter profile)"), "{text}");
+}

@@ -21,16 +21,22 @@ pub const MAX_LOOKAHEAD_BLOCKS: u32 = 10_000;
 pub enum Profile {
     /// Constant acceleration ramps (infinite jerk).
     Trapezoid,
-    /// Jerk-limited ramps (S-curve, seven phases).
+    /// Jerk-limited ramps (S-curve, seven phases) in every block, each
+    /// starting and ending at zero acceleration.
     Jerk,
+    /// Acceleration and deceleration after interpolation (Fanuc's
+    /// bell-shaped type): the trapezoid plan passed through a moving
+    /// average of T = a/j, the slowest axis' (`docs/planner.md`).
+    Filter,
 }
 
 impl Profile {
-    /// `"trapezoid"` or `"jerk"`.
+    /// `"trapezoid"`, `"jerk"` or `"filter"`.
     pub fn as_str(self) -> &'static str {
         match self {
             Profile::Trapezoid => "trapezoid",
             Profile::Jerk => "jerk",
+            Profile::Filter => "filter",
         }
     }
 }
@@ -181,7 +187,7 @@ mod tests {
     #[test]
     fn the_built_in_machines_define_their_motion() {
         let mill = Machine::from_toml(DEFAULT_MILL_TOML).unwrap();
-        assert_eq!(mill.motion.profile, Profile::Jerk);
+        assert_eq!(mill.motion.profile, Profile::Filter);
         assert_eq!(mill.motion.high_speed.len(), 6);
         assert_eq!(mill.motion.high_speed_set(1).corner_tolerance_mm, 0.002);
         let lathe = Machine::from_toml(DEFAULT_LATHE_TOML).unwrap();
@@ -209,7 +215,7 @@ mod tests {
             ("p = 5\n", "p = 6\n", "high_speed"),
             ("p = 5\n", "p = 4\n", "twice"),
             ("jerk_mm_s3 = 40000.0", "jerk_mm_s3 = 0.0", "jerk_mm_s3"),
-            ("profile = \"jerk\"", "profile = \"bell\"", "profile"),
+            ("profile = \"filter\"", "profile = \"bell\"", "profile"),
         ];
         for (from, to, says) in cases {
             assert!(DEFAULT_MILL_TOML.contains(from), "{from}");

@@ -90,6 +90,13 @@ fn plan_surfacing_jerk(bencher: Bencher, blocks: usize) {
     plan(bencher, blocks, ProfileShape::Jerk);
 }
 
+/// The built-in mill's own profile: the trapezoid plan and a run-out
+/// after each stop.
+#[divan::bench(args = [1_000_000], sample_count = 5)]
+fn plan_surfacing_filter(bencher: Bencher, blocks: usize) {
+    plan(bencher, blocks, ProfileShape::Filter);
+}
+
 /// About 10 minutes of surfacing (F1500, 0.5 mm segments: 50 blocks/s),
 /// sampled every millisecond into a sink that only sums.
 #[divan::bench(sample_count = 5)]

@@ -8,7 +8,8 @@
 //!
 //! ```text
 //! events ─▶ Planner (Sink) ─▶ Timeline ─┬─▶ CycleTime   (vcnc time, check)
-//!                                        └─▶ Sampler     (run --format trace)
+//!                                        └─▶ Sampler ─▶ Smoothed (run --format trace;
+//!                                                           the filter profile's average)
 //! ```
 
 mod limits;
@@ -22,11 +23,11 @@ mod trace;
 
 pub use limits::{ARC_NORMAL_SHARE, ARC_TANGENT_SHARE, AxisLimits, corner_speed};
 pub use path::{Path, Shape, Vector};
-pub use planner::Planner;
+pub use planner::{Planner, filter_time};
 pub use ramp::{Kin, Profile, Ramp};
 pub use time::CycleTime;
 pub use timeline::{Attr, AxesMove, MoveKind, Pause, PauseKind, Segment, Timeline};
-pub use trace::{Sample, SampleSink, Sampler};
+pub use trace::{Sample, SampleSink, Sampler, Smoothed};
 pub use vcnc_core::motion::Profile as ProfileShape;
 
 /// Plans a whole run: feed the events to the returned planner, then call

@@ -116,6 +116,21 @@ impl AxisLimits {
         n
     }
 
+    /// The time constant of the `filter` profile: the longest a/j of the
+    /// machine's axes (0 when no axis has a finite, positive jerk). A
+    /// moving average of T turns a ramp of acceleration a into one whose
+    /// acceleration rises at a/T ≤ j; one filter for all axes keeps the
+    /// path (each axis with its own T would bend it).
+    pub fn filter_time(machine: &Machine) -> f64 {
+        machine
+            .axes
+            .iter()
+            .take(MAX_AXES)
+            .map(|a| a.accel_mm_s2 / a.jerk_mm_s3)
+            .filter(|t| t.is_finite() && *t > 0.0)
+            .fold(0.0, f64::max)
+    }
+
     /// The smallest of `v` over the machine's axes.
     pub fn n_min(&self, v: &Vector) -> f64 {
         v.iter().take(self.n).fold(f64::INFINITY, |a, b| a.min(*b))

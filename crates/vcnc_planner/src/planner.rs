@@ -156,6 +156,9 @@ pub struct Planner<T: Timeline> {
     smooth_next: f64,
     /// Moves that could not be timed.
     pub untimed_moves: u64,
+    /// The `filter` profile's time constant (0 under the others): each
+    /// stop waits this long for the moving average to run out.
+    filter_s: f64,
 }
 
 impl<T: Timeline> Planner<T> {
@@ -168,7 +171,9 @@ impl<T: Timeline> Planner<T> {
     pub fn with_profile(machine: &Machine, shape: ProfileShape, out: T) -> Planner<T> {
         let m = &machine.motion;
         let lookahead = usize::try_from(m.lookahead_blocks).unwrap_or(200).max(2);
+        // The filter profile plans trapezoids and smooths them afterwards.
         let lim = AxisLimits::new(machine, shape == ProfileShape::Jerk);
+        let filter_s = filter_time(machine, shape);
         Planner {
             max_feed_min: lim.n_min(&lim.max_feed),
             lim,
@@ -197,6 +202,7 @@ impl<T: Timeline> Planner<T> {
             smoothing_mm: 0.0,
             smooth_next: 0.0,
             untimed_moves: 0,
+            filter_s,
         }
     }
 
@@ -568,7 +574,11 @@ impl<T: Timeline> Planner<T> {
         self.out.segment(&p.seg, &profile);
         self.v_entry = v1;
         let settle = (stops && p.settle_s > 0.0).then(|| (p.settle_s, p.seg.attr.clone()));
+        let run_out = (stops && self.filter_s > 0.0).then(|| p.seg.attr.clone());
         self.window.pop_front();
+        if let Some(attr) = run_out {
+            self.pause(PauseKind::Filter, self.filter_s, attr);
+        }
         if let Some((seconds, attr)) = settle {
             self.pause(PauseKind::InPosition, seconds, attr);
         }
@@ -655,6 +665,9 @@ impl<T: Timeline> Planner<T> {
             duration_s: duration,
             attr: attr.clone(),
         });
+        if self.filter_s > 0.0 {
+            self.pause(PauseKind::Filter, self.filter_s, attr.clone());
+        }
         if settle > 0.0 {
             self.pause(PauseKind::InPosition, settle, attr);
         }
@@ -728,6 +741,16 @@ thread_local! {
     /// In this crate's tests: plan without the shortcuts, every figure
     /// worked out in full, to compare the planner against.
     static EXACT_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// The moving average the `filter` profile passes the plan through, s
+/// ([`AxisLimits::filter_time`]); 0 for the other profiles.
+pub fn filter_time(machine: &Machine, shape: ProfileShape) -> f64 {
+    if shape == ProfileShape::Filter {
+        AxisLimits::filter_time(machine)
+    } else {
+        0.0
+    }
 }
 
 /// Whether to plan without the shortcuts (only ever in tests).

@@ -38,6 +38,9 @@ pub struct CycleTime {
     pub per_file: Vec<(Option<Arc<str>>, f64)>,
     last_tool: usize,
     last_file: usize,
+    /// The last move was a rapid: a filter's run-out after it is rapid
+    /// time.
+    last_rapid: bool,
 }
 
 impl CycleTime {
@@ -93,6 +96,7 @@ impl Timeline for CycleTime {
     fn segment(&mut self, seg: &Segment, profile: &Profile) {
         let t = profile.duration();
         self.moves += 1;
+        self.last_rapid = seg.kind == MoveKind::Rapid;
         match seg.kind {
             MoveKind::Cut => {
                 self.cutting_s += t;
@@ -108,6 +112,7 @@ impl Timeline for CycleTime {
 
     fn axes(&mut self, mv: &AxesMove) {
         self.moves += 1;
+        self.last_rapid = true;
         self.rapid_s += mv.duration_s;
         let mut d2 = 0.0;
         for i in 0..vcnc_core::MAX_AXES {
@@ -124,6 +129,8 @@ impl Timeline for CycleTime {
             PauseKind::ToolChange => self.tool_change_s += p.seconds,
             PauseKind::Spindle => self.spindle_s += p.seconds,
             PauseKind::InPosition => self.in_position_s += p.seconds,
+            PauseKind::Filter if self.last_rapid => self.rapid_s += p.seconds,
+            PauseKind::Filter => self.cutting_s += p.seconds,
         }
         self.add(p.seconds, &p.attr);
     }

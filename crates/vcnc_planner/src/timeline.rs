@@ -75,6 +75,10 @@ pub enum PauseKind {
     Spindle,
     /// Settling into the in-position window after an exact stop.
     InPosition,
+    /// The `filter` profile's moving average running out after a stop:
+    /// the machine still moves (the time counts as the stopped move's,
+    /// cutting or rapid), at the stop's position in the commanded plan.
+    Filter,
 }
 
 /// A pause at a fixed position.

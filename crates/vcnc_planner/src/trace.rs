@@ -70,11 +70,7 @@ impl<F: SampleSink> Sampler<F> {
     /// Samples every `period_s` seconds (at least 1 µs), starting at `start`.
     pub fn new(period_s: f64, start: Pos, f: F) -> Sampler<F> {
         Sampler {
-            period: if period_s.is_finite() {
-                period_s.max(1e-6)
-            } else {
-                1e-3
-            },
+            period: sample_period(period_s),
             t0: 0.0,
             k: 0,
             pos: start,
@@ -116,6 +112,140 @@ impl<F: SampleSink> Sampler<F> {
             self.k += 1;
         }
         self.t0 = end;
+    }
+}
+
+/// The period a sampler keeps: at least 1 µs, 1 ms if not finite.
+fn sample_period(period_s: f64) -> f64 {
+    if period_s.is_finite() {
+        period_s.max(1e-6)
+    } else {
+        1e-3
+    }
+}
+
+/// One input sample's position and velocity: what [`Smoothed`] keeps of
+/// the last T.
+#[derive(Debug, Clone, Copy)]
+struct Kept {
+    pos: [f64; MAX_AXES],
+    vel: [f64; MAX_AXES],
+}
+
+/// The `filter` profile at the interpolator's output: every axis' samples
+/// through one moving average of `n` samples (T = n · period), as a
+/// controller's acceleration/deceleration after interpolation filters its
+/// commanded positions. With p and v the planned samples, k the newest and
+/// k − n the one the average drops:
+///
+/// ```text
+///   position      P_k = (p_k + … + p_(k−n+1)) / n
+///   velocity      V_k = (p_k − p_(k−n)) / T      = (P_k − P_(k−1)) / period
+///   acceleration  A_k = (v_k − v_(k−n)) / T      (a corner's jump of v too)
+///   path_jerk     (A_k − A_(k−1)) / period, its part along V_k
+/// ```
+///
+/// The position sum is kept running and worked out afresh every `n`
+/// samples, so rounding does not build up.
+#[derive(Debug)]
+pub struct Smoothed<F: SampleSink> {
+    ring: Vec<Kept>,
+    at: usize,
+    sum: [f64; MAX_AXES],
+    window_s: f64,
+    period_s: f64,
+    acc: [f64; MAX_AXES],
+    inner: F,
+}
+
+impl<F: SampleSink> Smoothed<F> {
+    /// A moving average over `filter_s` at `period_s` (one sample at
+    /// least: a filter shorter than half a period passes samples
+    /// through), starting at rest at `start`.
+    pub fn new(filter_s: f64, period_s: f64, start: Pos, inner: F) -> Smoothed<F> {
+        let period_s = sample_period(period_s);
+        let n = (filter_s / period_s).round();
+        // Within 1..=1e6 samples (a filter of 1,000 s at 1 ms).
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let n = if n >= 1.0 { n.min(1e6) as usize } else { 1 };
+        let rest = Kept {
+            pos: start.0,
+            vel: [0.0; MAX_AXES],
+        };
+        #[allow(clippy::cast_precision_loss)] // n ≤ 1e6
+        let nf = n as f64;
+        Smoothed {
+            ring: vec![rest; n],
+            at: 0,
+            sum: start.0.map(|p| p * nf),
+            window_s: nf * period_s,
+            period_s,
+            acc: [0.0; MAX_AXES],
+            inner,
+        }
+    }
+
+    /// The sink after the filter.
+    pub fn sink(&self) -> &F {
+        &self.inner
+    }
+
+    /// The sink after the filter, to change.
+    pub fn sink_mut(&mut self) -> &mut F {
+        &mut self.inner
+    }
+}
+
+impl<F: SampleSink> SampleSink for Smoothed<F> {
+    fn sample(&mut self, s: &Sample) {
+        let n = self.ring.len();
+        if n <= 1 {
+            self.inner.sample(s);
+            return;
+        }
+        let new = Kept {
+            pos: s.pos.0,
+            vel: s.vel,
+        };
+        let Some(slot) = self.ring.get_mut(self.at) else {
+            return;
+        };
+        let old = std::mem::replace(slot, new);
+        self.at += 1;
+        if self.at == n {
+            self.at = 0;
+            self.sum = [0.0; MAX_AXES];
+            for k in &self.ring {
+                for i in 0..MAX_AXES {
+                    self.sum[i] += k.pos[i];
+                }
+            }
+        } else {
+            for i in 0..MAX_AXES {
+                self.sum[i] += new.pos[i] - old.pos[i];
+            }
+        }
+        #[allow(clippy::cast_precision_loss)] // n ≤ 1e6
+        let inv = 1.0 / n as f64;
+        let mut out = *s;
+        let (mut v2, mut jv, mut j2) = (0.0, 0.0, 0.0);
+        for i in 0..MAX_AXES {
+            out.pos.0[i] = self.sum[i] * inv;
+            out.vel[i] = (new.pos[i] - old.pos[i]) / self.window_s;
+            out.acc[i] = (new.vel[i] - old.vel[i]) / self.window_s;
+            let j = (out.acc[i] - self.acc[i]) / self.period_s;
+            v2 += out.vel[i] * out.vel[i];
+            jv += j * out.vel[i];
+            j2 += j * j;
+        }
+        self.acc = out.acc;
+        out.speed = v2.sqrt();
+        out.path_jerk = if out.speed > 1e-12 {
+            jv / out.speed
+        } else {
+            j2.sqrt()
+        };
+        self.inner.sample(&out);
     }
 }
 

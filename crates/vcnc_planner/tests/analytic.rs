@@ -93,6 +93,102 @@ fn a_long_line_under_jerk_is_an_s_curve() {
     );
 }
 
+/// The filter profile (acceleration and deceleration after interpolation):
+/// the trapezoid plan, and at each stop the moving average's T = a/j
+/// (0.05 s here) to run out. A long line takes L/v + v/a + T, which is the
+/// S-curve's L/v + v/a + a/j: a moving average of T turns each ramp of a
+/// into one whose acceleration rises at a/T = j. A short line is the
+/// triangle 2·√(L/a) and T, not the S-curve's cube root.
+#[test]
+fn a_long_line_under_the_filter_takes_the_s_curves_time() {
+    let m = machine("", "filter");
+    let t = plan(&m, "G1 X100. F6000\nM30\n");
+    assert!(close(t.cutting_s, 1.0 + 0.1 + 0.05), "{}", t.cutting_s);
+    assert!(close(t.total_s, t.cutting_s));
+    let short = plan(&m, "G1 X0.1 F6000\nM30\n");
+    let expected = 2.0 * (0.1f64 / 1000.0).sqrt() + 0.05;
+    assert!(
+        close(short.cutting_s, expected),
+        "{} {expected}",
+        short.cutting_s
+    );
+}
+
+/// A rapid and a cut, each ending at rest: each gets its run-out, counted
+/// as its own kind of time (the axes still move), and the rapid its
+/// settling. Rapid: L/v + v/a = 0.5 + 0.2; cut: 1.0 + 0.1.
+#[test]
+fn the_filter_runs_out_after_every_stop_as_the_stopped_moves_time() {
+    let m = machine("", "filter");
+    let t = plan(&m, "G0 X100.\nG1 X0. F6000\nM30\n");
+    assert!(close(t.rapid_s, 0.7 + 0.05), "{}", t.rapid_s);
+    assert!(close(t.cutting_s, 1.1 + 0.05), "{}", t.cutting_s);
+    assert!(
+        close(t.in_position_s, settle_one_axis()),
+        "{}",
+        t.in_position_s
+    );
+}
+
+/// The trace of that line through the moving average (1 kHz, T = 50
+/// samples): the acceleration rises and falls at a/T = j = 20000 mm/s³ at
+/// most, reaches a = 1000 mm/s² and the feed 100 mm/s, and the line ends
+/// at rest at X100 after L/v + v/a + T.
+#[test]
+fn the_filtered_trace_of_a_line_is_jerk_limited() {
+    use vcnc_planner::{Sample, Sampler, Smoothed};
+    let m = machine("", "filter");
+    let mut samples: Vec<Sample> = Vec::new();
+    let sink = |s: &Sample| samples.push(*s);
+    let smoothed = Smoothed::new(0.05, 0.001, m.start, sink);
+    let mut planner = Planner::new(&m, Sampler::new(0.001, m.start, smoothed));
+    Interpreter::new(&m, &Dialect::fanuc(), Options::default())
+        .run_str("G1 X100. F6000\nM30\n", &mut planner);
+    planner.into_timeline().finish();
+    let (mut top_a, mut top_v, mut top_j) = (0.0f64, 0.0f64, 0.0f64);
+    for w in samples.windows(2) {
+        let j = (w[1].acc[0] - w[0].acc[0]) / (w[1].t - w[0].t);
+        top_j = top_j.max(j.abs());
+        top_a = top_a.max(w[1].acc[0].abs());
+        top_v = top_v.max(w[1].vel[0]);
+    }
+    assert!(top_j <= 20_000.0 * (1.0 + 1e-6), "{top_j}");
+    assert!(close(top_a, 1000.0), "{top_a}");
+    assert!(close(top_v, 100.0), "{top_v}");
+    let last = samples.last().expect("samples");
+    assert!(close(last.pos.get(0), 100.0) && last.speed == 0.0);
+    assert!((last.t - 1.15).abs() < 0.0015, "{}", last.t);
+}
+
+/// 0.1 mm chords of a circle of R 5 blended at F6000: the filter plans
+/// them as trapezoids do and adds one T where the chain stops, while the
+/// per-block S-curve starts every block's ramp from zero acceleration and
+/// takes longer (`docs/planner.md`, Profiles).
+#[test]
+fn short_blended_chords_run_as_trapezoids_under_the_filter() {
+    let mut chords = String::from("G64 G1 X5. F6000\n");
+    for k in 1..=314 {
+        let a = f64::from(k) * 0.02;
+        chords.push_str(&format!("X{:.4} Y{:.4}\n", 5.0 * a.cos(), 5.0 * a.sin()));
+    }
+    chords.push_str("M30\n");
+    let trapezoid = plan(&machine("", "trapezoid"), &chords);
+    let filter = plan(&machine("", "filter"), &chords);
+    let jerk = plan(&machine("", "jerk"), &chords);
+    assert!(
+        close(filter.cutting_s, trapezoid.cutting_s + 0.05),
+        "{} {}",
+        filter.cutting_s,
+        trapezoid.cutting_s
+    );
+    assert!(
+        jerk.cutting_s > 1.1 * filter.cutting_s,
+        "{} {}",
+        jerk.cutting_s,
+        filter.cutting_s
+    );
+}
+
 #[test]
 fn a_square_under_g61_stops_at_every_corner_and_under_g64_blends() {
     let m = machine("", "trapezoid");

@@ -495,3 +495,77 @@ fn the_sampled_traces_keep_the_limits() {
         }
     }
 }
+
+/// The traces `vcnc run --format trace` writes on the built-in mill (its
+/// `filter` profile: the sampled plan through a moving average of
+/// T = a/j): every axis within its rapid rate and acceleration, no jump
+/// larger than the fastest axis can go in one period, time going forward,
+/// and the last sample at rest where the unfiltered plan ends (the jerk of
+/// a filtered line: `analytic.rs`).
+#[test]
+fn the_filtered_traces_keep_the_limits() {
+    let m = Machine::default_mill();
+    assert_eq!(m.motion.profile, ProfileShape::Filter);
+    let n = m.axes.len();
+    let t_filter = vcnc_planner::filter_time(&m, ProfileShape::Filter);
+    assert!((t_filter - 0.05).abs() < 1e-12, "{t_filter}");
+    for path in programs() {
+        let mut bad = Vec::new();
+        let mut prev: Option<vcnc_planner::Sample> = None;
+        let mut last_t = -1.0;
+        let check = |s: &vcnc_planner::Sample| {
+            if s.t < last_t {
+                bad.push(format!("time goes back at {}", s.t));
+            }
+            last_t = s.t;
+            for i in 0..n {
+                let a = &m.axes[i];
+                if s.vel[i].abs() > a.rapid_mm_per_min / 60.0 * (1.0 + EPS) + EPS {
+                    bad.push(format!("t {}: axis {i} at {} mm/s", s.t, s.vel[i]));
+                }
+                if s.acc[i].abs() > a.accel_mm_s2 * (1.0 + EPS) + EPS {
+                    bad.push(format!("t {}: axis {i} at {} mm/s²", s.t, s.acc[i]));
+                }
+                if let Some(p) = &prev {
+                    let step = (s.pos.get(i) - p.pos.get(i)).abs();
+                    let dt = s.t - p.t;
+                    if step > a.rapid_mm_per_min / 60.0 * dt * (1.0 + 1e-6) + 1e-9 {
+                        bad.push(format!("t {}: axis {i} jumps {step} mm", s.t));
+                    }
+                }
+            }
+            prev = Some(*s);
+        };
+        let smoothed = vcnc_planner::Smoothed::new(t_filter, 0.001, m.start, check);
+        let sampler = vcnc_planner::Sampler::new(0.001, m.start, smoothed);
+        {
+            let mut planner = Planner::new(&m, sampler);
+            run(&path, &m, &mut planner);
+            planner.into_timeline().finish();
+        }
+        bad.truncate(10);
+        assert!(bad.is_empty(), "{}: {bad:#?}", path.display());
+        // Where the unfiltered plan ends.
+        let mut end = None;
+        let mut plain = Planner::new(
+            &m,
+            vcnc_planner::Sampler::new(0.001, m.start, |s: &vcnc_planner::Sample| {
+                end = Some(s.pos);
+            }),
+        );
+        run(&path, &m, &mut plain);
+        plain.into_timeline().finish();
+        if let (Some(p), Some(end)) = (prev, end) {
+            assert_eq!(p.speed, 0.0, "{}", path.display());
+            for i in 0..n {
+                assert!(
+                    (p.pos.get(i) - end.get(i)).abs() < 1e-9,
+                    "{}: axis {i} ends at {} not {}",
+                    path.display(),
+                    p.pos.get(i),
+                    end.get(i)
+                );
+            }
+        }
+    }
+}

@@ -47,10 +47,10 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
 
     #[test]
-    fn any_event_stream_plans_to_a_finite_time(events in prop::collection::vec(event(), 0..200), jerk: bool, dogleg: bool) {
+    fn any_event_stream_plans_to_a_finite_time(events in prop::collection::vec(event(), 0..200), shape in 0usize..3, dogleg: bool) {
         let mut m = Machine::default_mill();
         m.params.g00_mode = u8::from(dogleg);
-        let shape = if jerk { ProfileShape::Jerk } else { ProfileShape::Trapezoid };
+        let shape = [ProfileShape::Trapezoid, ProfileShape::Jerk, ProfileShape::Filter][shape];
         let mut p = Planner::with_profile(&m, shape, CycleTime::new());
         for e in &events {
             p.event(e);
