@@ -122,12 +122,17 @@ const FANUC_LATHE_M: &[MRow] = &[
     (99, MOp::Return, MGroup::Flow, bit(b'P')),
 ];
 
-/// `;` ends a block (Fanuc's EOB); `,C`/`,R` are chamfer and corner R.
+/// `;` ends a block (Fanuc's EOB); `,C`/`,R` are chamfer and corner R; `:`
+/// is the program number's O (ISO code), as on the mill.
 const FANUC_LATHE_LEX: LexRules = LexRules {
     semicolon: Semicolon::EndOfBlock,
     slash_comments: false,
     fullwidth_semicolon: false,
-    extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
+    extended: &[
+        (",C", Addr::COMMA_C),
+        (",R", Addr::COMMA_R),
+        super::mill::ISO_PROGRAM_NUMBER,
+    ],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
 };
 

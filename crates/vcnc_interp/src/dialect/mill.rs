@@ -9,7 +9,7 @@ use super::{
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{LexRules, Semicolon};
+use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 /// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
 const MILL_G: &[GRow] = &[
@@ -239,9 +239,23 @@ pub(super) fn syntec() -> Dialect {
     }
 }
 
+/// Fanuc's lexing: the mill's, and `:` for the program number's O (ISO
+/// code; Fanuc 0i operator's manual, program number: "In ISO code, a
+/// colon (:) can be used instead of O"). Haas's too.
+const FANUC_LEX: LexRules = LexRules {
+    extended: &[ISO_PROGRAM_NUMBER],
+    ..MILL_LEX
+};
+
+/// `:` read as the address O.
+pub(super) const ISO_PROGRAM_NUMBER: (&str, Addr) = (":", Addr::letter(b'O'));
+
 /// Fanuc 0i mill.
 pub(super) fn fanuc() -> Dialect {
-    mill("fanuc", FANUC_UNITS)
+    Dialect {
+        lex: FANUC_LEX,
+        ..mill("fanuc", FANUC_UNITS)
+    }
 }
 
 /// Haas mills: Fanuc plus G187, M97 local subprograms, M16, G28 without
