@@ -95,7 +95,7 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
             writeln!(out, "{doc:#}")
         }
     };
-    written.map_err(|e| format!("writing the report: {e}"))?;
+    crate::reported(written)?;
     if results.iter().any(|r| r.run.is_err()) {
         return Ok(ExitCode::from(2));
     }
@@ -122,7 +122,7 @@ fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, Stri
     }
     let mut out = std::io::stdout().lock();
     let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
-    render::summary(
+    crate::reported(render::summary(
         &mut out,
         &input.name(),
         &s.dialect,
@@ -130,8 +130,7 @@ fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, Stri
         (&summary, &planned),
         &outcome,
         diameter_axis,
-    )
-    .map_err(|e| e.to_string())?;
+    ))?;
     let denied = args.deny_warnings && summary.warning_total() > 0;
     Ok(crate::exit_code(&outcome, denied))
 }

@@ -44,6 +44,16 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
     }
 }
 
+/// A report written to standard output: a reader that closed the pipe
+/// (`vcnc check big.nc | head -3`) has what it wanted, as `run` and `time`
+/// treat it; any other error is the report's.
+pub(crate) fn reported(r: std::io::Result<()>) -> Result<(), String> {
+    match r {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        r => r.map_err(|e| format!("writing the report: {e}")),
+    }
+}
+
 /// The machine and dialect the options ask for.
 pub(crate) struct Setup {
     pub machine: Machine,

@@ -1057,3 +1057,23 @@ fn run_stops_when_its_reader_goes_away() {
         "stopped early, not by the jump limit"
     );
 }
+
+/// `vcnc check bracket.nc | head -1`: the summary's reader went away after
+/// one line; `check` exits as the program's result says (0 here) without
+/// an `error: Broken pipe` on stderr.
+#[test]
+fn check_is_quiet_when_its_reader_goes_away() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["check", "examples/bracket.nc"])
+        .current_dir(workspace())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("vcnc starts");
+    // Close the pipe before vcnc writes: its first write fails.
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(String::from_utf8_lossy(&o.stderr), "");
+}
