@@ -154,6 +154,21 @@ pub struct CycleData {
     pub q: Option<f64>,
     /// P: dwell at the bottom, seconds.
     pub p_s: Option<f64>,
+    /// Haas's reduced peck (G73/G83 I, J, K), mm: the first peck, how much
+    /// less each next one, the least.
+    pub reduced: Option<ReducedPeck>,
+}
+
+/// Pecks that start at `first` and shrink by `less` each time down to
+/// `least` (Haas G73/G83 I, J, K).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReducedPeck {
+    /// I: the first peck.
+    pub first: f64,
+    /// J: how much less each next peck.
+    pub less: f64,
+    /// K: the least peck.
+    pub least: f64,
 }
 
 impl CycleData {
@@ -165,6 +180,7 @@ impl CycleData {
         r: None,
         q: None,
         p_s: None,
+        reduced: None,
     };
 }
 

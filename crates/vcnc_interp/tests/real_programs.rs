@@ -42,3 +42,88 @@ fn a_colon_is_the_program_numbers_o_in_the_fanuc_dialects() {
     assert_eq!((d.code.as_str(), d.line, d.column), ("E101", 1, 1));
     assert!(!ev.iter().any(|e| matches!(e, Event::Rapid { .. })));
 }
+
+/// Ends of the feeds (drilling-axis levels) and the holes' X, in order.
+fn feeds_and_holes(ev: &[Event]) -> Vec<String> {
+    ev.iter()
+        .filter_map(|e| match e {
+            Event::Hole { at, .. } => Some(format!("hole X{}", at.get(0))),
+            Event::Feed { to, .. } => Some(format!("Z{}", to.get(2))),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `N460 G91 X.480 L6` inside a G82/G83 in `corpus/mill-haas/cadekiely-o78244.nc`:
+/// on a Haas, L repeats the cycle block (incrementally under G91), where
+/// Fanuc writes K. Three G81 holes 1 mm apart from X0, each a feed from R
+/// (10 − 8 = 2) to Z = 2 − 5 = −3.
+#[test]
+fn haas_repeats_a_cycle_block_by_l() {
+    let program = "G0 X0 Y0 Z10.\nS1000 M3\nG91 G81 X1. Y0 Z-5. R-8. F100. L3\nG80\nM30\n";
+    let (ev, out) = run(&Dialect::haas(), program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(
+        feeds_and_holes(&ev),
+        ["hole X1", "Z-3", "hole X2", "Z-3", "hole X3", "Z-3"]
+    );
+    // K is Fanuc's repeat count, and in G81 no Haas word.
+    let (_, out) = run(&Dialect::haas(), &program.replace("L3", "K3"));
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code.as_str(), d.line), ("E203", 3));
+}
+
+/// Haas G83 I J K (the manual: "the first pass will cut in by I, each
+/// succeeding cut will be reduced by amount J, and the minimum cutting
+/// depth is K"): from R 2 to Z −10 with I4 J1 K1.5 the pecks are 4, 3, 2,
+/// 1.5 and 1.5 mm, ending at −2, −5, −7, −8.5 and −10; the next hole keeps
+/// them. A later block may change them; all three go together.
+#[test]
+fn haas_g83_pecks_less_each_time_by_i_j_k() {
+    let program = "G0 X0 Y0 Z10.\nS1000 M3\nG83 X1. Y1. Z-10. R2. I4. J1. K1.5 F100.\nX5.\n\
+                   X6. I3. J1. K1.\nG80\nM30\n";
+    let (ev, out) = run(&Dialect::haas(), program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let pecks = ["Z-2", "Z-5", "Z-7", "Z-8.5", "Z-10"];
+    let mut expected = vec!["hole X1"];
+    expected.extend(pecks);
+    expected.push("hole X5");
+    expected.extend(pecks);
+    // 3, 2, 1, 1, 1, 1 mm: −1, −3, −4, −5, … −10.
+    expected.extend([
+        "hole X6", "Z-1", "Z-3", "Z-4", "Z-5", "Z-6", "Z-7", "Z-8", "Z-9", "Z-10",
+    ]);
+    assert_eq!(feeds_and_holes(&ev), expected);
+    let (_, out) = run(&Dialect::haas(), &program.replace(" K1.5", ""));
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code.as_str(), d.line), ("E312", 3));
+}
+
+/// `G04 P3. (WAIT FOR TAILSTOCK)` (`corpus/lathe-haas/cadekiely-O58214.nc`):
+/// on a Haas a P with a point is seconds, without one milliseconds; Fanuc
+/// and Syntec keep P whole milliseconds and alarm E108 on the point.
+#[test]
+fn haas_reads_a_dwell_p_with_a_point_as_seconds() {
+    let dwells = |ev: &[Event]| -> Vec<f64> {
+        ev.iter()
+            .filter_map(|e| match e {
+                Event::Dwell { seconds, .. } => Some(*seconds),
+                _ => None,
+            })
+            .collect()
+    };
+    let (ev, out) = run(&Dialect::haas(), "G04 P3.\nG04 P250\nM30\n");
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(dwells(&ev), [3.0, 0.25]);
+    for dialect in [Dialect::fanuc(), Dialect::syntec()] {
+        let (_, out) = run(&dialect, "G04 P3.\nM30\n");
+        let Outcome::Alarm(d) = out else {
+            panic!("{out:?}")
+        };
+        assert_eq!(d.code.as_str(), "E108", "{}", dialect.name);
+    }
+}

@@ -25,7 +25,7 @@ use crate::dialect::{CycleRules, GOp, Group};
 use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
-use crate::state::CycleData;
+use crate::state::{CycleData, ReducedPeck};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// EIA G87's back-off between pecks: the chapter's 0.010 inch.
@@ -39,6 +39,39 @@ const MAX_PECKS: u64 = 100_000;
 
 /// Below this two levels or points are the same, mm.
 pub(crate) const SAME_MM: f64 = 1e-6;
+
+/// The depth of each next peck: a constant Q, or Haas's reduced I, J, K.
+#[derive(Debug, Clone, Copy)]
+struct PeckDepths {
+    next: f64,
+    less: f64,
+    least: f64,
+}
+
+impl PeckDepths {
+    fn constant(q: f64) -> PeckDepths {
+        PeckDepths {
+            next: q,
+            less: 0.0,
+            least: q,
+        }
+    }
+
+    fn reduced(rp: ReducedPeck) -> PeckDepths {
+        PeckDepths {
+            next: rp.first.max(rp.least),
+            less: rp.less,
+            least: rp.least,
+        }
+    }
+
+    /// This peck's depth; the next is `less` shorter, but not below `least`.
+    fn take(&mut self) -> f64 {
+        let d = self.next;
+        self.next = (d - self.less).max(self.least);
+        d
+    }
+}
 
 /// The axes of a cycle: two positioning axes and the drilling axis
 /// (machine indices).
@@ -137,20 +170,29 @@ impl Interpreter<'_> {
             .iter()
             .filter_map(|&i| letter(i))
             .any(|l| w.get(l).is_some());
+        let rules = self.dialect.cycles;
         if !drills {
-            // R, Q, P are stored only by a block that drills (1.2.31).
-            for l in [b'R', b'Q', b'P', b'K'] {
-                if let Some(word) = w.get(l) {
+            // R, Q, P are stored only by a block that drills (1.2.31), and
+            // only it repeats.
+            let data = rules.words();
+            for l in b'A'..=b'Z' {
+                if data & crate::dialect::bit(l) != 0
+                    && let Some(word) = w.get(l)
+                {
                     return Err(alarms::word_not_allowed(word.span, l));
                 }
             }
             return Ok(());
         }
         self.store_cycle_words(w, axes)?;
-        let count = match w.get(b'K') {
-            Some(k) => {
-                crate::block::convert::whole(&k, b'K', 0.0, 9999.0, "K is a repeat count 0-9999")?
-            }
+        let count = match rules.repeat_letter().and_then(|l| w.get(l).map(|k| (l, k))) {
+            Some((l, k)) => crate::block::convert::whole(
+                &k,
+                l,
+                0.0,
+                9999.0,
+                &format!("{} is a repeat count 0-9999", char::from(l)),
+            )?,
             None => 1,
         };
         let drill_letter = letter(axes.z).unwrap_or(b'Z');
@@ -227,6 +269,43 @@ impl Interpreter<'_> {
             }
             self.state.cycle.p_s = Some(self.seconds(&p));
         }
+        if self.dialect.cycles == CycleRules::Haas {
+            self.store_reduced_peck(w)?;
+        }
+        Ok(())
+    }
+
+    /// Haas G73/G83 I, J, K: all three or none (the manual: "if I, J, and K
+    /// are specified, a different operating mode is selected"); I and K
+    /// more than 0, J not negative. They stay for the cycle's later holes,
+    /// like Q.
+    fn store_reduced_peck(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let (i, j, k) = (w.get(b'I'), w.get(b'J'), w.get(b'K'));
+        let Some(first_word) = i.or(j).or(k) else {
+            return Ok(());
+        };
+        let code = self.state.cycle.code;
+        if !matches!(code, Some(Cycle::G73 | Cycle::G83)) {
+            return Err(alarms::word_not_allowed(first_word.span, first_word.addr.0));
+        }
+        let (Some(i), Some(j), Some(k)) = (i, j, k) else {
+            return Err(alarms::needs_word(
+                first_word.span,
+                code.map_or("G83", Cycle::as_str),
+                "I, J and K together (the first peck, how much less each next one, the least)",
+            ));
+        };
+        let (first, less, least) = (self.length_mm(&i), self.length_mm(&j), self.length_mm(&k));
+        for (word, v, ok, why) in [
+            (i, first, first > 0.0, "the first peck I is more than 0"),
+            (j, less, less >= 0.0, "the reduction J is not negative"),
+            (k, least, least > 0.0, "the least peck K is more than 0"),
+        ] {
+            if !ok {
+                return Err(alarms::value_out_of_range(word.span, word.addr.0, v, why));
+            }
+        }
+        self.state.cycle.reduced = Some(ReducedPeck { first, less, least });
         Ok(())
     }
 
@@ -266,7 +345,7 @@ impl Interpreter<'_> {
                 "P (the dwell at the hole bottom)",
             ));
         }
-        if self.pecks_with_q(c) && data.q.is_none_or(|q| q <= 0.0) {
+        if self.pecks_with_q(c) && data.reduced.is_none() && data.q.is_none_or(|q| q <= 0.0) {
             return Err(alarms::needs_word(
                 cmd,
                 c.as_str(),
@@ -303,7 +382,12 @@ impl Interpreter<'_> {
     fn check_pecks(&self, c: Cycle, holes: u64, cmd: Span) -> Result<(), Diagnostic> {
         let data = self.state.cycle;
         let pecking = self.pecks_with_q(c) || (c == Cycle::G84 && !self.eia());
-        let (Some(q), Some(z)) = (data.q.filter(|q| pecking && *q > 0.0), data.z) else {
+        // Reduced pecks are never shorter than their least.
+        let smallest = match data.reduced {
+            Some(rp) if self.pecks_with_q(c) => Some(rp.least),
+            _ => data.q,
+        };
+        let (Some(q), Some(z)) = (smallest.filter(|q| pecking && *q > 0.0), data.z) else {
             return Ok(());
         };
         let r = data.r.unwrap_or(data.initial);
@@ -473,27 +557,30 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let d = self.machine.params.peck_return_mm;
         let back_to_r = c == Cycle::G83;
-        self.peck_moves(s, (zr, zz), data.q, d, back_to_r, feed)?;
+        let depths = match data.reduced {
+            Some(rp) => PeckDepths::reduced(rp),
+            None => PeckDepths::constant(data.q.unwrap_or(zr - zz)),
+        };
+        self.peck_moves(s, (zr, zz), depths, d, back_to_r, feed)?;
         self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
         Ok(())
     }
 
-    /// Pecks of depth q from zr down to zz: after each peck back to R and
+    /// Pecks of `depths` from zr down to zz: after each peck back to R and
     /// down again to d above the last depth (`back_to_r`, G83), or back
     /// off by d (G73, EIA G87).
     fn peck_moves(
         &mut self,
         s: &mut Steps<'_, '_>,
         (zr, zz): (f64, f64),
-        q: Option<f64>,
+        mut depths: PeckDepths,
         d: f64,
         back_to_r: bool,
         feed: Feed,
     ) -> Result<(), Diagnostic> {
-        let q = q.unwrap_or(zr - zz);
         let mut depth = zr;
         loop {
-            let next = (depth - q).max(zz);
+            let next = (depth - depths.take()).max(zz);
             if back_to_r && depth < zr - SAME_MM {
                 // Back down to d above the last depth.
                 s.rapid(self, (depth + d).min(zr))?;
@@ -566,9 +653,15 @@ impl Interpreter<'_> {
                 }
             }
             // "Rapids back down to its previous depth": no clearance.
-            Cycle::G83 => self.peck_moves(s, (zr, zz), data.q, 0.0, true, feed)?,
+            Cycle::G83 => {
+                let q = PeckDepths::constant(data.q.unwrap_or(zr - zz));
+                self.peck_moves(s, (zr, zz), q, 0.0, true, feed)?;
+            }
             // Chip breaking: back off 0.010 inch between pecks.
-            Cycle::G87 => self.peck_moves(s, (zr, zz), data.q, EIA_BACK_OFF_MM, false, feed)?,
+            Cycle::G87 => {
+                let q = PeckDepths::constant(data.q.unwrap_or(zr - zz));
+                self.peck_moves(s, (zr, zz), q, EIA_BACK_OFF_MM, false, feed)?;
+            }
             Cycle::G84 => {
                 let fwd = self.state.spindle;
                 let rev = if fwd == SpindleDir::Ccw {

@@ -16,7 +16,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::dialect::{BareReturn, GOp};
+use crate::dialect::{BareReturn, DwellP, GOp};
 use crate::events::Event;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
@@ -83,8 +83,8 @@ impl Interpreter<'_> {
         }
     }
 
-    /// G04: P whole milliseconds, or X (a lathe's U) seconds
-    /// (milliseconds without a point).
+    /// G04: P whole milliseconds (Haas: seconds with a point), or X (a
+    /// lathe's U) seconds (milliseconds without a point).
     fn dwell(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let x = match (w.get(b'X'), w.get(b'U')) {
             (Some(_), Some(u)) => return Err(alarms::word_not_allowed(u.span, b'U')),
@@ -92,6 +92,17 @@ impl Interpreter<'_> {
         };
         let seconds = match (w.get(b'P'), x) {
             (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, x.addr.0)),
+            (Some(p), None) if p.point && self.dialect.dwell_p == DwellP::SecondsWithPoint => {
+                if p.value < 0.0 {
+                    return Err(alarms::value_out_of_range(
+                        p.span,
+                        b'P',
+                        p.value,
+                        "a dwell is not negative",
+                    ));
+                }
+                p.value
+            }
             (Some(p), None) => {
                 f64::from(whole(
                     &p,

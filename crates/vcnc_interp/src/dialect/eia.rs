@@ -5,8 +5,8 @@
 //! cycles, the pockets G78/G79 and G99 as a junction marker.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow,
-    Group, IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp,
+    GRow, Group, IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange,
     ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
@@ -96,5 +96,6 @@ pub(super) fn eia() -> Dialect {
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
+        dwell_p: DwellP::WholeMilliseconds,
     }
 }

@@ -19,8 +19,8 @@
 //! Decisions are in `docs/dialects.md` (the Fanuc lathe).
 
 use super::{
-    AxisWords, BareReturn, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow, Group,
-    IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
+    AxisWords, BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp, GRow,
+    Group, IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
     ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
@@ -195,6 +195,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         feed_at_power_on: FeedAtPowerOn::PerRevolution,
         surface_speed: SurfaceSpeedOn::WorkDiameter,
         tool_words: ToolWords::TurretOffset,
+        dwell_p: DwellP::WholeMilliseconds,
         macros: super::MacroRules::FANUC,
     }
 }

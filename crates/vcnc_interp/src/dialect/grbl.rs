@@ -7,7 +7,7 @@
 //! output runs on it.
 
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow, Group,
+    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp, GRow, Group,
     IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
     ToolLengthChange, ToolWords, bit, g,
 };
@@ -121,5 +121,6 @@ pub(super) fn grbl() -> Dialect {
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
+        dwell_p: DwellP::WholeMilliseconds,
     }
 }

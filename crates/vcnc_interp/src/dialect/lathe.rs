@@ -6,7 +6,7 @@
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow, Group,
+    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp, GRow, Group,
     IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords,
     bit, g, mill::MILL_M,
 };
@@ -128,5 +128,6 @@ pub(super) fn lathe() -> Dialect {
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
+        dwell_p: DwellP::WholeMilliseconds,
     }
 }

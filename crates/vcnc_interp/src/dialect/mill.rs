@@ -3,9 +3,9 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, FeedAtPowerOn, G10L20, GOp, GRow,
-    Group, IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ToolLengthChange, ToolWords, bit, g,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp,
+    GRow, Group, HAAS_CYCLE_WORDS, HAAS_PECK_WORDS, IntegerWords, LongChord, MGroup, MOp, MRow,
+    ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -178,6 +178,19 @@ const HAAS_G: &[GRow] = &[
     // G187 P1–P3 (rough, medium, finish) E corner tolerance: a setting for
     // the planner.
     g(1870, GOp::Smoothing, Group::NonModal).reads(bit(b'P') | bit(b'E')),
+    // The cycles repeat by L; G73/G83 also peck by I, J, K.
+    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(HAAS_CYCLE_WORDS | HAAS_PECK_WORDS),
+    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(760, GOp::Cycle(Cycle::G76), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(HAAS_CYCLE_WORDS | HAAS_PECK_WORDS),
+    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(870, GOp::Cycle(Cycle::G87), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(880, GOp::Cycle(Cycle::G88), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(HAAS_CYCLE_WORDS),
 ];
 
 /// Haas M codes with a controller meaning (the machine builder's others
@@ -215,6 +228,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
+        dwell_p: DwellP::WholeMilliseconds,
     }
 }
 
@@ -269,6 +283,8 @@ pub(super) fn haas() -> Dialect {
         m,
         default_machine: crate::machine::DEFAULT_HAAS_TOML,
         bare_return: BareReturn::AllAxes,
+        cycles: CycleRules::Haas,
+        dwell_p: DwellP::SecondsWithPoint,
         ..fanuc()
     }
 }

@@ -26,6 +26,13 @@ use vcnc_syntax::LexRules;
 /// dwell, K repeats.
 pub(crate) const CYCLE_WORDS: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'K');
 
+/// Haas's cycle data words: R, Q, P and L repeats.
+pub(crate) const HAAS_CYCLE_WORDS: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'L');
+
+/// Haas's reduced peck of G73/G83: first peck I, J less each time, at
+/// least K.
+pub(crate) const HAAS_PECK_WORDS: u32 = bit(b'I') | bit(b'J') | bit(b'K');
+
 /// Modal groups (Fanuc numbering in the comments). `NonModal` is group 00.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Group {
@@ -473,6 +480,11 @@ pub enum CycleRules {
     /// EIA-274-D (`docs/eia-spec.md` §5): return to R, R optional, no K,
     /// G83 without clearance, G86 waits, G87 chip-breaking pecks.
     Eia,
+    /// Haas mills: Fanuc's cycles, but L repeats them, and G73/G83 take I
+    /// (first peck), J (less each peck) and K (least peck) instead of a
+    /// constant Q (Haas mill operator's manual, G73/G83, "L Number of
+    /// repeats").
+    Haas,
 }
 
 impl CycleRules {
@@ -481,6 +493,16 @@ impl CycleRules {
         match self {
             CycleRules::Fanuc => CYCLE_WORDS,
             CycleRules::Eia => bit(b'R') | bit(b'Q') | bit(b'P'),
+            CycleRules::Haas => HAAS_CYCLE_WORDS | HAAS_PECK_WORDS,
+        }
+    }
+
+    /// The letter that repeats a cycle block: K, Haas's L (EIA: none).
+    pub(crate) fn repeat_letter(self) -> Option<u8> {
+        match self {
+            CycleRules::Fanuc => Some(b'K'),
+            CycleRules::Eia => None,
+            CycleRules::Haas => Some(b'L'),
         }
     }
 }
@@ -531,6 +553,18 @@ pub struct Dialect {
     pub surface_speed: SurfaceSpeedOn,
     /// T words.
     pub tool_words: ToolWords,
+    /// What a decimal point in G04's P means.
+    pub dwell_p: DwellP,
+}
+
+/// G04 P with a decimal point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DwellP {
+    /// P is whole milliseconds; a point alarms E108 (Fanuc, Syntec 1.2.5).
+    WholeMilliseconds,
+    /// `P2.5` is 2.5 s, `P2500` 2.5 s in milliseconds (Haas mill operator's
+    /// manual, G04: "G04 P10. is a dwell of 10 seconds").
+    SecondsWithPoint,
 }
 
 impl std::fmt::Debug for Dialect {
