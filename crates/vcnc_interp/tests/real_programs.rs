@@ -127,3 +127,21 @@ fn haas_reads_a_dwell_p_with_a_point_as_seconds() {
         assert_eq!(d.code.as_str(), "E108", "{}", dialect.name);
     }
 }
+
+/// `N40 IF [ #5405 GE 6000 ] THEN #3000= 15 ( TOOL LIFE EXPIRED )`
+/// (`corpus/mill-haas/gcodeworkshop-HAAS.nc`): Haas's tool-life timers,
+/// #5401–#6000, read 0 on a machine whose tools have not cut yet, so the
+/// check passes and the program goes on to its rapid. Fanuc has no such
+/// variables: E605.
+#[test]
+fn haas_tool_life_timers_read_zero() {
+    let program = "IF [#5405 GE 6000] THEN #3000=15 (TOOL LIFE EXPIRED)\n#1=#5999\nG0 X#1\nM30\n";
+    let (ev, out) = run(&Dialect::haas(), program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(xs(&ev), vec![0.0]);
+    let (_, out) = run(&Dialect::fanuc(), program);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code.as_str(), d.line), ("E605", 1));
+}

@@ -73,6 +73,20 @@ pub struct MacroRules {
     /// Most nested brackets in a Macro B expression (Fanuc: five, function
     /// brackets included).
     pub macro_b_nesting: u8,
+    /// System variables beyond Fanuc's.
+    pub machine_vars: MachineVars,
+}
+
+/// System variables a machine builder adds to the Fanuc table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MachineVars {
+    /// None.
+    None,
+    /// Haas's tool-life and tool-load monitor (#5401–#6000: feed and total
+    /// timers, limits, counters, loads; Haas mill operator's manual, macro
+    /// system variables), read as on a machine whose tools have not cut
+    /// yet: 0.
+    HaasToolLife,
 }
 
 impl MacroRules {
@@ -85,12 +99,19 @@ impl MacroRules {
         modal_locals: ModalLocals::FreshEachCall,
         extended_g: ExtendedG::None,
         macro_b_nesting: 5,
+        machine_vars: MachineVars::None,
     };
 
     /// Fanuc 0i Custom Macro B (also Haas).
     pub const FANUC: MacroRules = MacroRules {
         iso: IsoMacros::CustomMacroB,
         ..MacroRules::NONE
+    };
+
+    /// Haas: Fanuc's Custom Macro B and Haas's tool-life variables.
+    pub const HAAS: MacroRules = MacroRules {
+        machine_vars: MachineVars::HaasToolLife,
+        ..MacroRules::FANUC
     };
 
     /// Syntec: Macro B in ISO programs, the MACRO language in `%@MACRO`
@@ -103,6 +124,7 @@ impl MacroRules {
         modal_locals: ModalLocals::SharedUntilG67,
         extended_g: ExtendedG::Files,
         macro_b_nesting: 5,
+        machine_vars: MachineVars::None,
     };
 
     /// Whether any macro syntax is read at all.

@@ -285,6 +285,7 @@ pub(super) fn haas() -> Dialect {
         bare_return: BareReturn::AllAxes,
         cycles: CycleRules::Haas,
         dwell_p: DwellP::SecondsWithPoint,
+        macros: super::MacroRules::HAAS,
         ..fanuc()
     }
 }

@@ -17,7 +17,9 @@ mod lathe;
 mod macro_rules;
 mod mill;
 
-pub use macro_rules::{ExtendedG, IsoMacros, MacroFiles, MacroRules, ModalLocals, VarTable};
+pub use macro_rules::{
+    ExtendedG, IsoMacros, MachineVars, MacroFiles, MacroRules, ModalLocals, VarTable,
+};
 
 use crate::events::Plane;
 use vcnc_syntax::LexRules;

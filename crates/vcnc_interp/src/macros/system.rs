@@ -29,7 +29,7 @@
 //! read-only one alarms E606.
 
 use crate::alarms;
-use crate::dialect::{GOp, VarTable};
+use crate::dialect::{GOp, MachineVars, VarTable};
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::state::{CompSide, Motion, ToolLength};
@@ -114,6 +114,7 @@ impl Interpreter<'_> {
                 let w = self.tables.work.get(k).copied().unwrap_or_default();
                 d(self.to_input(a, w.get(a)))
             }
+            5401..=6000 if self.macros.rules.machine_vars == MachineVars::HaasToolLife => d(0.0),
             3000 | 3006 => Err(alarms::no_such_variable_why(
                 span,
                 n,
