@@ -141,6 +141,7 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
         })?,
         Format::Trace => {
             let profile = args.profile.map(Into::into);
+            trace::check_period(machine, args.period, profile)?;
             stream(args, &s, &input, || {
                 trace::TraceSink::new(std::io::stdout(), machine, args.period, profile)
             })?

@@ -13,7 +13,9 @@
 
 use std::io::Write;
 use vcnc_interp::{Event, Machine, Sink};
-use vcnc_planner::{Planner, ProfileShape, Sample, SampleSink, Sampler, Smoothed, filter_time};
+use vcnc_planner::{
+    MAX_FILTER_SAMPLES, Planner, ProfileShape, Sample, SampleSink, Sampler, Smoothed, filter_time,
+};
 
 /// Formats samples as CSV rows.
 pub struct CsvRows<W: Write> {
@@ -63,6 +65,25 @@ impl<W: Write> SampleSink for CsvRows<W> {
             self.flush_buf();
         }
     }
+}
+
+/// Refuses a `--period` so short that the `filter` profile's moving
+/// average would hold more than [`MAX_FILTER_SAMPLES`] samples.
+pub fn check_period(
+    machine: &Machine,
+    period_s: f64,
+    profile: Option<ProfileShape>,
+) -> Result<(), String> {
+    let shape = profile.unwrap_or(machine.motion.profile);
+    let t = filter_time(machine, shape);
+    let n = Smoothed::<fn(&Sample)>::samples(t, period_s);
+    if n > MAX_FILTER_SAMPLES {
+        return Err(format!(
+            "--period {period_s} samples the filter profile's {t} s average {n} times, \
+             more than {MAX_FILTER_SAMPLES}: use a longer period"
+        ));
+    }
+    Ok(())
 }
 
 /// The sink behind `--format trace`.

@@ -143,3 +143,55 @@ fn time_takes_each_profile_and_the_mill_filters_by_default() {
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains("(generic mill, filter profile)"), "{text}");
 }
+
+/// The filter profile's moving average holds T/period samples: a machine
+/// with T = 2 s traced every 1 µs would need 2,000,000. More than 100,000
+/// is refused before any output, not allocated; at 1 ms the same trace
+/// ends at rest at X10 after its 2 s run-out.
+#[test]
+fn a_trace_period_too_short_for_the_filter_is_refused() {
+    let dir = std::env::temp_dir().join(format!("vcnc_filter_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let machine = dir.join("slow.toml");
+    std::fs::write(
+        &machine,
+        "name = \"slow jerk\"\n[[axes]]\nletter = \"x\"\nrapid_mm_per_min = 6000.0\n\
+         max_feed_mm_per_min = 6000.0\naccel_mm_s2 = 2000.0\njerk_mm_s3 = 1000.0\n\
+         [motion]\nprofile = \"filter\"\n",
+    )
+    .unwrap();
+    let program = dir.join("one.nc");
+    std::fs::write(&program, "G1 X10. F6000\nM30\n").unwrap();
+    let run = |period: &str| {
+        vcnc(&[
+            "run",
+            "--format",
+            "trace",
+            "--period",
+            period,
+            "--dialect",
+            "fanuc",
+            "--machine",
+            machine.to_str().unwrap(),
+            program.to_str().unwrap(),
+        ])
+    };
+    let o = run("0.000001");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(o.stdout.is_empty());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("more than 100000"), "{err}");
+    let o = run("0.001");
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let last: Vec<f64> = text
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    // X10 at rest, after the 2 s run-out.
+    assert_eq!((last[1], last[2], last[3]), (10.0, 0.0, 0.0));
+    std::fs::remove_dir_all(&dir).ok();
+}

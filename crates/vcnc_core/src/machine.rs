@@ -278,6 +278,9 @@ fn default_in_position_rapid() -> f64 {
     0.02
 }
 
+/// Longest time an axis may take to reach its acceleration (a/j), s.
+pub const MAX_JERK_TIME_S: f64 = 10.0;
+
 /// Without `jerk_mm_s3`, an axis reaches its acceleration in this time
 /// (jerk = acceleration / 0.05 s), a common bell-shaped time constant.
 pub const DEFAULT_JERK_TIME_S: f64 = 0.05;
@@ -506,6 +509,17 @@ impl Machine {
         if positive.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
             return Err(MachineError(format!(
                 "axis {}: jerk_mm_s3, in_position_mm and in_position_rapid_mm must be positive",
+                a.letter
+            )));
+        }
+        // a/j is how long the axis takes to reach its acceleration, and the
+        // `filter` profile's time constant: real machines take well under
+        // a second.
+        let ramp_s = a.accel_mm_s2 / jerk_mm_s3;
+        if ramp_s.is_nan() || ramp_s > MAX_JERK_TIME_S {
+            return Err(MachineError(format!(
+                "axis {}: accel_mm_s2 / jerk_mm_s3 is {ramp_s} s, the time to reach the \
+                 acceleration; it must be at most {MAX_JERK_TIME_S} s (raise the jerk)",
                 a.letter
             )));
         }

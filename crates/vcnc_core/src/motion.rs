@@ -215,6 +215,13 @@ mod tests {
             ("p = 5\n", "p = 6\n", "high_speed"),
             ("p = 5\n", "p = 4\n", "twice"),
             ("jerk_mm_s3 = 40000.0", "jerk_mm_s3 = 0.0", "jerk_mm_s3"),
+            // a/j = 2000 s, and 1e300/1e-300 overflows: both refused.
+            ("jerk_mm_s3 = 40000.0", "jerk_mm_s3 = 1.0", "at most 10 s"),
+            (
+                "accel_mm_s2 = 2000.0\njerk_mm_s3 = 40000.0",
+                "accel_mm_s2 = 1e300\njerk_mm_s3 = 1e-300",
+                "at most 10 s",
+            ),
             ("profile = \"filter\"", "profile = \"bell\"", "profile"),
         ];
         for (from, to, says) in cases {

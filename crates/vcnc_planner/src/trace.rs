@@ -115,6 +115,9 @@ impl<F: SampleSink> Sampler<F> {
     }
 }
 
+/// Most samples [`Smoothed`]'s window holds (9.6 MB).
+pub const MAX_FILTER_SAMPLES: f64 = 100_000.0;
+
 /// The period a sampler keeps: at least 1 µs, 1 ms if not finite.
 fn sample_period(period_s: f64) -> f64 {
     if period_s.is_finite() {
@@ -159,15 +162,24 @@ pub struct Smoothed<F: SampleSink> {
 }
 
 impl<F: SampleSink> Smoothed<F> {
-    /// A moving average over `filter_s` at `period_s` (one sample at
-    /// least: a filter shorter than half a period passes samples
-    /// through), starting at rest at `start`.
+    /// How many samples the average of `filter_s` at `period_s` holds:
+    /// the whole periods within T (one at least), so that the run-out of T
+    /// the planner adds after a stop always fills the window with samples
+    /// at rest and the trace stops where the plan does. When T is not a
+    /// whole number of periods the average is up to a period shorter than
+    /// T (its jerk up to a/(T − period)); at the default 1 ms it is T.
+    pub fn samples(filter_s: f64, period_s: f64) -> f64 {
+        (filter_s / sample_period(period_s) + 1e-9).floor().max(1.0)
+    }
+
+    /// A moving average over `filter_s` at `period_s` (a filter shorter
+    /// than two periods passes samples through), starting at rest at
+    /// `start`. The window holds at most [`MAX_FILTER_SAMPLES`] samples
+    /// (the CLI refuses a period that needs more).
     pub fn new(filter_s: f64, period_s: f64, start: Pos, inner: F) -> Smoothed<F> {
         let period_s = sample_period(period_s);
-        let n = (filter_s / period_s).round();
-        // Within 1..=1e6 samples (a filter of 1,000 s at 1 ms).
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let n = if n >= 1.0 { n.min(1e6) as usize } else { 1 };
+        let n = Smoothed::<F>::samples(filter_s, period_s).min(MAX_FILTER_SAMPLES) as usize;
         let rest = Kept {
             pos: start.0,
             vel: [0.0; MAX_AXES],

@@ -338,3 +338,38 @@ fn a_stopping_macro_message_stops_the_motion_like_m00() {
     let shown = planner.into_timeline();
     assert!(close(shown.cutting_s, 1.1), "{}", shown.cutting_s);
 }
+
+/// Whatever the period, the filtered trace is at rest where the plan
+/// stops: the average holds the whole periods within T, so the run-out of
+/// T after an exact stop (G61 here) fills it with samples at rest before
+/// the next move starts, and the last row is the end point at rest.
+#[test]
+fn the_filtered_trace_is_at_rest_at_every_stop_whatever_the_period() {
+    use vcnc_planner::{Sample, Sampler, Smoothed};
+    let m = machine("", "filter");
+    for period in [0.001, 0.007, 0.011, 0.019, 0.02, 0.033, 0.05, 0.2] {
+        let mut samples: Vec<Sample> = Vec::new();
+        let sink = |s: &Sample| samples.push(*s);
+        let smoothed = Smoothed::new(0.05, period, m.start, sink);
+        let mut planner = Planner::new(&m, Sampler::new(period, m.start, smoothed));
+        Interpreter::new(&m, &Dialect::fanuc(), Options::default())
+            .run_str("G61 G1 X10. F6000\nY10.\nM30\n", &mut planner);
+        planner.into_timeline().finish();
+        // The last sample before Y starts to move is at rest at (10, 0).
+        let turn = samples
+            .iter()
+            .rposition(|s| s.pos.get(1) == 0.0)
+            .expect("a sample before Y moves");
+        let s = samples[turn];
+        assert!(
+            s.speed == 0.0 && close(s.pos.get(0), 10.0),
+            "period {period}: {s:?}"
+        );
+        let last = samples.last().expect("samples");
+        assert!(
+            last.speed == 0.0 && last.acc[0] == 0.0 && last.acc[1] == 0.0,
+            "period {period}: {last:?}"
+        );
+        assert!(close(last.pos.get(0), 10.0) && close(last.pos.get(1), 10.0));
+    }
+}
