@@ -447,6 +447,37 @@ impl Timeline for Ends<'_> {
     fn pause(&mut self, _: &Pause) {}
 }
 
+/// One trace sample against the machine: time going forward, every axis
+/// within its rapid rate and acceleration, and no farther from the
+/// previous sample than the fastest axis goes in the time between.
+fn check_sample(
+    m: &Machine,
+    s: &vcnc_planner::Sample,
+    prev: Option<&vcnc_planner::Sample>,
+    last_t: &mut f64,
+    bad: &mut Vec<String>,
+) {
+    if s.t < *last_t {
+        bad.push(format!("time goes back at {}", s.t));
+    }
+    *last_t = s.t;
+    for (i, a) in m.axes.iter().enumerate() {
+        if s.vel[i].abs() > a.rapid_mm_per_min / 60.0 * (1.0 + EPS) + EPS {
+            bad.push(format!("t {}: axis {i} at {} mm/s", s.t, s.vel[i]));
+        }
+        if s.acc[i].abs() > a.accel_mm_s2 * (1.0 + EPS) + EPS {
+            bad.push(format!("t {}: axis {i} at {} mm/s²", s.t, s.acc[i]));
+        }
+        if let Some(p) = prev {
+            let step = (s.pos.get(i) - p.pos.get(i)).abs();
+            let dt = s.t - p.t;
+            if step > a.rapid_mm_per_min / 60.0 * dt * (1.0 + 1e-6) + 1e-9 {
+                bad.push(format!("t {}: axis {i} jumps {step} mm", s.t));
+            }
+        }
+    }
+}
+
 /// The sampled trace (1 kHz, as `vcnc run --format trace` writes it) of
 /// every manual example: each sample keeps every axis within its rapid rate
 /// and acceleration, consecutive samples are no farther apart than the
@@ -455,32 +486,12 @@ impl Timeline for Ends<'_> {
 #[test]
 fn the_sampled_traces_keep_the_limits() {
     let m = Machine::default_mill();
-    let n = m.axes.len();
     for path in programs() {
         let mut bad = Vec::new();
         let mut prev: Option<vcnc_planner::Sample> = None;
         let mut last_t = -1.0;
         let sampler = vcnc_planner::Sampler::new(0.001, m.start, |s: &vcnc_planner::Sample| {
-            if s.t < last_t {
-                bad.push(format!("time goes back at {}", s.t));
-            }
-            last_t = s.t;
-            for i in 0..n {
-                let a = &m.axes[i];
-                if s.vel[i].abs() > a.rapid_mm_per_min / 60.0 * (1.0 + EPS) + EPS {
-                    bad.push(format!("t {}: axis {i} at {} mm/s", s.t, s.vel[i]));
-                }
-                if s.acc[i].abs() > a.accel_mm_s2 * (1.0 + EPS) + EPS {
-                    bad.push(format!("t {}: axis {i} at {} mm/s²", s.t, s.acc[i]));
-                }
-                if let Some(p) = &prev {
-                    let step = (s.pos.get(i) - p.pos.get(i)).abs();
-                    let dt = s.t - p.t;
-                    if step > a.rapid_mm_per_min / 60.0 * dt * (1.0 + 1e-6) + 1e-9 {
-                        bad.push(format!("t {}: axis {i} jumps {step} mm", s.t));
-                    }
-                }
-            }
+            check_sample(&m, s, prev.as_ref(), &mut last_t, &mut bad);
             prev = Some(*s);
         });
         {
@@ -514,26 +525,7 @@ fn the_filtered_traces_keep_the_limits() {
         let mut prev: Option<vcnc_planner::Sample> = None;
         let mut last_t = -1.0;
         let check = |s: &vcnc_planner::Sample| {
-            if s.t < last_t {
-                bad.push(format!("time goes back at {}", s.t));
-            }
-            last_t = s.t;
-            for i in 0..n {
-                let a = &m.axes[i];
-                if s.vel[i].abs() > a.rapid_mm_per_min / 60.0 * (1.0 + EPS) + EPS {
-                    bad.push(format!("t {}: axis {i} at {} mm/s", s.t, s.vel[i]));
-                }
-                if s.acc[i].abs() > a.accel_mm_s2 * (1.0 + EPS) + EPS {
-                    bad.push(format!("t {}: axis {i} at {} mm/s²", s.t, s.acc[i]));
-                }
-                if let Some(p) = &prev {
-                    let step = (s.pos.get(i) - p.pos.get(i)).abs();
-                    let dt = s.t - p.t;
-                    if step > a.rapid_mm_per_min / 60.0 * dt * (1.0 + 1e-6) + 1e-9 {
-                        bad.push(format!("t {}: axis {i} jumps {step} mm", s.t));
-                    }
-                }
-            }
+            check_sample(&m, s, prev.as_ref(), &mut last_t, &mut bad);
             prev = Some(*s);
         };
         let smoothed = vcnc_planner::Smoothed::new(t_filter, 0.001, m.start, check);

@@ -372,6 +372,19 @@ pub(crate) struct Goal {
     pub all_incremental: bool,
 }
 
+/// A dwell's word (G04 X or P, a cycle's P): E109 if it is negative.
+pub(crate) fn dwell_not_negative(w: &Word) -> Result<(), Diagnostic> {
+    if w.value < 0.0 {
+        return Err(alarms::value_out_of_range(
+            w.span,
+            w.addr.0,
+            w.value,
+            "a dwell is not negative",
+        ));
+    }
+    Ok(())
+}
+
 /// A whole number word in `min..=max`.
 pub(crate) fn whole(
     w: &Word,

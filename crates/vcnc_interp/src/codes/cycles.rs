@@ -259,14 +259,7 @@ impl Interpreter<'_> {
             self.state.cycle.q = Some(v);
         }
         if let Some(p) = w.get(b'P') {
-            if p.value < 0.0 {
-                return Err(alarms::value_out_of_range(
-                    p.span,
-                    b'P',
-                    p.value,
-                    "a dwell is not negative",
-                ));
-            }
+            crate::block::convert::dwell_not_negative(&p)?;
             self.state.cycle.p_s = Some(self.seconds(&p));
         }
         if self.dialect.cycles == CycleRules::Haas {

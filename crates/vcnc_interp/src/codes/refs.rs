@@ -14,7 +14,7 @@
 //! of work system passes through the same program point in the new system.
 
 use crate::alarms;
-use crate::block::convert::whole;
+use crate::block::convert::{dwell_not_negative, whole};
 use crate::block::words::Words;
 use crate::dialect::{BareReturn, DwellP, GOp};
 use crate::events::Event;
@@ -93,14 +93,7 @@ impl Interpreter<'_> {
         let seconds = match (w.get(b'P'), x) {
             (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, x.addr.0)),
             (Some(p), None) if p.point && self.dialect.dwell_p == DwellP::SecondsWithPoint => {
-                if p.value < 0.0 {
-                    return Err(alarms::value_out_of_range(
-                        p.span,
-                        b'P',
-                        p.value,
-                        "a dwell is not negative",
-                    ));
-                }
+                dwell_not_negative(&p)?;
                 p.value
             }
             (Some(p), None) => {
@@ -112,15 +105,10 @@ impl Interpreter<'_> {
                     "G04 P is whole milliseconds (use X for seconds)",
                 )?) / 1000.0
             }
-            (None, Some(x)) if x.value < 0.0 => {
-                return Err(alarms::value_out_of_range(
-                    x.span,
-                    x.addr.0,
-                    x.value,
-                    "a dwell is not negative",
-                ));
+            (None, Some(x)) => {
+                dwell_not_negative(&x)?;
+                self.seconds(&x)
             }
-            (None, Some(x)) => self.seconds(&x),
             // Syntec 1.2.5: the dwell is X or P; a bare G04 says nothing.
             (None, None) => {
                 return Err(alarms::needs_word(
