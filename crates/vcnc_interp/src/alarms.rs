@@ -825,7 +825,7 @@ pub fn too_many_pecks(span: Span, max: u64) -> Diagnostic {
         Code::E326,
         span,
         format!("this block pecks more than {max} times over its holes"),
-        "use a larger peck depth Q or fewer holes per block",
+        "use a larger peck depth (Q; on a Haas the least peck K) or fewer holes per block",
     )
 }
 

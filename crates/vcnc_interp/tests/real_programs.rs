@@ -101,6 +101,27 @@ fn haas_g83_pecks_less_each_time_by_i_j_k() {
         panic!("{out:?}")
     };
     assert_eq!((d.code.as_str(), d.line), ("E312", 3));
+    // A Q in a later block replaces them (2 mm each from R 2); in their own
+    // block I, J, K win (the manual's "different operating mode").
+    let later = "G0 X0 Y0 Z10.\nS1000 M3\nG83 X0 Z-10. R2. I6. J1. K1. F100.\nX5. Q2.\n\
+                 X6. Q2. I6. J1. K1.\nG80\nM30\n";
+    let (ev, out) = run(&Dialect::haas(), later);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let reduced = ["Z-4", "Z-9", "Z-10"];
+    let mut expected = vec!["hole X0"];
+    expected.extend(reduced);
+    expected.extend(["hole X5", "Z0", "Z-2", "Z-4", "Z-6", "Z-8", "Z-10"]);
+    expected.push("hole X6");
+    expected.extend(reduced);
+    assert_eq!(feeds_and_holes(&ev), expected);
+    // With J0 the pecks stay I long: a tiny K is no reason to count
+    // millions of pecks (E326).
+    let (ev, out) = run(
+        &Dialect::haas(),
+        "G0 X0 Y0 Z10.\nS1000 M3\nG83 X0 Z-10. R2. I4. J0 K0.0001 F100.\nM30\n",
+    );
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(feeds_and_holes(&ev), ["hole X0", "Z-2", "Z-6", "Z-10"]);
 }
 
 /// `G04 P3. (WAIT FOR TAILSTOCK)` (`corpus/lathe-haas/cadekiely-O58214.nc`):
@@ -130,15 +151,19 @@ fn haas_reads_a_dwell_p_with_a_point_as_seconds() {
 
 /// `N40 IF [ #5405 GE 6000 ] THEN #3000= 15 ( TOOL LIFE EXPIRED )`
 /// (`corpus/mill-haas/gcodeworkshop-HAAS.nc`): Haas's tool-life timers,
-/// #5401–#6000, read 0 on a machine whose tools have not cut yet, so the
-/// check passes and the program goes on to its rapid. Fanuc has no such
-/// variables: E605.
+/// #5401–#6000, read 0 on a machine whose tools have not cut yet (or what
+/// the program wrote there), so the check passes and the program goes on
+/// to its rapid. Fanuc has no such variables: E605.
 #[test]
 fn haas_tool_life_timers_read_zero() {
     let program = "IF [#5405 GE 6000] THEN #3000=15 (TOOL LIFE EXPIRED)\n#1=#5999\nG0 X#1\nM30\n";
     let (ev, out) = run(&Dialect::haas(), program);
     assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
     assert_eq!(xs(&ev), vec![0.0]);
+    // A program may set a limit or reset a counter, and reads it back.
+    let (ev, out) = run(&Dialect::haas(), "#5701=7.\nG0 X#5701\nG0 X#5702\nM30\n");
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(xs(&ev), vec![7.0, 0.0]);
     let (_, out) = run(&Dialect::fanuc(), program);
     let Outcome::Alarm(d) = out else {
         panic!("{out:?}")

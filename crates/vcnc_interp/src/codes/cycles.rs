@@ -175,7 +175,7 @@ impl Interpreter<'_> {
             // R, Q, P are stored only by a block that drills (1.2.31), and
             // only it repeats.
             let data = rules.words();
-            for l in b'A'..=b'Z' {
+            for l in [b'R', b'Q', b'P', b'K', b'L', b'I', b'J'] {
                 if data & crate::dialect::bit(l) != 0
                     && let Some(word) = w.get(l)
                 {
@@ -257,6 +257,9 @@ impl Interpreter<'_> {
                 ));
             }
             self.state.cycle.q = Some(v);
+            // A Q written later replaces Haas's I, J, K (in their own block
+            // they win: `store_reduced_peck` runs after).
+            self.state.cycle.reduced = None;
         }
         if let Some(p) = w.get(b'P') {
             crate::block::convert::dwell_not_negative(&p)?;
@@ -375,16 +378,26 @@ impl Interpreter<'_> {
     fn check_pecks(&self, c: Cycle, holes: u64, cmd: Span) -> Result<(), Diagnostic> {
         let data = self.state.cycle;
         let pecking = self.pecks_with_q(c) || (c == Cycle::G84 && !self.eia());
-        // Reduced pecks are never shorter than their least.
-        let smallest = match data.reduced {
-            Some(rp) if self.pecks_with_q(c) => Some(rp.least),
-            _ => data.q,
-        };
-        let (Some(q), Some(z)) = (smallest.filter(|q| pecking && *q > 0.0), data.z) else {
+        let Some(z) = data.z.filter(|_| pecking) else {
             return Ok(());
         };
-        let r = data.r.unwrap_or(data.initial);
-        let per_hole = ((r - z).abs() / q).ceil();
+        let depth = (data.r.unwrap_or(data.initial) - z).abs();
+        let per_hole = match data.reduced {
+            // Count Haas's shrinking pecks, no further than the bound.
+            Some(rp) if self.pecks_with_q(c) => {
+                let cap = MAX_PECKS / holes.max(1) + 1;
+                let (mut depths, mut done, mut n) = (PeckDepths::reduced(rp), 0.0, 0u64);
+                while done < depth - SAME_MM && n <= cap {
+                    done += depths.take();
+                    n += 1;
+                }
+                n as f64
+            }
+            _ => match data.q.filter(|q| *q > 0.0) {
+                Some(q) => (depth / q).ceil(),
+                None => return Ok(()),
+            },
+        };
         if per_hole * holes as f64 > MAX_PECKS as f64 {
             return Err(alarms::too_many_pecks(cmd, MAX_PECKS));
         }

@@ -114,7 +114,9 @@ impl Interpreter<'_> {
                 let w = self.tables.work.get(k).copied().unwrap_or_default();
                 d(self.to_input(a, w.get(a)))
             }
-            5401..=6000 if self.macros.rules.machine_vars == MachineVars::HaasToolLife => d(0.0),
+            5401..=6000 if self.macros.rules.machine_vars == MachineVars::HaasToolLife => {
+                d(self.macros.vars.tool_life.get(&n).copied().unwrap_or(0.0))
+            }
             3000 | 3006 => Err(alarms::no_such_variable_why(
                 span,
                 n,
@@ -402,6 +404,10 @@ impl Interpreter<'_> {
                 if self.state.modal.wcs == k {
                     self.state.refresh_origin(&self.tables);
                 }
+                Ok(())
+            }
+            5401..=6000 if self.macros.rules.machine_vars == MachineVars::HaasToolLife => {
+                self.macros.vars.tool_life.insert(n, x.unwrap_or(0.0));
                 Ok(())
             }
             4001..=4330 | 5001..=5106 => Err(alarms::read_only_variable(span, '#', n)),

@@ -68,6 +68,8 @@ pub(crate) struct Vars {
     pub control: [f64; 2],
     /// Fanuc #3901, #3902: parts machined and parts required.
     pub parts: [f64; 2],
+    /// Haas #5401–#6000 written by the program (the rest read 0).
+    pub tool_life: FastMap<u32, f64>,
 }
 
 fn bit(set: &[u64], i: usize) -> bool {
@@ -99,6 +101,7 @@ impl Vars {
             clock: [0.0; 2],
             control: [0.0; 2],
             parts: [0.0; 2],
+            tool_life: FastMap::default(),
         }
     }
 
