@@ -35,6 +35,10 @@ pub struct LexRules {
     /// Addresses of other dialects, with the dialect that has them, so that
     /// `CR=10` under the mill dialects says where `CR=` belongs.
     pub foreign: &'static [(&'static str, &'static str)],
+    /// `:` is the address O (ISO code's program number, Fanuc): read where
+    /// a word starts with it, so that it costs the words that start with
+    /// letters nothing (as an extended address it was tried at each).
+    pub colon_is_o: bool,
 }
 
 /// What `;` means in a dialect.
@@ -131,10 +135,15 @@ fn lex_rest(
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
-        // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) and
-        // `:` (ISO's program number) when the dialect has them.
-        if is_letter(b) || (matches!(b, b',' | b':') && is_extended(line, i, rules)) {
+        // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
+        // the dialect has them, or `:` read as O.
+        if is_letter(b) || (b == b',' && is_extended(line, i, rules)) {
             i = lex_word(line, start, i, b & !0x20, rules, out)?;
+            first = false;
+            continue;
+        }
+        if b == b':' && rules.colon_is_o {
+            i = lex_word(line, start, i, b'O', rules, out)?;
             first = false;
             continue;
         }
@@ -386,6 +395,7 @@ mod tests {
         fullwidth_semicolon: true,
         extended: &[],
         foreign: &[("CR=", "lathe")],
+        colon_is_o: false,
     };
 
     fn blocks(src: &str) -> Result<Vec<String>, Code> {

@@ -186,13 +186,14 @@ impl Interpreter<'_> {
         }
         self.store_cycle_words(w, axes)?;
         let count = match rules.repeat_letter().and_then(|l| w.get(l).map(|k| (l, k))) {
-            Some((l, k)) => crate::block::convert::whole(
-                &k,
-                l,
-                0.0,
-                9999.0,
-                &format!("{} is a repeat count 0-9999", char::from(l)),
-            )?,
+            Some((l, k)) => {
+                let why = if l == b'L' {
+                    "L is a repeat count 0-9999"
+                } else {
+                    "K is a repeat count 0-9999"
+                };
+                crate::block::convert::whole(&k, l, 0.0, 9999.0, why)?
+            }
             None => 1,
         };
         let drill_letter = letter(axes.z).unwrap_or(b'Z');

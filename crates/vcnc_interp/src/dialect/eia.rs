@@ -63,6 +63,7 @@ const EIA_LEX: LexRules = LexRules {
     fullwidth_semicolon: false,
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+    colon_is_o: false,
 };
 
 /// The EIA-274-D dialect.

@@ -128,12 +128,9 @@ const FANUC_LATHE_LEX: LexRules = LexRules {
     semicolon: Semicolon::EndOfBlock,
     slash_comments: false,
     fullwidth_semicolon: false,
-    extended: &[
-        (",C", Addr::COMMA_C),
-        (",R", Addr::COMMA_R),
-        super::mill::ISO_PROGRAM_NUMBER,
-    ],
+    extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+    colon_is_o: true,
 };
 
 /// Codes of the 0i-TF list vcnc does not run, and why (E201 quotes it).

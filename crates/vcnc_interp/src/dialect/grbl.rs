@@ -89,6 +89,7 @@ const GRBL_LEX: LexRules = LexRules {
     fullwidth_semicolon: false,
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+    colon_is_o: false,
 };
 
 /// The grbl dialect.

@@ -91,6 +91,7 @@ const LATHE_LEX: LexRules = LexRules {
         ("D=", Addr(b'D')),
     ],
     foreign: &[],
+    colon_is_o: false,
 };
 
 /// Listed by the document without a format to run.

@@ -9,7 +9,7 @@ use super::{
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{Addr, LexRules, Semicolon};
+use vcnc_syntax::{LexRules, Semicolon};
 
 /// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
 const MILL_G: &[GRow] = &[
@@ -167,6 +167,7 @@ const MILL_LEX: LexRules = LexRules {
     fullwidth_semicolon: true,
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
+    colon_is_o: false,
 };
 
 /// Codes of the Syntec G-code list (manual 1.1) that later work will run.
@@ -257,12 +258,9 @@ pub(super) fn syntec() -> Dialect {
 /// code; Fanuc 0i operator's manual, program number: "In ISO code, a
 /// colon (:) can be used instead of O"). Haas's too.
 const FANUC_LEX: LexRules = LexRules {
-    extended: &[ISO_PROGRAM_NUMBER],
+    colon_is_o: true,
     ..MILL_LEX
 };
-
-/// `:` read as the address O.
-pub(super) const ISO_PROGRAM_NUMBER: (&str, Addr) = (":", Addr::letter(b'O'));
 
 /// Fanuc 0i mill.
 pub(super) fn fanuc() -> Dialect {
