@@ -1,7 +1,8 @@
 //! The planner on arbitrary event streams (positions, feeds, arcs, modes,
 //! G05 sets, G99 markers, smoothing, dwells, spindle and tool events in any
 //! order): it never panics, its time is finite and never negative, the
-//! split adds up, and memory stays within the look-ahead window.
+//! split adds up, and memory stays within the look-ahead window; the
+//! `filter` profile is the trapezoid plan and its run-outs.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
@@ -62,5 +63,67 @@ proptest! {
         for (_, s) in &t.per_tool {
             prop_assert!(s.is_finite() && *s >= 0.0);
         }
+    }
+}
+
+/// Counts the `filter` profile's run-outs and sums everything else.
+#[derive(Default)]
+struct RunOuts {
+    time: CycleTime,
+    run_outs: u64,
+}
+
+impl vcnc_planner::Timeline for RunOuts {
+    fn segment(&mut self, seg: &vcnc_planner::Segment, p: &vcnc_planner::Profile) {
+        self.time.segment(seg, p);
+    }
+    fn axes(&mut self, mv: &vcnc_planner::AxesMove) {
+        self.time.axes(mv);
+    }
+    fn pause(&mut self, p: &vcnc_planner::Pause) {
+        if p.kind == vcnc_planner::PauseKind::Filter {
+            self.run_outs += 1;
+        }
+        self.time.pause(p);
+    }
+    fn untimed(&mut self, from: Pos, to: Pos, attr: &vcnc_planner::Attr) {
+        self.time.untimed(from, to, attr);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    /// On any event stream the `filter` profile is the trapezoid plan and
+    /// T per run-out: the same moves, distances, dwells, tool changes,
+    /// spindle and settling times, cutting + rapid longer by exactly T
+    /// times the run-outs, and at most one run-out a move.
+    #[test]
+    fn the_filter_is_the_trapezoid_plan_and_its_run_outs(events in prop::collection::vec(event(), 0..200), dogleg: bool) {
+        let mut m = Machine::default_mill();
+        m.params.g00_mode = u8::from(dogleg);
+        let t = vcnc_planner::filter_time(&m, ProfileShape::Filter);
+        prop_assert!((t - 0.05).abs() < 1e-12);
+        let plan = |shape| {
+            let mut p = Planner::with_profile(&m, shape, RunOuts::default());
+            for e in &events {
+                p.event(e);
+            }
+            p.into_timeline()
+        };
+        let (trap, filt) = (plan(ProfileShape::Trapezoid), plan(ProfileShape::Filter));
+        prop_assert_eq!(trap.run_outs, 0);
+        let (a, b) = (&trap.time, &filt.time);
+        prop_assert_eq!((a.moves, a.untimed_moves), (b.moves, b.untimed_moves));
+        prop_assert_eq!((a.cutting_mm, a.rapid_mm), (b.cutting_mm, b.rapid_mm));
+        prop_assert_eq!((a.dwell_s, a.tool_change_s, a.spindle_s, a.in_position_s),
+            (b.dwell_s, b.tool_change_s, b.spindle_s, b.in_position_s));
+        #[allow(clippy::cast_precision_loss)] // a few hundred run-outs
+        let extra = t * filt.run_outs as f64;
+        let moving = |c: &CycleTime| c.cutting_s + c.rapid_s;
+        prop_assert!((moving(b) - moving(a) - extra).abs() <= 1e-9 * moving(b).max(1.0),
+            "{} {} {}", moving(a), moving(b), extra);
+        prop_assert!((b.total_s - a.total_s - extra).abs() <= 1e-9 * b.total_s.max(1.0));
+        prop_assert!(filt.run_outs <= b.moves, "{} run-outs, {} moves", filt.run_outs, b.moves);
     }
 }
