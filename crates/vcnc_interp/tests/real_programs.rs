@@ -170,3 +170,64 @@ fn haas_tool_life_timers_read_zero() {
     };
     assert_eq!((d.code.as_str(), d.line), ("E605", 1));
 }
+
+/// The one-block G74/G75/G76 of Haas lathes and Fanuc's FS15 tape format
+/// (`G75 X.800 Z-.325 I0.1 K0.2 F0.0002` in
+/// `corpus/lathe-haas/cadekiely-Lathe-L8-Ex1.nc`, `G76 X0.2 Z-0.25 K0.044
+/// D0.01 F0.05` in the thumbscrew program): I, K, D spell the two-block
+/// form's P, Q, R for G74/G75, and K, D, I its P (height), Q (first depth),
+/// R (taper) for G76, whose A is the tool angle. Each one-block program
+/// moves exactly as its two-block twin (same first block, same modal
+/// values).
+#[test]
+fn one_block_g74_g75_g76_move_as_their_two_block_forms() {
+    let lathe = Dialect::fanuc_lathe();
+    let start = "G21 G18 G99 T0101\nS500 M03\nG00 X40. Z2.\n";
+    let pairs = [
+        (
+            "G75 R0.5\nG75 X20. Z-10. P2000 Q3000 R0.1 F0.1\n",
+            "G75 R0.5\nG75 X20. Z-10. I2. K3. D0.1 F0.1\n",
+        ),
+        (
+            "G74 R0.5\nG00 X10. Z2.\nG74 X0 Z-15. P2500 Q4000 F0.1\n",
+            "G74 R0.5\nG00 X10. Z2.\nG74 X0 Z-15. I2.5 K4. F0.1\n",
+        ),
+        (
+            "G76 P010060 Q50 R0.01\nG76 X36. Z-20. P1200 Q400 F2.\n",
+            "G76 P010060 Q50 R0.01\nG76 X36. Z-20. K1.2 D0.4 F2.\n",
+        ),
+        (
+            "G76 P010060 Q50 R0.01\nG76 X36. Z-20. R-0.5 P1200 Q400 F2.\n",
+            "G76 P010030 Q50 R0.01\nG76 X36. Z-20. I-0.5 K1.2 D0.4 A60 F2.\n",
+        ),
+    ];
+    for (two, one) in pairs {
+        let (a, out_a) = run(&lathe, &format!("{start}{two}M30\n"));
+        let (b, out_b) = run(&lathe, &format!("{start}{one}M30\n"));
+        assert!(matches!(out_a, Outcome::Ended(_)), "{two}: {out_a:?}");
+        assert!(matches!(out_b, Outcome::Ended(_)), "{one}: {out_b:?}");
+        let moves = |ev: &[Event]| -> Vec<String> {
+            ev.iter()
+                .filter_map(|e| {
+                    e.motion_end()
+                        .map(|p| format!("{:.6} {:.6}", p.get(0), p.get(2)))
+                })
+                .collect()
+        };
+        assert!(moves(&a).len() > 4, "{two}");
+        assert_eq!(moves(&a), moves(&b), "{one}");
+    }
+    // Both spellings in one block, or the two-block words beside K/D, are
+    // E203; so is an infeed other than P1.
+    for bad in [
+        "G75 X20. Z-10. P2000 I2. K3. F0.1\n",
+        "G76 X36. Z-20. K1.2 D0.4 Q400 F2.\n",
+        "G76 X36. Z-20. K1.2 D0.4 P2 F2.\n",
+    ] {
+        let (_, out) = run(&lathe, &format!("{start}{bad}M30\n"));
+        let Outcome::Alarm(d) = out else {
+            panic!("{bad}: {out:?}")
+        };
+        assert!(matches!(d.code.as_str(), "E203" | "E109"), "{bad}: {d:?}");
+    }
+}

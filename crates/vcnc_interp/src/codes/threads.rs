@@ -31,13 +31,23 @@ use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::codes::turning_cycles::{How, Xz};
 use crate::interpreter::Interpreter;
-use vcnc_syntax::{Diagnostic, Span};
+use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most pecks, positions or passes one block may make.
 const MAX_STEPS: usize = 10_000;
 
 /// The tool angles G76 accepts (Fanuc: 80, 60, 55, 30, 29, 0 degrees).
 const ANGLES: [u32; 6] = [0, 29, 30, 55, 60, 80];
+
+/// A word of the two-block form (`two`) or its one-block spelling (`one`,
+/// the FS15 tape format Haas writes): either, not both (E203 on the
+/// one-block word).
+fn either(w: &Words<'_>, two: u8, one: u8) -> Result<Option<Word>, Diagnostic> {
+    match (w.get(two), w.get(one)) {
+        (Some(_), Some(o)) => Err(alarms::word_not_allowed(o.span, one)),
+        (t, o) => Ok(t.or(o)),
+    }
+}
 
 /// The cumulative depths (radius, mm) of G76's passes before the
 /// finishing ones: Δd·√n, each at least `min_step` deeper than the last,
@@ -103,12 +113,15 @@ impl Interpreter<'_> {
         } else {
             (a.0, a.1, end.0, end.1)
         };
-        let x_amount = w.get(b'P').map(|p| self.length_mm(&p).abs());
-        let z_amount = w.get(b'Q').map(|q| self.length_mm(&q).abs());
+        // Two-block P, Q, R or one-block I, K, D (FS15 format, Haas).
+        let (x_word, z_word) = (either(w, b'P', b'I')?, either(w, b'Q', b'K')?);
+        let relief_word = either(w, b'R', b'D')?;
+        let x_amount = x_word.map(|p| self.length_mm(&p).abs());
+        let z_amount = z_word.map(|q| self.length_mm(&q).abs());
         let (peck, step, peck_word, step_word) = if face {
-            (z_amount, x_amount, w.get(b'Q'), w.get(b'P'))
+            (z_amount, x_amount, z_word, x_word)
         } else {
-            (x_amount, z_amount, w.get(b'P'), w.get(b'Q'))
+            (x_amount, z_amount, x_word, z_word)
         };
         if (pe - pa).abs() < 1e-9 {
             return Err(alarms::cycle_parameters(
@@ -132,7 +145,7 @@ impl Interpreter<'_> {
                 return Err(alarms::zero_amount(span, "the step between positions"));
             }
         };
-        let relief = w.get(b'R').map_or(0.0, |r| self.length_mm(&r).abs());
+        let relief = relief_word.map_or(0.0, |r| self.length_mm(&r).abs());
         let retract = self.state.lathe.mrc.peck_retract_mm;
         let count = ((pe - pa).abs() / peck).ceil() * (((se - sa).abs() / step).floor() + 2.0);
         if count > MAX_STEPS as f64 {
@@ -174,29 +187,53 @@ impl Interpreter<'_> {
             ));
         }
         let (root, z_end) = (goal.prog.get(axes.0), goal.prog.get(axes.1));
-        let height = match w.get(b'P') {
+        // The one-block form (FS15 tape format, Haas): K the height, D the
+        // first depth, I the taper, A the tool angle; P then picks the
+        // infeed (1: one flank, the depth of each pass by constant area).
+        let one_block = w.get(b'K').is_some() || w.get(b'D').is_some();
+        let mut tool_angle_deg = self.state.lathe.mrc.tool_angle_deg;
+        let (height_word, first_word, taper_word) = if one_block {
+            for l in [b'R', b'Q'] {
+                if let Some(word) = w.get(l) {
+                    return Err(alarms::word_not_allowed(word.span, l));
+                }
+            }
+            if let Some(p) = w.get(b'P') {
+                whole(&p, b'P', 1.0, 1.0, "only P1 (one flank, constant area)")?;
+            }
+            if let Some(a) = w.get(b'A') {
+                let angle = whole(&a, b'A', 0.0, 120.0, "A is the tool angle 0-120")?;
+                tool_angle_deg = f64::from(angle);
+            }
+            (w.get(b'K'), w.get(b'D'), w.get(b'I'))
+        } else {
+            if let Some(word) = w.get(b'I').or(w.get(b'A')) {
+                return Err(alarms::word_not_allowed(word.span, word.addr.0));
+            }
+            (w.get(b'P'), w.get(b'Q'), w.get(b'R'))
+        };
+        let (height_name, first_name) = if one_block {
+            ("the thread height K", "the first depth of cut D")
+        } else {
+            ("the thread height P", "the first depth of cut Q")
+        };
+        let height = match height_word {
             Some(p) if self.length_mm(&p) > 0.0 => self.length_mm(&p),
             p => {
-                return Err(alarms::zero_amount(
-                    p.map_or(cmd, |p| p.span),
-                    "the thread height P",
-                ));
+                return Err(alarms::zero_amount(p.map_or(cmd, |p| p.span), height_name));
             }
         };
-        let first = match w.get(b'Q') {
+        let first = match first_word {
             Some(q) if self.length_mm(&q) > 0.0 => self.length_mm(&q),
             q => {
-                return Err(alarms::zero_amount(
-                    q.map_or(cmd, |q| q.span),
-                    "the first depth of cut Q",
-                ));
+                return Err(alarms::zero_amount(q.map_or(cmd, |q| q.span), first_name));
             }
         };
         let lead_mm = match w.get(b'F') {
             Some(f) if f.value > 0.0 => f.value * self.unit_mm(),
             _ => return Err(alarms::thread_without_lead(cmd)),
         };
-        let taper = w.get(b'R').map_or(0.0, |r| self.length_mm(&r));
+        let taper = taper_word.map_or(0.0, |r| self.length_mm(&r));
         let (dir_x, dir_z) = ((root - a.0).signum(), (z_end - a.1).signum());
         if (root - a.0).abs() < 1e-9 || (z_end - a.1).abs() < 1e-9 {
             return Err(alarms::cycle_parameters(
@@ -208,7 +245,7 @@ impl Interpreter<'_> {
         let mut depths = thread_depths(first, mrc.min_depth_mm, height, mrc.allowance_mm)
             .ok_or_else(|| alarms::too_many_cycle_moves(cmd))?;
         depths.extend(std::iter::repeat_n(height, mrc.finish_count as usize));
-        let half_angle = (mrc.tool_angle_deg / 2.0).to_radians().tan();
+        let half_angle = (tool_angle_deg / 2.0).to_radians().tan();
         let crest_end = root - dir_x * height;
         let length = (z_end - a.1).abs();
         let mut moves = Vec::new();

@@ -32,6 +32,14 @@ use vcnc_syntax::{Addr, LexRules, Semicolon};
 /// depth of cut of its one-block G71/G72).
 const MRC: u32 = bit(b'P') | bit(b'Q') | bit(b'R');
 
+/// The one-block (FS15 tape format, Haas) G74/G75 words: I and K for the
+/// two-block P and Q, D for its relief R.
+const ONE_BLOCK_PECK: u32 = bit(b'I') | bit(b'K') | bit(b'D');
+
+/// The one-block G76 words: K the thread height, D the first depth, I the
+/// taper, A the tool angle.
+const ONE_BLOCK_THREAD: u32 = bit(b'K') | bit(b'D') | bit(b'I') | bit(b'A');
+
 const FANUC_LATHE_G: &[GRow] = &[
     // Custom Macro B calls, as on the mill: every letter is an argument.
     g(650, GOp::MacroCall, Group::NonModal)
@@ -82,14 +90,14 @@ const FANUC_LATHE_G: &[GRow] = &[
         .reads(MRC)
         .claims_axes(),
     g(740, GOp::FacePeckCycle, Group::NonModal)
-        .reads(MRC)
+        .reads(MRC | ONE_BLOCK_PECK)
         .claims_axes(),
     g(750, GOp::GrooveCycle, Group::NonModal)
-        .reads(MRC)
+        .reads(MRC | ONE_BLOCK_PECK)
         .claims_axes(),
     // G76's F is the lead, not a feed.
     g(760, GOp::ThreadMultiCycle, Group::NonModal)
-        .reads(MRC | bit(b'F'))
+        .reads(MRC | ONE_BLOCK_THREAD | bit(b'F'))
         .claims_axes(),
     g(800, GOp::CycleCancel, Group::Cycle),
     g(900, GOp::TurnCycle, Group::Motion),
