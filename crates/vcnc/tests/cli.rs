@@ -735,8 +735,9 @@ fn unknown_dialect_is_a_usage_error() {
     let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "heidenhain"]);
     assert_usage_error(&o, "invalid value 'heidenhain' for '--dialect");
     assert!(
-        stderr(&o)
-            .contains("[possible values: syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe]"),
+        stderr(&o).contains(
+            "[possible values: syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe]"
+        ),
         "{}",
         stderr(&o)
     );

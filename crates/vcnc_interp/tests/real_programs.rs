@@ -231,3 +231,29 @@ fn one_block_g74_g75_g76_move_as_their_two_block_forms() {
         assert!(matches!(d.code.as_str(), "E203" | "E109"), "{bad}: {d:?}");
     }
 }
+
+/// `--dialect haas-lathe`: the Fanuc lathe with the Haas rules the mill
+/// has. `G04 P3. (WAIT FOR TAILSTOCK)` (`corpus/lathe-haas/cadekiely-O58214.nc`)
+/// waits 3 s, the tool-life variables read 0; under fanuc-lathe both
+/// alarm (E108, E605). The lathe's own reading stays: X is a diameter.
+#[test]
+fn the_haas_lathe_dialect_is_the_fanuc_lathe_with_haas_rules() {
+    let program = "G04 P3.\nG00 X[#5401 + 20.] Z2.\nM30\n";
+    let haas = Dialect::by_name("haas-lathe").expect("haas-lathe");
+    let (ev, out) = run(&haas, program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let dwell: Vec<f64> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Dwell { seconds, .. } => Some(*seconds),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(dwell, [3.0]);
+    assert_eq!(xs(&ev), vec![10.0]);
+    let (_, out) = run(&Dialect::fanuc_lathe(), program);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code.as_str(), d.line), ("E108", 1));
+}

@@ -204,3 +204,16 @@ pub(super) fn fanuc_lathe() -> Dialect {
         macros: super::MacroRules::FANUC,
     }
 }
+
+/// Haas lathes: the Fanuc 0i-TF reading (Haas's one-block G71/G72 and
+/// G74–G76 are read there too) with the Haas rules the mill has: `G04 P3.`
+/// is 3 s, and the tool-life variables #5401–#6000 exist (Haas lathe
+/// operator's manual, G04 and macro variables).
+pub(super) fn haas_lathe() -> Dialect {
+    Dialect {
+        name: "haas-lathe",
+        dwell_p: DwellP::SecondsWithPoint,
+        macros: super::MacroRules::HAAS,
+        ..fanuc_lathe()
+    }
+}

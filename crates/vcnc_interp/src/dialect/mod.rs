@@ -595,6 +595,7 @@ impl Dialect {
             "grbl" => Some(grbl::grbl()),
             "haas" => Some(mill::haas()),
             "fanuc-lathe" => Some(fanuc_lathe::fanuc_lathe()),
+            "haas-lathe" => Some(fanuc_lathe::haas_lathe()),
             _ => None,
         }
     }
@@ -608,6 +609,7 @@ impl Dialect {
         "grbl",
         "haas",
         "fanuc-lathe",
+        "haas-lathe",
     ];
 
     /// Syntec 900M mill (the default).
@@ -640,9 +642,15 @@ impl Dialect {
         mill::haas()
     }
 
-    /// Fanuc 0i-TF lathes (G-code system A; Haas lathes).
+    /// Fanuc 0i-TF lathes (G-code system A).
     pub fn fanuc_lathe() -> Dialect {
         fanuc_lathe::fanuc_lathe()
+    }
+
+    /// Haas lathes: the Fanuc lathe with Haas's G04 P and tool-life
+    /// variables.
+    pub fn haas_lathe() -> Dialect {
+        fanuc_lathe::haas_lathe()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the
