@@ -113,6 +113,34 @@ pub fn word_not_allowed(span: Span, l: u8) -> Diagnostic {
     )
 }
 
+/// E203: a lathe cycle's value written in both of its spellings (the
+/// two-block form's `two`, the one-block form's `one`).
+#[cold]
+pub fn spelled_twice(span: Span, two: u8, one: u8) -> Diagnostic {
+    d(
+        Code::E203,
+        span,
+        format!(
+            "{} and {} are the same value of this cycle, in its two-block and its one-block form",
+            letter(two),
+            letter(one)
+        ),
+        "keep one of them",
+    )
+}
+
+/// E203: a word of the other form of a lathe cycle (`form`: what the
+/// word belongs to).
+#[cold]
+pub fn other_cycle_form(span: Span, l: u8, form: &str) -> Diagnostic {
+    d(
+        Code::E203,
+        span,
+        format!("{} belongs to {form}", letter(l)),
+        "write the block in one form: the first block (P, Q, R) and a second with X/Z, or one block with X/Z and the one-block words",
+    )
+}
+
 /// E203 for an extended address (`CR=`, `IX`) nothing in the block uses.
 #[cold]
 pub fn extended_not_allowed(span: Span, name: &str) -> Diagnostic {
@@ -1282,8 +1310,8 @@ pub fn zero_amount(span: Span, what: &str) -> Diagnostic {
     d(
         Code::E346,
         span,
-        format!("{what} is zero: the cycle would never advance"),
-        "give it a positive value (the cycle's first block sets the depth of cut)",
+        format!("{what} is zero or missing: the cycle would never advance"),
+        "give it a positive value (a first block, or the one-block form's own word, sets the depth of cut)",
     )
 }
 

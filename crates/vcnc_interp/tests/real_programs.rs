@@ -217,18 +217,45 @@ fn one_block_g74_g75_g76_move_as_their_two_block_forms() {
         assert!(moves(&a).len() > 4, "{two}");
         assert_eq!(moves(&a), moves(&b), "{one}");
     }
-    // Both spellings in one block, or the two-block words beside K/D, are
-    // E203; so is an infeed other than P1.
-    for bad in [
-        "G75 X20. Z-10. P2000 I2. K3. F0.1\n",
-        "G76 X36. Z-20. K1.2 D0.4 Q400 F2.\n",
-        "G76 X36. Z-20. K1.2 D0.4 P2 F2.\n",
+    // Haas's Q in the one-block G76 is the thread's start angle: the
+    // spindle's phase, not the path.
+    let (a, _) = run(
+        &lathe,
+        &format!("{start}G76 X36. Z-20. K1.2 D0.4 F2.\nM30\n"),
+    );
+    let (b, out) = run(
+        &lathe,
+        &format!("{start}G76 X36. Z-20. K1.2 D0.4 Q180000 F2.\nM30\n"),
+    );
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(xs(&a), xs(&b));
+    // Both spellings in one block, the two-block words beside K/D, the
+    // one-block words in a first block (no X/Z) and the one-block words in
+    // a two-block second block alarm, naming the two forms; so does an
+    // infeed other than P1.
+    for (bad, code, says) in [
+        ("G75 X20. Z-10. P2000 I2. K3. F0.1\n", "E203", "same value"),
+        (
+            "G76 X36. Z-20. K1.2 D0.4 R0.1 F2.\n",
+            "E203",
+            "two-block form",
+        ),
+        ("G76 K1.2 D0.4 F2.\n", "E203", "one-block form"),
+        ("G75 R0.5 I2. K3. D0.1\n", "E203", "one-block form"),
+        (
+            "G76 X36. Z-20. P1200 Q400 A60 F2.\n",
+            "E203",
+            "one-block form",
+        ),
+        ("G76 X36. Z-20. K1.2 D0.4 P2 F2.\n", "E314", "only P1"),
+        ("G76 X36. Z-20. K-1.2 D0.4 F2.\n", "E109", "more than 0"),
     ] {
         let (_, out) = run(&lathe, &format!("{start}{bad}M30\n"));
         let Outcome::Alarm(d) = out else {
             panic!("{bad}: {out:?}")
         };
-        assert!(matches!(d.code.as_str(), "E203" | "E109"), "{bad}: {d:?}");
+        assert_eq!((d.code.as_str(), d.line), (code, 4), "{bad}: {d:?}");
+        assert!(d.message.contains(says), "{bad}: {}", d.message);
     }
 }
 

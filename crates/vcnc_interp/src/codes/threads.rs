@@ -44,9 +44,24 @@ const ANGLES: [u32; 6] = [0, 29, 30, 55, 60, 80];
 /// one-block word).
 fn either(w: &Words<'_>, two: u8, one: u8) -> Result<Option<Word>, Diagnostic> {
     match (w.get(two), w.get(one)) {
-        (Some(_), Some(o)) => Err(alarms::word_not_allowed(o.span, one)),
+        (Some(_), Some(o)) => Err(alarms::spelled_twice(o.span, two, one)),
         (t, o) => Ok(t.or(o)),
     }
+}
+
+/// E203 on a one-block word (`letters`) in a first block, which has no
+/// axis words and sets only the modal values.
+fn no_one_block_words(w: &Words<'_>, letters: &[u8]) -> Result<(), Diagnostic> {
+    for &l in letters {
+        if let Some(word) = w.get(l) {
+            return Err(alarms::other_cycle_form(
+                word.span,
+                l,
+                "the one-block form, which writes X/Z in the same block",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The cumulative depths (radius, mm) of G76's passes before the
@@ -92,6 +107,7 @@ impl Interpreter<'_> {
         let axes = self.lathe_axes(cmd)?;
         if !w.any(self.axis_mask) {
             // The first block: R, the retract after each peck.
+            no_one_block_words(w, b"IKD")?;
             for l in [b'P', b'Q'] {
                 if let Some(word) = w.get(l) {
                     return Err(alarms::word_not_allowed(word.span, l));
@@ -171,6 +187,7 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
         if !w.any(self.axis_mask) {
+            no_one_block_words(w, b"KDIA")?;
             return self.thread_first_block(w);
         }
         let a = self.here_xz(axes);
@@ -193,13 +210,32 @@ impl Interpreter<'_> {
         let one_block = w.get(b'K').is_some() || w.get(b'D').is_some();
         let mut tool_angle_deg = self.state.lathe.mrc.tool_angle_deg;
         let (height_word, first_word, taper_word) = if one_block {
-            for l in [b'R', b'Q'] {
-                if let Some(word) = w.get(l) {
-                    return Err(alarms::word_not_allowed(word.span, l));
-                }
+            if let Some(r) = w.get(b'R') {
+                return Err(alarms::other_cycle_form(
+                    r.span,
+                    b'R',
+                    "the two-block form: the one-block form writes the taper as I",
+                ));
             }
-            if let Some(p) = w.get(b'P') {
-                whole(&p, b'P', 1.0, 1.0, "only P1 (one flank, constant area)")?;
+            // Haas's Q is the thread's start angle (a multi-start thread):
+            // it turns the spindle's phase, not the tool's path.
+            if let Some(q) = w.get(b'Q') {
+                whole(
+                    &q,
+                    b'Q',
+                    0.0,
+                    360_000.0,
+                    "Q is the thread's start angle in 0.001°, 0-360000",
+                )?;
+            }
+            if let Some(p) = w.get(b'P')
+                && (p.point || p.value != 1.0)
+            {
+                return Err(alarms::cycle_parameters(
+                    p.span,
+                    "in the one-block G76 (with K and D) P picks the infeed, and only P1 \
+                     (one flank, constant area) is run",
+                ));
             }
             if let Some(a) = w.get(b'A') {
                 let angle = whole(&a, b'A', 0.0, 120.0, "A is the tool angle 0-120")?;
@@ -208,7 +244,11 @@ impl Interpreter<'_> {
             (w.get(b'K'), w.get(b'D'), w.get(b'I'))
         } else {
             if let Some(word) = w.get(b'I').or(w.get(b'A')) {
-                return Err(alarms::word_not_allowed(word.span, word.addr.0));
+                return Err(alarms::other_cycle_form(
+                    word.span,
+                    word.addr.0,
+                    "the one-block form, with K (the height) and D (the first depth)",
+                ));
             }
             (w.get(b'P'), w.get(b'Q'), w.get(b'R'))
         };
@@ -219,12 +259,28 @@ impl Interpreter<'_> {
         };
         let height = match height_word {
             Some(p) if self.length_mm(&p) > 0.0 => self.length_mm(&p),
+            Some(p) if p.value < 0.0 => {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    p.addr.0,
+                    p.value,
+                    "the thread height is more than 0",
+                ));
+            }
             p => {
                 return Err(alarms::zero_amount(p.map_or(cmd, |p| p.span), height_name));
             }
         };
         let first = match first_word {
             Some(q) if self.length_mm(&q) > 0.0 => self.length_mm(&q),
+            Some(q) if q.value < 0.0 => {
+                return Err(alarms::value_out_of_range(
+                    q.span,
+                    q.addr.0,
+                    q.value,
+                    "the first depth of cut is more than 0",
+                ));
+            }
             q => {
                 return Err(alarms::zero_amount(q.map_or(cmd, |q| q.span), first_name));
             }
