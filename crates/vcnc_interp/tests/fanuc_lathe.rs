@@ -6,6 +6,7 @@
 //!   inside the stock, consecutive levels are one depth of cut apart, and
 //!   G70 then follows the profile exactly;
 //! - G76's pass depths against the constant-area formula Δd·√n;
+//! - the one-block G74/G75/G76 against their two-block forms;
 //! - random programs of the dialect's tokens never panic or hang and end
 //!   with an `end` or a located alarm.
 
@@ -569,6 +570,69 @@ proptest! {
         for e in &events {
             if let Event::Rapid { to, .. } | Event::Feed { to, .. } | Event::Arc { to, .. } | Event::Thread { to, .. } = e {
                 prop_assert!(to.get(X).is_finite() && to.get(Z).is_finite(), "{e:?}\n{p}");
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// The one-block G74/G75/G76 (Haas, Fanuc's FS15 format) move exactly
+    /// as their two-block forms on random end points and amounts: I, K, D
+    /// for P, Q, R (G74/G75); K, D, I for P, Q, R and A for the first
+    /// block's angle (G76). The two-block P and Q are written in least
+    /// increments, the one-block words with a point: the same values.
+    #[test]
+    fn one_block_cycles_move_as_their_two_block_forms(
+        (x_end, z_end) in (2.0f64..28.0, -30.0f64..-1.0),
+        (peck, step, relief) in (0.2f64..3.0, 0.5f64..4.0, 0.0f64..0.3),
+        (height, first, taper) in (0.6f64..2.0, 0.1f64..0.5, -0.8f64..0.8),
+        angle in prop::sample::select(vec![0u32, 29, 30, 55, 60, 80]),
+        face: bool,
+    ) {
+        let um = |v: f64| (v * 1000.0).round();
+        let mm = |v: f64| um(v) / 1000.0;
+        let start = "G21 G18 G99 T0101\nS500 M03\nG00 X30. Z2.\n";
+        let code = if face { 74 } else { 75 };
+        let pairs = [
+            (
+                format!("G{code} R0.5\nG{code} X{:.3} Z{:.3} P{:.0} Q{:.0} R{:.3} F0.1\n",
+                    mm(x_end), mm(z_end), um(peck), um(step), mm(relief)),
+                format!("G{code} R0.5\nG{code} X{:.3} Z{:.3} I{:.3} K{:.3} D{:.3} F0.1\n",
+                    mm(x_end), mm(z_end), mm(peck), mm(step), mm(relief)),
+            ),
+            (
+                format!("G76 P0100{angle:02} Q20 R0.\nG76 X{:.3} Z{:.3} R{:.3} P{:.0} Q{:.0} F1.5\n",
+                    mm(x_end), mm(z_end), mm(taper), um(height), um(first)),
+                format!("G76 P010060 Q20 R0.\nG76 X{:.3} Z{:.3} I{:.3} K{:.3} D{:.3} A{angle} F1.5\n",
+                    mm(x_end), mm(z_end), mm(taper), mm(height), mm(first)),
+            ),
+        ];
+        for (two, one) in pairs {
+            let (a, out_a) = run(&format!("{start}{two}M30\n"));
+            let (b, out_b) = run(&format!("{start}{one}M30\n"));
+            // Both forms alarm alike where the amounts do not fit.
+            match (&out_a, &out_b) {
+                (Outcome::Alarm(x), Outcome::Alarm(y)) => {
+                    prop_assert_eq!(x.code, y.code, "{}\n{}", two, one);
+                    continue;
+                }
+                _ => {
+                    prop_assert!(matches!(out_a, Outcome::Ended(_)), "{:?}\n{}", out_a, two);
+                    prop_assert!(matches!(out_b, Outcome::Ended(_)), "{:?}\n{}", out_b, one);
+                }
+            }
+            let ends = |ev: &[Event]| -> Vec<(f64, f64)> {
+                ev.iter().filter_map(Event::motion_end).map(|p| (p.get(X), p.get(Z))).collect()
+            };
+            // P1563 (least increments, 1563 × 0.001) and K1.563 differ in
+            // the last bit.
+            let (ea, eb) = (ends(&a), ends(&b));
+            prop_assert_eq!(ea.len(), eb.len(), "{}\n{}", two, one);
+            for (p, q) in ea.iter().zip(&eb) {
+                prop_assert!((p.0 - q.0).abs() < 1e-9 && (p.1 - q.1).abs() < 1e-9,
+                    "{:?} {:?}\n{}\n{}", p, q, two, one);
             }
         }
     }
