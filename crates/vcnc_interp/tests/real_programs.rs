@@ -67,6 +67,17 @@ fn haas_repeats_a_cycle_block_by_l() {
         feeds_and_holes(&ev),
         ["hole X1", "Z-3", "hole X2", "Z-3", "hole X3", "Z-3"]
     );
+    // An M98 beside a hole takes its L: the call repeats, the hole not (the
+    // hole at X5, then O2000's G91 X1. twice in the cycle: X6, X7).
+    let call = "G0 X0 Y0 Z10.\nS1000 M3\nG81 X0 Z-3. R2. F100.\nX5. M98 P2000 L2\nG80\nM30\n\
+                O2000\nG91 X1.\nG90\nM99\n";
+    let (ev, out) = run(&Dialect::haas(), call);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let holes: Vec<String> = feeds_and_holes(&ev)
+        .into_iter()
+        .filter(|h| h.starts_with("hole"))
+        .collect();
+    assert_eq!(holes, ["hole X0", "hole X5", "hole X6", "hole X7"]);
     // K is Fanuc's repeat count, and in G81 no Haas word.
     let (_, out) = run(&Dialect::haas(), &program.replace("L3", "K3"));
     let Outcome::Alarm(d) = out else {

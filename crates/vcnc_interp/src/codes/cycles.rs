@@ -185,7 +185,14 @@ impl Interpreter<'_> {
             return Ok(());
         }
         self.store_cycle_words(w, axes)?;
-        let count = match rules.repeat_letter().and_then(|l| w.get(l).map(|k| (l, k))) {
+        // An M code of the block that reads the letter (Haas: `M98 P.. L..`,
+        // `M97 P.. L..` beside a hole) takes it: the call repeats, the hole
+        // does not.
+        let m_letters = w.m.iter().flatten().fold(0, |m, a| m | a.def.letters);
+        let repeat = rules
+            .repeat_letter()
+            .filter(|l| m_letters & crate::dialect::bit(*l) == 0);
+        let count = match repeat.and_then(|l| w.get(l).map(|k| (l, k))) {
             Some((l, k)) => {
                 let why = if l == b'L' {
                     "L is a repeat count 0-9999"
