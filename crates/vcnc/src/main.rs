@@ -44,13 +44,13 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
     }
 }
 
-/// A report written to standard output: a reader that closed the pipe
-/// (`vcnc check big.nc | head -3`) has what it wanted, as `run` and `time`
-/// treat it; any other error is the report's.
+/// Output written to standard output (`run`'s events, `check`'s report):
+/// a reader that closed the pipe (`vcnc check big.nc | head -3`) has what
+/// it wanted; any other error is the output's.
 pub(crate) fn reported(r: std::io::Result<()>) -> Result<(), String> {
     match r {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        r => r.map_err(|e| format!("writing the report: {e}")),
+        r => r.map_err(|e| format!("writing output: {e}")),
     }
 }
 
@@ -147,11 +147,7 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
             })?
         }
     };
-    match written {
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
-        Err(e) => return Err(format!("writing output: {e}")),
-        Ok(()) => {}
-    }
+    reported(written)?;
     eprint!("{}", render::warnings(&warnings, &input));
     if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, &input));

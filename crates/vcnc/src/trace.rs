@@ -14,7 +14,8 @@
 use std::io::Write;
 use vcnc_interp::{Event, Machine, Sink};
 use vcnc_planner::{
-    MAX_FILTER_SAMPLES, Planner, ProfileShape, Sample, SampleSink, Sampler, Smoothed, filter_time,
+    MAX_FILTER_SAMPLES, Planner, ProfileShape, Sample, SampleSink, Sampler, Smoothed,
+    filter_samples, filter_time,
 };
 
 /// Formats samples as CSV rows.
@@ -76,7 +77,7 @@ pub fn check_period(
 ) -> Result<(), String> {
     let shape = profile.unwrap_or(machine.motion.profile);
     let t = filter_time(machine, shape);
-    let n = Smoothed::<fn(&Sample)>::samples(t, period_s);
+    let n = filter_samples(t, period_s);
     if n > MAX_FILTER_SAMPLES {
         return Err(format!(
             "--period {period_s} samples the filter profile's {t} s average {n} times, \

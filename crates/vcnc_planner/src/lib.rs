@@ -27,7 +27,7 @@ pub use planner::{Planner, filter_time};
 pub use ramp::{Kin, Profile, Ramp};
 pub use time::CycleTime;
 pub use timeline::{Attr, AxesMove, MoveKind, Pause, PauseKind, Segment, Timeline};
-pub use trace::{MAX_FILTER_SAMPLES, Sample, SampleSink, Sampler, Smoothed};
+pub use trace::{MAX_FILTER_SAMPLES, Sample, SampleSink, Sampler, Smoothed, filter_samples};
 pub use vcnc_core::motion::Profile as ProfileShape;
 
 /// Plans a whole run: feed the events to the returned planner, then call

@@ -161,17 +161,17 @@ pub struct Smoothed<F: SampleSink> {
     inner: F,
 }
 
-impl<F: SampleSink> Smoothed<F> {
-    /// How many samples the average of `filter_s` at `period_s` holds:
-    /// the whole periods within T (one at least), so that the run-out of T
-    /// the planner adds after a stop always fills the window with samples
-    /// at rest and the trace stops where the plan does. When T is not a
-    /// whole number of periods the average is up to a period shorter than
-    /// T (its jerk up to a/(T − period)); at the default 1 ms it is T.
-    pub fn samples(filter_s: f64, period_s: f64) -> f64 {
-        (filter_s / sample_period(period_s) + 1e-9).floor().max(1.0)
-    }
+/// How many samples [`Smoothed`]'s average of `filter_s` at `period_s`
+/// holds: the whole periods within T (one at least), so that the run-out
+/// of T the planner adds after a stop always fills the window with samples
+/// at rest and the trace stops where the plan does. When T is not a whole
+/// number of periods the average is up to a period shorter than T (its
+/// jerk up to a/(T − period)); at the default 1 ms it is T.
+pub fn filter_samples(filter_s: f64, period_s: f64) -> f64 {
+    (filter_s / sample_period(period_s) + 1e-9).floor().max(1.0)
+}
 
+impl<F: SampleSink> Smoothed<F> {
     /// A moving average over `filter_s` at `period_s` (a filter shorter
     /// than two periods passes samples through), starting at rest at
     /// `start`. The window holds at most [`MAX_FILTER_SAMPLES`] samples
@@ -179,12 +179,12 @@ impl<F: SampleSink> Smoothed<F> {
     pub fn new(filter_s: f64, period_s: f64, start: Pos, inner: F) -> Smoothed<F> {
         let period_s = sample_period(period_s);
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let n = Smoothed::<F>::samples(filter_s, period_s).min(MAX_FILTER_SAMPLES) as usize;
+        let n = filter_samples(filter_s, period_s).min(MAX_FILTER_SAMPLES) as usize;
         let rest = Kept {
             pos: start.0,
             vel: [0.0; MAX_AXES],
         };
-        #[allow(clippy::cast_precision_loss)] // n ≤ 1e6
+        #[allow(clippy::cast_precision_loss)] // n ≤ MAX_FILTER_SAMPLES
         let nf = n as f64;
         Smoothed {
             ring: vec![rest; n],
@@ -237,7 +237,7 @@ impl<F: SampleSink> SampleSink for Smoothed<F> {
                 self.sum[i] += new.pos[i] - old.pos[i];
             }
         }
-        #[allow(clippy::cast_precision_loss)] // n ≤ 1e6
+        #[allow(clippy::cast_precision_loss)] // n ≤ MAX_FILTER_SAMPLES
         let inv = 1.0 / n as f64;
         let mut out = *s;
         let (mut v2, mut jv, mut j2) = (0.0, 0.0, 0.0);
