@@ -65,6 +65,15 @@ impl PeckDepths {
         }
     }
 
+    /// The cycle's pecks over a hole `depth` deep: Haas's I, J, K if set,
+    /// else Q, else one peck to the bottom.
+    fn of(data: &CycleData, depth: f64) -> PeckDepths {
+        match data.reduced {
+            Some(rp) => PeckDepths::reduced(rp),
+            None => PeckDepths::constant(data.q.unwrap_or(depth)),
+        }
+    }
+
     /// This peck's depth; the next is `less` shorter, but not below `least`.
     fn take(&mut self) -> f64 {
         let d = self.next;
@@ -273,7 +282,7 @@ impl Interpreter<'_> {
             crate::block::convert::dwell_not_negative(&p)?;
             self.state.cycle.p_s = Some(self.seconds(&p));
         }
-        if self.dialect.cycles == CycleRules::Haas {
+        if self.dialect.cycles.pecks_by_ijk() {
             self.store_reduced_peck(w)?;
         }
         Ok(())
@@ -392,9 +401,9 @@ impl Interpreter<'_> {
         let depth = (data.r.unwrap_or(data.initial) - z).abs();
         let per_hole = match data.reduced {
             // Count Haas's shrinking pecks, no further than the bound.
-            Some(rp) if self.pecks_with_q(c) => {
+            Some(_) if self.pecks_with_q(c) => {
                 let cap = MAX_PECKS / holes.max(1) + 1;
-                let (mut depths, mut done, mut n) = (PeckDepths::reduced(rp), 0.0, 0u64);
+                let (mut depths, mut done, mut n) = (PeckDepths::of(&data, depth), 0.0, 0u64);
                 while done < depth - SAME_MM && n <= cap {
                     done += depths.take();
                     n += 1;
@@ -571,11 +580,14 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let d = self.machine.params.peck_return_mm;
         let back_to_r = c == Cycle::G83;
-        let depths = match data.reduced {
-            Some(rp) => PeckDepths::reduced(rp),
-            None => PeckDepths::constant(data.q.unwrap_or(zr - zz)),
-        };
-        self.peck_moves(s, (zr, zz), depths, d, back_to_r, feed)?;
+        self.peck_moves(
+            s,
+            (zr, zz),
+            PeckDepths::of(&data, zr - zz),
+            d,
+            back_to_r,
+            feed,
+        )?;
         self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
         Ok(())
     }
@@ -668,12 +680,12 @@ impl Interpreter<'_> {
             }
             // "Rapids back down to its previous depth": no clearance.
             Cycle::G83 => {
-                let q = PeckDepths::constant(data.q.unwrap_or(zr - zz));
+                let q = PeckDepths::of(&data, zr - zz);
                 self.peck_moves(s, (zr, zz), q, 0.0, true, feed)?;
             }
             // Chip breaking: back off 0.010 inch between pecks.
             Cycle::G87 => {
-                let q = PeckDepths::constant(data.q.unwrap_or(zr - zz));
+                let q = PeckDepths::of(&data, zr - zz);
                 self.peck_moves(s, (zr, zz), q, EIA_BACK_OFF_MM, false, feed)?;
             }
             Cycle::G84 => {

@@ -499,6 +499,12 @@ impl CycleRules {
         }
     }
 
+    /// Whether G73/G83 take I, J, K for a shrinking peck (Haas; elsewhere
+    /// K is the repeat count).
+    pub(crate) fn pecks_by_ijk(self) -> bool {
+        self == CycleRules::Haas
+    }
+
     /// The letter that repeats a cycle block: K, Haas's L (EIA: none).
     pub(crate) fn repeat_letter(self) -> Option<u8> {
         match self {
