@@ -49,6 +49,73 @@ fn either(w: &Words<'_>, two: u8, one: u8) -> Result<Option<Word>, Diagnostic> {
     }
 }
 
+/// G76's height and first depth as its alarms name them: (letter, name,
+/// rule), in the two-block and the one-block form.
+type Amount = (u8, &'static str, &'static str);
+const HEIGHT_P: Amount = (
+    b'P',
+    "the thread height P",
+    "the thread height is more than 0",
+);
+const HEIGHT_K: Amount = (
+    b'K',
+    "the thread height K",
+    "the thread height is more than 0",
+);
+const FIRST_Q: Amount = (
+    b'Q',
+    "the first depth of cut Q",
+    "the first depth of cut is more than 0",
+);
+const FIRST_D: Amount = (
+    b'D',
+    "the first depth of cut D",
+    "the first depth of cut is more than 0",
+);
+
+/// The one-block G76's words beside K and D (FS15 tape format, Haas): R is
+/// the two-block form's (E203: the taper is I), Haas's Q the thread's start
+/// angle (a multi-start thread: the spindle's phase, not the tool's path),
+/// P the infeed (only P1, one flank at constant area, is run), A the tool
+/// angle for this cycle. Returns the angle (`modal` without A).
+fn one_block_thread_angle(w: &Words<'_>, modal: f64) -> Result<f64, Diagnostic> {
+    if let Some(r) = w.get(b'R') {
+        return Err(alarms::other_cycle_form(
+            r.span,
+            b'R',
+            "the two-block form: the one-block form writes the taper as I",
+        ));
+    }
+    if let Some(q) = w.get(b'Q') {
+        whole(
+            &q,
+            b'Q',
+            0.0,
+            360_000.0,
+            "Q is the thread's start angle in 0.001°, 0-360000",
+        )?;
+    }
+    if let Some(p) = w.get(b'P')
+        && (p.point || p.value != 1.0)
+    {
+        return Err(alarms::cycle_parameters(
+            p.span,
+            "in the one-block G76 (with K and D) P picks the infeed, and only P1 \
+             (one flank, constant area) is run",
+        ));
+    }
+    match w.get(b'A') {
+        Some(a) => Ok(f64::from(whole(
+            &a,
+            b'A',
+            0.0,
+            120.0,
+            "A is the tool angle 0-120",
+        )?)),
+        None => Ok(modal),
+    }
+}
+
 /// E203 on a one-block word (`letters`) in a first block, which has no
 /// axis words and sets only the modal values.
 fn no_one_block_words(w: &Words<'_>, letters: &[u8]) -> Result<(), Diagnostic> {
@@ -208,40 +275,9 @@ impl Interpreter<'_> {
         // first depth, I the taper, A the tool angle; P then picks the
         // infeed (1: one flank, the depth of each pass by constant area).
         let one_block = w.get(b'K').is_some() || w.get(b'D').is_some();
-        let mut tool_angle_deg = self.state.lathe.mrc.tool_angle_deg;
-        let (height_word, first_word, taper_word) = if one_block {
-            if let Some(r) = w.get(b'R') {
-                return Err(alarms::other_cycle_form(
-                    r.span,
-                    b'R',
-                    "the two-block form: the one-block form writes the taper as I",
-                ));
-            }
-            // Haas's Q is the thread's start angle (a multi-start thread):
-            // it turns the spindle's phase, not the tool's path.
-            if let Some(q) = w.get(b'Q') {
-                whole(
-                    &q,
-                    b'Q',
-                    0.0,
-                    360_000.0,
-                    "Q is the thread's start angle in 0.001°, 0-360000",
-                )?;
-            }
-            if let Some(p) = w.get(b'P')
-                && (p.point || p.value != 1.0)
-            {
-                return Err(alarms::cycle_parameters(
-                    p.span,
-                    "in the one-block G76 (with K and D) P picks the infeed, and only P1 \
-                     (one flank, constant area) is run",
-                ));
-            }
-            if let Some(a) = w.get(b'A') {
-                let angle = whole(&a, b'A', 0.0, 120.0, "A is the tool angle 0-120")?;
-                tool_angle_deg = f64::from(angle);
-            }
-            (w.get(b'K'), w.get(b'D'), w.get(b'I'))
+        let (height_of, first_of, taper_letter, tool_angle_deg) = if one_block {
+            let angle = one_block_thread_angle(w, self.state.lathe.mrc.tool_angle_deg)?;
+            (HEIGHT_K, FIRST_D, b'I', angle)
         } else {
             if let Some(word) = w.get(b'I').or(w.get(b'A')) {
                 return Err(alarms::other_cycle_form(
@@ -250,41 +286,11 @@ impl Interpreter<'_> {
                     "the one-block form, with K (the height) and D (the first depth)",
                 ));
             }
-            (w.get(b'P'), w.get(b'Q'), w.get(b'R'))
+            (HEIGHT_P, FIRST_Q, b'R', self.state.lathe.mrc.tool_angle_deg)
         };
-        let (height_name, first_name) = if one_block {
-            ("the thread height K", "the first depth of cut D")
-        } else {
-            ("the thread height P", "the first depth of cut Q")
-        };
-        let height = match height_word {
-            Some(p) if self.length_mm(&p) > 0.0 => self.length_mm(&p),
-            Some(p) if p.value < 0.0 => {
-                return Err(alarms::value_out_of_range(
-                    p.span,
-                    p.addr.0,
-                    p.value,
-                    "the thread height is more than 0",
-                ));
-            }
-            p => {
-                return Err(alarms::zero_amount(p.map_or(cmd, |p| p.span), height_name));
-            }
-        };
-        let first = match first_word {
-            Some(q) if self.length_mm(&q) > 0.0 => self.length_mm(&q),
-            Some(q) if q.value < 0.0 => {
-                return Err(alarms::value_out_of_range(
-                    q.span,
-                    q.addr.0,
-                    q.value,
-                    "the first depth of cut is more than 0",
-                ));
-            }
-            q => {
-                return Err(alarms::zero_amount(q.map_or(cmd, |q| q.span), first_name));
-            }
-        };
+        let height = self.thread_amount(w, height_of, cmd)?;
+        let first = self.thread_amount(w, first_of, cmd)?;
+        let taper_word = w.get(taper_letter);
         let lead_mm = match w.get(b'F') {
             Some(f) if f.value > 0.0 => f.value * self.unit_mm(),
             _ => return Err(alarms::thread_without_lead(cmd)),
@@ -330,6 +336,23 @@ impl Interpreter<'_> {
         self.cycle_moves(&moves, axes, w, cmd)?;
         self.resume_comp(suspended);
         Ok(())
+    }
+
+    /// G76's height or first depth in `w`: a positive length (E109 if
+    /// negative, E346 if zero or missing).
+    fn thread_amount(
+        &self,
+        w: &Words<'_>,
+        (letter, name, rule): Amount,
+        cmd: Span,
+    ) -> Result<f64, Diagnostic> {
+        match w.get(letter) {
+            Some(word) if self.length_mm(&word) > 0.0 => Ok(self.length_mm(&word)),
+            Some(word) if word.value < 0.0 => Err(alarms::value_out_of_range(
+                word.span, letter, word.value, rule,
+            )),
+            word => Err(alarms::zero_amount(word.map_or(cmd, |x| x.span), name)),
+        }
     }
 
     /// G76 P(m r a) Q(Δdmin) R(d).
