@@ -104,7 +104,13 @@ IGNORED = {
     "SET_FEED_REFERENCE", "ON_RESET", "COMMENT", "PALLET_SHUTTLE",
     "SET_FEED_MODE", "SET_SPINDLE_MODE", "SET_MOTION_CONTROL_MODE",
     "SET_NAIVECAM_TOLERANCE", "SET_TOOL_TABLE_ENTRY", "START_CHANGE",
+    # tapping (G74/G84) holds the overrides
+    "DISABLE_FEED_OVERRIDE", "ENABLE_FEED_OVERRIDE",
+    "DISABLE_SPEED_OVERRIDE", "ENABLE_SPEED_OVERRIDE",
 }
+
+# The tapping cycles: the spindle reverses at the bottom and back at R.
+TAPS = ("G74", "G84")
 
 # Drilling axis (the plane's normal) and the two plane axes, by canon plane.
 CYCLE_AXES = {
@@ -342,6 +348,12 @@ class Converter:
             last = self.events[-1] if self.events and self.hole is None else None
             if last and last["type"] == "spindle" and last["line"] == self.line:
                 self.events.pop()
+            # A tap's reversal (stop, then the other way) is one change.
+            buf = self.hole[2] if self.hole is not None else self.events
+            last = buf[-1] if buf else None
+            if self.cycles.get(self.line) in TAPS and last and last["type"] == "spindle" \
+                    and last["line"] == self.line and last["dir"] == "stop":
+                buf.pop()
             self.emit({"type": "spindle", "line": self.line,
                        "dir": self.spindle_dir, "rpm": out_num(self.rpm)})
 
@@ -381,8 +393,8 @@ class Converter:
             self.arc(args)
         elif call == "DWELL":
             s = num(args[0])
-            if s == 0 and self.cycles.get(self.line) == "G86":
-                return          # the P0 LinuxCNC's G86 needs; Fanuc has none
+            if s == 0 and self.cycles.get(self.line) in ("G86",) + TAPS:
+                return          # the P0 LinuxCNC's G86 needs; a tap's P0
             if s == 0:
                 self.err("zero dwell outside G86")
             self.emit({"type": "dwell", "line": self.line, "seconds": out_num(s)})

@@ -54,8 +54,17 @@ fn args_of(program: &str, dir: &Path, default_dialect: &str) -> Args {
 
 /// Runs one program and returns its events as JSON values.
 fn run(path: &Path, default_dialect: &str) -> Vec<Value> {
+    run_under(path, default_dialect, None)
+}
+
+/// [`run`], under `dialect` whatever the program's `vcnc-args` say (its
+/// machine file stays).
+fn run_under(path: &Path, default_dialect: &str, dialect: Option<&str>) -> Vec<Value> {
     let program = std::fs::read_to_string(path).expect("fixture readable");
-    let a = args_of(&program, path.parent().expect("dir"), default_dialect);
+    let mut a = args_of(&program, path.parent().expect("dir"), default_dialect);
+    if let Some(d) = dialect {
+        a.dialect = d.into();
+    }
     let machine = match &a.machine {
         Some(m) => Machine::from_toml(&std::fs::read_to_string(m).expect("machine file"))
             .expect("valid machine"),
@@ -131,11 +140,27 @@ fn close(a: &Value, b: &Value, tol: f64, key: &str) -> bool {
 
 /// Compares every fixture of a folder; reports all mismatches at once.
 fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
+    check_programs(name, "nc", default_dialect, None, tol)
+}
+
+/// [`check_folder`] on the `*.ngc` spellings of a LinuxCNC folder, the
+/// very text `rs274` read, under `--dialect linuxcnc`.
+fn check_ngc_folder(name: &str) -> usize {
+    check_programs(name, "ngc", "linuxcnc", Some("linuxcnc"), 1e-4)
+}
+
+fn check_programs(
+    name: &str,
+    ext: &str,
+    default_dialect: &str,
+    dialect: Option<&str>,
+    tol: f64,
+) -> usize {
     let dir = fixtures_dir(name);
     let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("fixture folder")
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+        .filter(|p| p.extension().is_some_and(|x| x == ext))
         .filter(|p| {
             !p.file_name()
                 .is_some_and(|n| n.to_string_lossy().starts_with('O'))
@@ -154,7 +179,7 @@ fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
                     .unwrap_or_else(|e| panic!("{}: {e}", expected_path.display()))
             })
             .collect();
-        let mut got = run(p, default_dialect);
+        let mut got = run_under(p, default_dialect, dialect);
         // `contour` events (the programmed path under cutter compensation)
         // are compared only where a fixture lists them; the hand-derived
         // compensation fixtures check the tool-centre path, and
@@ -272,6 +297,23 @@ fn linuxcnc_canned_cycle_programs_match_rs274() {
     assert!(n >= 80, "only {n} LinuxCNC canned-cycle fixtures found");
 }
 
+/// `--dialect linuxcnc` on the programs `rs274` itself read (the `.ngc`
+/// spellings of the LinuxCNC fixture folders) gives rs274's events.
+#[test]
+fn linuxcnc_dialect_reads_the_programs_rs274_read() {
+    let n = [
+        "linuxcnc",
+        "linuxcnc_tlo",
+        "linuxcnc_grbl",
+        "linuxcnc_cycles",
+        "linuxcnc_dialect",
+    ]
+    .iter()
+    .map(|f| check_ngc_folder(f))
+    .sum::<usize>();
+    assert!(n >= 600, "only {n} .ngc fixtures found");
+}
+
 /// `linuxcnc_lathe`: the moves (rapid, feed, arc, thread) and the end of
 /// random turning programs under `--dialect fanuc-lathe` equal those of
 /// LinuxCNC's `rs274` on the same programs spelled for it (G7 diameters,
@@ -338,14 +380,21 @@ fn linuxcnc_lathe_moves_match_rs274() {
 
 /// `linuxcnc_comp`: the tool-centre points that both LinuxCNC and a Fanuc
 /// type-A controller reach (`NNN.points.jsonl`) must be end points of
-/// vcnc's motion events, in order, from the same source line.
+/// vcnc's motion events, in order, from the same source line: under
+/// `--dialect fanuc` (`NNN.nc`) and under `--dialect linuxcnc` on the text
+/// rs274 read (`NNN.ngc`, D a tool number).
 #[test]
 fn linuxcnc_compensation_points_are_reached() {
+    let n = compensation_points_reached("nc", None);
+    assert_eq!(n, compensation_points_reached("ngc", Some("linuxcnc")));
+}
+
+fn compensation_points_reached(ext: &str, dialect: Option<&str>) -> usize {
     let dir = fixtures_dir("linuxcnc_comp");
     let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("fixture folder")
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "nc"))
+        .filter(|p| p.extension().is_some_and(|x| x == ext))
         .collect();
     programs.sort();
     let mut failures = Vec::new();
@@ -356,7 +405,7 @@ fn linuxcnc_compensation_points_are_reached() {
             .filter(|l| !l.trim().is_empty())
             .map(|l| serde_json::from_str(l).expect("point is JSON"))
             .collect();
-        let events = run(p, "fanuc");
+        let events = run_under(p, "fanuc", dialect);
         let moves: Vec<&Value> = events
             .iter()
             .filter(|e| matches!(e["type"].as_str(), Some("rapid" | "feed" | "arc")))
@@ -386,4 +435,5 @@ fn linuxcnc_compensation_points_are_reached() {
         failures.join("\n")
     );
     assert!(programs.len() >= 30, "only {} programs", programs.len());
+    programs.len()
 }

@@ -124,7 +124,7 @@ impl Modal {
             inch: false,
             comp: CompSide::Off,
             tool_length: ToolLength::Off,
-            return_r: false,
+            return_r: dialect.cycles.return_r_at_power_on(),
             css: false,
             wcs: 0,
             path: PathMode::Cutting,

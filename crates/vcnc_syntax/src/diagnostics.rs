@@ -27,15 +27,27 @@ pub fn illegal_character(span: Span, ch: char) -> Diagnostic {
     )
 }
 
-/// E101: a grbl system command in a program.
+/// E101: a `$` line in a program: a grbl system command, a multi-path
+/// header (`$1`) or a file header.
 pub fn system_command(span: Span, text: &str) -> Diagnostic {
     Diagnostic::new(
         Code::E101,
         span,
         format!(
-            "{text} is a grbl system command ($H homing, $X unlock, $$ settings), not G-code: a program cannot carry it"
+            "{text} is not G-code: a `$` line is a grbl system command ($H homing, $X unlock, $$ settings), a multi-path header ($1, $2) or a file header"
         ),
-        "remove the line; send system commands to the controller from its console, not in the program",
+        "remove the line; send system commands to the controller from its console; a program of one path of a multi-path lathe is checked on its own",
+    )
+}
+
+/// E604: LinuxCNC's O-word flow control (`o100 sub`, `o<name> call`).
+pub fn o_word_flow(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E604,
+        span,
+        "LinuxCNC's O-word statements (o100 sub, call, if, while …) are not read by vcnc"
+            .to_string(),
+        "expand the subroutines and loops into plain blocks, or write them as M98/M99 subprograms and Custom Macro B (IF, WHILE, GOTO) under --dialect fanuc",
     )
 }
 

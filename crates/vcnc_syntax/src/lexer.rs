@@ -266,8 +266,54 @@ fn word_error(
     out: &Block,
 ) -> Diagnostic {
     foreign_address(line, at, rules)
+        .or_else(|| o_word_flow(line, at, out))
         .or_else(|| lettered_program_name(line, at, out))
         .unwrap_or_else(|| number_error(line, at, value_at, e))
+}
+
+/// LinuxCNC's O-word statements after a block's O number (`o100 sub`).
+const O_KEYWORDS: &[&str] = &[
+    "sub",
+    "endsub",
+    "call",
+    "return",
+    "if",
+    "elseif",
+    "else",
+    "endif",
+    "while",
+    "endwhile",
+    "do",
+    "repeat",
+    "endrepeat",
+    "break",
+    "continue",
+];
+
+/// LinuxCNC's O-word flow control, which no vcnc dialect reads: `o<name>`
+/// (an O without a number) or a keyword after the O number that starts
+/// the block (`o100 sub`, `O101 while [#1 LT 3]`).
+#[cold]
+fn o_word_flow(line: &[u8], at: usize, out: &Block) -> Option<Diagnostic> {
+    let word_end = |from: usize| {
+        from + line[from..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphanumeric() || matches!(c, b'<' | b'>' | b'_'))
+            .count()
+    };
+    if line[at].eq_ignore_ascii_case(&b'O') && line.get(at + 1) == Some(&b'<') {
+        return Some(diag::o_word_flow(Span::new(at, word_end(at + 1))));
+    }
+    let first = out.words().first()?;
+    if out.words().len() != 1 || first.addr.as_letter() != Some(b'O') {
+        return None;
+    }
+    let end = word_end(at);
+    let keyword = &line[at..end];
+    O_KEYWORDS
+        .iter()
+        .any(|k| keyword.eq_ignore_ascii_case(k.as_bytes()))
+        .then(|| diag::o_word_flow(Span::new(first.span.start as usize, end)))
 }
 
 /// `O7997A`: a letter glued to the program number of an `O` word that

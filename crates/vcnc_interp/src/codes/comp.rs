@@ -11,7 +11,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::{GOp, Group, bit};
+use crate::dialect::{GOp, Group, OffsetDefault, bit};
 use crate::interpreter::Interpreter;
 use crate::motion::comp::Mode;
 use crate::state::{CompSide, Motion};
@@ -27,8 +27,19 @@ impl Interpreter<'_> {
         if let (Some(_), Some(m)) = (code, arc) {
             return Err(alarms::comp_arc_startup(m.span));
         }
-        if let Some(d) = w.get(b'D').filter(|_| self.reads_d(w)) {
-            let n = self.offset_number(&d)?;
+        let d_number = match w.get(b'D').filter(|_| self.reads_d(w)) {
+            Some(d) => Some(self.offset_number(&d)?),
+            None => match code {
+                Some(c)
+                    if c.def.op != GOp::CompCancel
+                        && self.dialect.offset_default == OffsetDefault::ToolInSpindle =>
+                {
+                    Some(self.tool_in_spindle(c.span)?)
+                }
+                _ => None,
+            },
+        };
+        if let Some(n) = d_number {
             let t = self.tables.tool(n);
             self.state.d_number = n;
             self.state.comp_d_mm = t.d_mm + t.d_wear_mm;

@@ -28,6 +28,9 @@ use crate::motion::{MoveKind, Target};
 use crate::state::{CycleData, ReducedPeck};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
+/// LinuxCNC's G73 back-off and G83 clearance: 0.010 inch.
+const LINUXCNC_PECK_CLEARANCE_MM: f64 = 0.254;
+
 /// EIA G87's back-off between pecks: the chapter's 0.010 inch.
 const EIA_BACK_OFF_MM: f64 = 0.254;
 
@@ -256,6 +259,14 @@ impl Interpreter<'_> {
             let r_level = self.state.cycle.r.unwrap_or(self.state.cycle.initial);
             self.state.cycle.z = Some(if inc { r_level + v } else { v });
         }
+        let rules = self.dialect.cycles;
+        if let Some(code) = self.state.cycle.code {
+            for (l, read) in [(b'P', rules.reads_p(code)), (b'Q', rules.reads_q(code))] {
+                if let Some(word) = w.get(l).filter(|_| !read) {
+                    return Err(alarms::word_not_allowed(word.span, l));
+                }
+            }
+        }
         if let Some(q) = w.get(b'Q') {
             let v = self.length_mm(&q);
             let code = self.state.cycle.code;
@@ -438,6 +449,33 @@ impl Interpreter<'_> {
         self.straight(kind, Target::Program(p), w, cmd)
     }
 
+    /// LinuxCNC's way to a hole, before the move to R (its interpreter's
+    /// `convert_cycle_xy`, as rs274 moves): a tool below R whose cycle
+    /// started below R first goes straight to R where it is (up, or down
+    /// to a lowered R); the return level is R under G99, else the level
+    /// the cycle started at (R if that was below); the tool goes to the
+    /// hole at its own level, or straight (diagonally) up to the return
+    /// level when it is below it. Returns the return level.
+    fn linuxcnc_positioning(
+        &mut self,
+        s: &mut Steps<'_, '_>,
+        zr: f64,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<f64, Diagnostic> {
+        let z = s.axes.z;
+        let mut start = self.state.cycle.initial;
+        if start < zr {
+            let mut here = self.state.prog;
+            here.set(z, zr);
+            self.step_to(MoveKind::Rapid, here, w, cmd)?;
+            start = zr;
+        }
+        let ret = if self.state.modal.return_r { zr } else { start };
+        s.rapid(self, self.state.prog.get(z).max(ret))?;
+        Ok(ret)
+    }
+
     /// Cutter compensation is suspended for a cycle's holes (Fanuc): the
     /// held move ends square to its path.
     pub(crate) fn suspend_comp(&mut self) -> Result<bool, Diagnostic> {
@@ -478,7 +516,8 @@ impl Interpreter<'_> {
         let at = self.state.frame.machine_of(at);
         self.emit(|loc| Event::Hole { loc, cycle: c, at });
         let eia = self.eia();
-        let ret = if eia || (self.state.modal.return_r && c != Cycle::G87) {
+        let linuxcnc = self.dialect.cycles == CycleRules::LinuxCnc;
+        let mut ret = if eia || (self.state.modal.return_r && c != Cycle::G87) {
             zr
         } else {
             data.initial
@@ -489,9 +528,13 @@ impl Interpreter<'_> {
             w,
             cmd,
         };
-        // Positioning in the plane at the current level, then to R.
-        let z_now = self.state.prog.get(axes.z);
-        s.rapid(self, z_now)?;
+        if linuxcnc {
+            ret = self.linuxcnc_positioning(&mut s, zr, w, cmd)?;
+        } else {
+            // Positioning in the plane at the current level, then to R.
+            let z_now = self.state.prog.get(axes.z);
+            s.rapid(self, z_now)?;
+        }
         if c == Cycle::G87 && !eia {
             return self.back_bore(&mut s, zr, zz, data);
         }
@@ -507,7 +550,8 @@ impl Interpreter<'_> {
                 s.feed(self, zz, feed)?;
                 self.cycle_dwell(dwell);
                 if c == Cycle::G89 {
-                    s.feed(self, zr, feed)?;
+                    // LinuxCNC feeds out all the way to the return level.
+                    s.feed(self, if linuxcnc { ret } else { zr }, feed)?;
                 }
             }
             Cycle::G73 | Cycle::G83 => self.pecks(&mut s, c, zr, zz, data, feed)?,
@@ -526,6 +570,10 @@ impl Interpreter<'_> {
             }
             Cycle::G86 => {
                 s.feed(self, zz, feed)?;
+                // LinuxCNC's G86 dwells P at the bottom; Fanuc's has no P.
+                if self.dialect.cycles == CycleRules::LinuxCnc {
+                    self.cycle_dwell(dwell);
+                }
                 self.cycle_spindle(SpindleDir::Stop);
                 s.rapid(self, ret)?;
                 self.cycle_spindle(turning);
@@ -578,7 +626,13 @@ impl Interpreter<'_> {
         data: CycleData,
         feed: Feed,
     ) -> Result<(), Diagnostic> {
-        let d = self.machine.params.peck_return_mm;
+        // LinuxCNC's clearance is fixed at 0.010 inch (its G73 back-off and
+        // G83 rapid delta); the Fanuc's is a parameter (5114).
+        let d = if self.dialect.cycles == CycleRules::LinuxCnc {
+            LINUXCNC_PECK_CLEARANCE_MM
+        } else {
+            self.machine.params.peck_return_mm
+        };
         let back_to_r = c == Cycle::G83;
         self.peck_moves(
             s,
@@ -588,7 +642,9 @@ impl Interpreter<'_> {
             back_to_r,
             feed,
         )?;
-        self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
+        if self.dialect.cycles.reads_p(c) {
+            self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
+        }
         Ok(())
     }
 

@@ -12,7 +12,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::dialect::{G10L20, GOp};
+use crate::dialect::{G10Rules, GOp};
 use crate::interpreter::Interpreter;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -29,28 +29,27 @@ impl Interpreter<'_> {
 
     /// G10: L2 work offsets, L10–L13 tool offsets.
     pub(crate) fn set_data(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let rules = self.dialect.g10;
         let l = w.get(b'L').ok_or_else(|| {
-            alarms::needs_word(
-                cmd,
-                "G10",
-                "L (2 work offset, 10/11 H geometry/wear, 12/13 D geometry/wear) and P",
-            )
+            let forms = match rules {
+                G10Rules::LinuxCnc => "L (1 tool table, 2 work offset, 20 work offset here) and P",
+                _ => "L (2 work offset, 10/11 H geometry/wear, 12/13 D geometry/wear) and P",
+            };
+            alarms::needs_word(cmd, "G10", forms)
         })?;
-        let from_position = self.dialect.l20 == G10L20::FromPosition;
-        match whole(&l, b'L', 2.0, 20.0, "G10 L is 2, 10, 11, 12 or 13")? {
-            2 => self.set_work_offset(w, cmd, false),
-            20 if from_position => self.set_work_offset(w, cmd, true),
-            n @ 10..=13 => self.set_tool_offset(w, cmd, n),
-            _ => Err(alarms::value_out_of_range(
-                l.span,
-                b'L',
-                l.value,
-                if from_position {
-                    "G10 L is 2, 10, 11, 12, 13 or 20"
-                } else {
-                    "G10 L is 2, 10, 11, 12 or 13"
-                },
-            )),
+        let which = match rules {
+            G10Rules::Fanuc => "G10 L is 2, 10, 11, 12 or 13",
+            G10Rules::Grbl => "G10 L is 2, 10, 11, 12, 13 or 20",
+            G10Rules::LinuxCnc => {
+                "G10 L is 1, 2 or 20 (L10/L11, the tool table from the current position, are not run by vcnc)"
+            }
+        };
+        match (rules, whole(&l, b'L', 1.0, 20.0, which)?) {
+            (_, 2) => self.set_work_offset(w, cmd, false),
+            (G10Rules::Grbl | G10Rules::LinuxCnc, 20) => self.set_work_offset(w, cmd, true),
+            (G10Rules::Fanuc | G10Rules::Grbl, n @ 10..=13) => self.set_tool_offset(w, cmd, n),
+            (G10Rules::LinuxCnc, 1) => self.set_tool_entry(w, cmd),
+            _ => Err(alarms::value_out_of_range(l.span, b'L', l.value, which)),
         }
     }
 
@@ -70,15 +69,13 @@ impl Interpreter<'_> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
-        let lowest = if self.dialect.l20 == G10L20::FromPosition {
-            0.0
-        } else {
-            1.0
-        };
-        if p.point || !(lowest..=6.0).contains(&p.value) {
+        let rules = self.dialect.g10;
+        let lowest = if rules.l20() { 0.0 } else { 1.0 };
+        let last = rules.last_work_offset();
+        if p.point || !(lowest..=last).contains(&p.value) {
             return Err(alarms::bad_offset_number(p.span, p.value));
         }
-        let n = match whole(&p, b'P', lowest, 6.0, "P is a work offset number")? {
+        let n = match whole(&p, b'P', lowest, last, "P is a work offset number")? {
             0 => self.state.modal.wcs,
             k => k as usize - 1,
         };
@@ -143,6 +140,44 @@ impl Interpreter<'_> {
         Ok(())
     }
 
+    /// LinuxCNC's G10 L1 P R Z: tool P's radius (R) and length (Z) in the
+    /// tool table, as given under G91 too (they are table values, not
+    /// positions). Other axis words (the lathe's X, the rotary offsets) are
+    /// not run.
+    fn set_tool_entry(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        if let Some(word) = self
+            .machine
+            .axes
+            .iter()
+            .filter(|a| a.letter != b'Z')
+            .filter_map(|a| w.get(a.letter))
+            .min_by_key(|word| word.span.start)
+        {
+            return Err(alarms::word_not_allowed(word.span, word.addr.0));
+        }
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G10 L1", "P (the tool number)"))?;
+        let n = self.offset_number(&p)?;
+        let (r, z) = (w.get(b'R'), w.get(b'Z'));
+        if r.is_none() && z.is_none() {
+            return Err(alarms::needs_word(
+                cmd,
+                "G10 L1",
+                "R (the tool radius) or Z (its length offset)",
+            ));
+        }
+        let mut tool = self.tables.tool(n);
+        if let Some(r) = r {
+            tool.d_mm = self.length_mm(&r);
+        }
+        if let Some(z) = z {
+            tool.h_mm = self.length_mm(&z);
+        }
+        self.tables.set_tool(n, tool);
+        Ok(())
+    }
+
     /// An H, D or G10 P offset number within the machine's offset registers.
     pub(crate) fn offset_number(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
         let max = self.machine.params.offset_registers;
@@ -152,6 +187,17 @@ impl Interpreter<'_> {
             ));
         }
         whole(w, w.addr.0, 0.0, f64::from(max), "an offset number")
+    }
+
+    /// The tool in the spindle as an offset number (LinuxCNC's G43 without
+    /// H, G41/G42 without D): 0, no offset, before the first tool change.
+    pub(crate) fn tool_in_spindle(&self, at: Span) -> Result<u32, Diagnostic> {
+        let t = self.state.tool_active.unwrap_or(0);
+        let max = self.machine.params.offset_registers;
+        if t > max {
+            return Err(alarms::bad_tool_offset_number(at, b'T', f64::from(t), max));
+        }
+        Ok(t)
     }
 
     /// G92: preset the current position (axes), or clamp the spindle (S).

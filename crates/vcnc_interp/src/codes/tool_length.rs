@@ -17,7 +17,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::{GOp, Group};
+use crate::dialect::{GOp, Group, OffsetDefault};
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::motion::frame::Transform;
@@ -88,6 +88,11 @@ impl Interpreter<'_> {
         };
         if let Some(h) = h {
             self.state.h_number = self.offset_number(&h)?;
+        } else if mode != ToolLength::Off
+            && code.is_some()
+            && self.dialect.offset_default == OffsetDefault::ToolInSpindle
+        {
+            self.state.h_number = self.tool_in_spindle(code.map_or(w.first, |c| c.span))?;
         }
         let sign = match mode {
             ToolLength::Plus => 1.0,

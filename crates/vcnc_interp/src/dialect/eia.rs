@@ -5,9 +5,9 @@
 //! cycles, the pockets G78/G79 and G99 as a junction marker.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp,
-    GRow, Group, IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange,
-    ToolWords, bit, g, mill::MILL_M,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
+    GRow, Group, IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -90,9 +90,10 @@ pub(super) fn eia() -> Dialect {
         rapid: RapidPath::ZPriority,
         cycles: CycleRules::Eia,
         bare_return: BareReturn::NeedsAxes,
-        l20: G10L20::Unsupported,
+        g10: G10Rules::Fanuc,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
+        offset_default: OffsetDefault::Modal,
         macros: super::MacroRules::NONE,
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,

@@ -19,9 +19,9 @@
 //! Decisions are in `docs/dialects.md` (the Fanuc lathe).
 
 use super::{
-    AxisWords, BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp, GRow,
-    Group, IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ToolLengthChange, ToolWords, bit, g,
+    AxisWords, BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
+    GRow, Group, IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
+    SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_FANUC_LATHE_TOML;
@@ -193,10 +193,11 @@ pub(super) fn fanuc_lathe() -> Dialect {
         cycles: CycleRules::Fanuc,
         // Haas lathes send every axis home on a bare G28.
         bare_return: BareReturn::AllAxes,
-        l20: G10L20::Unsupported,
+        g10: G10Rules::Fanuc,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         // A T word's offset applies at the next move.
         tool_length_change: ToolLengthChange::AtNextMove,
+        offset_default: OffsetDefault::Modal,
         feed_at_power_on: FeedAtPowerOn::PerRevolution,
         surface_speed: SurfaceSpeedOn::WorkDiameter,
         tool_words: ToolWords::TurretOffset,

@@ -7,9 +7,9 @@
 //! output runs on it.
 
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp, GRow, Group,
-    IntegerWords, LongChord, MGroup, MOp, MRow, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ToolLengthChange, ToolWords, bit, g,
+    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
+    IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
+    SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
@@ -115,9 +115,10 @@ pub(super) fn grbl() -> Dialect {
         rapid: RapidPath::ByParameter,
         cycles: CycleRules::Fanuc,
         bare_return: BareReturn::AllAxes,
-        l20: G10L20::FromPosition,
+        g10: G10Rules::Grbl,
         program_stop: ProgramStop::Pause,
         tool_length_change: ToolLengthChange::AtNextMove,
+        offset_default: OffsetDefault::Modal,
         macros: super::MacroRules::NONE,
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,

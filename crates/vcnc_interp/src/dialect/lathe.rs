@@ -6,9 +6,9 @@
 //! Decisions the document leaves open are in `docs/dialects.md` (lathe).
 
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp, GRow, Group,
-    IntegerWords, LongChord, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords,
-    bit, g, mill::MILL_M,
+    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
+    IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
@@ -122,9 +122,10 @@ pub(super) fn lathe() -> Dialect {
         rapid: RapidPath::ByParameter,
         cycles: CycleRules::Fanuc,
         bare_return: BareReturn::NeedsAxes,
-        l20: G10L20::Unsupported,
+        g10: G10Rules::Fanuc,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
+        offset_default: OffsetDefault::Modal,
         macros: super::MacroRules::NONE,
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,

@@ -3,9 +3,9 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10L20, GOp,
+    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
     GRow, Group, HAAS_CYCLE_WORDS, HAAS_PECK_WORDS, IntegerWords, LongChord, MGroup, MOp, MRow,
-    ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
+    OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -222,9 +222,10 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         rapid: RapidPath::ByParameter,
         cycles: CycleRules::Fanuc,
         bare_return: BareReturn::NeedsAxes,
-        l20: G10L20::Unsupported,
+        g10: G10Rules::Fanuc,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
+        offset_default: OffsetDefault::Modal,
         macros: super::MacroRules::FANUC,
         feed_at_power_on: FeedAtPowerOn::PerMinute,
         surface_speed: SurfaceSpeedOn::ToolDiameter,

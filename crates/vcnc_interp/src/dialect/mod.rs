@@ -14,6 +14,7 @@ mod eia;
 mod fanuc_lathe;
 mod grbl;
 mod lathe;
+mod linuxcnc;
 mod macro_rules;
 mod mill;
 
@@ -432,15 +433,44 @@ pub enum ToolLengthChange {
     AtNextMove,
 }
 
-/// What `G10 L20` means.
+/// Which G10 forms a dialect has.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum G10L20 {
-    /// Not a code of the dialect (Fanuc uses it for the G54.1 extended
-    /// offsets, which vcnc does not run): E109.
-    Unsupported,
-    /// Set work offset P so that the current position reads as the axis
-    /// words (grbl, LinuxCNC).
-    FromPosition,
+pub enum G10Rules {
+    /// L2 P1–P6 work offsets, L10–L13 P R tool offsets (Fanuc, Syntec); no
+    /// L20 (Fanuc's G54.1 extended offsets, which vcnc does not run: E109).
+    Fanuc,
+    /// Fanuc's, and L20: set work offset P (P0 the active one) so that the
+    /// current position reads as the axis words (grbl).
+    Grbl,
+    /// LinuxCNC: L1 P R Z writes tool P's radius and length, L2 and L20
+    /// take P0 (the active system) to P9 (G59.3); no L10–L13.
+    LinuxCnc,
+}
+
+impl G10Rules {
+    /// Whether G10 L20 sets a work offset from the current position.
+    pub(crate) fn l20(self) -> bool {
+        self != G10Rules::Fanuc
+    }
+
+    /// The highest work offset number of G10 L2/L20.
+    pub(crate) fn last_work_offset(self) -> f64 {
+        match self {
+            G10Rules::Fanuc | G10Rules::Grbl => 6.0,
+            G10Rules::LinuxCnc => 9.0,
+        }
+    }
+}
+
+/// Which offset G43 without H and G41/G42 without D use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OffsetDefault {
+    /// The H or D number in force (Fanuc, Syntec: modal).
+    Modal,
+    /// The tool in the spindle (LinuxCNC: "if H is not given, the tool
+    /// in the spindle"; G41 without D "uses the diameter of the currently
+    /// loaded tool").
+    ToolInSpindle,
 }
 
 /// The feed mode at power-on (group 05).
@@ -487,6 +517,9 @@ pub enum CycleRules {
     /// constant Q (Haas mill operator's manual, G73/G83, "L Number of
     /// repeats").
     Haas,
+    /// LinuxCNC: Fanuc's cycles (G73, G81–G86, G89), repeated by L, the
+    /// dwell P in seconds (whole units).
+    LinuxCnc,
 }
 
 impl CycleRules {
@@ -496,6 +529,7 @@ impl CycleRules {
             CycleRules::Fanuc => CYCLE_WORDS,
             CycleRules::Eia => bit(b'R') | bit(b'Q') | bit(b'P'),
             CycleRules::Haas => HAAS_CYCLE_WORDS | HAAS_PECK_WORDS,
+            CycleRules::LinuxCnc => HAAS_CYCLE_WORDS,
         }
     }
 
@@ -505,12 +539,33 @@ impl CycleRules {
         self == CycleRules::Haas
     }
 
+    /// Whether cycle `c` reads a dwell P: LinuxCNC's G82, G86 and G89 only
+    /// (its other cycles alarm on P, "P word with no … to use it", and a P
+    /// kept from an earlier G82 does not make G73/G83 dwell); everywhere
+    /// else every cycle keeps P as modal data.
+    pub(crate) fn reads_p(self, c: crate::events::Cycle) -> bool {
+        use crate::events::Cycle;
+        self != CycleRules::LinuxCnc || matches!(c, Cycle::G82 | Cycle::G86 | Cycle::G89)
+    }
+
+    /// Whether cycle `c` reads a peck Q: LinuxCNC's G73 and G83 only.
+    pub(crate) fn reads_q(self, c: crate::events::Cycle) -> bool {
+        use crate::events::Cycle;
+        self != CycleRules::LinuxCnc || matches!(c, Cycle::G73 | Cycle::G83)
+    }
+
+    /// Whether the cycles return to R (G99) at power-on: LinuxCNC's initial
+    /// modes list G99; Fanuc and Syntec start in G98.
+    pub(crate) fn return_r_at_power_on(self) -> bool {
+        self == CycleRules::LinuxCnc
+    }
+
     /// The letter that repeats a cycle block: K, Haas's L (EIA: none).
     pub(crate) fn repeat_letter(self) -> Option<u8> {
         match self {
             CycleRules::Fanuc => Some(b'K'),
             CycleRules::Eia => None,
-            CycleRules::Haas => Some(b'L'),
+            CycleRules::Haas | CycleRules::LinuxCnc => Some(b'L'),
         }
     }
 }
@@ -547,12 +602,14 @@ pub struct Dialect {
     pub cycles: CycleRules,
     /// G28 without axis words.
     pub bare_return: BareReturn,
-    /// G10 L20.
-    pub l20: G10L20,
+    /// G10's forms.
+    pub g10: G10Rules,
     /// M00.
     pub program_stop: ProgramStop,
     /// G43/G44/G49 without a move (and a lathe T word's offset).
     pub tool_length_change: ToolLengthChange,
+    /// G43 without H, G41/G42 without D.
+    pub offset_default: OffsetDefault,
     /// Macros: languages, variables, calls.
     pub macros: MacroRules,
     /// G94/G99 at power-on.
@@ -602,6 +659,7 @@ impl Dialect {
             "haas" => Some(mill::haas()),
             "fanuc-lathe" => Some(fanuc_lathe::fanuc_lathe()),
             "haas-lathe" => Some(fanuc_lathe::haas_lathe()),
+            "linuxcnc" => Some(linuxcnc::linuxcnc()),
             _ => None,
         }
     }
@@ -616,6 +674,7 @@ impl Dialect {
         "haas",
         "fanuc-lathe",
         "haas-lathe",
+        "linuxcnc",
     ];
 
     /// Syntec 900M mill (the default).
@@ -657,6 +716,11 @@ impl Dialect {
     /// variables.
     pub fn haas_lathe() -> Dialect {
         fanuc_lathe::haas_lathe()
+    }
+
+    /// LinuxCNC 2.9's RS274/NGC mill interpreter.
+    pub fn linuxcnc() -> Dialect {
+        linuxcnc::linuxcnc()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the

@@ -162,7 +162,9 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<(Step, Span), Diagnostic> {
-        if self.macros.rules.iso == IsoMacros::None {
+        // E604 from the lexer is LinuxCNC's O-word flow (`o100 while`),
+        // which Macro B would misread as its own WHILE.
+        if self.macros.rules.iso == IsoMacros::None || lexed.code == vcnc_syntax::Code::E604 {
             return Err(lexed);
         }
         let syn = self
@@ -239,7 +241,9 @@ impl Interpreter<'_> {
         lexed: Diagnostic,
         block: &mut Block,
     ) -> Result<usize, Diagnostic> {
-        if self.macros.rules.iso == IsoMacros::None {
+        // E604 from the lexer is LinuxCNC's O-word flow (`o100 while`),
+        // which Macro B would misread as its own WHILE.
+        if self.macros.rules.iso == IsoMacros::None || lexed.code == vcnc_syntax::Code::E604 {
             return Err(lexed);
         }
         let syn = self

@@ -456,6 +456,21 @@ impl<'s, 'a> ExprParser<'s, 'a> {
                 ));
             }
         }
+        if k == 0 && self.s.at(0) == b'<' {
+            let close = (0..)
+                .take_while(|&j| !matches!(self.s.at(j), b'>' | 0))
+                .count();
+            let end = if self.s.at(close) == b'>' {
+                close + 1
+            } else {
+                close
+            };
+            return Err(diag::macro_syntax(
+                Span::new(at, self.s.pos + end),
+                "named parameters (#<name>) are LinuxCNC's: vcnc reads numbered variables",
+                "use a numbered variable instead (#1 … #33 locals, #100 … #199 and #500 … #999 commons)",
+            ));
+        }
         if k == 0 || self.s.at(k) == b'.' {
             let sigil = kind.sigil();
             let end = self.s.pos + k + usize::from(self.s.at(k) == b'.');

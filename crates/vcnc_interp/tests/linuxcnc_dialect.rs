@@ -1,0 +1,166 @@
+//! `--dialect linuxcnc`: the rules rs274's own output cannot show as a
+//! full event list (its cutter compensation moves differently from vcnc's
+//! Fanuc type A; `path_mode` has no canonical call), checked as
+//! equivalences with spellings whose meaning the other tests fix; and the
+//! alarms for what the dialect does not read. The rest is compared with
+//! rs274 itself (`crates/vcnc/tests/fixtures.rs`,
+//! `linuxcnc_dialect_reads_the_programs_rs274_read`).
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use vcnc_interp::{Dialect, Event, Outcome};
+use vcnc_syntax::Code;
+
+mod common;
+
+use common::run_str;
+
+fn run(program: &str) -> (Vec<Event>, Outcome) {
+    run_str(&Dialect::linuxcnc(), program)
+}
+
+/// The events of a run that ended, but its warnings (whose byte offsets
+/// differ between two spellings of a line).
+fn ended(program: &str) -> Vec<Event> {
+    let (ev, out) = run(program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}\n{program}");
+    ev.into_iter()
+        .filter(|e| !matches!(e, Event::Warning(_)))
+        .collect()
+}
+
+fn alarm(program: &str) -> (Code, u64, u32) {
+    let (ev, out) = run(program);
+    let Outcome::Alarm(d) = out else {
+        panic!("no alarm: {out:?}\n{program}");
+    };
+    assert!(
+        matches!(ev.last(), Some(Event::Alarm(a)) if *a == d),
+        "motion after the alarm"
+    );
+    (d.code, d.line, d.column)
+}
+
+const CONTOUR: &str = "G0 X-10 Y-10 Z5\nG1 Z-1 F300\nG41{D} G1 X0 Y0\nG1 X40\nG1 Y30\n\
+                       G1 X0\nG1 Y0\nG40 G1 X-10 Y-10\nG0 Z5\nM5\nM2\n";
+
+/// LinuxCNC: "If D is not given, the diameter of the currently loaded
+/// tool is used": after `T3 M6`, `G41` is `G41 D3` (radius 3 mm on the
+/// built-in mill, against tool 1's 5 mm).
+#[test]
+fn g41_without_d_uses_the_tool_in_the_spindle() {
+    let head = "G21 G17 G90 G94\nT3 M6\nS2000 M3\n";
+    let bare = ended(&format!("{head}{}", CONTOUR.replace("{D}", "")));
+    let d3 = ended(&format!("{head}{}", CONTOUR.replace("{D}", " D3")));
+    let d1 = ended(&format!("{head}{}", CONTOUR.replace("{D}", " D1")));
+    assert_eq!(bare, d3);
+    assert_ne!(bare, d1);
+}
+
+/// G43 without H: the tool in the spindle (`T2 M6 G43` is `G43 H2`);
+/// before any tool change, tool 0: no offset, as G49.
+#[test]
+fn g43_without_h_uses_the_tool_in_the_spindle() {
+    let machine = "G21 G90\nT2 M6\nG43{H}\nG0 X1 Z10\nM2\n";
+    let bare = ended(&machine.replace("{H}", ""));
+    assert_eq!(bare, ended(&machine.replace("{H}", " H2")));
+    let none = ended("G21 G90\nG43\nG0 X1 Z10\nM2\n");
+    assert_eq!(none, ended("G21 G90\nG49\nG0 X1 Z10\nM2\n"));
+}
+
+/// G61.1 (exact stop) stops at every block end like G61; M60 (pallet
+/// change pause) stops like M00.
+#[test]
+fn g61_1_and_m60_are_exact_stop_and_a_program_stop() {
+    let path = "G21 G90 G1 F100\n{G}\nX1\nY1\nM2\n";
+    assert_eq!(
+        ended(&path.replace("{G}", "G61.1")),
+        ended(&path.replace("{G}", "G61"))
+    );
+    let stop = "G21 G90\nG0 X1\n{M}\nG0 X2\nM2\n";
+    assert_eq!(
+        ended(&stop.replace("{M}", "M60")),
+        ended(&stop.replace("{M}", "M0"))
+    );
+}
+
+/// Integers are whole units (`X5` is 5 mm) and `;` starts a comment.
+#[test]
+fn integers_are_whole_units_and_semicolons_comment() {
+    assert_eq!(
+        ended("G21 G90\nG0 X5 ; five millimetres\nM2\n"),
+        ended("G21 G90\nG0 X5.\nM2\n")
+    );
+}
+
+/// LinuxCNC alarms on a P or Q that no code of the block uses ("P word with
+/// no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 … to use it"): G81
+/// and G73 take no P, G81 and G82 no Q.
+#[test]
+fn a_cycle_alarms_on_a_p_or_q_it_does_not_use() {
+    let head = "G21 G90\nS1000 M3\nG0 X0 Y0 Z10\n";
+    assert_eq!(
+        alarm(&format!("{head}G81 X1 Z-5 R2 P1 F100\nM2\n")),
+        (Code::E203, 4, 15)
+    );
+    assert_eq!(
+        alarm(&format!("{head}G73 X1 Z-5 R2 Q1 P2 F100\nM2\n")),
+        (Code::E203, 4, 18)
+    );
+    assert_eq!(
+        alarm(&format!("{head}G82 X1 Z-5 R2 Q1 P2 F100\nM2\n")),
+        (Code::E203, 4, 15)
+    );
+    // In a later block of the cycle too.
+    assert_eq!(
+        alarm(&format!("{head}G81 X1 Z-5 R2 F100\nX2 Q1\nM2\n")),
+        (Code::E203, 5, 4)
+    );
+}
+
+/// A dwell kept from a G82 does not make a later G83 dwell (LinuxCNC's G83
+/// reads no P); under Fanuc it does (Syntec 1.2.36).
+#[test]
+fn a_pecking_cycle_never_dwells() {
+    let program = "G21 G90\nS1000 M3\nG0 X0 Y0 Z10\nG82 X1 Z-2 R2 P1.5 F100\n\
+                   G83 X2 Z-4 R2 Q2\nG80\nM2\n";
+    let dwells = |ev: &[Event]| {
+        ev.iter()
+            .filter(|e| matches!(e, Event::Dwell { .. }))
+            .count()
+    };
+    assert_eq!(dwells(&ended(program)), 1);
+    let fanuc = program.replace("P1.5", "P1500").replace("Q2", "Q2.");
+    let (ev, out) = run_str(&Dialect::fanuc(), &fanuc);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(dwells(&ev), 2);
+}
+
+/// G10 L1 P R Z writes tool P's radius and length; L10–L13 are Fanuc's
+/// (LinuxCNC's L10/L11 set the table from the position, not run).
+#[test]
+fn g10_l1_writes_the_tool_table_and_fanucs_forms_alarm() {
+    let set = ended("G21 G90\nG10 L1 P3 R4 Z20\nT3 M6\nG43 H3\nG0 X1 Z10\nM2\n");
+    let frame_z = set.iter().find_map(|e| match e {
+        Event::Frame { frame, .. } => Some(frame.tool_offset.get(2)),
+        _ => None,
+    });
+    assert_eq!(frame_z, Some(20.0));
+    assert_eq!(alarm("G21 G90\nG10 L10 P3 R4\nM2\n"), (Code::E109, 2, 5));
+    assert_eq!(alarm("G21 G90\nG10 L1 P3\nM2\n"), (Code::E312, 2, 1));
+}
+
+/// What the dialect does not read alarms at the construct, with a hint.
+#[test]
+fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
+    assert_eq!(alarm("G21\no100 sub\nM2\n"), (Code::E604, 2, 1));
+    assert_eq!(alarm("G21\nO101 while [#1 LT 3]\nM2\n"), (Code::E604, 2, 1));
+    assert_eq!(alarm("G21\no<probe> call [1]\nM2\n"), (Code::E604, 2, 1));
+    assert_eq!(alarm("G21\n#<depth> = 2\nM2\n"), (Code::E601, 2, 1));
+    assert_eq!(alarm("G21\nG1 X#<depth> F10\nM2\n"), (Code::E601, 2, 5));
+    assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
+    assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E201, 2, 1));
+    // Numbered parameters and expressions are read.
+    let ev = ended("G21 G90\n#1 = 2\n#100 = [#1 * 3]\nG0 X#100\nM2\n");
+    assert_eq!(common::xs(&ev), vec![6.0]);
+}
