@@ -110,15 +110,7 @@ impl Interpreter<'_> {
 
     /// G10 L10–L13 P R: an H length or D radius, geometry or wear.
     fn set_tool_offset(&mut self, w: &Words<'_>, cmd: Span, l: u32) -> Result<(), Diagnostic> {
-        if let Some(word) = self
-            .machine
-            .axes
-            .iter()
-            .filter_map(|a| w.get(a.letter))
-            .min_by_key(|word| word.span.start)
-        {
-            return Err(alarms::word_not_allowed(word.span, word.addr.0));
-        }
+        self.no_axis_words(w, &[])?;
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "P (the offset number)"))?;
@@ -145,16 +137,7 @@ impl Interpreter<'_> {
     /// positions). Other axis words (the lathe's X, the rotary offsets) are
     /// not run.
     fn set_tool_entry(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        if let Some(word) = self
-            .machine
-            .axes
-            .iter()
-            .filter(|a| a.letter != b'Z')
-            .filter_map(|a| w.get(a.letter))
-            .min_by_key(|word| word.span.start)
-        {
-            return Err(alarms::word_not_allowed(word.span, word.addr.0));
-        }
+        self.no_axis_words(w, b"Z")?;
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L1", "P (the tool number)"))?;
@@ -176,6 +159,21 @@ impl Interpreter<'_> {
         }
         self.tables.set_tool(n, tool);
         Ok(())
+    }
+
+    /// E203 on the first axis word of the block but those of `allowed`.
+    fn no_axis_words(&self, w: &Words<'_>, allowed: &[u8]) -> Result<(), Diagnostic> {
+        match self
+            .machine
+            .axes
+            .iter()
+            .filter(|a| !allowed.contains(&a.letter))
+            .filter_map(|a| w.get(a.letter))
+            .min_by_key(|word| word.span.start)
+        {
+            Some(word) => Err(alarms::word_not_allowed(word.span, word.addr.0)),
+            None => Ok(()),
+        }
     }
 
     /// An H, D or G10 P offset number within the machine's offset registers.

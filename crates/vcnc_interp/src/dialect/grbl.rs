@@ -15,7 +15,7 @@ use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{LexRules, Semicolon};
 
-const GRBL_G: &[GRow] = &[
+pub(super) const GRBL_G: &[GRow] = &[
     g(0, GOp::Rapid, Group::Motion),
     g(10, GOp::Linear, Group::Motion),
     g(20, GOp::ArcCw, Group::Motion),
@@ -68,7 +68,7 @@ const GRBL_G: &[GRow] = &[
 ];
 
 /// grbl's M codes; M07 is mist coolant, reported as coolant on.
-const GRBL_M: &[MRow] = &[
+pub(super) const GRBL_M: &[MRow] = &[
     (0, MOp::Stop, MGroup::Flow, 0),
     (1, MOp::OptionalStop, MGroup::Flow, 0),
     (2, MOp::End, MGroup::Flow, 0),

@@ -13,86 +13,38 @@
 //! named parameters, lathe mode (G7/G8, G76, G33.1), splines (G5, G5.1,
 //! G5.2) and the UVW planes.
 
+use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
-    BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
-    IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
+    CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MGroup, MOp, MRow,
+    OffsetDefault, bit, g,
 };
-use crate::events::{Cycle, Plane};
-use crate::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{LexRules, Semicolon};
+use crate::events::Cycle;
 
-/// LinuxCNC's canned-cycle words: R level, Q peck, P dwell (seconds), L
-/// repeats.
-const LCNC_CYCLE_WORDS: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'L');
-
+/// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
+/// reads R here for L1).
 const LINUXCNC_G: &[GRow] = &[
-    g(0, GOp::Rapid, Group::Motion),
-    g(10, GOp::Linear, Group::Motion),
-    g(20, GOp::ArcCw, Group::Motion),
-    g(30, GOp::ArcCcw, Group::Motion),
-    // G4 P is seconds (`P2` 2 s, `P0.5` half a second).
-    g(40, GOp::DwellP, Group::NonModal)
-        .reads(bit(b'P'))
-        .refuses_axes(),
     // L1 (tool table: P tool, R radius, Z length), L2/L20 (work offsets).
     g(100, GOp::SetData, Group::NonModal)
         .reads(bit(b'L') | bit(b'P') | bit(b'R'))
         .claims_absolute_axes(),
-    g(170, GOp::PlaneXy, Group::Plane),
-    g(180, GOp::PlaneZx, Group::Plane),
-    g(190, GOp::PlaneYz, Group::Plane),
-    g(200, GOp::Inch, Group::Units),
-    g(210, GOp::Metric, Group::Units),
-    g(280, GOp::RefReturn, Group::NonModal).claims_axes(),
-    g(281, GOp::RefStore(1), Group::NonModal),
-    g(300, GOp::RefReturnN, Group::NonModal).claims_axes(),
-    g(301, GOp::RefStore(2), Group::NonModal),
-    g(382, GOp::Probe { must_trip: true }, Group::NonModal).claims_axes(),
-    g(383, GOp::Probe { must_trip: false }, Group::NonModal).claims_axes(),
-    g(384, GOp::Probe { must_trip: true }, Group::NonModal).claims_axes(),
-    g(385, GOp::Probe { must_trip: false }, Group::NonModal).claims_axes(),
-    g(400, GOp::CompCancel, Group::CutterComp),
     g(410, GOp::CompLeft, Group::CutterComp).reads(bit(b'D')),
     g(420, GOp::CompRight, Group::CutterComp).reads(bit(b'D')),
     g(430, GOp::ToolLengthPlus, Group::ToolLength).reads(bit(b'H')),
-    g(431, GOp::ToolLengthDynamic, Group::ToolLength).claims_absolute_axes(),
-    g(490, GOp::ToolLengthCancel, Group::ToolLength),
     g(520, GOp::LocalSystem, Group::NonModal).claims_absolute_axes(),
-    g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
-    g(540, GOp::WorkSystem(0), Group::Wcs),
-    g(550, GOp::WorkSystem(1), Group::Wcs),
-    g(560, GOp::WorkSystem(2), Group::Wcs),
-    g(570, GOp::WorkSystem(3), Group::Wcs),
-    g(580, GOp::WorkSystem(4), Group::Wcs),
-    g(590, GOp::WorkSystem(5), Group::Wcs),
     g(591, GOp::WorkSystem(6), Group::Wcs),
     g(592, GOp::WorkSystem(7), Group::Wcs),
     g(593, GOp::WorkSystem(8), Group::Wcs),
-    // G61 and G61.1 (exact path, exact stop) both stop at every block end.
-    g(610, GOp::PathExact, Group::Path),
+    // G61.1 (exact stop) stops at every block end, as G61 does here.
     g(611, GOp::PathExact, Group::Path),
-    // The blending tolerances P (path) and Q (naive CAM): accepted, the
-    // planner blends with the machine's corner tolerance.
-    g(640, GOp::PathCutting, Group::Path).reads(bit(b'P') | bit(b'Q')),
-    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(800, GOp::CycleCancel, Group::Cycle),
-    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(LCNC_CYCLE_WORDS),
-    g(900, GOp::Absolute, Group::Distance),
-    g(901, GOp::ArcCentersAbsolute, Group::ArcDistance),
-    g(910, GOp::Incremental, Group::Distance),
-    g(911, GOp::ArcCentersIncremental, Group::ArcDistance),
-    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
-    g(921, GOp::ShiftCancel, Group::NonModal),
-    g(930, GOp::InverseTime, Group::FeedMode),
-    g(940, GOp::PerMinute, Group::FeedMode),
+    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(CYCLE_WORDS_L),
     g(950, GOp::PerRev, Group::FeedMode),
     g(960, GOp::SurfaceSpeed, Group::SpindleMode),
     g(970, GOp::SpindleRpm, Group::SpindleMode),
@@ -100,21 +52,10 @@ const LINUXCNC_G: &[GRow] = &[
     g(990, GOp::ReturnR, Group::ReturnLevel),
 ];
 
-/// LinuxCNC's M codes that vcnc runs. M60 (pallet change pause) stops like
-/// M00.
+/// LinuxCNC's M codes beyond grbl's: M19 orients the spindle, M60 (pallet
+/// change pause) stops like M00.
 const LINUXCNC_M: &[MRow] = &[
-    (0, MOp::Stop, MGroup::Flow, 0),
-    (1, MOp::OptionalStop, MGroup::Flow, 0),
-    (2, MOp::End, MGroup::Flow, 0),
-    (3, MOp::SpindleCw, MGroup::Spindle, 0),
-    (4, MOp::SpindleCcw, MGroup::Spindle, 0),
-    (5, MOp::SpindleStop, MGroup::Spindle, 0),
-    (6, MOp::ToolChange, MGroup::Tool, 0),
-    (7, MOp::CoolantOn, MGroup::Coolant, 0),
-    (8, MOp::CoolantOn, MGroup::Coolant, 0),
-    (9, MOp::CoolantOff, MGroup::Coolant, 0),
     (19, MOp::SpindleOrient, MGroup::Spindle, 0),
-    (30, MOp::EndRewind, MGroup::Flow, 0),
     (60, MOp::Stop, MGroup::Flow, 0),
 ];
 
@@ -179,49 +120,22 @@ const NOT_RUN: &[(u16, &str)] = &[
     (923, "G92.3 (restore the G92 offset) is not run by vcnc"),
 ];
 
-/// `;` starts a comment, as in grbl.
-const LINUXCNC_LEX: LexRules = LexRules {
-    semicolon: Semicolon::Comment,
-    slash_comments: false,
-    fullwidth_semicolon: false,
-    extended: &[],
-    foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
-    colon_is_o: false,
-};
-
-/// The LinuxCNC dialect.
+/// The LinuxCNC dialect: grbl's reading (`;` comments, whole-unit
+/// integers, its codes and rules) with the codes and policies above.
 pub(super) fn linuxcnc() -> Dialect {
-    let (g, m) = Dialect::tables(&[LINUXCNC_G], LINUXCNC_M);
+    let m: Vec<MRow> = GRBL_M.iter().chain(LINUXCNC_M).copied().collect();
+    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
     Dialect {
         name: "linuxcnc",
-        lex: LINUXCNC_LEX,
         g,
         m,
-        incremental_words: &[],
-        diameter: Diameter {
-            axis: None,
-            at_power_on: false,
-        },
-        // `X5` is 5 mm, `P2` 2 s.
-        integers: IntegerWords::WholeUnits,
-        plane: Plane::Xy,
-        long_chord: LongChord::Alarm,
-        arc_letters: 0,
-        default_machine: DEFAULT_MILL_TOML,
         unsupported: NOT_RUN,
-        rapid: RapidPath::ByParameter,
         cycles: CycleRules::LinuxCnc,
-        bare_return: BareReturn::AllAxes,
         g10: G10Rules::LinuxCnc,
-        program_stop: ProgramStop::Pause,
-        tool_length_change: ToolLengthChange::AtNextMove,
         offset_default: OffsetDefault::ToolInSpindle,
         // Numbered parameters and expressions (`#1 = 2`, `X[#1 * 2]`) as
         // their common subset with Custom Macro B.
         macros: super::MacroRules::FANUC,
-        feed_at_power_on: FeedAtPowerOn::PerMinute,
-        surface_speed: SurfaceSpeedOn::ToolDiameter,
-        tool_words: ToolWords::Select,
-        dwell_p: DwellP::WholeMilliseconds,
+        ..grbl()
     }
 }

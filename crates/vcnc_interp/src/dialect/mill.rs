@@ -3,8 +3,8 @@
 //! chapter 2. The two differ only in the inch/metric codes.
 
 use super::{
-    BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
-    GRow, Group, HAAS_CYCLE_WORDS, HAAS_PECK_WORDS, IntegerWords, LongChord, MGroup, MOp, MRow,
+    BareReturn, CYCLE_WORDS, CYCLE_WORDS_L, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn,
+    G10Rules, GOp, GRow, Group, HAAS_PECK_WORDS, IntegerWords, LongChord, MGroup, MOp, MRow,
     OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
@@ -180,18 +180,18 @@ const HAAS_G: &[GRow] = &[
     // the planner.
     g(1870, GOp::Smoothing, Group::NonModal).reads(bit(b'P') | bit(b'E')),
     // The cycles repeat by L; G73/G83 also peck by I, J, K.
-    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(HAAS_CYCLE_WORDS | HAAS_PECK_WORDS),
-    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(760, GOp::Cycle(Cycle::G76), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(HAAS_CYCLE_WORDS | HAAS_PECK_WORDS),
-    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(870, GOp::Cycle(Cycle::G87), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(880, GOp::Cycle(Cycle::G88), Group::Cycle).reads(HAAS_CYCLE_WORDS),
-    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(HAAS_CYCLE_WORDS),
+    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(CYCLE_WORDS_L | HAAS_PECK_WORDS),
+    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(760, GOp::Cycle(Cycle::G76), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(CYCLE_WORDS_L | HAAS_PECK_WORDS),
+    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(870, GOp::Cycle(Cycle::G87), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(880, GOp::Cycle(Cycle::G88), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(CYCLE_WORDS_L),
 ];
 
 /// Haas M codes with a controller meaning (the machine builder's others

@@ -29,8 +29,8 @@ use vcnc_syntax::LexRules;
 /// dwell, K repeats.
 pub(crate) const CYCLE_WORDS: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'K');
 
-/// Haas's cycle data words: R, Q, P and L repeats.
-pub(crate) const HAAS_CYCLE_WORDS: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'L');
+/// The cycle data words where L repeats (Haas, LinuxCNC): R, Q, P, L.
+pub(crate) const CYCLE_WORDS_L: u32 = bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'L');
 
 /// Haas's reduced peck of G73/G83: first peck I, J less each time, at
 /// least K.
@@ -528,8 +528,8 @@ impl CycleRules {
         match self {
             CycleRules::Fanuc => CYCLE_WORDS,
             CycleRules::Eia => bit(b'R') | bit(b'Q') | bit(b'P'),
-            CycleRules::Haas => HAAS_CYCLE_WORDS | HAAS_PECK_WORDS,
-            CycleRules::LinuxCnc => HAAS_CYCLE_WORDS,
+            CycleRules::Haas => CYCLE_WORDS_L | HAAS_PECK_WORDS,
+            CycleRules::LinuxCnc => CYCLE_WORDS_L,
         }
     }
 
