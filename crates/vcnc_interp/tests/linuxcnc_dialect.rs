@@ -164,3 +164,29 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
     let ev = ended("G21 G90\n#1 = 2\n#100 = [#1 * 3]\nG0 X#100\nM2\n");
     assert_eq!(common::xs(&ev), vec![6.0]);
 }
+
+/// LinuxCNC's own auxiliary M codes (overrides, motion-synchronized and
+/// immediate I/O, waits, user M100–M199) pass on as `aux` events with
+/// their words; under Fanuc they are unknown and their P unused (E203).
+#[test]
+fn io_and_user_m_codes_pass_on_with_their_words() {
+    let ev = ended(
+        "G21 G90\nM62 P1\nG1 X10 F500\nM63 P1\nM66 P0 L3 Q5\nM67 E0 Q2.5\nM48\nM100 P1 Q2\nM2\n",
+    );
+    let aux: Vec<u32> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Aux { code, .. } => Some(*code),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(aux, vec![62, 63, 66, 67, 48, 100]);
+    let (_, out) = run_str(&Dialect::fanuc(), "G21 G90\nM62 P1\nM2\n");
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E203, 2, 5));
+    // M61 (set the tool number) and M70–M73 (modal state) change state
+    // vcnc does not keep: unknown, as before.
+    assert_eq!(alarm("G21\nM61 Q3\nM2\n"), (Code::E203, 2, 5));
+}

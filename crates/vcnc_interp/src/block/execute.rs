@@ -693,13 +693,19 @@ impl Interpreter<'_> {
         });
     }
 
-    /// Step 5b: the machine builder's M codes pass through as `aux`
-    /// events; unknown ones (on a machine that is not strict) warn.
+    /// Step 5b: the machine builder's M codes and the controller's own
+    /// auxiliary ones pass through as `aux` events (the machine file's
+    /// description first); unknown ones (on a machine that is not strict)
+    /// warn.
     fn other_m_codes(&mut self, w: &Words<'_>) {
         for m in w.other_m.iter().flatten() {
-            match self.machine.m_codes.get(&m.def) {
+            let description = self.machine.m_codes.get(&m.def).cloned().or_else(|| {
+                self.dialect
+                    .aux_m(m.def)
+                    .map(|a| std::sync::Arc::<str>::from(a.what))
+            });
+            match description {
                 Some(description) => {
-                    let description = description.clone();
                     self.emit(|loc| Event::Aux {
                         loc,
                         code: m.def,

@@ -55,6 +55,9 @@ pub struct Words<'b> {
     /// M codes the dialect does not know: the machine file's auxiliary
     /// codes (`aux`) or unknown ones (a warning), by number.
     pub other_m: [Option<At<u32>>; MAX_OTHER_M],
+    /// Letters the dialect's auxiliary M codes among `other_m` read
+    /// (LinuxCNC's `M62 P1`).
+    pub other_letters: u32,
     /// The block's first word span (for alarms about the whole block).
     pub first: Span,
     /// Whether any G code other than a motion code, or any M code, is written
@@ -80,6 +83,7 @@ impl<'b> Words<'b> {
             axis_user: None,
             m: [None; M_GROUPS],
             other_m: [None; MAX_OTHER_M],
+            other_letters: 0,
             first: block.first_span(),
             has_codes: false,
             macro_call: None,
@@ -297,8 +301,11 @@ impl<'b> Words<'b> {
         machine: &Machine,
     ) -> Result<(), Diagnostic> {
         let code = u32::try_from(whole_m(word.value)).ok();
-        let known = code
-            .is_some_and(|c| machine.m_codes.contains_key(&c) || machine.m_macros.contains_key(&c));
+        let aux = code.and_then(|c| dialect.aux_m(c));
+        let known = aux.is_some()
+            || code.is_some_and(|c| {
+                machine.m_codes.contains_key(&c) || machine.m_macros.contains_key(&c)
+            });
         if !known && machine.params.strict_m_codes {
             return Err(alarms::unknown_m(word.span, word.value, dialect.name));
         }
@@ -306,6 +313,7 @@ impl<'b> Words<'b> {
             return Err(alarms::unknown_m(word.span, word.value, dialect.name));
         };
         self.has_codes = true;
+        self.other_letters |= aux.map_or(0, |a| a.letters);
         match self.other_m.iter_mut().find(|s| s.is_none()) {
             Some(slot) => {
                 *slot = Some(At {
@@ -418,7 +426,10 @@ impl<'b> Words<'b> {
             .flatten()
             .filter(|a| !(cancelled && a.def.group == Group::Cycle))
             .fold(0, |m, a| m | a.def.letters);
-        self.m.iter().flatten().fold(g, |m, a| m | a.def.letters)
+        self.m
+            .iter()
+            .flatten()
+            .fold(g | self.other_letters, |m, a| m | a.def.letters)
     }
 }
 

@@ -99,5 +99,6 @@ pub(super) fn eia() -> Dialect {
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
+        aux_m: &[],
     }
 }

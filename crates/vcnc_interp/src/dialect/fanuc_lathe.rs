@@ -202,6 +202,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         surface_speed: SurfaceSpeedOn::WorkDiameter,
         tool_words: ToolWords::TurretOffset,
         dwell_p: DwellP::WholeMilliseconds,
+        aux_m: &[],
         macros: super::MacroRules::FANUC,
     }
 }
@@ -214,6 +215,7 @@ pub(super) fn haas_lathe() -> Dialect {
     Dialect {
         name: "haas-lathe",
         dwell_p: DwellP::SecondsWithPoint,
+        aux_m: &[],
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

@@ -124,5 +124,6 @@ pub(super) fn grbl() -> Dialect {
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
+        aux_m: &[],
     }
 }

@@ -131,5 +131,6 @@ pub(super) fn lathe() -> Dialect {
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
+        aux_m: &[],
     }
 }

@@ -15,7 +15,7 @@
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
-    CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MGroup, MOp, MRow,
+    AuxM, CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MGroup, MOp, MRow,
     OffsetDefault, bit, g,
 };
 use crate::events::Cycle;
@@ -58,6 +58,58 @@ const LINUXCNC_M: &[MRow] = &[
     (19, MOp::SpindleOrient, MGroup::Spindle, 0),
     (60, MOp::Stop, MGroup::Flow, 0),
 ];
+
+/// LinuxCNC's M codes for the machine's own functions, passed on as `aux`
+/// events with their words (its M-code reference).
+const LINUXCNC_AUX_M: &[AuxM] = &[
+    aux(48, 49, "override switches on (M48) or off (M49)", 0),
+    aux(50, 50, "feed override control (P0 off, P1 on)", bit(b'P')),
+    aux(
+        51,
+        51,
+        "spindle speed override control (P0 off, P1 on)",
+        bit(b'P'),
+    ),
+    aux(52, 52, "adaptive feed control (P0 off, P1 on)", bit(b'P')),
+    aux(53, 53, "feed stop control (P0 off, P1 on)", bit(b'P')),
+    aux(62, 62, "digital output P on, with the next move", bit(b'P')),
+    aux(
+        63,
+        63,
+        "digital output P off, with the next move",
+        bit(b'P'),
+    ),
+    aux(64, 64, "digital output P on, now", bit(b'P')),
+    aux(65, 65, "digital output P off, now", bit(b'P')),
+    aux(
+        66,
+        66,
+        "wait on input P (digital) or E (analog), mode L, timeout Q",
+        bit(b'P') | bit(b'E') | bit(b'L') | bit(b'Q'),
+    ),
+    aux(
+        67,
+        67,
+        "analog output E to Q, with the next move",
+        bit(b'E') | bit(b'Q'),
+    ),
+    aux(68, 68, "analog output E to Q, now", bit(b'E') | bit(b'Q')),
+    aux(
+        100,
+        199,
+        "a user-defined M code (P and Q its arguments)",
+        bit(b'P') | bit(b'Q'),
+    ),
+];
+
+const fn aux(first: u16, last: u16, what: &'static str, letters: u32) -> AuxM {
+    AuxM {
+        first,
+        last,
+        what,
+        letters,
+    }
+}
 
 /// LinuxCNC codes vcnc does not run, and why.
 const NOT_RUN: &[(u16, &str)] = &[
@@ -133,6 +185,7 @@ pub(super) fn linuxcnc() -> Dialect {
         cycles: CycleRules::LinuxCnc,
         g10: G10Rules::LinuxCnc,
         offset_default: OffsetDefault::ToolInSpindle,
+        aux_m: LINUXCNC_AUX_M,
         // Numbered parameters and expressions (`#1 = 2`, `X[#1 * 2]`) as
         // their common subset with Custom Macro B.
         macros: super::MacroRules::FANUC,

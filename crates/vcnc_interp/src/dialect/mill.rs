@@ -231,6 +231,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         surface_speed: SurfaceSpeedOn::ToolDiameter,
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
+        aux_m: &[],
     }
 }
 
@@ -284,6 +285,7 @@ pub(super) fn haas() -> Dialect {
         bare_return: BareReturn::AllAxes,
         cycles: CycleRules::Haas,
         dwell_p: DwellP::SecondsWithPoint,
+        aux_m: &[],
         macros: super::MacroRules::HAAS,
         ..fanuc()
     }

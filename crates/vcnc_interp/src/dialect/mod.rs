@@ -620,6 +620,23 @@ pub struct Dialect {
     pub tool_words: ToolWords,
     /// What a decimal point in G04's P means.
     pub dwell_p: DwellP,
+    /// M codes the controller itself passes on as auxiliary functions
+    /// (`aux` events), with the letters they read (LinuxCNC's M62–M68).
+    pub aux_m: &'static [AuxM],
+}
+
+/// A range of M codes a controller defines as auxiliary functions: the
+/// machine acts on them, the interpreter only passes them on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AuxM {
+    /// The first code of the range.
+    pub first: u16,
+    /// The last code of the range.
+    pub last: u16,
+    /// What they do (the `aux` event's description).
+    pub what: &'static str,
+    /// Letters they read.
+    pub letters: u32,
 }
 
 /// G04 P with a decimal point.
@@ -796,6 +813,13 @@ impl Dialect {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let slot = value as usize;
         self.m.get(slot).copied().flatten()
+    }
+
+    /// The controller's auxiliary M code `code`, if it is one.
+    pub fn aux_m(&self, code: u32) -> Option<&AuxM> {
+        self.aux_m
+            .iter()
+            .find(|a| (u32::from(a.first)..=u32::from(a.last)).contains(&code))
     }
 
     /// Another dialect that knows G `value`, for a hint.
