@@ -257,7 +257,7 @@ class Converter:
         feeds = [e["to"] for e in evs if e["type"] == "feed"]
         if not feeds:
             self.err("hole without a feed")
-        at = dict(evs[0]["to"])
+        at = dict(feeds[0])     # the hole's position in the plane
         at[drill] = min(f[drill] for f in feeds)
         self.events.append({"type": "hole", "line": line, "cycle": cycle, "at": at})
         self.events.extend(evs)
@@ -297,12 +297,20 @@ class Converter:
             moves_in_plane = any(to[a] != self.pos[a] for a in plane_axes)
             if to == self.pos:
                 return      # LinuxCNC's G85/G89 under G99 rapid "to R" at R
+            raised_only = self.hole is not None and not any(
+                e["type"] == "feed" for e in self.hole[2])
             if call == "STRAIGHT_TRAVERSE" and moves_in_plane:
-                self.flush_hole()
-                self.flush_frame()
-                self.hole = (self.line, cycle, [])
+                if not raised_only:
+                    self.flush_hole()
+                    self.flush_frame()
+                    self.hole = (self.line, cycle, [])
             elif moves_in_plane:
                 self.err("a cycle feed moves in the plane")
+            elif self.hole is None and call == "STRAIGHT_TRAVERSE":
+                # LinuxCNC: a cycle that started below R first goes
+                # straight to R where the tool is, then to the hole
+                self.flush_frame()
+                self.hole = (self.line, cycle, [])
             elif self.hole is None:
                 self.err("cycle move before the first positioning")
         self.emit(ev)

@@ -157,6 +157,12 @@ pub struct CycleData {
     /// Haas's reduced peck (G73/G83 I, J, K), mm: the first peck, how much
     /// less each next one, the least.
     pub reduced: Option<ReducedPeck>,
+    /// LinuxCNC: R and Z as written (mm), which every block reads again
+    /// under its own G90/G91 (`r`, `z` are their levels for this block).
+    pub written_rz: (Option<f64>, Option<f64>),
+    /// The cycle code before the last block that wrote one (LinuxCNC wants
+    /// R, the depth and the cycle's P or Q again when the code changes).
+    pub before: Option<crate::events::Cycle>,
 }
 
 /// Pecks that start at `first` and shrink by `less` each time down to
@@ -181,6 +187,8 @@ impl CycleData {
         q: None,
         p_s: None,
         reduced: None,
+        written_rz: (None, None),
+        before: None,
     };
 }
 

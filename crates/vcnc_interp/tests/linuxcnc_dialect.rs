@@ -156,13 +156,50 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
     assert_eq!(alarm("G21\no100 sub\nM2\n"), (Code::E604, 2, 1));
     assert_eq!(alarm("G21\nO101 while [#1 LT 3]\nM2\n"), (Code::E604, 2, 1));
     assert_eq!(alarm("G21\no<probe> call [1]\nM2\n"), (Code::E604, 2, 1));
-    assert_eq!(alarm("G21\n#<depth> = 2\nM2\n"), (Code::E601, 2, 1));
-    assert_eq!(alarm("G21\nG1 X#<depth> F10\nM2\n"), (Code::E601, 2, 5));
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
     assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E201, 2, 1));
-    // Numbered parameters and expressions are read.
-    let ev = ended("G21 G90\n#1 = 2\n#100 = [#1 * 3]\nG0 X#100\nM2\n");
-    assert_eq!(common::xs(&ev), vec![6.0]);
+    // Parameters, named or numbered: LinuxCNC's expressions and its
+    // unset-reads-0 rule are not Macro B's, so none is read rather than
+    // some read differently.
+    assert_eq!(alarm("G21\n#<depth> = 2\nM2\n"), (Code::E101, 2, 1));
+    assert_eq!(alarm("G21\nG1 X#1 F10\nM2\n"), (Code::E101, 2, 5));
+    assert_eq!(alarm("G21\n#1 = 2\nM2\n"), (Code::E101, 2, 1));
+}
+
+/// rs274's refusals that are about the cycle's data: zero repeats, a
+/// changed cycle that does not write R, the depth and its P or Q again,
+/// tool 0 in G10 L1.
+#[test]
+fn cycle_data_rs274_refuses_alarms_here_too() {
+    let head = "G21 G90\nS1000 M3\nG0 X0 Y0 Z10\n";
+    // "Cannot do zero repeats of cycle".
+    assert_eq!(
+        alarm(&format!("{head}G91 G81 X5 Z-5 R-2 L0 F100\nM2\n")),
+        (Code::E109, 4, 20)
+    );
+    // "R clearance plane unspecified in cycle".
+    assert_eq!(
+        alarm(&format!(
+            "{head}G81 X5 Y5 Z-3 R2 F200\nG82 X10 Z-3 P1\nM2\n"
+        )),
+        (Code::E312, 5, 1)
+    );
+    // "Z value unspecified in xy plane canned cycle".
+    assert_eq!(
+        alarm(&format!("{head}G81 X5 Y5 Z-3 R2 F200\nG83 X10 R2 Q1\nM2\n")),
+        (Code::E312, 5, 1)
+    );
+    // "Dwell time P word missing with G86".
+    assert_eq!(
+        alarm(&format!("{head}G86 X5 Y5 Z-3 R2 F200\nM2\n")),
+        (Code::E312, 4, 1)
+    );
+    // The same code again takes the data over.
+    ended(&format!(
+        "{head}G82 X5 Y5 Z-3 R2 P1 F200\nG82 X10\nG80\nM2\n"
+    ));
+    // "P value out of range with G10 L1".
+    assert_eq!(alarm("G21\nG10 L1 P0 Z5\nM2\n"), (Code::E503, 2, 8));
 }
 
 /// LinuxCNC's own auxiliary M codes (overrides, motion-synchronized and

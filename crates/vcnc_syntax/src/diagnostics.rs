@@ -27,6 +27,17 @@ pub fn illegal_character(span: Span, ch: char) -> Diagnostic {
     )
 }
 
+/// E101: a `#` variable or parameter in a dialect without macros (a macro
+/// dialect's parser reads it before this is reported).
+pub fn variable_without_macros(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E101,
+        span,
+        "a `#` variable or a `[ ]` expression, which this dialect does not read".to_string(),
+        "run macro programs (Custom Macro B) under --dialect fanuc, haas or syntec; LinuxCNC's parameters and O-words are not read by vcnc",
+    )
+}
+
 /// E101: a `$` line in a program: a grbl system command, a multi-path
 /// header (`$1`) or a file header.
 pub fn system_command(span: Span, text: &str) -> Diagnostic {

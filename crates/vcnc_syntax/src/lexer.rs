@@ -267,8 +267,17 @@ fn word_error(
 ) -> Diagnostic {
     foreign_address(line, at, rules)
         .or_else(|| o_word_flow(line, at, out))
+        .or_else(|| variable_value(line, value_at))
         .or_else(|| lettered_program_name(line, at, out))
         .unwrap_or_else(|| number_error(line, at, value_at, e))
+}
+
+/// `X#1`, `X[#1+2]`: a variable or an expression as a word's value, in a
+/// dialect without macros (a macro dialect's parser reads it first).
+#[cold]
+fn variable_value(line: &[u8], value_at: usize) -> Option<Diagnostic> {
+    matches!(line.get(value_at), Some(b'#' | b'['))
+        .then(|| diag::variable_without_macros(Span::new(value_at, value_at + 1)))
 }
 
 /// LinuxCNC's O-word statements after a block's O number (`o100 sub`).
@@ -407,6 +416,9 @@ fn digit_first(line: &[u8], i: usize) -> Diagnostic {
 }
 
 fn illegal_at(line: &[u8], i: usize) -> Diagnostic {
+    if line[i] == b'#' {
+        return diag::variable_without_macros(Span::new(i, i + 1));
+    }
     let rest = &line[i..];
     let len = utf8_len(rest);
     let ch = std::str::from_utf8(&rest[..len])
@@ -494,7 +506,10 @@ mod tests {
     #[test]
     fn reports_bad_input_with_codes() {
         assert_eq!(blocks("G01 X1 #1"), Err(Code::E101));
-        assert_eq!(blocks("G01 X#1"), Err(Code::E104));
+        // A variable as a value: the lexer's alarm for dialects without
+        // macros (a macro dialect's parser reads the block first).
+        assert_eq!(blocks("G01 X#1"), Err(Code::E101));
+        assert_eq!(blocks("G01 X[1+2]"), Err(Code::E101));
         assert_eq!(blocks("G01 X1.2.3"), Err(Code::E102));
         // An exponent is just another word for the interpreter to reject.
         assert_eq!(blocks("X1e400").unwrap(), vec!["X1 E400"]);

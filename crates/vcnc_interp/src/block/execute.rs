@@ -20,8 +20,8 @@
 use crate::alarms;
 use crate::block::words::{ALWAYS, Words};
 use crate::dialect::{
-    AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ToolLengthChange, ToolWords,
-    bit,
+    AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ToolChangeSpindle,
+    ToolLengthChange, ToolWords, bit,
 };
 use crate::events::{EndCode, Event, PathMode, Plane, Pos, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
@@ -507,6 +507,11 @@ impl Interpreter<'_> {
                 .tool_selected
                 .ok_or_else(|| alarms::m06_without_tool(m6.span))?;
             self.state.tool_active = Some(tool);
+            if self.dialect.tool_change == ToolChangeSpindle::Stops
+                && matches!(self.state.spindle, SpindleDir::Cw | SpindleDir::Ccw)
+            {
+                self.cycle_spindle(SpindleDir::Stop);
+            }
             self.emit(|loc| Event::ToolChange { loc, tool });
         }
         Ok(())

@@ -28,7 +28,7 @@ impl Interpreter<'_> {
             return Err(alarms::comp_arc_startup(m.span));
         }
         let d_number = match w.get(b'D').filter(|_| self.reads_d(w)) {
-            Some(d) => Some(self.offset_number(&d)?),
+            Some(d) => Some(self.offset_word(&d)?),
             None => match code {
                 Some(c)
                     if c.def.op != GOp::CompCancel

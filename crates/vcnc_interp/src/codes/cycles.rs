@@ -163,6 +163,7 @@ impl Interpreter<'_> {
                     ..CycleData::OFF
                 };
             }
+            self.state.cycle.before = self.state.cycle.code;
             self.state.cycle.code = Some(c);
         } else if motion || code.is_some() {
             self.state.cycle = CycleData::OFF;
@@ -196,6 +197,9 @@ impl Interpreter<'_> {
             }
             return Ok(());
         }
+        if rules == CycleRules::LinuxCnc {
+            self.linuxcnc_cycle_change(w, axes, cmd)?;
+        }
         self.store_cycle_words(w, axes)?;
         // An M code of the block that reads the letter (Haas: `M98 P.. L..`,
         // `M97 P.. L..` beside a hole) takes it: the call repeats, the hole
@@ -205,6 +209,10 @@ impl Interpreter<'_> {
             .repeat_letter()
             .filter(|l| m_letters & crate::dialect::bit(*l) == 0);
         let count = match repeat.and_then(|l| w.get(l).map(|k| (l, k))) {
+            // LinuxCNC: "Cannot do zero repeats of cycle".
+            Some((l, k)) if rules == CycleRules::LinuxCnc => {
+                crate::block::convert::whole(&k, l, 1.0, 9999.0, "L is a repeat count 1-9999")?
+            }
             Some((l, k)) => {
                 let why = if l == b'L' {
                     "L is a repeat count 0-9999"
@@ -244,20 +252,75 @@ impl Interpreter<'_> {
         Ok(())
     }
 
+    /// LinuxCNC: a block that changes the cycle (or enters one) writes R,
+    /// the depth, and the P of G82/G86/G89 or the Q of G73/G83 again
+    /// (rs274: "R clearance plane unspecified in cycle", "Z value
+    /// unspecified", "Dwell time P word missing with G86" …): nothing is
+    /// taken over from the cycle before.
+    fn linuxcnc_cycle_change(
+        &self,
+        w: &Words<'_>,
+        axes: CycleAxes,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let data = self.state.cycle;
+        let Some(c) = data
+            .code
+            .filter(|c| w.group(Group::Cycle).is_some() && data.before != Some(*c))
+        else {
+            return Ok(());
+        };
+        let depth = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
+        let extra = match c {
+            Cycle::G82 | Cycle::G86 | Cycle::G89 => Some((b'P', "P (the dwell)")),
+            Cycle::G73 | Cycle::G83 => Some((b'Q', "Q (the peck)")),
+            _ => None,
+        };
+        let missing: Vec<&str> = [(b'R', "R (the R level)"), (depth, "the depth")]
+            .into_iter()
+            .chain(extra)
+            .filter(|(l, _)| w.get(*l).is_none())
+            .map(|(_, what)| what)
+            .collect();
+        if missing.is_empty() {
+            return Ok(());
+        }
+        Err(alarms::needs_word(
+            cmd,
+            c.as_str(),
+            &format!(
+                "{}, written again in the block that changes the cycle",
+                missing.join(" and ")
+            ),
+        ))
+    }
+
     /// Z, R, Q, P of a drilling block into the cycle data (levels resolved
     /// to absolute program levels: under G91 R is from the initial level
     /// and Z from the R level).
     fn store_cycle_words(&mut self, w: &Words<'_>, axes: CycleAxes) -> Result<(), Diagnostic> {
         let inc = self.state.modal.incremental;
-        if let Some(r) = w.get(b'R') {
-            let v = self.length_mm(&r);
-            self.state.cycle.r = Some(if inc { self.state.cycle.initial + v } else { v });
-        }
         let z_letter = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
-        if let Some(z) = w.get(z_letter) {
-            let v = self.axis_value(axes.z, &z);
-            let r_level = self.state.cycle.r.unwrap_or(self.state.cycle.initial);
-            self.state.cycle.z = Some(if inc { r_level + v } else { v });
+        let r_word = w.get(b'R').map(|r| self.length_mm(&r));
+        let z_word = w.get(z_letter).map(|z| self.axis_value(axes.z, &z));
+        let cycle = &mut self.state.cycle;
+        let (r_word, z_word) = if self.dialect.cycles == CycleRules::LinuxCnc {
+            // LinuxCNC keeps the words and reads them under each block's
+            // G90/G91 (`G90 G81 … R2`, then `G91 X10 L2`: R is 2 above the
+            // initial level there).
+            let (r, z) = &mut cycle.written_rz;
+            *r = r_word.or(*r);
+            *z = z_word.or(*z);
+            (*r, *z)
+        } else {
+            (r_word, z_word)
+        };
+        if let Some(v) = r_word {
+            cycle.r = Some(if inc { cycle.initial + v } else { v });
+        }
+        if let Some(v) = z_word {
+            let r_level = cycle.r.unwrap_or(cycle.initial);
+            cycle.z = Some(if inc { r_level + v } else { v });
         }
         let rules = self.dialect.cycles;
         if let Some(code) = self.state.cycle.code {
@@ -355,7 +418,13 @@ impl Interpreter<'_> {
             return Err(alarms::needs_word(cmd, c.as_str(), what));
         };
         let upward = c == Cycle::G87 && !self.eia();
-        if (upward && z <= r + SAME_MM) || (!upward && z >= r - SAME_MM) {
+        // LinuxCNC refuses only a bottom above R ("R less than Z").
+        let flat = if self.dialect.cycles == CycleRules::LinuxCnc {
+            -SAME_MM
+        } else {
+            SAME_MM
+        };
+        if (upward && z <= r + SAME_MM) || (!upward && z >= r - flat) {
             return Err(alarms::cycle_direction(
                 z_word.map_or(cmd, |w| w.span),
                 upward,
@@ -450,12 +519,12 @@ impl Interpreter<'_> {
     }
 
     /// LinuxCNC's way to a hole, before the move to R (its interpreter's
-    /// `convert_cycle_xy`, as rs274 moves): a tool below R whose cycle
-    /// started below R first goes straight to R where it is (up, or down
-    /// to a lowered R); the return level is R under G99, else the level
-    /// the cycle started at (R if that was below); the tool goes to the
-    /// hole at its own level, or straight (diagonally) up to the return
-    /// level when it is below it. Returns the return level.
+    /// `convert_cycle_xy`, as rs274 moves): a tool whose cycle started
+    /// below R first goes straight to R where it is (up, or down to a
+    /// lowered R); the return level is R under G99, else the level the
+    /// cycle started at (R if that was below); the tool goes to the hole at
+    /// its own level when that is above R, else straight (diagonally, from
+    /// R or below) to the return level. Returns the return level.
     fn linuxcnc_positioning(
         &mut self,
         s: &mut Steps<'_, '_>,
@@ -472,7 +541,8 @@ impl Interpreter<'_> {
             start = zr;
         }
         let ret = if self.state.modal.return_r { zr } else { start };
-        s.rapid(self, self.state.prog.get(z).max(ret))?;
+        let here = self.state.prog.get(z);
+        s.rapid(self, if here > zr { here } else { ret })?;
         Ok(ret)
     }
 
@@ -561,8 +631,18 @@ impl Interpreter<'_> {
                 } else {
                     (SpindleDir::Ccw, SpindleDir::Cw)
                 };
-                let peck = data.q.filter(|q| *q > 0.0 && c == Cycle::G84);
-                self.tap(&mut s, (fwd, rev), (zr, zz), peck, dwell, feed)?;
+                if linuxcnc {
+                    // LinuxCNC: reverse at the bottom, dwell P, feed out
+                    // all the way to the return level.
+                    s.feed(self, zz, feed)?;
+                    self.cycle_spindle(rev);
+                    self.cycle_dwell(dwell);
+                    s.feed(self, ret, feed)?;
+                    self.cycle_spindle(fwd);
+                } else {
+                    let peck = data.q.filter(|q| *q > 0.0 && c == Cycle::G84);
+                    self.tap(&mut s, (fwd, rev), (zr, zz), peck, dwell, feed)?;
+                }
             }
             Cycle::G85 => {
                 s.feed(self, zz, feed)?;
@@ -826,7 +906,7 @@ impl Interpreter<'_> {
     }
 
     /// A spindle change inside a cycle (reversal, stop, orientation).
-    fn cycle_spindle(&mut self, dir: SpindleDir) {
+    pub(crate) fn cycle_spindle(&mut self, dir: SpindleDir) {
         let rpm = match dir {
             SpindleDir::Cw | SpindleDir::Ccw => self.state.rpm,
             _ => 0.0,

@@ -12,7 +12,7 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::dialect::{G10Rules, GOp};
+use crate::dialect::{G10Rules, GOp, OffsetDefault};
 use crate::interpreter::Interpreter;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -96,7 +96,9 @@ impl Interpreter<'_> {
                     - self.tables.shift.get(i)
                     - s.frame.tool.get(i)
                     - v
-            } else if incremental {
+            } else if incremental && rules == G10Rules::Fanuc {
+                // Fanuc adds under G91; grbl and LinuxCNC set L2's values
+                // as they are.
                 offset.get(i) + v
             } else {
                 v
@@ -141,7 +143,18 @@ impl Interpreter<'_> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L1", "P (the tool number)"))?;
-        let n = self.offset_number(&p)?;
+        // Tool 0 is "no tool" ("P value out of range with G10 L1").
+        let n = match self.offset_number(&p)? {
+            0 => {
+                return Err(alarms::bad_tool_offset_number(
+                    p.span,
+                    b'P',
+                    p.value,
+                    self.machine.params.offset_registers,
+                ));
+            }
+            n => n,
+        };
         let (r, z) = (w.get(b'R'), w.get(b'Z'));
         if r.is_none() && z.is_none() {
             return Err(alarms::needs_word(
@@ -185,6 +198,18 @@ impl Interpreter<'_> {
             ));
         }
         whole(w, w.addr.0, 0.0, f64::from(max), "an offset number")
+    }
+
+    /// An H or D word's offset number; where the dialect's default is the
+    /// tool in the spindle, number 0 is that tool too (LinuxCNC: `H0`,
+    /// `D0`).
+    pub(crate) fn offset_word(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
+        match self.offset_number(w)? {
+            0 if self.dialect.offset_default == OffsetDefault::ToolInSpindle => {
+                self.tool_in_spindle(w.span)
+            }
+            n => Ok(n),
+        }
     }
 
     /// The tool in the spindle as an offset number (LinuxCNC's G43 without

@@ -87,7 +87,7 @@ impl Interpreter<'_> {
             None => self.state.modal.tool_length,
         };
         if let Some(h) = h {
-            self.state.h_number = self.offset_number(&h)?;
+            self.state.h_number = self.offset_word(&h)?;
         } else if mode != ToolLength::Off
             && code.is_some()
             && self.dialect.offset_default == OffsetDefault::ToolInSpindle

@@ -7,7 +7,7 @@
 use super::{
     BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
     GRow, Group, IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
+    ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -100,5 +100,6 @@ pub(super) fn eia() -> Dialect {
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
     }
 }

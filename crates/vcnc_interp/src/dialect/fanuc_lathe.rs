@@ -21,7 +21,7 @@
 use super::{
     AxisWords, BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
     GRow, Group, IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
+    SurfaceSpeedOn, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_FANUC_LATHE_TOML;
@@ -203,6 +203,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         tool_words: ToolWords::TurretOffset,
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -216,6 +217,7 @@ pub(super) fn haas_lathe() -> Dialect {
         name: "haas-lathe",
         dwell_p: DwellP::SecondsWithPoint,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

@@ -9,7 +9,7 @@
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
     IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
+    SurfaceSpeedOn, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
@@ -125,5 +125,6 @@ pub(super) fn grbl() -> Dialect {
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
     }
 }

@@ -8,7 +8,7 @@
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
     IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
+    ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
@@ -132,5 +132,6 @@ pub(super) fn lathe() -> Dialect {
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
     }
 }

@@ -5,18 +5,20 @@
 //! G28.1/G30.1, G43.1, G92.1, G93) with the codes grbl lacks — tool length
 //! from the tool table (G43 without H takes the tool in the spindle), cutter
 //! compensation (D is a tool number; without D the tool in the spindle),
-//! the canned cycles G73, G74 and G81–G86, G89 repeated by L with the dwell P in
-//! seconds, G52, G59.1–G59.3, G61.1, G64 P Q, G96/G97, G98/G99 — and the
-//! tool table written by `G10 L1 P Z R`.
+//! the canned cycles G73, G74 and G81–G86, G89 repeated by L with the dwell
+//! P in seconds and LinuxCNC's cycle levels, G52, G59.1–G59.3, G61.1, G64
+//! P Q, G96/G97, G98/G99, an M6 that stops the spindle, the tool table
+//! written by `G10 L1 P Z R` and the machine's own M codes (M62–M68,
+//! M100–M199) — as `docs/dialects.md` lists them.
 //!
-//! Not read (E201 says why): the O-word subprograms and flow control and
-//! named parameters, lathe mode (G7/G8, G76, G33.1), splines (G5, G5.1,
-//! G5.2) and the UVW planes.
+//! Not read: O-word statements (E604), parameters and expressions (E101),
+//! lathe mode (G7/G8, G76, G33.1), splines (G5, G5.1, G5.2) and the UVW
+//! planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
     AuxM, CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MGroup, MOp, MRow,
-    OffsetDefault, bit, g,
+    OffsetDefault, ToolChangeSpindle, bit, g,
 };
 use crate::events::Cycle;
 
@@ -52,10 +54,16 @@ const LINUXCNC_G: &[GRow] = &[
     g(990, GOp::ReturnR, Group::ReturnLevel),
 ];
 
-/// LinuxCNC's M codes beyond grbl's: M19 orients the spindle, M60 (pallet
+/// LinuxCNC's M codes beyond grbl's: M19 orients the spindle (R angle, Q
+/// time-out, P direction: read, the angle is not modelled), M60 (pallet
 /// change pause) stops like M00.
 const LINUXCNC_M: &[MRow] = &[
-    (19, MOp::SpindleOrient, MGroup::Spindle, 0),
+    (
+        19,
+        MOp::SpindleOrient,
+        MGroup::Spindle,
+        bit(b'R') | bit(b'Q') | bit(b'P'),
+    ),
     (60, MOp::Stop, MGroup::Flow, 0),
 ];
 
@@ -186,9 +194,7 @@ pub(super) fn linuxcnc() -> Dialect {
         g10: G10Rules::LinuxCnc,
         offset_default: OffsetDefault::ToolInSpindle,
         aux_m: LINUXCNC_AUX_M,
-        // Numbered parameters and expressions (`#1 = 2`, `X[#1 * 2]`) as
-        // their common subset with Custom Macro B.
-        macros: super::MacroRules::FANUC,
+        tool_change: ToolChangeSpindle::Stops,
         ..grbl()
     }
 }

@@ -5,7 +5,8 @@
 use super::{
     BareReturn, CYCLE_WORDS, CYCLE_WORDS_L, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn,
     G10Rules, GOp, GRow, Group, HAAS_PECK_WORDS, IntegerWords, LongChord, MGroup, MOp, MRow,
-    OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ToolLengthChange, ToolWords, bit, g,
+    OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ToolChangeSpindle, ToolLengthChange,
+    ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -232,6 +233,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         tool_words: ToolWords::Select,
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
     }
 }
 
@@ -286,6 +288,7 @@ pub(super) fn haas() -> Dialect {
         cycles: CycleRules::Haas,
         dwell_p: DwellP::SecondsWithPoint,
         aux_m: &[],
+        tool_change: ToolChangeSpindle::Keeps,
         macros: super::MacroRules::HAAS,
         ..fanuc()
     }

@@ -539,13 +539,17 @@ impl CycleRules {
         self == CycleRules::Haas
     }
 
-    /// Whether cycle `c` reads a dwell P: LinuxCNC's G82, G86 and G89 only
-    /// (its other cycles alarm on P, "P word with no … to use it", and a P
-    /// kept from an earlier G82 does not make G73/G83 dwell); everywhere
-    /// else every cycle keeps P as modal data.
+    /// Whether cycle `c` reads a dwell P: LinuxCNC's G74, G82, G84, G86 and
+    /// G89 only (its other cycles alarm on P, "P word with no … to use it",
+    /// and a P kept from an earlier G82 does not make G73/G83 dwell);
+    /// everywhere else every cycle keeps P as modal data.
     pub(crate) fn reads_p(self, c: crate::events::Cycle) -> bool {
         use crate::events::Cycle;
-        self != CycleRules::LinuxCnc || matches!(c, Cycle::G82 | Cycle::G86 | Cycle::G89)
+        self != CycleRules::LinuxCnc
+            || matches!(
+                c,
+                Cycle::G74 | Cycle::G82 | Cycle::G84 | Cycle::G86 | Cycle::G89
+            )
     }
 
     /// Whether cycle `c` reads a peck Q: LinuxCNC's G73 and G83 only.
@@ -620,9 +624,22 @@ pub struct Dialect {
     pub tool_words: ToolWords,
     /// What a decimal point in G04's P means.
     pub dwell_p: DwellP,
+    /// What M06 does to a turning spindle.
+    pub tool_change: ToolChangeSpindle,
     /// M codes the controller itself passes on as auxiliary functions
     /// (`aux` events), with the letters they read (LinuxCNC's M62–M68).
     pub aux_m: &'static [AuxM],
+}
+
+/// What M06 does to a turning spindle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ToolChangeSpindle {
+    /// Nothing the interpreter sees: the machine builder's tool-change
+    /// macro stops and restarts it (Fanuc, Syntec, Haas).
+    Keeps,
+    /// It stops, and the program starts it again (LinuxCNC: rs274 stops
+    /// the spindle before CHANGE_TOOL).
+    Stops,
 }
 
 /// A range of M codes a controller defines as auxiliary functions: the
