@@ -59,7 +59,8 @@ impl Checked {
 
 /// Runs the check and reports it.
 pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
-    let s = setup(&args.opts)?;
+    let paths: Vec<&std::path::Path> = args.paths.iter().map(std::path::PathBuf::as_path).collect();
+    let s = setup(&args.opts, &paths)?;
     let mut inputs = Vec::new();
     let mut single_file = args.paths.len() == 1;
     for path in &args.paths {

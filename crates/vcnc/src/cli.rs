@@ -120,9 +120,9 @@ impl From<ProfileArg> for vcnc_planner::ProfileShape {
 /// Options every subcommand takes.
 #[derive(Debug, Clone, Args)]
 pub struct Options {
-    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes) or linuxcnc (LinuxCNC 2.9 RS274NGC mills, without O-words).
-    #[arg(long, default_value = "syntec", value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
-    pub dialect: String,
+    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes) or linuxcnc (LinuxCNC 2.9 RS274NGC mills, without O-words); default: syntec, or linuxcnc when every program named is a .ngc file.
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
+    pub dialect: Option<String>,
     /// Machine file (TOML); default: the built-in mill (X Y Z A B C, no travel limits), or a 2-axis lathe under --dialect lathe, fanuc-lathe and haas-lathe.
     #[arg(long)]
     pub machine: Option<PathBuf>,

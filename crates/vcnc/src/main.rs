@@ -61,11 +61,19 @@ pub(crate) struct Setup {
     pub options: vcnc_interp::Options,
 }
 
-pub(crate) fn setup(c: &Options) -> Result<Setup, String> {
-    let dialect = Dialect::by_name(&c.dialect).ok_or_else(|| {
+/// The options' machine and dialect for the programs at `paths`. Without
+/// `--dialect`: syntec, or linuxcnc when every path is a `.ngc` file
+/// (LinuxCNC's own extension, which no Syntec or Fanuc program carries).
+pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, String> {
+    let ngc = |p: &&std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ngc"));
+    let name = match &c.dialect {
+        Some(name) => name.as_str(),
+        None if !paths.is_empty() && paths.iter().all(ngc) => "linuxcnc",
+        None => "syntec",
+    };
+    let dialect = Dialect::by_name(name).ok_or_else(|| {
         format!(
-            "unknown dialect {:?}: use one of {}",
-            c.dialect,
+            "unknown dialect {name:?}: use one of {}",
             Dialect::NAMES.join(", ")
         )
     })?;
@@ -115,7 +123,7 @@ pub(crate) fn execute<S: Sink>(
 }
 
 fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
-    let s = setup(&args.opts)?;
+    let s = setup(&args.opts, &[args.file.as_path()])?;
     // Opened before any output is written, so that a missing file is a
     // usage error with nothing on stdout.
     let input = Input::from_arg(&args.file)?;

@@ -230,7 +230,7 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     let started = Instant::now();
     let format = format_of(&args.output)?;
     let c = &args.opts;
-    let s = crate::setup(c)?;
+    let s = crate::setup(c, &[args.file.as_path()])?;
     let input = Input::File(args.file.clone());
     // An unreadable program is a usage error before anything is written.
     drop(input.open()?);

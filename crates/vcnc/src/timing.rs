@@ -40,7 +40,8 @@ pub fn planner(machine: &Machine, profile: Option<ProfileShape>) -> Planner<Cycl
 pub fn time(a: &TimeArgs) -> Result<ExitCode, String> {
     let mut worst = ExitCode::SUCCESS;
     let mut out = std::io::stdout().lock();
-    let s = crate::setup(&a.opts)?;
+    let paths: Vec<&std::path::Path> = a.files.iter().map(std::path::PathBuf::as_path).collect();
+    let s = crate::setup(&a.opts, &paths)?;
     for file in &a.files {
         let input = Input::from_arg(file)?;
         let profile = a

@@ -1078,3 +1078,30 @@ fn check_is_quiet_when_its_reader_goes_away() {
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
 }
+
+/// Without `--dialect`, a `.ngc` program (LinuxCNC's extension) is read as
+/// LinuxCNC: `G20`, integers in whole units, `;` comments; any other
+/// extension, or a mix, as Syntec; `--dialect` always wins.
+#[test]
+fn a_ngc_program_defaults_to_the_linuxcnc_dialect() {
+    let dir = TempDir::new("ngc");
+    let text = "G21 G90 ; mm\nG0 X5\nM2\n";
+    let ngc = dir.write("part.ngc", text);
+    let nc = dir.write("part.nc", text);
+    let (ngc, nc) = (ngc.to_str().unwrap(), nc.to_str().unwrap());
+    let o = vcnc(&["run", ngc]);
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    assert_eq!(jsonl(&o)[0]["to"]["x"], json!(5.0));
+    let o = vcnc(&["check", ngc]);
+    assert!(stdout(&o).contains("(linuxcnc dialect"), "{}", stdout(&o));
+    // Syntec: G21 is no code of its (G70/G71 units).
+    assert_eq!(code(&vcnc(&["check", nc])), 1);
+    assert_eq!(code(&vcnc(&["check", ngc, nc])), 1);
+    let o = vcnc(&["check", ngc, "--dialect", "fanuc"]);
+    assert_eq!(
+        code(&o),
+        1,
+        "`;` ends the block under fanuc: {}",
+        stdout(&o)
+    );
+}
