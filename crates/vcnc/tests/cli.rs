@@ -736,7 +736,7 @@ fn unknown_dialect_is_a_usage_error() {
     assert_usage_error(&o, "invalid value 'heidenhain' for '--dialect");
     assert!(
         stderr(&o).contains(
-            "[possible values: syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe, linuxcnc]"
+            "[possible values: syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe, linuxcnc, linuxcnc-lathe]"
         ),
         "{}",
         stderr(&o)

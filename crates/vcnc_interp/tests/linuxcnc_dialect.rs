@@ -199,7 +199,7 @@ fn cycle_data_rs274_refuses_alarms_here_too() {
         "{head}G82 X5 Y5 Z-3 R2 P1 F200\nG82 X10\nG80\nM2\n"
     ));
     // "P value out of range with G10 L1".
-    assert_eq!(alarm("G21\nG10 L1 P0 Z5\nM2\n"), (Code::E503, 2, 8));
+    assert_eq!(alarm("G21\nG10 L1 P0 Z5\nM2\n"), (Code::E109, 2, 8));
 }
 
 /// LinuxCNC's own auxiliary M codes (overrides, motion-synchronized and
@@ -226,4 +226,46 @@ fn io_and_user_m_codes_pass_on_with_their_words() {
     // M61 (set the tool number) and M70–M73 (modal state) change state
     // vcnc does not keep: unknown, as before.
     assert_eq!(alarm("G21\nM61 Q3\nM2\n"), (Code::E203, 2, 5));
+}
+
+/// The second review's findings: a cycle code without axis words alarms
+/// (rs274: "All axes missing with motion code") instead of hiding the
+/// next block's cycle change; an M code's P/Q in a cycle block is its own;
+/// the lexer's O-word alarm wants a blank after the O number (glued, it is
+/// a lettered program name) and finds it after a sequence number too; the
+/// hint names a dialect that runs the code, not one that lists it as not
+/// run; G10 L0 keeps Fanuc's range.
+#[test]
+fn second_review_findings_stay_fixed() {
+    let head = "G21 G90\nS1000 M3\nG0 X0 Y0 Z20\nG81 X0 Y0 Z-5 R2 F100\n";
+    assert_eq!(
+        alarm(&format!("{head}G82\nG82 X20\nM2\n")),
+        (Code::E312, 5, 1)
+    );
+    let ev = ended(&format!("{head}X10 M62 P1\nX20 M66 P0 L1 Q5\nG80\nM2\n"));
+    assert_eq!(
+        ev.iter()
+            .filter(|e| matches!(e, Event::Hole { .. }))
+            .count(),
+        3
+    );
+    let fanuc = |p: &str| {
+        let (_, out) = run_str(&Dialect::fanuc(), p);
+        match out {
+            Outcome::Alarm(d) => (d.code, d.line, d.column, d.message, d.help),
+            o => panic!("{o:?}"),
+        }
+    };
+    assert_eq!(fanuc("G21\nO100IF\nM30\n").0, Code::E104);
+    assert_eq!(alarm("G21\nN10 o100 sub\nM2\n"), (Code::E604, 2, 5));
+    // G7 runs only in LinuxCNC's lathe mode (the seed lathe lists it as
+    // not run, and linuxcnc sends it on to linuxcnc-lathe).
+    let (code, _, _, _, help) = fanuc("G21\nG7\nM30\n");
+    assert_eq!(code, Code::E201);
+    assert!(help.contains("--dialect linuxcnc-lathe"), "{help}");
+    let (_, _, _, _, help) = fanuc("G21\nG33.1 Z-5 K1\nM30\n");
+    assert!(!help.contains("--dialect"), "no dialect runs G33.1: {help}");
+    let (code, _, _, message, _) = fanuc("G21\nG10 L0 P1 X1\nM30\n");
+    assert_eq!(code, Code::E109);
+    assert!(message.contains("2..20"), "{message}");
 }

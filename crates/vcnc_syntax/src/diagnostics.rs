@@ -58,7 +58,7 @@ pub fn o_word_flow(span: Span) -> Diagnostic {
         span,
         "LinuxCNC's O-word statements (o100 sub, call, if, while …) are not read by vcnc"
             .to_string(),
-        "expand the subroutines and loops into plain blocks, or write them as M98/M99 subprograms and Custom Macro B (IF, WHILE, GOTO) under --dialect fanuc",
+        "vcnc runs no O-word flow: expand the subroutines and loops into plain blocks (a Fanuc-style control writes them as M98/M99 subprograms and Custom Macro B IF, WHILE, GOTO)",
     )
 }
 

@@ -300,8 +300,9 @@ const O_KEYWORDS: &[&str] = &[
 ];
 
 /// LinuxCNC's O-word flow control, which no vcnc dialect reads: `o<name>`
-/// (an O without a number) or a keyword after the O number that starts
-/// the block (`o100 sub`, `O101 while [#1 LT 3]`).
+/// (an O without a number) or a keyword after a blank after the block's
+/// O number (`o100 sub`, `N10 O101 while [#1 LT 3]`; glued, `O100IF` is a
+/// lettered program name).
 #[cold]
 fn o_word_flow(line: &[u8], at: usize, out: &Block) -> Option<Diagnostic> {
     let word_end = |from: usize| {
@@ -313,8 +314,12 @@ fn o_word_flow(line: &[u8], at: usize, out: &Block) -> Option<Diagnostic> {
     if line[at].eq_ignore_ascii_case(&b'O') && line.get(at + 1) == Some(&b'<') {
         return Some(diag::o_word_flow(Span::new(at, word_end(at + 1))));
     }
-    let first = out.words().first()?;
-    if out.words().len() != 1 || first.addr.as_letter() != Some(b'O') {
+    let o = out.words().last()?;
+    let o_end = o.span.end as usize;
+    let blank = line
+        .get(o_end..at)
+        .is_some_and(|gap| !gap.is_empty() && gap.iter().all(|c| matches!(c, b' ' | b'\t')));
+    if o.addr.as_letter() != Some(b'O') || !blank {
         return None;
     }
     let end = word_end(at);
@@ -322,7 +327,7 @@ fn o_word_flow(line: &[u8], at: usize, out: &Block) -> Option<Diagnostic> {
     O_KEYWORDS
         .iter()
         .any(|k| keyword.eq_ignore_ascii_case(k.as_bytes()))
-        .then(|| diag::o_word_flow(Span::new(first.span.start as usize, end)))
+        .then(|| diag::o_word_flow(Span::new(o.span.start as usize, end)))
 }
 
 /// `O7997A`: a letter glued to the program number of an `O` word that

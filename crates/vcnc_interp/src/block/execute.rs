@@ -20,7 +20,7 @@
 use crate::alarms;
 use crate::block::words::{ALWAYS, Words};
 use crate::dialect::{
-    AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ToolChangeSpindle,
+    AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
     ToolLengthChange, ToolWords, bit,
 };
 use crate::events::{EndCode, Event, PathMode, Plane, Pos, SpindleDir, StopCode};
@@ -411,6 +411,10 @@ impl Interpreter<'_> {
                     Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
                         allowed |= bit(b'R');
                     }
+                    // LinuxCNC's G33 K: the lead, modal blocks too.
+                    Motion::Thread if self.dialect.thread_lead == ThreadLead::K => {
+                        allowed |= bit(b'K');
+                    }
                     _ => {}
                 }
             }
@@ -437,7 +441,9 @@ impl Interpreter<'_> {
         }
         not_negative_feed(&f)?;
         match self.state.modal.motion {
-            Motion::Thread | Motion::ThreadingCycle if w.axis_user.is_none() => {
+            Motion::Thread | Motion::ThreadingCycle
+                if w.axis_user.is_none() && self.dialect.thread_lead == ThreadLead::F =>
+            {
                 self.state.thread_lead_mm = Some(f.value * self.unit_mm())
             }
             Motion::ThreadInch if w.axis_user.is_none() => {
@@ -538,6 +544,13 @@ impl Interpreter<'_> {
         }
         let s_word = w.get(b'S').filter(|_| !clamp_block);
         let mode = w.group(Group::SpindleMode);
+        // LinuxCNC's `G96 D2500 S120`: D is the highest speed.
+        if let Some(d) = mode
+            .filter(|m| m.def.op == GOp::SurfaceSpeed && m.def.letters & bit(b'D') != 0)
+            .and_then(|_| w.get(b'D'))
+        {
+            self.state.max_rpm = Some(d.value);
+        }
         if mode.is_some_and(|m| m.def.op == GOp::SpindleRpm) && s_word.is_none() {
             // G97 alone keeps the speed the spindle turns at (Fanuc).
             self.state.s_value = self.state.rpm;

@@ -184,6 +184,14 @@ impl Interpreter<'_> {
             .filter_map(|&i| letter(i))
             .any(|l| w.get(l).is_some());
         let rules = self.dialect.cycles;
+        if !drills && rules == CycleRules::LinuxCnc && w.group(Group::Cycle).is_some() {
+            // rs274: "All axes missing with motion code".
+            return Err(alarms::needs_word(
+                cmd,
+                self.state.cycle.code.map_or("the cycle", |c| c.as_str()),
+                "an axis word (the hole's position or depth)",
+            ));
+        }
         if !drills {
             // R, Q, P are stored only by a block that drills (1.2.31), and
             // only it repeats.
@@ -324,7 +332,11 @@ impl Interpreter<'_> {
         }
         let rules = self.dialect.cycles;
         if let Some(code) = self.state.cycle.code {
+            // An M code of the block may read them (LinuxCNC's `M62 P1`).
+            let m_letters =
+                w.other_letters | w.m.iter().flatten().fold(0, |m, a| m | a.def.letters);
             for (l, read) in [(b'P', rules.reads_p(code)), (b'Q', rules.reads_q(code))] {
+                let read = read || m_letters & crate::dialect::bit(l) != 0;
                 if let Some(word) = w.get(l).filter(|_| !read) {
                     return Err(alarms::word_not_allowed(word.span, l));
                 }

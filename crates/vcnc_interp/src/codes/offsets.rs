@@ -44,7 +44,12 @@ impl Interpreter<'_> {
                 "G10 L is 1, 2 or 20 (L10/L11, the tool table from the current position, are not run by vcnc)"
             }
         };
-        match (rules, whole(&l, b'L', 1.0, 20.0, which)?) {
+        let lowest = if rules == G10Rules::LinuxCnc {
+            1.0
+        } else {
+            2.0
+        };
+        match (rules, whole(&l, b'L', lowest, 20.0, which)?) {
             (_, 2) => self.set_work_offset(w, cmd, false),
             (G10Rules::Grbl | G10Rules::LinuxCnc, 20) => self.set_work_offset(w, cmd, true),
             (G10Rules::Fanuc | G10Rules::Grbl, n @ 10..=13) => self.set_tool_offset(w, cmd, n),
@@ -146,11 +151,11 @@ impl Interpreter<'_> {
         // Tool 0 is "no tool" ("P value out of range with G10 L1").
         let n = match self.offset_number(&p)? {
             0 => {
-                return Err(alarms::bad_tool_offset_number(
+                return Err(alarms::value_out_of_range(
                     p.span,
                     b'P',
                     p.value,
-                    self.machine.params.offset_registers,
+                    "G10 L1's P is a tool number from 1",
                 ));
             }
             n => n,

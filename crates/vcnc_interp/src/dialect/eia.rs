@@ -7,7 +7,7 @@
 use super::{
     BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
     GRow, Group, IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
+    ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -101,5 +101,6 @@ pub(super) fn eia() -> Dialect {
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
     }
 }

@@ -21,7 +21,7 @@
 use super::{
     AxisWords, BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
     GRow, Group, IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
+    SurfaceSpeedOn, ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_FANUC_LATHE_TOML;
@@ -204,6 +204,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -218,6 +219,7 @@ pub(super) fn haas_lathe() -> Dialect {
         dwell_p: DwellP::SecondsWithPoint,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

@@ -9,7 +9,7 @@
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
     IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
+    SurfaceSpeedOn, ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
@@ -126,5 +126,6 @@ pub(super) fn grbl() -> Dialect {
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
     }
 }

@@ -7,7 +7,7 @@
 
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
-    IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
+    IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ThreadLead,
     ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
 };
 use crate::events::Plane;
@@ -133,5 +133,6 @@ pub(super) fn lathe() -> Dialect {
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
     }
 }

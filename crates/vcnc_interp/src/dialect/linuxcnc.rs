@@ -18,9 +18,11 @@
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
     AuxM, CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MGroup, MOp, MRow,
-    OffsetDefault, ToolChangeSpindle, bit, g,
+    OffsetDefault, ThreadLead, ToolChangeSpindle, bit, g,
 };
-use crate::events::Cycle;
+use super::{Diameter, SurfaceSpeedOn};
+use crate::events::{Cycle, Plane};
+use crate::machine::DEFAULT_FANUC_LATHE_TOML;
 
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
@@ -47,8 +49,11 @@ const LINUXCNC_G: &[GRow] = &[
     g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(CYCLE_WORDS_L),
     g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(CYCLE_WORDS_L),
     g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(CYCLE_WORDS_L),
+    // G33 X Z K: spindle-synchronized motion, K the distance per turn.
+    g(330, GOp::Thread, Group::Motion).reads(bit(b'K')),
     g(950, GOp::PerRev, Group::FeedMode),
-    g(960, GOp::SurfaceSpeed, Group::SpindleMode),
+    // G96 D S: D the highest spindle speed.
+    g(960, GOp::SurfaceSpeed, Group::SpindleMode).reads(bit(b'D')),
     g(970, GOp::SpindleRpm, Group::SpindleMode),
     g(980, GOp::ReturnInitial, Group::ReturnLevel),
     g(990, GOp::ReturnR, Group::ReturnLevel),
@@ -195,6 +200,34 @@ pub(super) fn linuxcnc() -> Dialect {
         offset_default: OffsetDefault::ToolInSpindle,
         aux_m: LINUXCNC_AUX_M,
         tool_change: ToolChangeSpindle::Stops,
+        thread_lead: ThreadLead::K,
         ..grbl()
+    }
+}
+
+/// Lathe mode's G7 (X in diameters) and G8 (in radii).
+const LINUXCNC_LATHE_G: &[GRow] = &[
+    g(70, GOp::DiameterMode, Group::DiameterMode),
+    g(80, GOp::RadiusMode, Group::DiameterMode),
+];
+
+/// LinuxCNC in lathe mode (a lathe configuration: X and Z, the XZ plane,
+/// G7/G8): the mill dialect's reading and codes, X in radii until G7, G96
+/// on the work diameter, the built-in turning centre.
+pub(super) fn linuxcnc_lathe() -> Dialect {
+    let m: Vec<MRow> = GRBL_M.iter().chain(LINUXCNC_M).copied().collect();
+    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, LINUXCNC_LATHE_G], &m);
+    Dialect {
+        name: "linuxcnc-lathe",
+        g,
+        m,
+        diameter: Diameter {
+            axis: Some(b'X'),
+            at_power_on: false,
+        },
+        plane: Plane::Zx,
+        default_machine: DEFAULT_FANUC_LATHE_TOML,
+        surface_speed: SurfaceSpeedOn::WorkDiameter,
+        ..linuxcnc()
     }
 }

@@ -5,8 +5,8 @@
 use super::{
     BareReturn, CYCLE_WORDS, CYCLE_WORDS_L, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn,
     G10Rules, GOp, GRow, Group, HAAS_PECK_WORDS, IntegerWords, LongChord, MGroup, MOp, MRow,
-    OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ToolChangeSpindle, ToolLengthChange,
-    ToolWords, bit, g,
+    OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
+    ToolLengthChange, ToolWords, bit, g,
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
@@ -234,6 +234,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         dwell_p: DwellP::WholeMilliseconds,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
     }
 }
 
@@ -289,6 +290,7 @@ pub(super) fn haas() -> Dialect {
         dwell_p: DwellP::SecondsWithPoint,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
+        thread_lead: ThreadLead::F,
         macros: super::MacroRules::HAAS,
         ..fanuc()
     }

@@ -462,15 +462,27 @@ impl G10Rules {
     }
 }
 
-/// Which offset G43 without H and G41/G42 without D use.
+/// What H and D number, and which offset G43 without H and G41/G42
+/// without D use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OffsetDefault {
-    /// The H or D number in force (Fanuc, Syntec: modal).
+    /// Offset registers, modal: the H or D number in force; a D alone in a
+    /// block selects the next radius (Fanuc, Syntec).
     Modal,
-    /// The tool in the spindle (LinuxCNC: "if H is not given, the tool
-    /// in the spindle"; G41 without D "uses the diameter of the currently
-    /// loaded tool").
+    /// Tool numbers, read only with their code (G43 H, G41/G42 D; a D
+    /// elsewhere is E203); without one, and as 0, the tool in the spindle
+    /// (LinuxCNC: "if H is not given, the tool in the spindle"; G41 without
+    /// D "uses the diameter of the currently loaded tool").
     ToolInSpindle,
+}
+
+/// Which word gives the lead of G33 (spindle-synchronized motion).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ThreadLead {
+    /// F, in the G33/G32 block or before it (Fanuc, Syntec, the lathes).
+    F,
+    /// K, the distance per revolution; F stays the feed (LinuxCNC).
+    K,
 }
 
 /// The feed mode at power-on (group 05).
@@ -626,6 +638,8 @@ pub struct Dialect {
     pub dwell_p: DwellP,
     /// What M06 does to a turning spindle.
     pub tool_change: ToolChangeSpindle,
+    /// The lead of G33.
+    pub thread_lead: ThreadLead,
     /// M codes the controller itself passes on as auxiliary functions
     /// (`aux` events), with the letters they read (LinuxCNC's M62–M68).
     pub aux_m: &'static [AuxM],
@@ -694,6 +708,7 @@ impl Dialect {
             "fanuc-lathe" => Some(fanuc_lathe::fanuc_lathe()),
             "haas-lathe" => Some(fanuc_lathe::haas_lathe()),
             "linuxcnc" => Some(linuxcnc::linuxcnc()),
+            "linuxcnc-lathe" => Some(linuxcnc::linuxcnc_lathe()),
             _ => None,
         }
     }
@@ -709,6 +724,7 @@ impl Dialect {
         "fanuc-lathe",
         "haas-lathe",
         "linuxcnc",
+        "linuxcnc-lathe",
     ];
 
     /// Syntec 900M mill (the default).
@@ -755,6 +771,11 @@ impl Dialect {
     /// LinuxCNC 2.9's RS274/NGC mill interpreter.
     pub fn linuxcnc() -> Dialect {
         linuxcnc::linuxcnc()
+    }
+
+    /// LinuxCNC 2.9 in lathe mode (G7/G8, XZ plane).
+    pub fn linuxcnc_lathe() -> Dialect {
+        linuxcnc::linuxcnc_lathe()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the
@@ -807,8 +828,10 @@ impl Dialect {
     /// Whether a D word selects a cutter-radius offset in this dialect (its
     /// G41 reads D): then D is modal and may stand without G41/G42.
     pub(crate) fn d_is_radius_offset(&self) -> bool {
-        self.g(41.0)
-            .is_some_and(|g| g.op == GOp::CompLeft && g.letters & bit(b'D') != 0)
+        self.offset_default == OffsetDefault::Modal
+            && self
+                .g(41.0)
+                .is_some_and(|g| g.op == GOp::CompLeft && g.letters & bit(b'D') != 0)
     }
 
     /// The G code that does `op` in this dialect (the first in the table),
@@ -843,10 +866,17 @@ impl Dialect {
     ///
     /// A lathe program is pointed at lathe dialects only (a Fanuc lathe
     /// program's G18 under the seed lathe must not be sent to a mill), a
-    /// mill program at mill dialects first.
+    /// mill program at mill dialects first; both at a dialect that reads
+    /// `;` as this one does first (the grbl/LinuxCNC family, where it
+    /// starts a comment, or the Fanuc/Syntec family, where it ends the
+    /// block), and a lathe program only there: a Fanuc lathe's G43 is not
+    /// LinuxCNC's.
     pub fn g_elsewhere(&self, value: f64) -> Option<&'static str> {
         let lathe = |d: &Dialect| d.diameter.axis.is_some();
-        let has = |d: &Dialect| d.g(value).is_some() || d.unsupported_reason(value).is_some();
+        let family = |d: &Dialect| d.lex.semicolon == self.lex.semicolon;
+        // Only a dialect that runs the code: one that lists it as not run
+        // would send the program on to the same alarm.
+        let has = |d: &Dialect| d.g(value).is_some();
         let others: Vec<(&'static str, Dialect)> = Dialect::NAMES
             .iter()
             .copied()
@@ -854,12 +884,14 @@ impl Dialect {
             .filter_map(|n| Dialect::by_name(n).map(|d| (n, d)))
             .filter(|(_, d)| has(d))
             .collect();
-        let same = others.iter().find(|(_, d)| lathe(d) == lathe(self));
-        match same {
-            Some((n, _)) => Some(n),
-            None if lathe(self) => None,
-            None => others.first().map(|(n, _)| *n),
+        let near =
+            |f: &dyn Fn(&Dialect) -> bool| others.iter().find(|(_, d)| f(d)).map(|(n, _)| *n);
+        if lathe(self) {
+            return near(&|d| lathe(d) && family(d));
         }
+        near(&|d| !lathe(d) && family(d))
+            .or_else(|| near(&|d| !lathe(d)))
+            .or_else(|| others.first().map(|(n, _)| *n))
     }
 }
 

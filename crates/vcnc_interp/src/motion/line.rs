@@ -5,7 +5,7 @@
 use super::{Move, MoveKind, Target};
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::{GOp, Group};
+use crate::dialect::{GOp, Group, ThreadLead};
 use crate::events::{Feed, MAX_AXES, Pos};
 use crate::interpreter::Interpreter;
 use crate::machine::Machine;
@@ -54,6 +54,12 @@ impl Interpreter<'_> {
                 self.straight(MoveKind::Feed(feed), to, w, cmd)
             }
             Motion::Thread | Motion::ThreadInch => {
+                if self.dialect.thread_lead == ThreadLead::K
+                    && let Some(k) = w.get(b'K')
+                {
+                    // LinuxCNC's G33 K: distance per revolution.
+                    self.state.thread_lead_mm = Some(self.length_mm(&k));
+                }
                 let lead_mm = self
                     .state
                     .thread_lead_mm
