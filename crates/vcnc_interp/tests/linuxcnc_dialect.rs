@@ -269,3 +269,22 @@ fn second_review_findings_stay_fixed() {
     assert_eq!(code, Code::E109);
     assert!(message.contains("2..20"), "{message}");
 }
+
+/// `G64 P` is LinuxCNC's blending tolerance: a `smoothing` event with P,
+/// which the planner reads as G05.1's E; `G64` alone turns it off (the
+/// machine's own corner tolerance); a negative P alarms.
+#[test]
+fn g64_p_is_a_blending_tolerance_for_the_planner() {
+    let ev = ended("G21 G90\nG64 P0.05 Q0.01\nG1 X10 F3000\nG64\nX20\nM2\n");
+    let smoothing: Vec<(bool, f64)> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Smoothing {
+                on, tolerance_mm, ..
+            } => Some((*on, *tolerance_mm)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(smoothing, vec![(true, 0.05), (false, 0.0)]);
+    assert_eq!(alarm("G21\nG64 P-1\nM2\n"), (Code::E109, 2, 5));
+}

@@ -248,6 +248,11 @@ impl Interpreter<'_> {
             let mode = self.state.modal.path;
             self.emit(|loc| Event::PathMode { loc, mode });
         }
+        if w.group(Group::Path)
+            .is_some_and(|g| g.def.op == GOp::PathCutting && g.def.letters & bit(b'P') != 0)
+        {
+            self.blend_tolerance(w)?;
+        }
         self.feed_word(w)?;
         self.tool_words(w)?;
         self.spindle_words(w)?;
@@ -688,6 +693,33 @@ impl Interpreter<'_> {
                 _ => {}
             }
         }
+    }
+
+    /// LinuxCNC's (and grbl posts') `G64 P`: blend within P of the
+    /// programmed path, a `smoothing` event the planner reads as G05.1's;
+    /// `G64` without P blends as fast as the machine allows (its own corner
+    /// tolerance: smoothing off). Q, the naive-CAM merge of collinear
+    /// moves, is read and not modelled.
+    fn blend_tolerance(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let tolerance_mm = match w.get(b'P') {
+            Some(p) if p.value < 0.0 => {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    b'P',
+                    p.value,
+                    "G64's P is a path tolerance, not negative",
+                ));
+            }
+            Some(p) => self.length_mm(&p),
+            None => 0.0,
+        };
+        let on = tolerance_mm > 0.0;
+        self.emit(|loc| Event::Smoothing {
+            loc,
+            on,
+            tolerance_mm,
+        });
+        Ok(())
     }
 
     /// Haas G187: P1 rough, P2 medium, P3 finish with a corner tolerance
