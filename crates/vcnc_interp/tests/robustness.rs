@@ -103,6 +103,8 @@ fn small_machines_have_small_limits() {
 
 static SYNTEC: LazyLock<Dialect> = LazyLock::new(Dialect::syntec);
 static FANUC: LazyLock<Dialect> = LazyLock::new(Dialect::fanuc);
+static LINUXCNC: LazyLock<Dialect> = LazyLock::new(Dialect::linuxcnc);
+static LINUXCNC_LATHE: LazyLock<Dialect> = LazyLock::new(Dialect::linuxcnc_lathe);
 
 /// Called programs held in memory; numbers listed in `unopenable` exist but
 /// cannot be opened.
@@ -686,6 +688,101 @@ proptest! {
     fn plausible_programs_end_or_alarm(program in plausible_program(), fanuc: bool, alt: bool, block_delete: bool, optional_stop: bool) {
         let machine: &'static Machine = if alt { &SMALL_ALT } else { &SMALL };
         check_run(machine, dialect(fanuc), Options { block_delete, optional_stop }, program.as_bytes(), soup_store())?;
+    }
+}
+
+/// Blocks of LinuxCNC programs: its cycles with R/Q/P/L (and the words it
+/// refuses), G98/G99, tool length and compensation by tool number, G10
+/// L1/L2/L20, G64 P, G33 K, G96 D, G7/G8, the machine's M codes, and what
+/// the dialect does not read (O-words, parameters, expressions).
+const LINUXCNC_BLOCKS: &[&str] = &[
+    "G81 X1 Y1 Z-2 R1 F100",
+    "G82 X2 Z-3 R1 P0.5 F100",
+    "G83 X3 Z-4 R1 Q1 F100",
+    "G73 X4 Z-4 R1 Q0.5",
+    "G84 X5 Z-2 R1 P0.2",
+    "G74 X5 Z-2 R1",
+    "G86 X6 Z-2 R2 P1",
+    "G89 X7 Z-2 R2 P1",
+    "G85 X8 Z-2 R2",
+    "G81 Z-2",
+    "G82",
+    "X9",
+    "G91 X2 L3",
+    "G91 X1 L0",
+    "G90 R5",
+    "Z-6",
+    "G98",
+    "G99",
+    "G80",
+    "T1 M6",
+    "T2 M6 M3",
+    "G43",
+    "G43 H0",
+    "G43 H2",
+    "G49",
+    "G41 D1",
+    "G41",
+    "G42 D0",
+    "G40",
+    "D2",
+    "G10 L1 P2 R1.5 Z10",
+    "G10 L1 P0 Z1",
+    "G10 L2 P9 X5",
+    "G10 L20 P0 X0 Y0",
+    "G91 G10 L2 P1 X1",
+    "G59.3",
+    "G61.1",
+    "G64 P0.05 Q0.01",
+    "G64",
+    "G33 Z-5 K1",
+    "G96 D2000 S100",
+    "G97 S800",
+    "G7",
+    "G8",
+    "G18",
+    "G17",
+    "M62 P1",
+    "M66 P0 L3 Q5",
+    "M100 P1 Q2",
+    "M19 R90",
+    "M60",
+    "o100 sub",
+    "o100 endsub",
+    "o<x> call",
+    "#1 = 2",
+    "G1 X#1",
+    "G1 X[1+2]",
+    "; comment",
+    "G0 X10 Y10 Z10",
+    "G1 X0 Y0 Z0 F500",
+    "G2 X10 Y0 I5 J0",
+    "M2",
+];
+
+fn linuxcnc_program() -> impl Strategy<Value = String> {
+    proptest::collection::vec(
+        prop_oneof![
+            6 => select(LINUXCNC_BLOCKS).prop_map(String::from),
+            3 => plausible_block(),
+            1 => token(),
+        ],
+        1..60,
+    )
+    .prop_map(|blocks| blocks.join("\n") + "\n")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, max_shrink_iters: 1024, ..ProptestConfig::default() })]
+
+    /// `--dialect linuxcnc` and `linuxcnc-lathe` on LinuxCNC-flavoured
+    /// programs: every run ends or alarms, located, with no motion after
+    /// the alarm and every point inside the machine.
+    #[test]
+    fn linuxcnc_programs_end_or_alarm(program in linuxcnc_program(), lathe: bool, alt: bool) {
+        let machine: &'static Machine = if alt { &SMALL_ALT } else { &SMALL };
+        let dialect: &'static Dialect = if lathe { &LINUXCNC_LATHE } else { &LINUXCNC };
+        check_run(machine, dialect, Options::default(), program.as_bytes(), soup_store())?;
     }
 }
 
