@@ -461,3 +461,56 @@ fn compensation_points_reached(ext: &str, dialect: Option<&str>) -> usize {
     assert!(programs.len() >= 30, "only {} programs", programs.len());
     programs.len()
 }
+
+/// `linuxcnc_lathe_comp`: LinuxCNC's lathe cutter compensation, G42 with a
+/// 0.4 mm nose, for each tool orientation Q1–Q9: the compensated feed end
+/// points rs274 gives (`tools/linuxcnc/make_lathe_comp_fixture.py`) are
+/// vcnc's under `--dialect linuxcnc-lathe` with the machine file's `tip` in
+/// LinuxCNC's numbering.
+#[test]
+fn linuxcnc_lathe_compensation_follows_the_tool_orientation() {
+    let dir = fixtures_dir("linuxcnc_lathe_comp");
+    let table: Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("orientations.json")).expect("orientations.json"),
+    )
+    .expect("JSON");
+    let program = std::fs::read_to_string(dir.join("orientation.ngc")).expect("program");
+    let dialect = Dialect::linuxcnc_lathe();
+    for q in 1u8..=9 {
+        let mut machine = dialect.machine();
+        let tool = machine.tools.get_mut(&2).expect("tool 2");
+        tool.nose_radius_mm = table["nose_radius_mm"].as_f64().expect("radius");
+        tool.tip = q;
+        let mut sink = VecSink::default();
+        let mut store = DirStore(dir.clone());
+        Interpreter::new(&machine, &dialect, Options::default()).run(
+            Box::new(vcnc_syntax::MemSource(program.clone().into_bytes())),
+            &mut store,
+            &mut sink,
+        );
+        let mut axes = vcnc_output::EventAxes::new(&machine);
+        let feeds: Vec<Value> = sink
+            .0
+            .iter()
+            .map(|e| {
+                let mut buf = Vec::new();
+                vcnc_output::write_event(&mut buf, &mut axes, e);
+                serde_json::from_slice::<Value>(&buf).expect("JSON")
+            })
+            .filter(|e| e["type"] == "feed")
+            .map(|e| e["to"].clone())
+            .take(3)
+            .collect();
+        let want = table["feeds_by_q"][q.to_string()]
+            .as_array()
+            .expect("points")
+            .clone();
+        assert_eq!(feeds.len(), want.len(), "Q{q}");
+        for (got, want) in feeds.iter().zip(&want) {
+            assert!(
+                close(got, want, 1e-4, "to"),
+                "Q{q}: {got} against rs274's {want}"
+            );
+        }
+    }
+}

@@ -265,7 +265,7 @@ impl Interpreter<'_> {
         let tool_moved = self.frame_codes(w)?;
         self.smoothing_frame_change(w);
         self.comp_codes(w)?;
-        self.setting_codes(w);
+        self.setting_codes(w)?;
         let moves_before = self.moves;
         let mut resume = None;
         match w.axis_user {
@@ -680,8 +680,8 @@ impl Interpreter<'_> {
     }
 
     /// Step 6b: one-shot settings without axis words (G28.1/G30.1, G92.1,
-    /// G187).
-    fn setting_codes(&mut self, w: &Words<'_>) {
+    /// G187, LinuxCNC's G4).
+    fn setting_codes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         for at in w.once_codes() {
             match at.def.op {
                 GOp::RefStore(n) => self.store_reference(n),
@@ -690,9 +690,15 @@ impl Interpreter<'_> {
                     self.state.refresh_origin(&self.tables);
                 }
                 GOp::Smoothing => self.haas_smoothing(w),
+                // A G4 that leaves the axis words to the motion (LinuxCNC:
+                // the dwell, then the block's move).
+                GOp::DwellP if !at.def.takes_axes() => {
+                    self.axis_code(GOp::DwellP, at.span, w)?;
+                }
                 _ => {}
             }
         }
+        Ok(())
     }
 
     /// LinuxCNC's (and grbl posts') `G64 P`: blend within P of the

@@ -42,7 +42,14 @@ impl Interpreter<'_> {
         if let Some(n) = d_number {
             let t = self.tables.tool(n);
             self.state.d_number = n;
-            self.state.comp_d_mm = t.d_mm + t.d_wear_mm;
+            if self.dialect.diameter.axis.is_some() {
+                // A lathe's tool number (LinuxCNC lathe mode): its nose
+                // radius and orientation (LinuxCNC's numbering).
+                self.state.comp_d_mm = t.nose_radius_mm + t.nose_radius_wear_mm;
+                self.state.lathe.tip = crate::motion::comp::nose::linuxcnc_tip(t.tip);
+            } else {
+                self.state.comp_d_mm = t.d_mm + t.d_wear_mm;
+            }
         }
         let Some(code) = code else { return Ok(()) };
         let side = match code.def.op {

@@ -27,6 +27,9 @@ use crate::machine::DEFAULT_FANUC_LATHE_TOML;
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
 const LINUXCNC_G: &[GRow] = &[
+    // G4 P seconds; the block's axis words go to its motion, after the
+    // dwell (`G4 P0.5 G0 X10`, LinuxCNC's order of execution).
+    g(40, GOp::DwellP, Group::NonModal).reads(bit(b'P')),
     // L1 (tool table: P tool, R radius, Z length), L2/L20 (work offsets).
     g(100, GOp::SetData, Group::NonModal)
         .reads(bit(b'L') | bit(b'P') | bit(b'R'))
