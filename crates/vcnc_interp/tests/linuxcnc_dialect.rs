@@ -158,12 +158,37 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
     assert_eq!(alarm("G21\no<probe> call [1]\nM2\n"), (Code::E604, 2, 1));
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
     assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E201, 2, 1));
-    // Parameters, named or numbered: LinuxCNC's expressions and its
-    // unset-reads-0 rule are not Macro B's, so none is read rather than
-    // some read differently.
-    assert_eq!(alarm("G21\n#<depth> = 2\nM2\n"), (Code::E101, 2, 1));
-    assert_eq!(alarm("G21\nG1 X#1 F10\nM2\n"), (Code::E101, 2, 5));
-    assert_eq!(alarm("G21\n#1 = 2\nM2\n"), (Code::E101, 2, 1));
+}
+
+/// LinuxCNC's parameters and expressions (`macros/ngc.rs`; their values
+/// against rs274 in `tests/fixtures/linuxcnc_dialect/parameters_and_expressions.ngc`):
+/// what rs274 refuses alarms at the word, and the other dialects without
+/// macros still say they read none.
+#[test]
+fn parameters_alarm_where_rs274_refuses_them() {
+    // A named parameter read before it is set.
+    assert_eq!(alarm("G21\nG0 X#<depth>\nM2\n"), (Code::E607, 2, 5));
+    // Parameter numbers 1 to 5602.
+    assert_eq!(alarm("G21\n#0 = 1\nM2\n"), (Code::E605, 2, 1));
+    assert_eq!(alarm("G21\nG0 X#5603\nM2\n"), (Code::E605, 2, 5));
+    assert_eq!(alarm("G21\nG0 X[1/0]\nM2\n"), (Code::E608, 2, 7));
+    assert_eq!(alarm("G21\nG0 X[SQRT[-1]]\nM2\n"), (Code::E609, 2, 6));
+    assert_eq!(alarm("G21\nG0 X[FOO[1]]\nM2\n"), (Code::E604, 2, 6));
+    assert_eq!(alarm("G21\nG0 X[1 + 2\nM2\n"), (Code::E601, 2, 5));
+    assert_eq!(alarm("G21\n#1 2\nM2\n"), (Code::E601, 2, 4));
+    // The settings of a line apply after it: X reads the old #1 (0).
+    let ev = ended("G21 G90\n#1 = 4 G0 X#1\nG0 Y#1\nM2\n");
+    let ends: Vec<(f64, f64)> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Rapid { to, .. } => Some((to.get(0), to.get(1))),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(ends, vec![(0.0, 0.0), (0.0, 4.0)]);
+    // grbl reads no parameters.
+    let (_, out) = run_str(&Dialect::grbl(), "G21\n#1 = 2\nM2\n");
+    assert!(matches!(out, Outcome::Alarm(d) if d.code == Code::E101));
 }
 
 /// rs274's refusals that are about the cycle's data: zero repeats, a

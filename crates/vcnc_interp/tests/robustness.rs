@@ -624,6 +624,13 @@ const FLOW_BLOCKS: &[&str] = &[
 ];
 
 fn plausible_block() -> impl Strategy<Value = String> {
+    plausible_block_with(1000)
+}
+
+/// [`plausible_block`] whose integer words are `v × integer_scale` (1000:
+/// least increments on a Fanuc; 1: LinuxCNC's whole units, so that a
+/// drilling depth stays within millimetres, not metres of pecks).
+fn plausible_block_with(integer_scale: i32) -> impl Strategy<Value = String> {
     (
         proptest::option::weighted(0.3, select(&["N1", "N5", "N10", "N20"][..])),
         proptest::collection::vec(select(PLAUSIBLE_G), 0..3),
@@ -631,7 +638,7 @@ fn plausible_block() -> impl Strategy<Value = String> {
         proptest::option::weighted(0.3, select(&["F100", "F0", "F1.5", "F2000", "F-1"][..])),
         proptest::option::weighted(0.2, select(PLAUSIBLE_M)),
     )
-        .prop_map(|(n, gs, words, f, m)| {
+        .prop_map(move |(n, gs, words, f, m)| {
             let mut parts: Vec<String> = n.into_iter().map(String::from).collect();
             parts.extend(gs.iter().copied().map(String::from));
             // Centre and radius words only where an arc is commanded.
@@ -650,7 +657,7 @@ fn plausible_block() -> impl Strategy<Value = String> {
                 parts.push(match form {
                     0 => format!("{l}{v}."),
                     1 => format!("{l}{v}.5"),
-                    _ => format!("{l}{}", v * 1000),
+                    _ => format!("{l}{}", v * integer_scale),
                 });
             }
             parts.extend(f.into_iter().map(String::from));
@@ -753,6 +760,15 @@ const LINUXCNC_BLOCKS: &[&str] = &[
     "#1 = 2",
     "G1 X#1",
     "G1 X[1+2]",
+    "#<d> = [#1 * 2] #2 = [ATAN[1]/[#1]]",
+    "G1 Z-#<d> F[#2 + 100]",
+    "G0 X#<nope>",
+    "#[#1 + 3] = [1/0]",
+    "G0 X[SQRT[-#1]]",
+    "#5602 = [2 ** 1000]",
+    "G0 Y##5602",
+    "G1 X[1 + [2 * [3 MOD 0]]]",
+    "#1 = [#1 + 1] G91 G0 X#1",
     "; comment",
     "G0 X10 Y10 Z10",
     "G1 X0 Y0 Z0 F500",
@@ -764,7 +780,7 @@ fn linuxcnc_program() -> impl Strategy<Value = String> {
     proptest::collection::vec(
         prop_oneof![
             6 => select(LINUXCNC_BLOCKS).prop_map(String::from),
-            3 => plausible_block(),
+            3 => plausible_block_with(1),
             1 => token(),
         ],
         1..60,

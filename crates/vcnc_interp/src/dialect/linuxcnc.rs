@@ -11,9 +11,9 @@
 //! written by `G10 L1 P Z R` and the machine's own M codes (M62–M68,
 //! M100–M199) — as `docs/dialects.md` lists them.
 //!
-//! Not read: O-word statements (E604), parameters and expressions (E101),
-//! lathe mode (G7/G8, G76, G33.1), splines (G5, G5.1, G5.2) and the UVW
-//! planes (E201 says why).
+//! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`). Not
+//! read: O-word statements (E604), G76, G33.1, splines (G5, G5.1, G5.2)
+//! and the UVW planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
@@ -204,6 +204,7 @@ pub(super) fn linuxcnc() -> Dialect {
         aux_m: LINUXCNC_AUX_M,
         tool_change: ToolChangeSpindle::Stops,
         thread_lead: ThreadLead::K,
+        macros: super::MacroRules::NGC,
         ..grbl()
     }
 }

@@ -13,6 +13,9 @@ pub enum IsoMacros {
     None,
     /// Fanuc Custom Macro B.
     CustomMacroB,
+    /// LinuxCNC's numbered and named parameters and `[ ]` expressions
+    /// (`macros/ngc.rs`), without its O-word flow.
+    Ngc,
 }
 
 /// Programs whose first line is `%@MACRO`.
@@ -108,6 +111,11 @@ impl MacroRules {
         ..MacroRules::NONE
     };
 
+    /// LinuxCNC: its parameters and expressions.
+    pub const NGC: MacroRules = MacroRules {
+        iso: IsoMacros::Ngc,
+        ..MacroRules::NONE
+    };
     /// Haas: Fanuc's Custom Macro B and Haas's tool-life variables.
     pub const HAAS: MacroRules = MacroRules {
         machine_vars: MachineVars::HaasToolLife,

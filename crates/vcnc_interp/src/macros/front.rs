@@ -167,6 +167,9 @@ impl Interpreter<'_> {
         if self.macros.rules.iso == IsoMacros::None || lexed.code == vcnc_syntax::Code::E604 {
             return Err(lexed);
         }
+        if self.macros.rules.iso == IsoMacros::Ngc {
+            return self.ngc_block(src, line, start, lexed, i, block, store, sink);
+        }
         let syn = self
             .macros
             .rules
@@ -202,6 +205,63 @@ impl Interpreter<'_> {
         self.ensure_structure(src)?;
         *i = next_col;
         self.run_compiled(&c, src, block, store, sink)
+    }
+
+    /// A LinuxCNC line with parameters or expressions (`macros/ngc.rs`):
+    /// its words evaluated with the parameters as they were, the block
+    /// run, then its settings applied. A line without `#` or `[` keeps the
+    /// lexer's alarm.
+    #[allow(clippy::too_many_arguments)] // macro_block's own
+    fn ngc_block<S: Sink>(
+        &mut self,
+        src: usize,
+        line: &Line,
+        start: usize,
+        lexed: Diagnostic,
+        i: &mut usize,
+        block: &mut Block,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<(Step, Span), Diagnostic> {
+        let Some(s) = self.flow.source(src) else {
+            return Err(lexed);
+        };
+        let bytes = s.reader.bytes(line);
+        let text = &bytes[start.min(bytes.len())..];
+        if !text.iter().any(|c| matches!(c, b'#' | b'[')) {
+            return Err(lexed);
+        }
+        let params = self.macros.ngc.get_or_insert_with(Box::default);
+        let read = super::ngc::read_line(bytes, start, params)?;
+        let end = bytes.len();
+        params.commit(&read);
+        self.macros.used = true;
+        *i = end;
+        block.clear();
+        for w in &read.words {
+            if !block.push(*w) {
+                return Err(vcnc_syntax::diagnostics::too_many_words(
+                    w.span,
+                    vcnc_syntax::MAX_WORDS,
+                ));
+            }
+        }
+        block.deleted = read.deleted.then_some(1);
+        let span = Span::new(start, end);
+        if block.is_empty() {
+            return Ok((Step::Next, span));
+        }
+        let here = Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: vcnc_syntax::clamp_u32(start),
+        };
+        let next = Cursor {
+            col: vcnc_syntax::clamp_u32(end),
+            ..here
+        };
+        let step = self.macro_words_block(block, here, next, store, sink)?;
+        Ok((step, span))
     }
 
     /// The lexer's alarm for a block without macro syntax, except that a

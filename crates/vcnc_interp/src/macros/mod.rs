@@ -30,6 +30,7 @@ mod calls;
 mod eval;
 mod exec;
 mod front;
+mod ngc;
 mod structure;
 mod system;
 mod vars;
@@ -145,6 +146,8 @@ pub(crate) struct Macros {
     /// its least input increments per unit, to which ROUND rounds (Fanuc
     /// 0i); `None` elsewhere, where ROUND gives a whole number.
     pub round_per_unit: Option<f64>,
+    /// LinuxCNC's parameters, once a line used one.
+    pub ngc: Option<Box<ngc::Params>>,
 }
 
 impl Macros {
@@ -163,6 +166,7 @@ impl Macros {
             moved_reader: false,
             stack: Vec::new(),
             eval_stack: Vec::new(),
+            ngc: None,
             unset: Vec::new(),
             text: Vec::new(),
             args: Vec::new(),

@@ -1,0 +1,414 @@
+//! LinuxCNC's parameters and expressions (`--dialect linuxcnc`): the
+//! lines the lexer rejects for a `#` or a `[`, read and evaluated the way
+//! its RS274/NGC interpreter does, then run as the plain block they stand
+//! for.
+//!
+//! ```text
+//!   #1 = 2   #<depth> = [#1 * 1.5]           (settings: after the line)
+//!   G1 X[#1 + 10] Z-#<depth> F#<_feed>       (values: with the old ones)
+//!        └─ G1 X12 Z-3 F… ──▶ the block pipeline
+//! ```
+//!
+//! What differs from Custom Macro B, and why this is its own reader:
+//! every parameter holds a number (an unset numbered one reads 0, an unset
+//! named one alarms), settings on a line take effect after the whole line
+//! is read, `ROUND` rounds half away from zero, `FIX`/`FUP` are floor and
+//! ceiling, `AND`/`OR`/`XOR` are logical, `MOD` takes the divisor's sign,
+//! `**` is a power, `ATAN[y]/[x]` is the full-circle angle, and the
+//! precedence is `**` > `* / MOD` > `+ -` > comparisons > `AND OR XOR`.
+//! Named parameters live for the whole program (vcnc runs no O-word
+//! subroutine, whose locals they would otherwise be). System parameters
+//! (#5061–#5428: probe results, offsets, the position) read what the
+//! program wrote, 0 otherwise.
+
+use crate::alarms;
+use std::collections::HashMap;
+use vcnc_syntax::{Addr, Diagnostic, Span, Word};
+
+/// The highest numbered parameter (LinuxCNC's 5602).
+const LAST: usize = 5602;
+
+/// Parameters of one run.
+#[derive(Debug, Clone)]
+pub(crate) struct Params {
+    numbered: Vec<f64>,
+    named: HashMap<String, f64>,
+}
+
+impl Default for Params {
+    fn default() -> Params {
+        Params {
+            numbered: vec![0.0; LAST + 1],
+            named: HashMap::new(),
+        }
+    }
+}
+
+/// A parameter a line sets.
+#[derive(Debug, Clone, PartialEq)]
+enum Key {
+    Numbered(usize),
+    Named(String),
+}
+
+/// A line read: its words (values evaluated) and its settings.
+#[derive(Debug, Default)]
+pub(crate) struct Line {
+    pub words: Vec<Word>,
+    sets: Vec<(Key, f64)>,
+    /// A `/` block delete at its start.
+    pub deleted: bool,
+}
+
+impl Params {
+    /// Applies a line's settings, in their order (the last of a
+    /// parameter set twice wins).
+    pub(crate) fn commit(&mut self, line: &Line) {
+        for (k, v) in &line.sets {
+            match k {
+                Key::Numbered(n) => self.numbered[*n] = *v,
+                Key::Named(name) => {
+                    self.named.insert(name.clone(), *v);
+                }
+            }
+        }
+    }
+}
+
+/// Reads `text[start..]`, one LinuxCNC line, with the parameters as they
+/// were before it.
+pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Line, Diagnostic> {
+    let mut r = Reader {
+        s: text,
+        i: start,
+        params,
+    };
+    let mut line = Line::default();
+    r.blank();
+    if r.peek() == b'/' {
+        line.deleted = true;
+        r.i += 1;
+    }
+    loop {
+        r.blank();
+        let at = r.i;
+        match r.peek().to_ascii_uppercase() {
+            0 => return Ok(line),
+            b'#' => {
+                let key = r.target()?;
+                r.blank();
+                if r.peek() != b'=' {
+                    return Err(syntax(Span::new(r.i, r.i + 1), "`=` after the parameter"));
+                }
+                r.i += 1;
+                // A value, not a bare expression: `#1 = 2 G1 X3` sets 2.
+                let v = r.value()?;
+                line.sets.push((key, v));
+            }
+            l @ b'A'..=b'Z' => {
+                r.i += 1;
+                let v = r.value()?;
+                if !v.is_finite() {
+                    return Err(alarms::macro_range(Span::new(at, r.i), "the word's value"));
+                }
+                if line.words.iter().any(|w| w.addr.as_letter() == Some(l)) {
+                    return Err(syntax(Span::new(at, r.i), "one word per letter in a block"));
+                }
+                line.words.push(Word {
+                    addr: Addr::letter(l),
+                    value: v,
+                    // Whole units either way; a fraction in an M or T
+                    // word still alarms as written with a point.
+                    point: v.fract() != 0.0,
+                    span: Span::new(at, r.i),
+                });
+            }
+            _ => {
+                return Err(syntax(
+                    Span::new(at, at + 1),
+                    "a word, a parameter setting or a comment",
+                ));
+            }
+        }
+    }
+}
+
+/// E601 in LinuxCNC's syntax.
+fn syntax(span: Span, wanted: &str) -> Diagnostic {
+    vcnc_syntax::diagnostics::macro_syntax(
+        span,
+        &format!("expected {wanted} here (LinuxCNC's parameters and expressions)"),
+        "write e.g. #1 = [#2 * 3], #<depth> = 2, X[#1 + 5], or put text inside ( )",
+    )
+}
+
+struct Reader<'a> {
+    s: &'a [u8],
+    i: usize,
+    params: &'a Params,
+}
+
+/// Binary operators by precedence level, lowest first.
+const LEVELS: &[&[&str]] = &[
+    &["AND", "OR", "XOR"],
+    &["EQ", "NE", "GT", "GE", "LT", "LE"],
+    &["+", "-"],
+    &["*", "/", "MOD"],
+    &["**"],
+];
+
+impl Reader<'_> {
+    fn peek(&self) -> u8 {
+        self.s.get(self.i).copied().unwrap_or(0)
+    }
+
+    /// Skips blanks, `( )` comments and a `;` comment (to the end).
+    fn blank(&mut self) {
+        loop {
+            match self.peek() {
+                b' ' | b'\t' | b'\r' => self.i += 1,
+                b'(' => match self.s[self.i..].iter().position(|c| *c == b')') {
+                    Some(k) => self.i += k + 1,
+                    None => self.i = self.s.len(),
+                },
+                b';' | b'\n' => self.i = self.s.len(),
+                _ => return,
+            }
+        }
+    }
+
+    /// The keyword `k` (letters, any case) at the reader, consumed.
+    fn keyword(&mut self, k: &str) -> bool {
+        self.blank();
+        let end = self.i + k.len();
+        let here = self.s.get(self.i..end);
+        let after = self.s.get(end).copied().unwrap_or(0);
+        // `X` then `OR`: a letter word is no keyword's end.
+        let word_end = !k.as_bytes()[0].is_ascii_alphabetic() || !after.is_ascii_alphabetic();
+        if here.is_some_and(|h| h.eq_ignore_ascii_case(k.as_bytes())) && word_end {
+            self.i = end;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// A word's value: a number, a parameter, `[expr]`, a function or a
+    /// signed one of these.
+    fn value(&mut self) -> Result<f64, Diagnostic> {
+        self.blank();
+        let at = self.i;
+        match self.peek() {
+            b'-' => {
+                self.i += 1;
+                Ok(-self.value()?)
+            }
+            b'+' => {
+                self.i += 1;
+                self.value()
+            }
+            b'[' => {
+                self.i += 1;
+                let v = self.expr()?;
+                self.close(at)?;
+                Ok(v)
+            }
+            b'#' => {
+                let key = self.target()?;
+                self.read(&key, Span::new(at, self.i))
+            }
+            b'0'..=b'9' | b'.' => self.number(),
+            c if c.is_ascii_alphabetic() => self.function(at),
+            _ => Err(syntax(Span::new(at, at + 1), "a value")),
+        }
+    }
+
+    fn close(&mut self, open: usize) -> Result<(), Diagnostic> {
+        self.blank();
+        if self.peek() != b']' {
+            return Err(syntax(Span::new(open, open + 1), "a `]` closing this `[`"));
+        }
+        self.i += 1;
+        Ok(())
+    }
+
+    fn number(&mut self) -> Result<f64, Diagnostic> {
+        let at = self.i;
+        while matches!(self.peek(), b'0'..=b'9' | b'.') {
+            self.i += 1;
+        }
+        std::str::from_utf8(&self.s[at..self.i])
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .ok_or_else(|| syntax(Span::new(at, self.i), "a number"))
+    }
+
+    /// `#n`, `#[expr]`, `##n` or `#<name>`: which parameter.
+    fn target(&mut self) -> Result<Key, Diagnostic> {
+        let at = self.i;
+        self.i += 1; // the `#`
+        self.blank();
+        if self.peek() == b'<' {
+            let close = self.s[self.i..]
+                .iter()
+                .position(|c| *c == b'>')
+                .ok_or_else(|| syntax(Span::new(at, self.i + 1), "a `>` closing the name"))?;
+            let name: String = self.s[self.i + 1..self.i + close]
+                .iter()
+                .filter(|c| !c.is_ascii_whitespace())
+                .map(|c| char::from(c.to_ascii_lowercase()))
+                .collect();
+            self.i += close + 1;
+            if name.is_empty() {
+                return Err(syntax(Span::new(at, self.i), "a parameter name"));
+            }
+            return Ok(Key::Named(name));
+        }
+        let n = self.value()?;
+        let span = Span::new(at, self.i);
+        if n.fract() != 0.0 || !(1.0..=LAST as f64).contains(&n) {
+            return Err(alarms::no_such_variable(span, '#', n));
+        }
+        // 1..=LAST and whole: the cast is exact.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Ok(Key::Numbered(n as usize))
+    }
+
+    fn read(&self, key: &Key, span: Span) -> Result<f64, Diagnostic> {
+        match key {
+            Key::Numbered(n) => Ok(self.params.numbered[*n]),
+            Key::Named(name) => self
+                .params
+                .named
+                .get(name)
+                .copied()
+                .ok_or_else(|| alarms::vacant_value(span, &format!("#<{name}>"))),
+        }
+    }
+
+    /// A function call at `at`: `NAME[expr]`, `ATAN[y]/[x]`, `EXISTS[#<n>]`.
+    fn function(&mut self, at: usize) -> Result<f64, Diagnostic> {
+        let len = self.s[self.i..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphabetic())
+            .count();
+        let name = String::from_utf8_lossy(&self.s[self.i..self.i + len]).to_ascii_uppercase();
+        self.i += len;
+        self.blank();
+        if self.peek() != b'[' {
+            return Err(syntax(
+                Span::new(at, self.i),
+                "a `[` after the function's name",
+            ));
+        }
+        let open = self.i;
+        self.i += 1;
+        if name == "EXISTS" {
+            self.blank();
+            let key = self.target()?;
+            self.close(open)?;
+            return Ok(match key {
+                Key::Named(n) => f64::from(u8::from(self.params.named.contains_key(&n))),
+                Key::Numbered(_) => 1.0,
+            });
+        }
+        let x = self.expr()?;
+        self.close(open)?;
+        let span = Span::new(at, self.i);
+        let domain = |ok: bool, v: f64| {
+            if ok {
+                Ok(v)
+            } else {
+                Err(alarms::macro_domain(span, &format!("{name} of {x}")))
+            }
+        };
+        match name.as_str() {
+            "ABS" => Ok(x.abs()),
+            "ACOS" => domain((-1.0..=1.0).contains(&x), x.acos().to_degrees()),
+            "ASIN" => domain((-1.0..=1.0).contains(&x), x.asin().to_degrees()),
+            "COS" => Ok(x.to_radians().cos()),
+            "SIN" => Ok(x.to_radians().sin()),
+            "TAN" => Ok(x.to_radians().tan()),
+            "EXP" => Ok(x.exp()),
+            "LN" => domain(x > 0.0, x.ln()),
+            "SQRT" => domain(x >= 0.0, x.sqrt()),
+            "FIX" => Ok(x.floor()),
+            "FUP" => Ok(x.ceil()),
+            // Half away from zero, as rs274.
+            "ROUND" => Ok(x.round()),
+            "ATAN" => {
+                self.blank();
+                if self.peek() != b'/' {
+                    return Err(syntax(Span::new(at, self.i), "`/[x]` after ATAN[y]"));
+                }
+                self.i += 1;
+                self.blank();
+                if self.peek() != b'[' {
+                    return Err(syntax(Span::new(self.i, self.i + 1), "`[x]`"));
+                }
+                let open = self.i;
+                self.i += 1;
+                let d = self.expr()?;
+                self.close(open)?;
+                Ok(x.atan2(d).to_degrees())
+            }
+            _ => Err(vcnc_syntax::diagnostics::unknown_function(
+                Span::new(at, at + len),
+                &name,
+                false,
+            )),
+        }
+    }
+
+    /// An expression inside `[ ]`.
+    fn expr(&mut self) -> Result<f64, Diagnostic> {
+        self.level(0)
+    }
+
+    fn level(&mut self, n: usize) -> Result<f64, Diagnostic> {
+        let Some(ops) = LEVELS.get(n) else {
+            return self.value();
+        };
+        let mut left = self.level(n + 1)?;
+        loop {
+            let at = self.i;
+            let Some(op) = ops.iter().copied().find(|op| {
+                // `*` must not take the first half of `**`.
+                let ok = self.keyword(op);
+                if ok && *op == "*" && self.peek() == b'*' {
+                    self.i -= 1;
+                    return false;
+                }
+                ok
+            }) else {
+                return Ok(left);
+            };
+            let right = self.level(n + 1)?;
+            left = apply(op, left, right, Span::new(at, self.i))?;
+        }
+    }
+}
+
+fn apply(op: &str, a: f64, b: f64, span: Span) -> Result<f64, Diagnostic> {
+    let truth = |x: bool| f64::from(u8::from(x));
+    Ok(match op {
+        "**" => a.powf(b),
+        "*" => a * b,
+        "/" if b == 0.0 => return Err(alarms::division_by_zero(span)),
+        "/" => a / b,
+        "MOD" if b == 0.0 => return Err(alarms::division_by_zero(span)),
+        // The divisor's sign (rs274: -2 MOD 3 is 1).
+        "MOD" => a - b * (a / b).floor(),
+        "+" => a + b,
+        "-" => a - b,
+        "EQ" => truth(a == b),
+        "NE" => truth(a != b),
+        "GT" => truth(a > b),
+        "GE" => truth(a >= b),
+        "LT" => truth(a < b),
+        "LE" => truth(a <= b),
+        "AND" => truth(a != 0.0 && b != 0.0),
+        "OR" => truth(a != 0.0 || b != 0.0),
+        _ => truth((a != 0.0) != (b != 0.0)),
+    })
+}
