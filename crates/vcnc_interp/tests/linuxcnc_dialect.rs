@@ -186,6 +186,9 @@ fn parameters_alarm_where_rs274_refuses_them() {
         })
         .collect();
     assert_eq!(ends, vec![(0.0, 0.0), (0.0, 4.0)]);
+    // Nesting is bounded (the reader recurses): 3,000 brackets alarm.
+    let deep = format!("G21\nG0 X{}1{}\nM2\n", "[".repeat(3000), "]".repeat(3000));
+    assert_eq!(alarm(&deep).0, Code::E602);
     // grbl reads no parameters.
     let (_, out) = run_str(&Dialect::grbl(), "G21\n#1 = 2\nM2\n");
     assert!(matches!(out, Outcome::Alarm(d) if d.code == Code::E101));

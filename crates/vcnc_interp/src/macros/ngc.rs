@@ -82,6 +82,7 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
         s: text,
         i: start,
         params,
+        depth: 0,
     };
     let mut line = Line::default();
     r.blank();
@@ -146,7 +147,12 @@ struct Reader<'a> {
     s: &'a [u8],
     i: usize,
     params: &'a Params,
+    /// Values being read inside one another.
+    depth: u8,
 }
+
+/// Most values inside one another (brackets, signs, `#`).
+const MAX_DEPTH: u8 = 64;
 
 /// Binary operators by precedence level, lowest first.
 const LEVELS: &[&[&str]] = &[
@@ -198,6 +204,21 @@ impl Reader<'_> {
     fn value(&mut self) -> Result<f64, Diagnostic> {
         self.blank();
         let at = self.i;
+        // Brackets, signs and `#` nest by recursion: bounded, so that a
+        // line of 4,000 `[` alarms instead of overflowing the stack.
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(vcnc_syntax::diagnostics::macro_nesting(
+                Span::new(at, at + 1),
+                MAX_DEPTH,
+            ));
+        }
+        let v = self.value_here(at);
+        self.depth -= 1;
+        v
+    }
+
+    fn value_here(&mut self, at: usize) -> Result<f64, Diagnostic> {
         match self.peek() {
             b'-' => {
                 self.i += 1;
