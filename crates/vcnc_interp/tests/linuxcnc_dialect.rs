@@ -29,6 +29,19 @@ fn ended(program: &str) -> Vec<Event> {
         .collect()
 }
 
+/// A run with the block delete switch on.
+fn run_with_block_delete(program: &str) -> (Vec<Event>, Outcome) {
+    let machine = vcnc_interp::Machine::default_mill();
+    let mut sink = vcnc_interp::VecSink::default();
+    let opts = vcnc_interp::Options {
+        block_delete: true,
+        optional_stop: false,
+    };
+    let out = vcnc_interp::Interpreter::new(&machine, &Dialect::linuxcnc(), opts)
+        .run_str(program, &mut sink);
+    (sink.0, out)
+}
+
 fn alarm(program: &str) -> (Code, u64, u32) {
     let (ev, out) = run(program);
     let Outcome::Alarm(d) = out else {
@@ -186,6 +199,20 @@ fn parameters_alarm_where_rs274_refuses_them() {
         })
         .collect();
     assert_eq!(ends, vec![(0.0, 0.0), (0.0, 4.0)]);
+    // The third review: G and M may repeat beside an expression; MOD lands
+    // in [0, |b|) and EQ compares within 0.0001 (rs274's values); a
+    // computed value beyond 9 digits is E103; `/` settings are skipped
+    // under block delete.
+    let xs = |p: &str| common::xs(&ended(p));
+    assert_eq!(xs("G21 G90\nG0 G91 X[1/2]\nM2\n"), vec![0.5]);
+    assert_eq!(
+        xs("G21 G90\nG0 X[2 MOD -3]\nG0 X[-7 MOD -3]\nG0 X[[0.1 + 0.2] EQ 0.3]\nM2\n"),
+        vec![2.0, 2.0, 1.0]
+    );
+    assert_eq!(alarm("G21\nG0 X[10 ** 20]\nM2\n"), (Code::E103, 2, 4));
+    assert_eq!(alarm("G21\n#1 = [10 ** 400]\nM2\n"), (Code::E609, 2, 1));
+    let (ev, _) = run_with_block_delete("G21 G90\n/#1 = 5\nG0 X[#1 + 1]\nM2\n");
+    assert_eq!(common::xs(&ev), vec![1.0]);
     // Nesting is bounded (the reader recurses): 3,000 brackets alarm.
     let deep = format!("G21\nG0 X{}1{}\nM2\n", "[".repeat(3000), "]".repeat(3000));
     assert_eq!(alarm(&deep).0, Code::E602);
@@ -314,5 +341,8 @@ fn g64_p_is_a_blending_tolerance_for_the_planner() {
         })
         .collect();
     assert_eq!(smoothing, vec![(true, 0.05), (false, 0.0)]);
+    // A bare G64 with nothing on sends nothing.
+    let ev = ended("G21 G90 G64 G40\nG1 X1 F100\nM2\n");
+    assert!(!ev.iter().any(|e| matches!(e, Event::Smoothing { .. })));
     assert_eq!(alarm("G21\nG64 P-1\nM2\n"), (Code::E109, 2, 5));
 }

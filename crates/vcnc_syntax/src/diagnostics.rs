@@ -34,7 +34,7 @@ pub fn variable_without_macros(span: Span) -> Diagnostic {
         Code::E101,
         span,
         "a `#` variable or a `[ ]` expression, which this dialect does not read".to_string(),
-        "run macro programs (Custom Macro B) under --dialect fanuc, haas or syntec; LinuxCNC's parameters and O-words are not read by vcnc",
+        "run macro programs (Custom Macro B) under --dialect fanuc, haas or syntec, and LinuxCNC's parameters under --dialect linuxcnc",
     )
 }
 

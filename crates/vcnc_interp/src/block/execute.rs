@@ -719,6 +719,12 @@ impl Interpreter<'_> {
             Some(p) => self.length_mm(&p),
             None => 0.0,
         };
+        // Only a change reaches the planner (a bare G64 on every safe-start
+        // line would otherwise send `off` with nothing on).
+        if tolerance_mm == self.state.smoothing.reported_mm {
+            return Ok(());
+        }
+        self.state.smoothing.reported_mm = tolerance_mm;
         let on = tolerance_mm > 0.0;
         self.emit(|loc| Event::Smoothing {
             loc,

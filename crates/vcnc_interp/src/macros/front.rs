@@ -234,7 +234,10 @@ impl Interpreter<'_> {
         let params = self.macros.ngc.get_or_insert_with(Box::default);
         let read = super::ngc::read_line(bytes, start, params)?;
         let end = bytes.len();
-        params.commit(&read);
+        // Block delete skips the settings of a `/` line too.
+        if !(read.deleted && self.opts.block_delete) {
+            params.commit(&read);
+        }
         self.macros.used = true;
         *i = end;
         block.clear();

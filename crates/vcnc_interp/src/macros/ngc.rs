@@ -5,7 +5,7 @@
 //!
 //! ```text
 //!   #1 = 2   #<depth> = [#1 * 1.5]           (settings: after the line)
-//!   G1 X[#1 + 10] Z-#<depth> F#<_feed>       (values: with the old ones)
+//!   G1 X[#1 + 10] Z-#<depth> F#<_rate>       (values: with the old ones)
 //!        └─ G1 X12 Z-3 F… ──▶ the block pipeline
 //! ```
 //!
@@ -13,8 +13,9 @@
 //! every parameter holds a number (an unset numbered one reads 0, an unset
 //! named one alarms), settings on a line take effect after the whole line
 //! is read, `ROUND` rounds half away from zero, `FIX`/`FUP` are floor and
-//! ceiling, `AND`/`OR`/`XOR` are logical, `MOD` takes the divisor's sign,
-//! `**` is a power, `ATAN[y]/[x]` is the full-circle angle, and the
+//! ceiling, `AND`/`OR`/`XOR` are logical,
+//! `**` is a power, `ATAN[y]/[x]` is the full-circle angle, EQ and NE
+//! compare within 0.0001, MOD lands in [0, |divisor|), and the
 //! precedence is `**` > `* / MOD` > `+ -` > comparisons > `AND OR XOR`.
 //! Named parameters live for the whole program (vcnc runs no O-word
 //! subroutine, whose locals they would otherwise be). System parameters
@@ -25,8 +26,15 @@ use crate::alarms;
 use std::collections::HashMap;
 use vcnc_syntax::{Addr, Diagnostic, Span, Word};
 
-/// The highest numbered parameter (LinuxCNC's 5602).
-const LAST: usize = 5602;
+/// The highest numbered parameter (LinuxCNC's 5601).
+const LAST: usize = 5601;
+
+/// A word's value that the lexer would take (at most 9 digits before the
+/// point): beyond, E103, as written literally.
+const MAX_VALUE: f64 = 1e9;
+
+/// rs274's tolerance of EQ and NE.
+const EQUAL: f64 = 1e-4;
 
 /// Parameters of one run.
 #[derive(Debug, Clone)]
@@ -104,6 +112,12 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
                 r.i += 1;
                 // A value, not a bare expression: `#1 = 2 G1 X3` sets 2.
                 let v = r.value()?;
+                if !v.is_finite() {
+                    return Err(alarms::macro_range(
+                        Span::new(at, r.i),
+                        "the parameter's value",
+                    ));
+                }
                 line.sets.push((key, v));
             }
             l @ b'A'..=b'Z' => {
@@ -112,7 +126,17 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
                 if !v.is_finite() {
                     return Err(alarms::macro_range(Span::new(at, r.i), "the word's value"));
                 }
-                if line.words.iter().any(|w| w.addr.as_letter() == Some(l)) {
+                if v.abs() >= MAX_VALUE {
+                    return Err(vcnc_syntax::diagnostics::number_out_of_range(
+                        Span::new(at, r.i),
+                        char::from(l),
+                    ));
+                }
+                // G and M codes may repeat (`G1 G91 Z-#1`); other letters
+                // once, as the lexer wants.
+                if !matches!(l, b'G' | b'M')
+                    && line.words.iter().any(|w| w.addr.as_letter() == Some(l))
+                {
                     return Err(syntax(Span::new(at, r.i), "one word per letter in a block"));
                 }
                 line.words.push(Word {
@@ -418,12 +442,14 @@ fn apply(op: &str, a: f64, b: f64, span: Span) -> Result<f64, Diagnostic> {
         "/" if b == 0.0 => return Err(alarms::division_by_zero(span)),
         "/" => a / b,
         "MOD" if b == 0.0 => return Err(alarms::division_by_zero(span)),
-        // The divisor's sign (rs274: -2 MOD 3 is 1).
-        "MOD" => a - b * (a / b).floor(),
+        // In [0, |b|), whatever the signs (rs274: -2 MOD 3 is 1, 2 MOD -3
+        // is 2).
+        "MOD" => a - b.abs() * (a / b.abs()).floor(),
         "+" => a + b,
         "-" => a - b,
-        "EQ" => truth(a == b),
-        "NE" => truth(a != b),
+        // rs274 compares for equality within 0.0001.
+        "EQ" => truth((a - b).abs() < EQUAL),
+        "NE" => truth((a - b).abs() >= EQUAL),
         "GT" => truth(a > b),
         "GE" => truth(a >= b),
         "LT" => truth(a < b),
