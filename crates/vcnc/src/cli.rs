@@ -120,7 +120,7 @@ impl From<ProfileArg> for vcnc_planner::ProfileShape {
 /// Options every subcommand takes.
 #[derive(Debug, Clone, Args)]
 pub struct Options {
-    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills, without O-words) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); default: syntec, or linuxcnc when every program named is a .ngc file.
+    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); default: syntec, or linuxcnc when every program named is a .ngc file.
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
     pub dialect: Option<String>,
     /// Machine file (TOML); default: the built-in mill (X Y Z A B C, no travel limits), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.

@@ -163,12 +163,34 @@ fn g10_l1_writes_the_tool_table_and_fanucs_forms_alarm() {
     assert_eq!(alarm("G21 G90\nG10 L1 P3\nM2\n"), (Code::E312, 2, 1));
 }
 
-/// What the dialect does not read alarms at the construct, with a hint.
+/// O-word statements that do not pair, or call what the file does not
+/// define, alarm at the statement (E611); the other dialects name the
+/// dialect that reads them (E604); what the dialect does not read alarms
+/// at the construct, with a hint.
 #[test]
 fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
-    assert_eq!(alarm("G21\no100 sub\nM2\n"), (Code::E604, 2, 1));
-    assert_eq!(alarm("G21\nO101 while [#1 LT 3]\nM2\n"), (Code::E604, 2, 1));
-    assert_eq!(alarm("G21\no<probe> call [1]\nM2\n"), (Code::E604, 2, 1));
+    assert_eq!(alarm("G21\no100 sub\nM2\n"), (Code::E611, 2, 1));
+    assert_eq!(alarm("G21\nO101 while [1]\nM2\n"), (Code::E611, 2, 1));
+    assert_eq!(alarm("G21\no<probe> call [1]\nM2\n"), (Code::E611, 2, 1));
+    assert_eq!(alarm("G21\no100 return\nM2\n"), (Code::E611, 2, 1));
+    assert_eq!(alarm("G21\nN10 o100 endif\nM2\n").0, Code::E611);
+    // A loop that never ends stops at the jump limit, located (a machine
+    // with a low limit, to keep the test short).
+    let machine = vcnc_interp::Machine::from_toml(
+        &vcnc_interp::machine::DEFAULT_MILL_TOML.replace("max_jumps = 1000000", "max_jumps = 1000"),
+    )
+    .expect("machine");
+    let mut sink = vcnc_interp::VecSink::default();
+    let out = vcnc_interp::Interpreter::new(&machine, &Dialect::linuxcnc(), Default::default())
+        .run_str("G21\no1 while [1]\no1 endwhile\nM2\n", &mut sink);
+    assert!(
+        matches!(&out, Outcome::Alarm(d) if (d.code, d.line) == (Code::E405, 3)),
+        "{out:?}"
+    );
+    let (_, out) = run_str(&Dialect::fanuc(), "G21\no100 sub\nM30\n");
+    assert!(
+        matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
+    );
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
     assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E201, 2, 1));
 }
@@ -312,7 +334,7 @@ fn second_review_findings_stay_fixed() {
         }
     };
     assert_eq!(fanuc("G21\nO100IF\nM30\n").0, Code::E104);
-    assert_eq!(alarm("G21\nN10 o100 sub\nM2\n"), (Code::E604, 2, 5));
+    assert_eq!(fanuc("G21\nN10 o100 sub\nM30\n").0, Code::E604);
     // G7 runs only in LinuxCNC's lathe mode (the seed lathe lists it as
     // not run, and linuxcnc sends it on to linuxcnc-lathe).
     let (code, _, _, _, help) = fanuc("G21\nG7\nM30\n");

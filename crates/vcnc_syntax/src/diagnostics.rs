@@ -56,9 +56,9 @@ pub fn o_word_flow(span: Span) -> Diagnostic {
     Diagnostic::new(
         Code::E604,
         span,
-        "LinuxCNC's O-word statements (o100 sub, call, if, while …) are not read by vcnc"
+        "LinuxCNC's O-word statements (o100 sub, call, if, while …) are read under --dialect linuxcnc only"
             .to_string(),
-        "vcnc runs no O-word flow: expand the subroutines and loops into plain blocks (a Fanuc-style control writes them as M98/M99 subprograms and Custom Macro B IF, WHILE, GOTO)",
+        "run a LinuxCNC program with --dialect linuxcnc (or linuxcnc-lathe); a Fanuc-style control writes subroutines and loops as M98/M99 subprograms and Custom Macro B IF, WHILE, GOTO",
     )
 }
 

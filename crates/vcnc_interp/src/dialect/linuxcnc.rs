@@ -11,9 +11,10 @@
 //! written by `G10 L1 P Z R` and the machine's own M codes (M62–M68,
 //! M100–M199) — as `docs/dialects.md` lists them.
 //!
-//! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`). Not
-//! read: O-word statements (E604), G76, G33.1, splines (G5, G5.1, G5.2)
-//! and the UVW planes (E201 says why).
+//! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
+//! so are the O-word subroutines and loops (`macros/oword.rs`). Not read:
+//! subroutine files, G76, G33.1, splines (G5, G5.1, G5.2) and the UVW
+//! planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{

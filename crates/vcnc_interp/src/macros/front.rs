@@ -164,11 +164,14 @@ impl Interpreter<'_> {
     ) -> Result<(Step, Span), Diagnostic> {
         // E604 from the lexer is LinuxCNC's O-word flow (`o100 while`),
         // which Macro B would misread as its own WHILE.
+        if self.macros.rules.iso == IsoMacros::Ngc {
+            if lexed.code == vcnc_syntax::Code::E604 {
+                return self.ngc_oword(src, line, start, lexed, i);
+            }
+            return self.ngc_block(src, line, start, lexed, i, block, store, sink);
+        }
         if self.macros.rules.iso == IsoMacros::None || lexed.code == vcnc_syntax::Code::E604 {
             return Err(lexed);
-        }
-        if self.macros.rules.iso == IsoMacros::Ngc {
-            return self.ngc_block(src, line, start, lexed, i, block, store, sink);
         }
         let syn = self
             .macros

@@ -31,6 +31,7 @@ mod eval;
 mod exec;
 mod front;
 mod ngc;
+mod oword;
 mod structure;
 mod system;
 mod vars;
@@ -148,6 +149,8 @@ pub(crate) struct Macros {
     pub round_per_unit: Option<f64>,
     /// LinuxCNC's parameters, once a line used one.
     pub ngc: Option<Box<ngc::Params>>,
+    /// LinuxCNC's O-word statements and flow, once one ran.
+    pub oword: Option<Box<oword::Flow>>,
 }
 
 impl Macros {
@@ -167,6 +170,7 @@ impl Macros {
             stack: Vec::new(),
             eval_stack: Vec::new(),
             ngc: None,
+            oword: None,
             unset: Vec::new(),
             text: Vec::new(),
             args: Vec::new(),

@@ -459,3 +459,182 @@ fn apply(op: &str, a: f64, b: f64, span: Span) -> Result<f64, Diagnostic> {
         _ => truth((a != 0.0) != (b != 0.0)),
     })
 }
+
+/// An O-word statement's keyword.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Kw {
+    Sub,
+    EndSub,
+    Call,
+    Return,
+    If,
+    ElseIf,
+    Else,
+    EndIf,
+    While,
+    EndWhile,
+    Do,
+    Repeat,
+    EndRepeat,
+    Break,
+    Continue,
+}
+
+const KEYWORDS: &[(&str, Kw)] = &[
+    ("endsub", Kw::EndSub),
+    ("sub", Kw::Sub),
+    ("call", Kw::Call),
+    ("return", Kw::Return),
+    ("elseif", Kw::ElseIf),
+    ("else", Kw::Else),
+    ("endif", Kw::EndIf),
+    ("if", Kw::If),
+    ("endwhile", Kw::EndWhile),
+    ("while", Kw::While),
+    ("do", Kw::Do),
+    ("endrepeat", Kw::EndRepeat),
+    ("repeat", Kw::Repeat),
+    ("break", Kw::Break),
+    ("continue", Kw::Continue),
+];
+
+/// `[N…] o<label> keyword …`: the label (`100`, or a name in lower case),
+/// the keyword and where its operands start.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct OStmt {
+    pub label: String,
+    pub kw: Kw,
+    /// Byte index after the keyword.
+    pub rest: usize,
+}
+
+/// The O-word statement of `text` (from `start`), if the line is one.
+pub(crate) fn o_statement(text: &[u8], start: usize) -> Option<OStmt> {
+    let mut i = start;
+    let skip = |i: &mut usize| {
+        while matches!(text.get(*i), Some(b' ' | b'\t' | b'\r')) {
+            *i += 1;
+        }
+    };
+    skip(&mut i);
+    // A sequence number before it.
+    if matches!(text.get(i), Some(b'N' | b'n')) {
+        i += 1;
+        while matches!(text.get(i), Some(b'0'..=b'9' | b' ' | b'\t')) {
+            i += 1;
+        }
+    }
+    if !matches!(text.get(i), Some(b'O' | b'o')) {
+        return None;
+    }
+    i += 1;
+    skip(&mut i);
+    let label = if text.get(i) == Some(&b'<') {
+        let close = text[i..].iter().position(|c| *c == b'>')?;
+        let name: String = text[i + 1..i + close]
+            .iter()
+            .filter(|c| !c.is_ascii_whitespace())
+            .map(|c| char::from(c.to_ascii_lowercase()))
+            .collect();
+        i += close + 1;
+        name
+    } else {
+        let digits = text[i..].iter().take_while(|c| c.is_ascii_digit()).count();
+        if digits == 0 {
+            return None;
+        }
+        // `o0100` is `o100`.
+        let label = String::from_utf8_lossy(&text[i..i + digits])
+            .trim_start_matches('0')
+            .to_string();
+        i += digits;
+        label
+    };
+    skip(&mut i);
+    let len = text[i..]
+        .iter()
+        .take_while(|c| c.is_ascii_alphabetic())
+        .count();
+    let word = &text[i..i + len];
+    let kw = KEYWORDS
+        .iter()
+        .find(|(k, _)| word.eq_ignore_ascii_case(k.as_bytes()))?
+        .1;
+    Some(OStmt {
+        label,
+        kw,
+        rest: i + len,
+    })
+}
+
+/// The values in brackets after an O-word keyword (`[c]`, a call's
+/// arguments `[1] [#2 * 3]`), read with `params`; no value: empty.
+pub(crate) fn operands(text: &[u8], at: usize, params: &Params) -> Result<Vec<f64>, Diagnostic> {
+    let mut r = Reader {
+        s: text,
+        i: at,
+        params,
+        depth: 0,
+    };
+    let mut out = Vec::new();
+    loop {
+        r.blank();
+        match r.peek() {
+            0 => return Ok(out),
+            b'[' => {
+                let open = r.i;
+                r.i += 1;
+                let v = r.expr()?;
+                r.close(open)?;
+                if !v.is_finite() {
+                    return Err(alarms::macro_range(Span::new(open, r.i), "the value"));
+                }
+                out.push(v);
+            }
+            _ => return Err(syntax(Span::new(r.i, r.i + 1), "a value in [ ]")),
+        }
+    }
+}
+
+/// A subroutine's locals, kept while it runs: #1–#30 and the named
+/// parameters without a leading `_`.
+#[derive(Debug, Clone)]
+pub(crate) struct Saved {
+    numbered: [f64; 30],
+    named: Vec<(String, f64)>,
+}
+
+impl Params {
+    /// Enters a subroutine: its locals saved, #1… set to `args`, the rest
+    /// of #1–#30 zero, no local named parameter.
+    pub(crate) fn enter(&mut self, args: &[f64]) -> Saved {
+        let mut numbered = [0.0; 30];
+        numbered.copy_from_slice(&self.numbered[1..=30]);
+        let named: Vec<(String, f64)> = self
+            .named
+            .iter()
+            .filter(|(k, _)| !k.starts_with('_'))
+            .map(|(k, v)| (k.clone(), *v))
+            .collect();
+        self.named.retain(|k, _| k.starts_with('_'));
+        for (slot, v) in self.numbered[1..=30].iter_mut().enumerate() {
+            *v = args.get(slot).copied().unwrap_or(0.0);
+        }
+        Saved { numbered, named }
+    }
+
+    /// Leaves a subroutine: its locals restored, the value it returned
+    /// (if any) in `#<_value>`.
+    pub(crate) fn leave(&mut self, saved: Saved, value: Option<f64>) {
+        self.numbered[1..=30].copy_from_slice(&saved.numbered);
+        self.named.retain(|k, _| k.starts_with('_'));
+        self.named.extend(saved.named);
+        self.named.insert(
+            "_value_returned".into(),
+            f64::from(u8::from(value.is_some())),
+        );
+        if let Some(v) = value {
+            self.named.insert("_value".into(), v);
+        }
+    }
+}

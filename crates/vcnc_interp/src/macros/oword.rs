@@ -1,0 +1,419 @@
+//! LinuxCNC's O-word statements (`--dialect linuxcnc`): subroutines of
+//! the program's own file and the structured flow between them.
+//!
+//! ```text
+//!   o100 sub            (skipped when the flow reaches it)
+//!     G1 X#1 Y#2          #1–#30: the call's arguments, local
+//!   o100 endsub [#3]    (back to the line after the call; #<_value>)
+//!   o100 call [10] [20]
+//!   o101 if [#1 GT 0] … o101 elseif […] … o101 else … o101 endif
+//!   o102 while [c] … o102 endwhile      o103 do … o103 while [c]
+//!   o104 repeat [n] … o104 endrepeat    break / continue / return
+//! ```
+//!
+//! The first O-word statement of a source reads the whole file once for
+//! its statements (label, keyword, line), so that each jump finds where
+//! it goes without searching the text again. A statement's partner is the
+//! next one with the same label in the file (the previous one for the
+//! loops' ends). Every jump counts against `limits.max_jumps`, calls
+//! against `limits.max_call_depth`. Not read: subroutine files
+//! (`o<name> call` whose `sub` is not in the program: E611).
+
+use super::ngc::{Kw, OStmt, o_statement, operands};
+use crate::alarms;
+use crate::flow::{CallKind, Frame};
+use crate::interpreter::{Interpreter, Step};
+use std::rc::Rc;
+use vcnc_syntax::{Cursor, Diagnostic, Line, ReadError, Span};
+
+/// One O-word statement of a source.
+#[derive(Debug, Clone)]
+pub(crate) struct Entry {
+    label: String,
+    kw: Kw,
+    /// Its line, from its start.
+    here: Cursor,
+    /// Just past its line.
+    after: Cursor,
+}
+
+/// The O-word statements of the sources read so far, by source id, and
+/// the flow's own state.
+#[derive(Debug, Default)]
+pub(crate) struct Flow {
+    statements: Vec<(u32, Rc<Vec<Entry>>)>,
+    /// Repeat loops running: (label, remaining passes).
+    repeats: Vec<(String, f64)>,
+    /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
+    /// skipped as the end of a branch that ran).
+    pending: Option<u64>,
+    /// The locals of each subroutine call running.
+    saved: Vec<super::ngc::Saved>,
+}
+
+fn find<'e>(
+    entries: &'e [Entry],
+    from: usize,
+    label: &str,
+    kws: &[Kw],
+) -> Option<(usize, &'e Entry)> {
+    entries
+        .iter()
+        .enumerate()
+        .skip(from)
+        .find(|(_, e)| e.label == label && kws.contains(&e.kw))
+}
+
+fn find_back<'e>(
+    entries: &'e [Entry],
+    before: usize,
+    label: &str,
+    kws: &[Kw],
+) -> Option<&'e Entry> {
+    entries[..before]
+        .iter()
+        .rev()
+        .find(|e| e.label == label && kws.contains(&e.kw))
+}
+
+fn unpaired(span: Span, st: &OStmt, wanted: &str) -> Diagnostic {
+    alarms::bad_structure(
+        span,
+        format!(
+            "o{} {:?} has no {wanted} with the same label",
+            st.label, st.kw
+        )
+        .to_lowercase(),
+        "pair every O-word statement with its end under the same label (o100 if … o100 endif)",
+    )
+}
+
+impl Interpreter<'_> {
+    /// Runs the O-word statement of `line` (from `start`); `lexed` is the
+    /// lexer's alarm, kept for a line that is no O-word statement.
+    pub(crate) fn ngc_oword(
+        &mut self,
+        src: usize,
+        line: &Line,
+        start: usize,
+        lexed: Diagnostic,
+        i: &mut usize,
+    ) -> Result<(Step, Span), Diagnostic> {
+        let Some(s) = self.flow.source(src) else {
+            return Err(lexed);
+        };
+        let bytes = s.reader.bytes(line).to_vec();
+        let Some(st) = o_statement(&bytes, start) else {
+            return Err(lexed);
+        };
+        let span = Span::new(start, bytes.len());
+        *i = bytes.len();
+        let entries = self.oword_statements(src)?;
+        let here_at = entries
+            .iter()
+            .position(|e| e.here.offset == line.offset)
+            .ok_or_else(|| unpaired(span, &st, "place in the program"))?;
+        let here = entries[here_at].clone();
+        let params = self.macros.ngc.get_or_insert_with(Box::default);
+        let values = operands(&bytes, st.rest, params)?;
+        let value = values.first().copied();
+        let cond = || value.ok_or_else(|| unpaired(span, &st, "[condition]"));
+        let next = here_at + 1;
+        // An opening statement needs its end further on, whichever way
+        // the flow goes (rs274 reads the whole structure).
+        let end_of = match st.kw {
+            Kw::Sub => Some((Kw::EndSub, "endsub")),
+            Kw::If => Some((Kw::EndIf, "endif")),
+            Kw::Do => Some((Kw::While, "while")),
+            Kw::Repeat => Some((Kw::EndRepeat, "endrepeat")),
+            Kw::While if find_back(&entries, here_at, &st.label, &[Kw::Do]).is_none() => {
+                Some((Kw::EndWhile, "endwhile"))
+            }
+            _ => None,
+        };
+        if let Some((kw, name)) = end_of
+            && find(&entries, next, &st.label, &[kw]).is_none()
+        {
+            return Err(unpaired(span, &st, name));
+        }
+        // A branch's other statements need their IF before them.
+        if matches!(st.kw, Kw::ElseIf | Kw::Else | Kw::EndIf)
+            && find_back(&entries, here_at, &st.label, &[Kw::If]).is_none()
+        {
+            return Err(unpaired(span, &st, "if before it"));
+        }
+        let step = match st.kw {
+            Kw::Sub => {
+                let (_, end) = find(&entries, next, &st.label, &[Kw::EndSub])
+                    .ok_or_else(|| unpaired(span, &st, "endsub"))?;
+                Step::Jump(end.after)
+            }
+            Kw::Call => {
+                let (_, sub) = find(&entries, 0, &st.label, &[Kw::Sub]).ok_or_else(|| {
+                    alarms::bad_structure(
+                        span,
+                        format!("o{} call: no o{} sub in this program", st.label, st.label),
+                        "define the subroutine in the same file (subroutine files are not read by vcnc)",
+                    )
+                })?;
+                let start = sub.after;
+                self.ngc_call(span, start, here.after, &values)?;
+                Step::Jump(start)
+            }
+            Kw::EndSub | Kw::Return => self.ngc_return(span, value)?,
+            Kw::If => {
+                if cond()? != 0.0 {
+                    Step::Next
+                } else {
+                    self.next_branch(&entries, next, &st, span)?
+                }
+            }
+            Kw::ElseIf => {
+                if self.oword_flow().pending.take() == Some(here.here.offset) {
+                    if cond()? != 0.0 {
+                        Step::Next
+                    } else {
+                        self.next_branch(&entries, next, &st, span)?
+                    }
+                } else {
+                    self.end_if(&entries, next, &st, span)?
+                }
+            }
+            Kw::Else => {
+                if self.oword_flow().pending.take() == Some(here.here.offset) {
+                    Step::Next
+                } else {
+                    self.end_if(&entries, next, &st, span)?
+                }
+            }
+            Kw::EndIf | Kw::Do => Step::Next,
+            Kw::While => {
+                let closes_do = find_back(&entries, here_at, &st.label, &[Kw::Do]);
+                match closes_do {
+                    // `o103 do … o103 while [c]`: back to the body while c.
+                    Some(d) if cond()? != 0.0 => {
+                        let to = d.after;
+                        self.count_jump(span)?;
+                        Step::Jump(to)
+                    }
+                    Some(_) => Step::Next,
+                    None if cond()? != 0.0 => Step::Next,
+                    None => {
+                        let (_, end) = find(&entries, next, &st.label, &[Kw::EndWhile])
+                            .ok_or_else(|| unpaired(span, &st, "endwhile"))?;
+                        Step::Jump(end.after)
+                    }
+                }
+            }
+            Kw::EndWhile => {
+                let start = find_back(&entries, here_at, &st.label, &[Kw::While])
+                    .ok_or_else(|| unpaired(span, &st, "while"))?
+                    .here;
+                self.count_jump(span)?;
+                Step::Jump(start)
+            }
+            Kw::Repeat => {
+                let n = cond()?;
+                if n >= 1.0 {
+                    self.oword_flow().repeats.push((st.label.clone(), n));
+                    Step::Next
+                } else {
+                    let (_, end) = find(&entries, next, &st.label, &[Kw::EndRepeat])
+                        .ok_or_else(|| unpaired(span, &st, "endrepeat"))?;
+                    Step::Jump(end.after)
+                }
+            }
+            Kw::EndRepeat => {
+                let start = find_back(&entries, here_at, &st.label, &[Kw::Repeat])
+                    .ok_or_else(|| unpaired(span, &st, "repeat"))?
+                    .after;
+                let flow = self.oword_flow();
+                match flow.repeats.last_mut() {
+                    Some((label, left)) if *label == st.label && *left > 1.0 => {
+                        *left -= 1.0;
+                        self.count_jump(span)?;
+                        Step::Jump(start)
+                    }
+                    Some((label, _)) if *label == st.label => {
+                        flow.repeats.pop();
+                        Step::Next
+                    }
+                    _ => return Err(unpaired(span, &st, "repeat running")),
+                }
+            }
+            Kw::Break | Kw::Continue => self.break_or_continue(&entries, here_at, &st, span)?,
+        };
+        // The statements' scan may have moved the reader: go on from here.
+        self.macros.moved_reader = false;
+        let step = match step {
+            Step::Next => Step::Jump(here.after),
+            s => s,
+        };
+        Ok((step, span))
+    }
+
+    fn oword_flow(&mut self) -> &mut Flow {
+        self.macros.oword.get_or_insert_with(Box::default)
+    }
+
+    /// After a false IF or ELSEIF: to the next ELSEIF or ELSE, to be
+    /// tested there, or past the ENDIF.
+    fn next_branch(
+        &mut self,
+        entries: &[Entry],
+        from: usize,
+        st: &OStmt,
+        span: Span,
+    ) -> Result<Step, Diagnostic> {
+        let (_, e) = find(entries, from, &st.label, &[Kw::ElseIf, Kw::Else, Kw::EndIf])
+            .ok_or_else(|| unpaired(span, st, "endif"))?;
+        if e.kw == Kw::EndIf {
+            return Ok(Step::Jump(e.after));
+        }
+        self.oword_flow().pending = Some(e.here.offset);
+        Ok(Step::Jump(e.here))
+    }
+
+    /// The end of a branch that ran: past the ENDIF.
+    fn end_if(
+        &mut self,
+        entries: &[Entry],
+        from: usize,
+        st: &OStmt,
+        span: Span,
+    ) -> Result<Step, Diagnostic> {
+        let (_, e) = find(entries, from, &st.label, &[Kw::EndIf])
+            .ok_or_else(|| unpaired(span, st, "endif"))?;
+        Ok(Step::Jump(e.after))
+    }
+
+    /// BREAK: past the end of the loop with this label; CONTINUE: to its
+    /// test (a WHILE), or its end (a REPEAT's pass counts there).
+    fn break_or_continue(
+        &mut self,
+        entries: &[Entry],
+        here_at: usize,
+        st: &OStmt,
+        span: Span,
+    ) -> Result<Step, Diagnostic> {
+        let start = find_back(
+            entries,
+            here_at,
+            &st.label,
+            &[Kw::While, Kw::Do, Kw::Repeat],
+        )
+        .ok_or_else(|| unpaired(span, st, "loop"))?
+        .clone();
+        let end_kw = match start.kw {
+            Kw::While => Kw::EndWhile,
+            Kw::Do => Kw::While,
+            _ => Kw::EndRepeat,
+        };
+        let (_, end) = find(entries, here_at + 1, &st.label, &[end_kw])
+            .ok_or_else(|| unpaired(span, st, "loop end"))?;
+        let end = end.clone();
+        if st.kw == Kw::Break {
+            if start.kw == Kw::Repeat {
+                self.oword_flow().repeats.pop();
+            }
+            return Ok(Step::Jump(end.after));
+        }
+        self.count_jump(span)?;
+        Ok(Step::Jump(match start.kw {
+            Kw::While => start.here,
+            _ => end.here,
+        }))
+    }
+
+    /// O CALL: a level of the flow like a subprogram's, the locals saved.
+    fn ngc_call(
+        &mut self,
+        span: Span,
+        start: Cursor,
+        ret: Cursor,
+        args: &[f64],
+    ) -> Result<(), Diagnostic> {
+        let depth = self.flow().frames.len() as u64;
+        if depth > u64::from(self.machine.limits.max_call_depth) {
+            return Err(alarms::nesting_too_deep(
+                span,
+                self.machine.limits.max_call_depth,
+            ));
+        }
+        self.count_jump(span)?;
+        let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(args);
+        self.oword_flow().saved.push(saved);
+        let caller = self.flow().frame();
+        self.flow().frames.push(Frame {
+            source: caller.source,
+            start,
+            program: caller.program,
+            last: None,
+            ret,
+            runs_left: 1,
+            started: true,
+            returns_with: "endsub",
+            locals: caller.locals,
+            call: CallKind::Sub,
+            number: caller.number,
+        });
+        Ok(())
+    }
+
+    /// ENDSUB or RETURN: the caller's locals back, `#<_value>` set.
+    fn ngc_return(&mut self, span: Span, value: Option<f64>) -> Result<Step, Diagnostic> {
+        let Some(saved) = self.oword_flow().saved.pop() else {
+            return Err(alarms::bad_structure(
+                span,
+                "endsub or return with no o-word call to return to".into(),
+                "reach a subroutine's body only through o… call",
+            ));
+        };
+        self.macros
+            .ngc
+            .get_or_insert_with(Box::default)
+            .leave(saved, value);
+        self.sub_return(span)
+    }
+
+    /// The O-word statements of source `src`, read once from its start.
+    fn oword_statements(&mut self, src: usize) -> Result<Rc<Vec<Entry>>, Diagnostic> {
+        let id = self.source_id(src);
+        if let Some((_, e)) = self.oword_flow().statements.iter().find(|(i, _)| *i == id) {
+            return Ok(Rc::clone(e));
+        }
+        let mut entries = Vec::new();
+        if let Some(s) = self.flow.source(src) {
+            s.reader.seek(Cursor::default());
+            loop {
+                let line = match s.reader.next_line() {
+                    Ok(Some(l)) => l,
+                    Ok(None) | Err(ReadError::Io(_)) => break,
+                    Err(ReadError::TooLong { .. }) => continue,
+                };
+                let bytes = s.reader.bytes(&line);
+                if let Some(st) = o_statement(bytes, 0) {
+                    let here = Cursor {
+                        offset: line.offset,
+                        line: line.number,
+                        col: 0,
+                    };
+                    entries.push(Entry {
+                        label: st.label,
+                        kw: st.kw,
+                        here,
+                        after: Cursor {
+                            col: vcnc_syntax::clamp_u32(bytes.len()),
+                            ..here
+                        },
+                    });
+                }
+            }
+        }
+        // The scan moved the reader: the statement's step seeks again.
+        self.macros.moved_reader = true;
+        let entries = Rc::new(entries);
+        self.oword_flow().statements.push((id, Rc::clone(&entries)));
+        Ok(entries)
+    }
+}
