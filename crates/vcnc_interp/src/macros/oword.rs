@@ -47,8 +47,9 @@ pub(crate) struct Flow {
     /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
     /// skipped as the end of a branch that ran).
     pending: Option<u64>,
-    /// The locals of each subroutine call running.
-    saved: Vec<super::ngc::Saved>,
+    /// The locals of each subroutine call running, and how many repeat
+    /// loops ran when it was called (a return leaves the sub's own).
+    saved: Vec<(super::ngc::Saved, usize)>,
 }
 
 fn find<'e>(
@@ -342,7 +343,9 @@ impl Interpreter<'_> {
         }
         self.count_jump(span)?;
         let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(args);
-        self.oword_flow().saved.push(saved);
+        let flow = self.oword_flow();
+        let repeats = flow.repeats.len();
+        flow.saved.push((saved, repeats));
         let caller = self.flow().frame();
         self.flow().frames.push(Frame {
             source: caller.source,
@@ -362,13 +365,16 @@ impl Interpreter<'_> {
 
     /// ENDSUB or RETURN: the caller's locals back, `#<_value>` set.
     fn ngc_return(&mut self, span: Span, value: Option<f64>) -> Result<Step, Diagnostic> {
-        let Some(saved) = self.oword_flow().saved.pop() else {
+        let flow = self.oword_flow();
+        let Some((saved, repeats)) = flow.saved.pop() else {
             return Err(alarms::bad_structure(
                 span,
                 "endsub or return with no o-word call to return to".into(),
                 "reach a subroutine's body only through o… call",
             ));
         };
+        flow.repeats.truncate(repeats);
+        flow.pending = None;
         self.macros
             .ngc
             .get_or_insert_with(Box::default)
