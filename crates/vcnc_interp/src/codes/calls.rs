@@ -55,13 +55,7 @@ impl Interpreter<'_> {
                 alarms::needs_word(m, "M98", "P (a program number) or H (a sequence number)")
             });
         }
-        let depth = self.flow().frames.len() as u64;
-        if depth > u64::from(self.machine.limits.max_call_depth) {
-            return Err(alarms::nesting_too_deep(
-                m,
-                self.machine.limits.max_call_depth,
-            ));
-        }
+        self.check_call_depth(m)?;
         let lex = self.dialect.lex;
         let caller = self.flow().frame();
         let (source, program_start) = match program {
@@ -98,6 +92,16 @@ impl Interpreter<'_> {
             number: program.map_or(caller.number, |(n, _)| Some(n)),
         });
         Ok(Step::Jump(start))
+    }
+
+    /// E406 when one more call level would pass `limits.max_call_depth`.
+    pub(crate) fn check_call_depth(&self, at: Span) -> Result<(), Diagnostic> {
+        let depth = self.flow.frames.len() as u64;
+        let max = self.machine.limits.max_call_depth;
+        if depth > u64::from(max) {
+            return Err(alarms::nesting_too_deep(at, max));
+        }
+        Ok(())
     }
 
     /// M99.
@@ -183,13 +187,7 @@ impl Interpreter<'_> {
         next: Cursor,
     ) -> Result<Step, Diagnostic> {
         let start = self.label(w, cmd)?;
-        let depth = self.flow().frames.len() as u64;
-        if depth > u64::from(self.machine.limits.max_call_depth) {
-            return Err(alarms::nesting_too_deep(
-                cmd,
-                self.machine.limits.max_call_depth,
-            ));
-        }
+        self.check_call_depth(cmd)?;
         self.count_jump(cmd)?;
         let caller = self.flow().frame();
         self.flow().frames.push(Frame {

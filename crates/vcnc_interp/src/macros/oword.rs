@@ -77,6 +77,19 @@ fn find_back<'e>(
         .find(|e| e.label == label && kws.contains(&e.kw))
 }
 
+/// A jump past the next `kw` with the statement's label (its end).
+fn past(
+    entries: &[Entry],
+    from: usize,
+    st: &OStmt,
+    kw: Kw,
+    span: Span,
+) -> Result<Step, Diagnostic> {
+    find(entries, from, &st.label, &[kw])
+        .map(|(_, e)| Step::Jump(e.after))
+        .ok_or_else(|| unpaired(span, st, &format!("{kw:?}").to_lowercase()))
+}
+
 fn unpaired(span: Span, st: &OStmt, wanted: &str) -> Diagnostic {
     alarms::bad_structure(
         span,
@@ -144,11 +157,7 @@ impl Interpreter<'_> {
             return Err(unpaired(span, &st, "if before it"));
         }
         let step = match st.kw {
-            Kw::Sub => {
-                let (_, end) = find(&entries, next, &st.label, &[Kw::EndSub])
-                    .ok_or_else(|| unpaired(span, &st, "endsub"))?;
-                Step::Jump(end.after)
-            }
+            Kw::Sub => past(&entries, next, &st, Kw::EndSub, span)?,
             Kw::Call => {
                 let (_, sub) = find(&entries, 0, &st.label, &[Kw::Sub]).ok_or_else(|| {
                     alarms::bad_structure(
@@ -177,14 +186,14 @@ impl Interpreter<'_> {
                         self.next_branch(&entries, next, &st, span)?
                     }
                 } else {
-                    self.end_if(&entries, next, &st, span)?
+                    past(&entries, next, &st, Kw::EndIf, span)?
                 }
             }
             Kw::Else => {
                 if self.oword_flow().pending.take() == Some(here.here.offset) {
                     Step::Next
                 } else {
-                    self.end_if(&entries, next, &st, span)?
+                    past(&entries, next, &st, Kw::EndIf, span)?
                 }
             }
             Kw::EndIf | Kw::Do => Step::Next,
@@ -199,11 +208,7 @@ impl Interpreter<'_> {
                     }
                     Some(_) => Step::Next,
                     None if cond()? != 0.0 => Step::Next,
-                    None => {
-                        let (_, end) = find(&entries, next, &st.label, &[Kw::EndWhile])
-                            .ok_or_else(|| unpaired(span, &st, "endwhile"))?;
-                        Step::Jump(end.after)
-                    }
+                    None => past(&entries, next, &st, Kw::EndWhile, span)?,
                 }
             }
             Kw::EndWhile => {
@@ -219,9 +224,7 @@ impl Interpreter<'_> {
                     self.oword_flow().repeats.push((st.label.clone(), n));
                     Step::Next
                 } else {
-                    let (_, end) = find(&entries, next, &st.label, &[Kw::EndRepeat])
-                        .ok_or_else(|| unpaired(span, &st, "endrepeat"))?;
-                    Step::Jump(end.after)
+                    past(&entries, next, &st, Kw::EndRepeat, span)?
                 }
             }
             Kw::EndRepeat => {
@@ -275,19 +278,6 @@ impl Interpreter<'_> {
         Ok(Step::Jump(e.here))
     }
 
-    /// The end of a branch that ran: past the ENDIF.
-    fn end_if(
-        &mut self,
-        entries: &[Entry],
-        from: usize,
-        st: &OStmt,
-        span: Span,
-    ) -> Result<Step, Diagnostic> {
-        let (_, e) = find(entries, from, &st.label, &[Kw::EndIf])
-            .ok_or_else(|| unpaired(span, st, "endif"))?;
-        Ok(Step::Jump(e.after))
-    }
-
     /// BREAK: past the end of the loop with this label; CONTINUE: to its
     /// test (a WHILE), or its end (a REPEAT's pass counts there).
     fn break_or_continue(
@@ -334,13 +324,7 @@ impl Interpreter<'_> {
         ret: Cursor,
         args: &[f64],
     ) -> Result<(), Diagnostic> {
-        let depth = self.flow().frames.len() as u64;
-        if depth > u64::from(self.machine.limits.max_call_depth) {
-            return Err(alarms::nesting_too_deep(
-                span,
-                self.machine.limits.max_call_depth,
-            ));
-        }
+        self.check_call_depth(span)?;
         self.count_jump(span)?;
         let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(args);
         let flow = self.oword_flow();
