@@ -187,6 +187,21 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
         matches!(&out, Outcome::Alarm(d) if (d.code, d.line) == (Code::E405, 3)),
         "{out:?}"
     );
+    // Labels are local to a subroutine: a BREAK there finds no loop of the
+    // caller (rs274: "undefined O-word label").
+    assert_eq!(
+        alarm(
+            "G21\n#1=7\no1 while [1]\no100 sub\no1 break\no100 endsub\no100 call [3]\no1 endwhile\nM2\n"
+        ),
+        (Code::E611, 5, 1)
+    );
+    // A block-deleted call runs when the switch is off.
+    assert_eq!(
+        common::xs(&ended(
+            "G21\n/o100 call [3]\no100 sub\nG0 X#1\no100 endsub\nM2\n"
+        )),
+        vec![3.0]
+    );
     let (_, out) = run_str(&Dialect::fanuc(), "G21\no100 sub\nM30\n");
     assert!(
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))

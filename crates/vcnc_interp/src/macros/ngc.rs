@@ -45,9 +45,15 @@ pub(crate) struct Params {
 
 impl Default for Params {
     fn default() -> Params {
+        // The two a program may read before any call (rs274 predefines
+        // them as 0).
+        let named = [("_value", 0.0), ("_value_returned", 0.0)]
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect();
         Params {
             numbered: vec![0.0; LAST + 1],
-            named: HashMap::new(),
+            named,
         }
     }
 }
@@ -517,7 +523,11 @@ pub(crate) fn o_statement(text: &[u8], start: usize) -> Option<OStmt> {
         }
     };
     skip(&mut i);
-    // A sequence number before it.
+    // Block delete, then a sequence number before it.
+    if text.get(i) == Some(&b'/') {
+        i += 1;
+        skip(&mut i);
+    }
     if matches!(text.get(i), Some(b'N' | b'n')) {
         i += 1;
         while matches!(text.get(i), Some(b'0'..=b'9' | b' ' | b'\t')) {
@@ -633,8 +643,7 @@ impl Params {
             "_value_returned".into(),
             f64::from(u8::from(value.is_some())),
         );
-        if let Some(v) = value {
-            self.named.insert("_value".into(), v);
-        }
+        // A return without a value clears the last one (rs274).
+        self.named.insert("_value".into(), value.unwrap_or(0.0));
     }
 }

@@ -31,17 +31,28 @@ use vcnc_syntax::{Cursor, Diagnostic, Line, ReadError, Span};
 pub(crate) struct Entry {
     label: String,
     kw: Kw,
+    /// Where its label lives: 0 the main program, i + 1 the body of the
+    /// subroutine whose `sub` is statement i (labels are local to a sub).
+    scope: usize,
     /// Its line, from its start.
     here: Cursor,
     /// Just past its line.
     after: Cursor,
 }
 
+/// A source's O-word statements, in file order, and each one's index by
+/// its line's offset.
+#[derive(Debug, Default)]
+pub(crate) struct Statements {
+    entries: Vec<Entry>,
+    at: std::collections::HashMap<u64, usize>,
+}
+
 /// The O-word statements of the sources read so far, by source id, and
 /// the flow's own state.
 #[derive(Debug, Default)]
 pub(crate) struct Flow {
-    statements: Vec<(u32, Rc<Vec<Entry>>)>,
+    statements: Vec<(u32, Rc<Statements>)>,
     /// Repeat loops running: (label, remaining passes).
     repeats: Vec<(String, f64)>,
     /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
@@ -52,9 +63,12 @@ pub(crate) struct Flow {
     saved: Vec<(super::ngc::Saved, usize)>,
 }
 
+/// The first statement from index `from` in `scope` with `label`, one of
+/// `kws`.
 fn find<'e>(
     entries: &'e [Entry],
     from: usize,
+    scope: usize,
     label: &str,
     kws: &[Kw],
 ) -> Option<(usize, &'e Entry)> {
@@ -62,30 +76,34 @@ fn find<'e>(
         .iter()
         .enumerate()
         .skip(from)
-        .find(|(_, e)| e.label == label && kws.contains(&e.kw))
+        .find(|(_, e)| e.scope == scope && e.label == label && kws.contains(&e.kw))
 }
 
+/// The last statement before index `before` in `scope` with `label`.
 fn find_back<'e>(
     entries: &'e [Entry],
     before: usize,
+    scope: usize,
     label: &str,
     kws: &[Kw],
 ) -> Option<&'e Entry> {
     entries[..before]
         .iter()
         .rev()
-        .find(|e| e.label == label && kws.contains(&e.kw))
+        .find(|e| e.scope == scope && e.label == label && kws.contains(&e.kw))
 }
 
-/// A jump past the next `kw` with the statement's label (its end).
+/// A jump past the next `kw` with the statement's label in `scope` (its
+/// end).
 fn past(
     entries: &[Entry],
     from: usize,
+    scope: usize,
     st: &OStmt,
     kw: Kw,
     span: Span,
 ) -> Result<Step, Diagnostic> {
-    find(entries, from, &st.label, &[kw])
+    find(entries, from, scope, &st.label, &[kw])
         .map(|(_, e)| Step::Jump(e.after))
         .ok_or_else(|| unpaired(span, st, &format!("{kw:?}").to_lowercase()))
 }
@@ -122,12 +140,14 @@ impl Interpreter<'_> {
         };
         let span = Span::new(start, bytes.len());
         *i = bytes.len();
-        let entries = self.oword_statements(src)?;
-        let here_at = entries
-            .iter()
-            .position(|e| e.here.offset == line.offset)
+        let statements = self.oword_statements(src)?;
+        let entries = &statements.entries;
+        let here_at = *statements
+            .at
+            .get(&line.offset)
             .ok_or_else(|| unpaired(span, &st, "place in the program"))?;
         let here = entries[here_at].clone();
+        let sc = here.scope;
         let params = self.macros.ngc.get_or_insert_with(Box::default);
         let values = operands(&bytes, st.rest, params)?;
         let value = values.first().copied();
@@ -140,26 +160,31 @@ impl Interpreter<'_> {
             Kw::If => Some((Kw::EndIf, "endif")),
             Kw::Do => Some((Kw::While, "while")),
             Kw::Repeat => Some((Kw::EndRepeat, "endrepeat")),
-            Kw::While if find_back(&entries, here_at, &st.label, &[Kw::Do]).is_none() => {
+            Kw::While if find_back(entries, here_at, sc, &st.label, &[Kw::Do]).is_none() => {
                 Some((Kw::EndWhile, "endwhile"))
             }
             _ => None,
         };
+        // A sub's end lives in its own body's scope.
+        let end_scope = if st.kw == Kw::Sub { here_at + 1 } else { sc };
         if let Some((kw, name)) = end_of
-            && find(&entries, next, &st.label, &[kw]).is_none()
+            && find(entries, next, end_scope, &st.label, &[kw]).is_none()
         {
             return Err(unpaired(span, &st, name));
         }
         // A branch's other statements need their IF before them.
         if matches!(st.kw, Kw::ElseIf | Kw::Else | Kw::EndIf)
-            && find_back(&entries, here_at, &st.label, &[Kw::If]).is_none()
+            && find_back(entries, here_at, sc, &st.label, &[Kw::If]).is_none()
         {
             return Err(unpaired(span, &st, "if before it"));
         }
         let step = match st.kw {
-            Kw::Sub => past(&entries, next, &st, Kw::EndSub, span)?,
+            Kw::Sub => past(entries, next, here_at + 1, &st, Kw::EndSub, span)?,
             Kw::Call => {
-                let (_, sub) = find(&entries, 0, &st.label, &[Kw::Sub]).ok_or_else(|| {
+                let sub = entries
+                    .iter()
+                    .find(|e| e.kw == Kw::Sub && e.label == st.label);
+                let sub = sub.ok_or_else(|| {
                     alarms::bad_structure(
                         span,
                         format!("o{} call: no o{} sub in this program", st.label, st.label),
@@ -175,7 +200,7 @@ impl Interpreter<'_> {
                 if cond()? != 0.0 {
                     Step::Next
                 } else {
-                    self.next_branch(&entries, next, &st, span)?
+                    self.next_branch(entries, next, sc, &st, span)?
                 }
             }
             Kw::ElseIf => {
@@ -183,22 +208,22 @@ impl Interpreter<'_> {
                     if cond()? != 0.0 {
                         Step::Next
                     } else {
-                        self.next_branch(&entries, next, &st, span)?
+                        self.next_branch(entries, next, sc, &st, span)?
                     }
                 } else {
-                    past(&entries, next, &st, Kw::EndIf, span)?
+                    past(entries, next, sc, &st, Kw::EndIf, span)?
                 }
             }
             Kw::Else => {
                 if self.oword_flow().pending.take() == Some(here.here.offset) {
                     Step::Next
                 } else {
-                    past(&entries, next, &st, Kw::EndIf, span)?
+                    past(entries, next, sc, &st, Kw::EndIf, span)?
                 }
             }
             Kw::EndIf | Kw::Do => Step::Next,
             Kw::While => {
-                let closes_do = find_back(&entries, here_at, &st.label, &[Kw::Do]);
+                let closes_do = find_back(entries, here_at, sc, &st.label, &[Kw::Do]);
                 match closes_do {
                     // `o103 do … o103 while [c]`: back to the body while c.
                     Some(d) if cond()? != 0.0 => {
@@ -208,27 +233,28 @@ impl Interpreter<'_> {
                     }
                     Some(_) => Step::Next,
                     None if cond()? != 0.0 => Step::Next,
-                    None => past(&entries, next, &st, Kw::EndWhile, span)?,
+                    None => past(entries, next, sc, &st, Kw::EndWhile, span)?,
                 }
             }
             Kw::EndWhile => {
-                let start = find_back(&entries, here_at, &st.label, &[Kw::While])
+                let start = find_back(entries, here_at, sc, &st.label, &[Kw::While])
                     .ok_or_else(|| unpaired(span, &st, "while"))?
                     .here;
                 self.count_jump(span)?;
                 Step::Jump(start)
             }
             Kw::Repeat => {
-                let n = cond()?;
+                // rs274 rounds the count half to even: [2.5] is 2 passes.
+                let n = cond()?.round_ties_even();
                 if n >= 1.0 {
                     self.oword_flow().repeats.push((st.label.clone(), n));
                     Step::Next
                 } else {
-                    past(&entries, next, &st, Kw::EndRepeat, span)?
+                    past(entries, next, sc, &st, Kw::EndRepeat, span)?
                 }
             }
             Kw::EndRepeat => {
-                let start = find_back(&entries, here_at, &st.label, &[Kw::Repeat])
+                let start = find_back(entries, here_at, sc, &st.label, &[Kw::Repeat])
                     .ok_or_else(|| unpaired(span, &st, "repeat"))?
                     .after;
                 let flow = self.oword_flow();
@@ -245,7 +271,7 @@ impl Interpreter<'_> {
                     _ => return Err(unpaired(span, &st, "repeat running")),
                 }
             }
-            Kw::Break | Kw::Continue => self.break_or_continue(&entries, here_at, &st, span)?,
+            Kw::Break | Kw::Continue => self.break_or_continue(entries, here_at, &st, span)?,
         };
         // The statements' scan may have moved the reader: go on from here.
         self.macros.moved_reader = false;
@@ -266,11 +292,18 @@ impl Interpreter<'_> {
         &mut self,
         entries: &[Entry],
         from: usize,
+        scope: usize,
         st: &OStmt,
         span: Span,
     ) -> Result<Step, Diagnostic> {
-        let (_, e) = find(entries, from, &st.label, &[Kw::ElseIf, Kw::Else, Kw::EndIf])
-            .ok_or_else(|| unpaired(span, st, "endif"))?;
+        let (_, e) = find(
+            entries,
+            from,
+            scope,
+            &st.label,
+            &[Kw::ElseIf, Kw::Else, Kw::EndIf],
+        )
+        .ok_or_else(|| unpaired(span, st, "endif"))?;
         if e.kw == Kw::EndIf {
             return Ok(Step::Jump(e.after));
         }
@@ -287,9 +320,11 @@ impl Interpreter<'_> {
         st: &OStmt,
         span: Span,
     ) -> Result<Step, Diagnostic> {
+        let scope = entries[here_at].scope;
         let start = find_back(
             entries,
             here_at,
+            scope,
             &st.label,
             &[Kw::While, Kw::Do, Kw::Repeat],
         )
@@ -300,7 +335,7 @@ impl Interpreter<'_> {
             Kw::Do => Kw::While,
             _ => Kw::EndRepeat,
         };
-        let (_, end) = find(entries, here_at + 1, &st.label, &[end_kw])
+        let (_, end) = find(entries, here_at + 1, scope, &st.label, &[end_kw])
             .ok_or_else(|| unpaired(span, st, "loop end"))?;
         let end = end.clone();
         if st.kw == Kw::Break {
@@ -367,12 +402,15 @@ impl Interpreter<'_> {
     }
 
     /// The O-word statements of source `src`, read once from its start.
-    fn oword_statements(&mut self, src: usize) -> Result<Rc<Vec<Entry>>, Diagnostic> {
+    fn oword_statements(&mut self, src: usize) -> Result<Rc<Statements>, Diagnostic> {
         let id = self.source_id(src);
         if let Some((_, e)) = self.oword_flow().statements.iter().find(|(i, _)| *i == id) {
             return Ok(Rc::clone(e));
         }
-        let mut entries = Vec::new();
+        let mut entries: Vec<Entry> = Vec::new();
+        // The scope of the statements being read: 0, or i + 1 inside the
+        // sub of statement i.
+        let mut scope = 0;
         if let Some(s) = self.flow.source(src) {
             s.reader.seek(Cursor::default());
             loop {
@@ -383,6 +421,12 @@ impl Interpreter<'_> {
                 };
                 let bytes = s.reader.bytes(&line);
                 if let Some(st) = o_statement(bytes, 0) {
+                    let (own, after_it) = match st.kw {
+                        Kw::Sub => (scope, entries.len() + 1),
+                        Kw::EndSub => (scope, 0),
+                        _ => (scope, scope),
+                    };
+                    scope = after_it;
                     let here = Cursor {
                         offset: line.offset,
                         line: line.number,
@@ -391,6 +435,7 @@ impl Interpreter<'_> {
                     entries.push(Entry {
                         label: st.label,
                         kw: st.kw,
+                        scope: own,
                         here,
                         after: Cursor {
                             col: vcnc_syntax::clamp_u32(bytes.len()),
@@ -402,8 +447,15 @@ impl Interpreter<'_> {
         }
         // The scan moved the reader: the statement's step seeks again.
         self.macros.moved_reader = true;
-        let entries = Rc::new(entries);
-        self.oword_flow().statements.push((id, Rc::clone(&entries)));
-        Ok(entries)
+        let at = entries
+            .iter()
+            .enumerate()
+            .map(|(i, e)| (e.here.offset, i))
+            .collect();
+        let statements = Rc::new(Statements { entries, at });
+        self.oword_flow()
+            .statements
+            .push((id, Rc::clone(&statements)));
+        Ok(statements)
     }
 }
