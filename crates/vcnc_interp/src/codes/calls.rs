@@ -94,6 +94,31 @@ impl Interpreter<'_> {
         Ok(Step::Jump(start))
     }
 
+    /// A call of a subroutine of the running program (lathe G20, LinuxCNC's
+    /// O CALL): a level at `start` of the same source and locals, returning
+    /// to `ret` with `returns_with`.
+    pub(crate) fn enter_local_sub(
+        &mut self,
+        start: Cursor,
+        ret: Cursor,
+        returns_with: &'static str,
+    ) {
+        let caller = self.flow().frame();
+        self.flow().frames.push(Frame {
+            source: caller.source,
+            start,
+            program: caller.program,
+            last: None,
+            ret,
+            runs_left: 1,
+            started: true,
+            returns_with,
+            locals: caller.locals,
+            call: crate::flow::CallKind::Sub,
+            number: caller.number,
+        });
+    }
+
     /// E406 when one more call level would pass `limits.max_call_depth`.
     pub(crate) fn check_call_depth(&self, at: Span) -> Result<(), Diagnostic> {
         let depth = self.flow.frames.len() as u64;
@@ -189,20 +214,7 @@ impl Interpreter<'_> {
         let start = self.label(w, cmd)?;
         self.check_call_depth(cmd)?;
         self.count_jump(cmd)?;
-        let caller = self.flow().frame();
-        self.flow().frames.push(Frame {
-            source: caller.source,
-            start,
-            program: caller.program,
-            last: None,
-            ret: next,
-            runs_left: 1,
-            started: true,
-            returns_with: "G24",
-            locals: caller.locals,
-            call: crate::flow::CallKind::Sub,
-            number: caller.number,
-        });
+        self.enter_local_sub(start, next, "G24");
         Ok(Step::Jump(start))
     }
 

@@ -21,7 +21,6 @@
 
 use super::ngc::{Kw, OStmt, o_statement, operands};
 use crate::alarms;
-use crate::flow::{CallKind, Frame};
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
 use vcnc_syntax::{Cursor, Diagnostic, Line, ReadError, Span};
@@ -365,20 +364,7 @@ impl Interpreter<'_> {
         let flow = self.oword_flow();
         let repeats = flow.repeats.len();
         flow.saved.push((saved, repeats));
-        let caller = self.flow().frame();
-        self.flow().frames.push(Frame {
-            source: caller.source,
-            start,
-            program: caller.program,
-            last: None,
-            ret,
-            runs_left: 1,
-            started: true,
-            returns_with: "endsub",
-            locals: caller.locals,
-            call: CallKind::Sub,
-            number: caller.number,
-        });
+        self.enter_local_sub(start, ret, "endsub");
         Ok(())
     }
 
