@@ -195,6 +195,11 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
         ),
         (Code::E611, 5, 1)
     );
+    // A subroutine defined twice (rs274: "redefining sub").
+    assert_eq!(
+        alarm("G21\no100 sub\nG0 X1\no100 endsub\no100 sub\nG0 X2\no100 endsub\no100 call\nM2\n"),
+        (Code::E611, 8, 1)
+    );
     // A block-deleted call runs when the switch is off.
     assert_eq!(
         common::xs(&ended(

@@ -33,6 +33,8 @@ pub(crate) struct Entry {
     /// Where its label lives: 0 the main program, i + 1 the body of the
     /// subroutine whose `sub` is statement i (labels are local to a sub).
     scope: usize,
+    /// A WHILE that closes a DO: the DO's index (found once, at the scan).
+    closes_do: Option<usize>,
     /// Its line, from its start.
     here: Cursor,
     /// Just past its line.
@@ -45,6 +47,8 @@ pub(crate) struct Entry {
 pub(crate) struct Statements {
     entries: Vec<Entry>,
     at: std::collections::HashMap<u64, usize>,
+    /// Each label's SUB statements (more than one: defined twice).
+    subs: std::collections::HashMap<String, Vec<usize>>,
 }
 
 /// The O-word statements of the sources read so far, by source id, and
@@ -159,9 +163,7 @@ impl Interpreter<'_> {
             Kw::If => Some((Kw::EndIf, "endif")),
             Kw::Do => Some((Kw::While, "while")),
             Kw::Repeat => Some((Kw::EndRepeat, "endrepeat")),
-            Kw::While if find_back(entries, here_at, sc, &st.label, &[Kw::Do]).is_none() => {
-                Some((Kw::EndWhile, "endwhile"))
-            }
+            Kw::While if here.closes_do.is_none() => Some((Kw::EndWhile, "endwhile")),
             _ => None,
         };
         // A sub's end lives in its own body's scope.
@@ -180,9 +182,22 @@ impl Interpreter<'_> {
         let step = match st.kw {
             Kw::Sub => past(entries, next, here_at + 1, &st, Kw::EndSub, span)?,
             Kw::Call => {
-                let sub = entries
-                    .iter()
-                    .find(|e| e.kw == Kw::Sub && e.label == st.label);
+                let subs = statements
+                    .subs
+                    .get(&st.label)
+                    .map_or(&[][..], Vec::as_slice);
+                if subs.len() > 1 {
+                    return Err(alarms::bad_structure(
+                        span,
+                        format!(
+                            "o{} sub is defined {} times in this program",
+                            st.label,
+                            subs.len()
+                        ),
+                        "give each subroutine its own label (rs274: \"redefining sub\")",
+                    ));
+                }
+                let sub = subs.first().map(|&i| &entries[i]);
                 let sub = sub.ok_or_else(|| {
                     alarms::bad_structure(
                         span,
@@ -222,8 +237,7 @@ impl Interpreter<'_> {
             }
             Kw::EndIf | Kw::Do => Step::Next,
             Kw::While => {
-                let closes_do = find_back(entries, here_at, sc, &st.label, &[Kw::Do]);
-                match closes_do {
+                match here.closes_do.map(|d| &entries[d]) {
                     // `o103 do … o103 while [c]`: back to the body while c.
                     Some(d) if cond()? != 0.0 => {
                         let to = d.after;
@@ -337,10 +351,22 @@ impl Interpreter<'_> {
         let (_, end) = find(entries, here_at + 1, scope, &st.label, &[end_kw])
             .ok_or_else(|| unpaired(span, st, "loop end"))?;
         let end = end.clone();
+        // The repeats running inside the loop end with it (a BREAK also
+        // ends the loop's own, when it is a REPEAT).
+        // Entries are in file order: the loop's body is a slice of them.
+        let from = entries.partition_point(|e| e.here.offset <= start.here.offset);
+        let to = entries.partition_point(|e| e.here.offset < end.here.offset);
+        let inner: Vec<String> = entries[from..to.max(from)]
+            .iter()
+            .filter(|e| e.kw == Kw::Repeat && e.scope == scope)
+            .map(|e| e.label.clone())
+            .chain((st.kw == Kw::Break && start.kw == Kw::Repeat).then(|| start.label.clone()))
+            .collect();
+        let repeats = &mut self.oword_flow().repeats;
+        while repeats.last().is_some_and(|(l, _)| inner.contains(l)) {
+            repeats.pop();
+        }
         if st.kw == Kw::Break {
-            if start.kw == Kw::Repeat {
-                self.oword_flow().repeats.pop();
-            }
             return Ok(Step::Jump(end.after));
         }
         self.count_jump(span)?;
@@ -394,6 +420,9 @@ impl Interpreter<'_> {
             return Ok(Rc::clone(e));
         }
         let mut entries: Vec<Entry> = Vec::new();
+        // The DO each label of each scope has open.
+        let mut open_do: std::collections::HashMap<(usize, String), usize> =
+            std::collections::HashMap::new();
         // The scope of the statements being read: 0, or i + 1 inside the
         // sub of statement i.
         let mut scope = 0;
@@ -418,10 +447,20 @@ impl Interpreter<'_> {
                         line: line.number,
                         col: 0,
                     };
+                    let key = (own, st.label.clone());
+                    let closes_do = match st.kw {
+                        Kw::Do => {
+                            open_do.insert(key, entries.len());
+                            None
+                        }
+                        Kw::While => open_do.remove(&key),
+                        _ => None,
+                    };
                     entries.push(Entry {
                         label: st.label,
                         kw: st.kw,
                         scope: own,
+                        closes_do,
                         here,
                         after: Cursor {
                             col: vcnc_syntax::clamp_u32(bytes.len()),
@@ -438,7 +477,12 @@ impl Interpreter<'_> {
             .enumerate()
             .map(|(i, e)| (e.here.offset, i))
             .collect();
-        let statements = Rc::new(Statements { entries, at });
+        let mut subs: std::collections::HashMap<String, Vec<usize>> =
+            std::collections::HashMap::new();
+        for (i, e) in entries.iter().enumerate().filter(|(_, e)| e.kw == Kw::Sub) {
+            subs.entry(e.label.clone()).or_default().push(i);
+        }
+        let statements = Rc::new(Statements { entries, at, subs });
         self.oword_flow()
             .statements
             .push((id, Rc::clone(&statements)));
