@@ -14,9 +14,9 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
-import tempfile
+
+import rs274_events as rv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FOLDER = os.path.join(os.path.dirname(os.path.dirname(HERE)), "tests", "fixtures",
@@ -24,18 +24,13 @@ FOLDER = os.path.join(os.path.dirname(os.path.dirname(HERE)), "tests", "fixtures
 NOSE_RADIUS_MM = 0.4
 
 
-def feeds(rs274, program, q):
-    with tempfile.TemporaryDirectory(prefix="vcnc_rs274_") as tmp:
-        tbl = os.path.join(tmp, "tool.tbl")
-        with open(tbl, "w") as f:
-            f.write("T2 P2 D%.9f Q%d X0 Z0 ;\n" % (2 * NOSE_RADIUS_MM / 25.4, q))
-        out = subprocess.run([rs274, "-g", "-t", tbl, program], input="",
-                             capture_output=True, text=True,
-                             env=dict(os.environ, HOME=tmp), cwd=tmp).stdout
+def feeds(rs274, lines, q):
+    table = "T2 P2 D%.9f Q%d X0 Z0 ;\n" % (2 * NOSE_RADIUS_MM / 25.4, q)
+    out = rv.run_rs274(rs274, lines, table, "orientation Q%d" % q)
     points = []
     for line in out.splitlines():
         if "STRAIGHT_FEED(" in line:
-            x, _, z = (float(v) for v in re.findall(r"-?\d+\.\d+", line)[:3])
+            x, _, z = (float(v) for v in re.findall(r"-?\d+\.\d+", line.split("(", 1)[1])[:3])
             points.append({"x": x, "z": z})
     return points[:3]
 
@@ -46,8 +41,9 @@ def main():
     a = ap.parse_args()
     if not a.rs274:
         sys.exit("needs LinuxCNC's rs274: apt-get install linuxcnc-uspace")
-    program = os.path.join(FOLDER, "orientation.ngc")
-    table = {str(q): feeds(a.rs274, program, q) for q in range(1, 10)}
+    with open(os.path.join(FOLDER, "orientation.ngc")) as f:
+        lines = f.read().split("\n")[:-1]
+    table = {str(q): feeds(a.rs274, lines, q) for q in range(1, 10)}
     with open(os.path.join(FOLDER, "orientations.json"), "w") as f:
         json.dump({"nose_radius_mm": NOSE_RADIUS_MM, "feeds_by_q": table}, f, indent=1)
         f.write("\n")
