@@ -105,22 +105,7 @@ fn io_is_terminal() -> bool {
     io::stderr().is_terminal()
 }
 
-/// `1h 02m 03.4s`-style duration.
-pub fn duration(s: f64) -> String {
-    // Rounded to the tenth shown first, so that 59.96 s is 1m 00.0s and
-    // never 60.0s.
-    let total = (s.max(0.0) * 10.0).round() / 10.0;
-    let h = (total / 3600.0).floor();
-    let m = ((total - h * 3600.0) / 60.0).floor();
-    let sec = total - h * 3600.0 - m * 60.0;
-    if h > 0.0 {
-        format!("{h}h {m:02}m {sec:04.1}s")
-    } else if m > 0.0 {
-        format!("{m}m {sec:04.1}s")
-    } else {
-        format!("{sec:.1}s")
-    }
-}
+pub use vcnc_core::display::duration;
 
 /// The summary block of `vcnc check` for one program.
 pub fn summary(
@@ -290,15 +275,4 @@ pub fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>
         })
         .collect();
     parts.join("   ")
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn durations_round_before_they_split() {
-        assert_eq!(super::duration(59.96), "1m 00.0s");
-        assert_eq!(super::duration(3599.96), "1h 00m 00.0s");
-        assert_eq!(super::duration(61.24), "1m 01.2s");
-        assert_eq!(super::duration(0.04), "0.0s");
-    }
 }

@@ -9,6 +9,7 @@
 //! machine model without knowing anything of the interpreter.
 
 pub mod diagnostic;
+pub mod display;
 pub mod events;
 pub mod geometry;
 pub mod machine;
@@ -16,6 +17,7 @@ pub mod motion;
 pub mod nurbs;
 mod sink;
 mod span;
+pub mod tooling;
 
 pub use diagnostic::{Code, Diagnostic};
 pub use events::{
@@ -25,3 +27,4 @@ pub use events::{
 pub use machine::Machine;
 pub use sink::{NullSink, Sink, VecSink};
 pub use span::{Span, clamp_u32, column_of};
+pub use tooling::{ToolKind, ToolLibrary, ToolShape, ToolSource};
