@@ -8,18 +8,21 @@
 #   ... change, rebuild ...
 #   tools/regress/snapshot.sh target/release/vcnc > /tmp/after.txt
 #   diff /tmp/before.txt /tmp/after.txt
-# Set DIALECTS to limit the dialects, FORMATS to change what is run.
+# Set DIALECTS to limit the dialects; CMDS (a `|`-separated list) to change
+# what is run (default: `run --format jsonl|check --format json|run --format gcode`).
 set -euo pipefail
 bin=$(realpath "${1:?usage: snapshot.sh VCNC_BINARY}")
 cd "$(dirname "$0")/../.."
 dialects=${DIALECTS:-"syntec fanuc haas lathe eia grbl fanuc-lathe haas-lathe linuxcnc linuxcnc-lathe"}
-export bin dialects
+cmds=${CMDS:-"run --format jsonl|check --format json|run --format gcode"}
+export bin dialects cmds
 find examples tests/fixtures corpus -type f \( -iname '*.nc' -o -iname '*.ngc' -o -iname '*.gcode' \
     -o -iname '*.cnc' -o -iname '*.tap' -o -iname '*.eia' -o -iname '*.mpf' \) | LC_ALL=C sort |
 xargs -P "${JOBS:-2}" -n 8 bash -c '
 for f in "$@"; do
   for d in $dialects; do
-    for cmd in "run --format jsonl" "check --format json" "run --format gcode"; do
+    IFS="|" read -ra list <<< "$cmds"
+    for cmd in "${list[@]}"; do
       out=$(timeout 20 "$bin" $cmd --dialect "$d" "$f" 2>/tmp/snap.$$.err | sha256sum | cut -c1-16; echo "rc=${PIPESTATUS[0]}")
       err=$(sha256sum < /tmp/snap.$$.err | cut -c1-16)
       echo "$f $d ${cmd// /_} $(echo $out) $err"

@@ -25,6 +25,21 @@ pub enum Command {
     Time(TimeArgs),
     /// Draw the program's path: an SVG or PNG back-plot, or an HTML page with a 3D viewer.
     Plot(crate::plot::PlotArgs),
+    /// What a G or M code, or an address, means in each dialect (from the interpreter's own tables).
+    Explain(ExplainArgs),
+}
+
+/// `vcnc explain`.
+#[derive(Debug, Args)]
+pub struct ExplainArgs {
+    /// A G or M code (`G87`, `G59.1`, `M98`) or an address (`X`, `D`).
+    pub code: Option<String>,
+    /// Only this dialect (default: every dialect, those that agree on one line).
+    #[arg(long)]
+    pub dialect: Option<String>,
+    /// Print the dialect matrix: every code of every table (Markdown).
+    #[arg(long, conflicts_with = "code")]
+    pub matrix: bool,
 }
 
 /// `vcnc check`.

@@ -8,6 +8,7 @@
 
 mod check;
 mod cli;
+mod explain;
 mod files;
 mod offload;
 mod plot;
@@ -41,6 +42,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Run(args) => run_events(&args),
         Command::Time(args) => timing::time(&args),
         Command::Plot(args) => plot::plot(&args),
+        Command::Explain(args) => explain::run(&args),
     }
 }
 
@@ -52,6 +54,16 @@ pub(crate) fn reported(r: std::io::Result<()>) -> Result<(), String> {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
         r => r.map_err(|e| format!("writing output: {e}")),
     }
+}
+
+/// The dialect named `name` (any case), or a usage error naming them all.
+pub(crate) fn dialect_by_name(name: &str) -> Result<Dialect, String> {
+    Dialect::by_name(&name.to_ascii_lowercase()).ok_or_else(|| {
+        format!(
+            "unknown dialect {name:?}: use one of {}",
+            Dialect::NAMES.join(", ")
+        )
+    })
 }
 
 /// The machine and dialect the options ask for.
@@ -71,12 +83,7 @@ pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, St
         None if !paths.is_empty() && paths.iter().all(ngc) => "linuxcnc",
         None => "syntec",
     };
-    let dialect = Dialect::by_name(name).ok_or_else(|| {
-        format!(
-            "unknown dialect {name:?}: use one of {}",
-            Dialect::NAMES.join(", ")
-        )
-    })?;
+    let dialect = dialect_by_name(name)?;
     let machine = match &c.machine {
         Some(path) => {
             let text = std::fs::read_to_string(path)

@@ -1105,3 +1105,47 @@ fn a_ngc_program_defaults_to_the_linuxcnc_dialect() {
         stdout(&o)
     );
 }
+
+/// `vcnc explain` answers from the dialect tables: G87 is back boring on a
+/// Fanuc mill (Syntec manual 1.2.40) and chip-breaking pecks in EIA-274-D
+/// (seed 004, §5), and grbl has no G87.
+#[test]
+fn explain_g87_says_what_each_table_says() {
+    let o = vcnc(&["explain", "G87"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("G87 (syntec, fanuc): back boring"), "{out}");
+    assert!(
+        out.contains("G87 (eia): chip-breaking peck drilling"),
+        "{out}"
+    );
+    assert!(out.contains("grbl"), "{out}");
+    let o = vcnc(&["explain", "g87", "--dialect", "GRBL"]);
+    assert_eq!(stdout(&o), "G87 (grbl): not a code of this dialect\n");
+}
+
+/// A query that is neither a code nor a letter is a usage error.
+#[test]
+fn explain_refuses_what_is_not_a_code() {
+    let o = vcnc(&["explain", "G1e5"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("is not a code or an address"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// The matrix in docs/dialects.md is the one the tables make today.
+#[test]
+fn the_dialect_matrix_in_the_docs_is_the_tables() {
+    let o = vcnc(&["explain", "--matrix"]);
+    assert_eq!(o.status.code(), Some(0));
+    let doc = std::fs::read_to_string(workspace().join("docs/dialects.md")).unwrap();
+    let start = doc.find("<!-- matrix:start -->\n").expect("start marker") + 22;
+    let end = doc.find("<!-- matrix:end -->").expect("end marker");
+    assert!(
+        doc[start..end] == stdout(&o),
+        "docs/dialects.md's matrix is stale: regenerate it with `vcnc explain --matrix`"
+    );
+}

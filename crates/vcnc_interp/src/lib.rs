@@ -23,6 +23,7 @@ pub mod alarms;
 mod block;
 mod codes;
 pub mod dialect;
+pub mod explain;
 mod flow;
 mod interpreter;
 mod macros;

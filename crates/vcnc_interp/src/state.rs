@@ -63,32 +63,9 @@ pub struct Modal {
     pub macro_call: bool,
 }
 
-/// The modal motion (group 01).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Motion {
-    /// G00.
-    Rapid,
-    /// G01.
-    Linear,
-    /// G02.
-    ArcCw,
-    /// G03.
-    ArcCcw,
-    /// G33 (lead in program units).
-    Thread,
-    /// Lathe G32 (lead in inches).
-    ThreadInch,
-    /// Lathe G05 (arc through a middle point).
-    ThreePoint,
-    /// Syntec G06.2: NURBS interpolation (blocks of K, control points, R).
-    Nurbs,
-    /// Fanuc lathe G90: the turning cycle, modal.
-    TurnCycle,
-    /// Fanuc lathe G92: the threading cycle, modal.
-    ThreadingCycle,
-    /// Fanuc lathe G94: the facing cycle, modal.
-    FaceCycle,
-}
+/// The modal motion (group 01): the dialect table's own vocabulary, so
+/// that a G code's operation is the mode it selects.
+pub use crate::dialect::MotionOp as Motion;
 
 /// Cutter radius compensation (group 07).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -124,7 +101,7 @@ impl Modal {
             inch: false,
             comp: CompSide::Off,
             tool_length: ToolLength::Off,
-            return_r: dialect.cycles.return_r_at_power_on(),
+            return_r: dialect.cycles.g99_at_power_on,
             css: false,
             wcs: 0,
             path: PathMode::Cutting,
@@ -144,6 +121,9 @@ impl Modal {
 pub struct CycleData {
     /// The active cycle (`None`: G80 or a group-01 code).
     pub code: Option<crate::events::Cycle>,
+    /// What the active cycle does at each hole (the dialect table's
+    /// reading of its code).
+    pub hole: crate::dialect::Hole,
     /// The drilling-axis level when the cycle mode was entered.
     pub initial: f64,
     /// Z point (the hole bottom).
@@ -181,6 +161,7 @@ impl CycleData {
     /// No cycle mode, no data.
     pub const OFF: CycleData = CycleData {
         code: None,
+        hole: crate::dialect::Hole::Drill,
         initial: 0.0,
         z: None,
         r: None,

@@ -8,6 +8,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
 use crate::events::Pos;
 use crate::interpreter::{AxisWord, Interpreter};
@@ -174,7 +175,7 @@ impl Interpreter<'_> {
         if self.state.cycle.code.is_some() {
             m |= bit(b'R') | bit(b'Q');
         }
-        if w.once(crate::dialect::GOp::SetData).is_some()
+        if w.once(crate::dialect::GOp::Set(SetOp::Data)).is_some()
             && w.get(b'L')
                 .is_some_and(|l| (10.0..=13.0).contains(&l.value))
         {

@@ -23,6 +23,7 @@ use crate::dialect::{
     AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
     ToolLengthChange, ToolWords, bit,
 };
+use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
 use crate::events::{EndCode, Event, PathMode, Plane, Pos, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
@@ -119,7 +120,10 @@ impl Interpreter<'_> {
             return false;
         }
         match w.group(Group::Motion) {
-            Some(m) => matches!(m.def.op, GOp::Rapid | GOp::Linear),
+            Some(m) => matches!(
+                m.def.op,
+                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
+            ),
             None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
         }
     }
@@ -248,9 +252,9 @@ impl Interpreter<'_> {
             let mode = self.state.modal.path;
             self.emit(|loc| Event::PathMode { loc, mode });
         }
-        if w.group(Group::Path)
-            .is_some_and(|g| g.def.op == GOp::PathCutting && g.def.letters & bit(b'P') != 0)
-        {
+        if w.group(Group::Path).is_some_and(|g| {
+            g.def.op == GOp::Mode(ModeOp::PathCutting) && g.def.letters & bit(b'P') != 0
+        }) {
             self.blend_tolerance(w)?;
         }
         self.feed_word(w)?;
@@ -289,7 +293,7 @@ impl Interpreter<'_> {
                 }
             }
         }
-        if let Some(g99) = w.once(GOp::Junction) {
+        if let Some(g99) = w.once(GOp::Pace(PaceOp::Junction)) {
             // EIA G99: the junction after this block's cut may blend.
             let cuts = matches!(
                 self.state.modal.motion,
@@ -316,62 +320,76 @@ impl Interpreter<'_> {
         self.program_flow(w, flow.or(resume.map(Step::Jump)))
     }
 
-    /// Step 1: one modal code written in the block.
+    /// Step 1: one modal code written in the block. The frame codes,
+    /// compensation, the cycles and G66 have steps of their own (6, the
+    /// compensation stage, `cycle_modes`, the macro call); the one-shot
+    /// roles have no modal group.
     fn apply_modal(&mut self, op: GOp) {
+        match op {
+            GOp::Motion(m) => self.state.modal.motion = m,
+            GOp::Mode(m) => self.apply_mode(m),
+            GOp::Flow(FlowOp::MacroModalCancel) => self.state.modal.macro_call = false,
+            GOp::Flow(
+                FlowOp::SubCall
+                | FlowOp::SubReturn
+                | FlowOp::Jump
+                | FlowOp::Loop
+                | FlowOp::MacroCall
+                | FlowOp::MacroModal,
+            )
+            | GOp::Frame(_)
+            | GOp::Comp(_)
+            | GOp::Cycle(_)
+            | GOp::Move(_)
+            | GOp::Set(_)
+            | GOp::Pace(_)
+            | GOp::Turn(_) => {}
+        }
+    }
+
+    /// Step 1 for a modal setting.
+    fn apply_mode(&mut self, op: ModeOp) {
         let m = &mut self.state.modal;
         match op {
-            GOp::Rapid => m.motion = Motion::Rapid,
-            GOp::Linear => m.motion = Motion::Linear,
-            GOp::ArcCw => m.motion = Motion::ArcCw,
-            GOp::ArcCcw => m.motion = Motion::ArcCcw,
-            GOp::Thread => m.motion = Motion::Thread,
-            GOp::ThreadInch => m.motion = Motion::ThreadInch,
-            GOp::ThreePointArc => m.motion = Motion::ThreePoint,
-            GOp::Nurbs => m.motion = Motion::Nurbs,
-            GOp::TurnCycle => m.motion = Motion::TurnCycle,
-            GOp::ThreadingCycle => m.motion = Motion::ThreadingCycle,
-            GOp::FaceCycle => m.motion = Motion::FaceCycle,
-            GOp::RadiusMode => m.diameter = false,
-            GOp::DiameterMode => m.diameter = true,
-            GOp::PlaneXy => m.plane = Plane::Xy,
-            GOp::PlaneZx => m.plane = Plane::Zx,
-            GOp::PlaneYz => m.plane = Plane::Yz,
-            GOp::Absolute => m.incremental = false,
-            GOp::Incremental => m.incremental = true,
-            GOp::PerMinute => {
+            ModeOp::RadiusMode => m.diameter = false,
+            ModeOp::DiameterMode => m.diameter = true,
+            ModeOp::PlaneXy => m.plane = Plane::Xy,
+            ModeOp::PlaneZx => m.plane = Plane::Zx,
+            ModeOp::PlaneYz => m.plane = Plane::Yz,
+            ModeOp::Absolute => m.incremental = false,
+            ModeOp::Incremental => m.incremental = true,
+            ModeOp::PerMinute => {
                 m.per_rev = false;
                 m.inverse_time = false;
             }
-            GOp::PerRev => {
+            ModeOp::PerRev => {
                 m.per_rev = true;
                 m.inverse_time = false;
             }
-            GOp::InverseTime => {
+            ModeOp::InverseTime => {
                 m.per_rev = false;
                 m.inverse_time = true;
             }
-            GOp::ArcCentersAbsolute => m.arc_absolute = true,
-            GOp::ArcCentersIncremental => m.arc_absolute = false,
-            GOp::Inch => m.inch = true,
-            GOp::Metric => m.inch = false,
-            GOp::SurfaceSpeed => m.css = true,
-            GOp::SpindleRpm => m.css = false,
-            GOp::WorkSystem(n) => m.wcs = usize::from(n),
-            GOp::CancelOffsets => {
+            ModeOp::ArcCentersAbsolute => m.arc_absolute = true,
+            ModeOp::ArcCentersIncremental => m.arc_absolute = false,
+            ModeOp::Inch => m.inch = true,
+            ModeOp::Metric => m.inch = false,
+            ModeOp::SurfaceSpeed => m.css = true,
+            ModeOp::SpindleRpm => m.css = false,
+            ModeOp::WorkSystem(n) => m.wcs = usize::from(n),
+            ModeOp::CancelOffsets => {
                 // Lathe G53/G500: no work system, no G92 shift, no local
                 // offset — machine coordinates are program coordinates.
                 m.wcs = usize::from(crate::dialect::WORK_NONE);
                 self.tables.set_shift(crate::events::Pos::default());
                 self.tables.set_local(crate::events::Pos::default());
             }
-            GOp::PathExact => m.path = PathMode::ExactStop,
-            GOp::PathSurface => m.path = PathMode::Surface,
-            GOp::PathTapping => m.path = PathMode::Tapping,
-            GOp::PathCutting => m.path = PathMode::Cutting,
-            GOp::ReturnInitial => m.return_r = false,
-            GOp::ReturnR => m.return_r = true,
-            GOp::MacroModalCancel => m.macro_call = false,
-            _ => {}
+            ModeOp::PathExact => m.path = PathMode::ExactStop,
+            ModeOp::PathSurface => m.path = PathMode::Surface,
+            ModeOp::PathTapping => m.path = PathMode::Tapping,
+            ModeOp::PathCutting => m.path = PathMode::Cutting,
+            ModeOp::ReturnInitial => m.return_r = false,
+            ModeOp::ReturnR => m.return_r = true,
         }
     }
 
@@ -392,7 +410,7 @@ impl Interpreter<'_> {
         }
         if self.state.cycle.code.is_some() && w.axis_user.is_none() {
             // In cycle mode a drilling block may change the cycle's data.
-            allowed |= self.dialect.cycles.words();
+            allowed |= self.dialect.cycles.words;
         }
         let mut ext = 0u8;
         match w.axis_user.map(|u| u.def.axes) {
@@ -408,7 +426,7 @@ impl Interpreter<'_> {
                             | plane_offsets(self.state.modal.plane);
                         ext |= ext_bit(Addr::CR);
                     }
-                    Motion::ThreePoint => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
+                    Motion::ThreePointArc => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
                     Motion::Nurbs => allowed |= bit(b'K') | bit(b'R'),
                     // Fanuc lathe: chamfer and corner R at a G01's end.
                     Motion::Linear => ext |= ext_bit(Addr::COMMA_C) | ext_bit(Addr::COMMA_R),
@@ -420,7 +438,7 @@ impl Interpreter<'_> {
                     Motion::Thread if self.dialect.thread_lead == ThreadLead::K => {
                         allowed |= bit(b'K');
                     }
-                    _ => {}
+                    Motion::Rapid | Motion::Thread | Motion::ThreadInch => {}
                 }
             }
         }
@@ -495,8 +513,8 @@ impl Interpreter<'_> {
             self.emit(|loc| Event::Coolant { loc, on });
         }
         self.other_m_codes(w);
-        if let Some(g04) = w.once(GOp::Dwell) {
-            self.axis_code(GOp::Dwell, g04.span, w)?;
+        if let Some(g04) = w.once(GOp::Pace(PaceOp::Dwell)) {
+            self.axis_code(GOp::Pace(PaceOp::Dwell), g04.span, w)?;
         }
         self.report_frame();
         Ok(())
@@ -530,7 +548,9 @@ impl Interpreter<'_> {
 
     /// Steps 2c and 4: S, G96/G97 and the spindle M codes, one event at most.
     fn spindle_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        let clamp_block = w.axis_user.is_some_and(|a| a.def.op == GOp::PresetOrClamp);
+        let clamp_block = w
+            .axis_user
+            .is_some_and(|a| a.def.op == GOp::Set(SetOp::PresetOrClamp));
         if let Some(s) = w.get(b'S') {
             if s.value < 0.0 {
                 return Err(alarms::value_out_of_range(
@@ -551,12 +571,14 @@ impl Interpreter<'_> {
         let mode = w.group(Group::SpindleMode);
         // LinuxCNC's `G96 D2500 S120`: D is the highest speed.
         if let Some(d) = mode
-            .filter(|m| m.def.op == GOp::SurfaceSpeed && m.def.letters & bit(b'D') != 0)
+            .filter(|m| {
+                m.def.op == GOp::Mode(ModeOp::SurfaceSpeed) && m.def.letters & bit(b'D') != 0
+            })
             .and_then(|_| w.get(b'D'))
         {
             self.state.max_rpm = Some(d.value);
         }
-        if mode.is_some_and(|m| m.def.op == GOp::SpindleRpm) && s_word.is_none() {
+        if mode.is_some_and(|m| m.def.op == GOp::Mode(ModeOp::SpindleRpm)) && s_word.is_none() {
             // G97 alone keeps the speed the spindle turns at (Fanuc).
             self.state.s_value = self.state.rpm;
         }
@@ -684,18 +706,32 @@ impl Interpreter<'_> {
     fn setting_codes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         for at in w.once_codes() {
             match at.def.op {
-                GOp::RefStore(n) => self.store_reference(n),
-                GOp::ShiftCancel => {
+                GOp::Set(SetOp::RefStore(n)) => self.store_reference(n),
+                GOp::Set(SetOp::ShiftCancel) => {
                     self.tables.set_shift(crate::events::Pos::default());
                     self.state.refresh_origin(&self.tables);
                 }
-                GOp::Smoothing => self.haas_smoothing(w),
+                GOp::Pace(PaceOp::Smoothing) => self.haas_smoothing(w),
                 // A G4 that leaves the axis words to the motion (LinuxCNC:
                 // the dwell, then the block's move).
-                GOp::DwellP if !at.def.takes_axes() => {
-                    self.axis_code(GOp::DwellP, at.span, w)?;
+                GOp::Pace(PaceOp::DwellP) if !at.def.takes_axes() => {
+                    self.axis_code(GOp::Pace(PaceOp::DwellP), at.span, w)?;
                 }
-                _ => {}
+                // The rest of the one-shot codes take the axis words (step
+                // 7), or act in steps of their own: G09 with its move, EIA's
+                // G99 after it, calls in step 8.
+                GOp::Set(
+                    SetOp::Data | SetOp::LocalSystem | SetOp::PresetOrClamp | SetOp::ProgramZero,
+                )
+                | GOp::Pace(_)
+                | GOp::Move(_)
+                | GOp::Cycle(_)
+                | GOp::Turn(_)
+                | GOp::Flow(_)
+                | GOp::Frame(_)
+                | GOp::Motion(_)
+                | GOp::Mode(_)
+                | GOp::Comp(_) => {}
             }
         }
         Ok(())
@@ -787,15 +823,21 @@ impl Interpreter<'_> {
         match m.def.op {
             MOp::Stop => self.program_stop(StopCode::M00),
             MOp::OptionalStop if self.opts.optional_stop => self.program_stop(StopCode::M01),
-            MOp::End | MOp::EndRewind => {
-                let code = if m.def.op == MOp::End {
-                    EndCode::M02
-                } else {
-                    EndCode::M30
-                };
-                return self.end_program(code);
-            }
-            _ => {}
+            MOp::End => return self.end_program(EndCode::M02),
+            MOp::EndRewind => return self.end_program(EndCode::M30),
+            // Calls and returns were resolved before (`prepare_flow`); the
+            // other M codes are not of the flow group.
+            MOp::OptionalStop
+            | MOp::Call
+            | MOp::Return
+            | MOp::LocalCall
+            | MOp::SpindleCw
+            | MOp::SpindleCcw
+            | MOp::SpindleStop
+            | MOp::SpindleOrient
+            | MOp::ToolChange
+            | MOp::CoolantOn
+            | MOp::CoolantOff => {}
         }
         Ok(flow.unwrap_or(Step::Next))
     }
@@ -820,14 +862,16 @@ impl Interpreter<'_> {
         next: Cursor,
         store: &mut dyn ProgramStore,
     ) -> Result<Option<Step>, Diagnostic> {
-        if let Some(g) = w.axis_user {
-            match g.def.op {
-                GOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
-                GOp::SubReturn => return self.sub_return(g.span).map(Some),
-                GOp::Jump => return self.jump(w, g.span).map(Some),
+        if let Some(g) = w.axis_user
+            && let GOp::Flow(flow) = g.def.op
+        {
+            match flow {
+                FlowOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
+                FlowOp::SubReturn => return self.sub_return(g.span).map(Some),
+                FlowOp::Jump => return self.jump(w, g.span).map(Some),
                 // A finished loop continues after its block, but the label
                 // search may have moved the reader: re-read from `next`.
-                GOp::Loop => {
+                FlowOp::Loop => {
                     let step = self.loop_back(w, g.span, here)?;
                     return Ok(Some(if matches!(step, Step::Next) {
                         Step::Jump(next)
@@ -835,7 +879,8 @@ impl Interpreter<'_> {
                         step
                     }));
                 }
-                _ => {}
+                // Macro calls leave before execution (`Interpreter::block`).
+                FlowOp::MacroCall | FlowOp::MacroModal | FlowOp::MacroModalCancel => {}
             }
         }
         let Some(m) = w.m_of(MGroup::Flow) else {
@@ -845,7 +890,18 @@ impl Interpreter<'_> {
             MOp::Call => self.call(w, m.span, here, next, store, false).map(Some),
             MOp::Return => self.ret(w, m.span, here).map(Some),
             MOp::LocalCall => self.call(w, m.span, here, next, store, true).map(Some),
-            _ => Ok(None),
+            // Stops and ends run after the motion (`program_flow`).
+            MOp::Stop
+            | MOp::OptionalStop
+            | MOp::End
+            | MOp::EndRewind
+            | MOp::SpindleCw
+            | MOp::SpindleCcw
+            | MOp::SpindleStop
+            | MOp::SpindleOrient
+            | MOp::ToolChange
+            | MOp::CoolantOn
+            | MOp::CoolantOff => Ok(None),
         }
     }
 

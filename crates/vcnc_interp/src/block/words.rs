@@ -7,6 +7,7 @@
 //! machine untouched. Nothing is allocated: the table is a few fixed arrays.
 
 use crate::alarms;
+use crate::dialect::FlowOp;
 use crate::dialect::{
     AxisWords, Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit,
 };
@@ -215,7 +216,10 @@ impl<'b> Words<'b> {
             def,
             span: word.span,
         };
-        if matches!(def.op, GOp::MacroCall | GOp::MacroModal) {
+        if matches!(
+            def.op,
+            GOp::Flow(FlowOp::MacroCall) | GOp::Flow(FlowOp::MacroModal)
+        ) {
             self.macro_call = Some(at);
             return Ok(());
         }

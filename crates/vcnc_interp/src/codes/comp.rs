@@ -11,6 +11,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::{CompOp, ModeOp, MotionOp};
 use crate::dialect::{GOp, Group, OffsetDefault, bit};
 use crate::interpreter::Interpreter;
 use crate::motion::comp::Mode;
@@ -21,9 +22,12 @@ impl Interpreter<'_> {
     /// Step 6 for G40/G41/G42 and D.
     pub(crate) fn comp_codes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let code = w.group(Group::CutterComp);
-        let arc = w
-            .group(Group::Motion)
-            .filter(|m| matches!(m.def.op, GOp::ArcCw | GOp::ArcCcw));
+        let arc = w.group(Group::Motion).filter(|m| {
+            matches!(
+                m.def.op,
+                GOp::Motion(MotionOp::ArcCw) | GOp::Motion(MotionOp::ArcCcw)
+            )
+        });
         if let (Some(_), Some(m)) = (code, arc) {
             return Err(alarms::comp_arc_startup(m.span));
         }
@@ -31,7 +35,7 @@ impl Interpreter<'_> {
             Some(d) => Some(self.offset_word(&d)?),
             None => match code {
                 Some(c)
-                    if c.def.op != GOp::CompCancel
+                    if c.def.op != GOp::Comp(CompOp::Cancel)
                         && self.dialect.offset_default == OffsetDefault::ToolInSpindle =>
                 {
                     Some(self.tool_in_spindle(c.span)?)
@@ -53,8 +57,8 @@ impl Interpreter<'_> {
         }
         let Some(code) = code else { return Ok(()) };
         let side = match code.def.op {
-            GOp::CompLeft => CompSide::Left,
-            GOp::CompRight => CompSide::Right,
+            GOp::Comp(CompOp::Left) => CompSide::Left,
+            GOp::Comp(CompOp::Right) => CompSide::Right,
             _ => CompSide::Off,
         };
         self.set_comp_side(side);
@@ -127,9 +131,9 @@ impl Interpreter<'_> {
                 let same_plane = group == Group::Plane
                     && matches!(
                         (g.def.op, self.comp.plane),
-                        (GOp::PlaneXy, crate::events::Plane::Xy)
-                            | (GOp::PlaneZx, crate::events::Plane::Zx)
-                            | (GOp::PlaneYz, crate::events::Plane::Yz)
+                        (GOp::Mode(ModeOp::PlaneXy), crate::events::Plane::Xy)
+                            | (GOp::Mode(ModeOp::PlaneZx), crate::events::Plane::Zx)
+                            | (GOp::Mode(ModeOp::PlaneYz), crate::events::Plane::Yz)
                     );
                 if !same_plane {
                     return Err(alarms::not_while_compensating(g.span, what));

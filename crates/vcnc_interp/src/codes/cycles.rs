@@ -21,18 +21,17 @@
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::{CycleRules, GOp, Group};
+use crate::dialect::{Approach, GOp, Group, Hole, PeckClearance, TapStyle};
+use crate::dialect::{CycleOp, ModeOp};
 use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
 use crate::state::{CycleData, ReducedPeck};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
-/// LinuxCNC's G73 back-off and G83 clearance: 0.010 inch.
-const LINUXCNC_PECK_CLEARANCE_MM: f64 = 0.254;
-
-/// EIA G87's back-off between pecks: the chapter's 0.010 inch.
-const EIA_BACK_OFF_MM: f64 = 0.254;
+/// The chip-breaking cycle's back-off between pecks (EIA G87): the
+/// chapter's 0.010 inch.
+const CHIP_BREAK_BACK_OFF_MM: f64 = 0.254;
 
 /// Most holes one block may drill (a K count or a pattern).
 const MAX_HOLES: u64 = 10_000;
@@ -95,21 +94,6 @@ pub(crate) struct CycleAxes {
 }
 
 impl Interpreter<'_> {
-    /// Whether the cycles are read the EIA-274-D way.
-    fn eia(&self) -> bool {
-        self.dialect.cycles == CycleRules::Eia
-    }
-
-    /// Whether cycle `c` pecks by Q (and so needs Q > 0).
-    fn pecks_with_q(&self, c: Cycle) -> bool {
-        match c {
-            Cycle::G73 => true,
-            Cycle::G83 => true,
-            Cycle::G87 => self.eia(),
-            _ => false,
-        }
-    }
-
     pub(crate) fn cycle_axes(&self, cmd: Span) -> Result<CycleAxes, Diagnostic> {
         let axes = self.plane_axes(self.state.modal.plane, cmd)?;
         let z = axes
@@ -130,13 +114,13 @@ impl Interpreter<'_> {
         };
         let cancels = w.group(Group::Motion).is_some()
             || w.group(Group::Cycle)
-                .is_some_and(|c| c.def.op == GOp::CycleCancel);
+                .is_some_and(|c| c.def.op == GOp::Cycle(CycleOp::Cancel));
         if self.state.cycle.code.is_none() || cancels {
             return Ok(());
         }
         let plane = match p.def.op {
-            GOp::PlaneXy => Plane::Xy,
-            GOp::PlaneZx => Plane::Zx,
+            GOp::Mode(ModeOp::PlaneXy) => Plane::Xy,
+            GOp::Mode(ModeOp::PlaneZx) => Plane::Zx,
             _ => Plane::Yz,
         };
         if plane != self.state.modal.plane {
@@ -153,7 +137,7 @@ impl Interpreter<'_> {
     pub(crate) fn cycle_modes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let code = w.group(Group::Cycle);
         let motion = w.group(Group::Motion).is_some();
-        if let Some(GOp::Cycle(c)) = code.map(|c| c.def.op)
+        if let Some(GOp::Cycle(CycleOp::Drill(c, hole))) = code.map(|c| c.def.op)
             && !motion
         {
             if self.state.cycle.code.is_none() {
@@ -165,6 +149,7 @@ impl Interpreter<'_> {
             }
             self.state.cycle.before = self.state.cycle.code;
             self.state.cycle.code = Some(c);
+            self.state.cycle.hole = hole;
         } else if motion || code.is_some() {
             self.state.cycle = CycleData::OFF;
         }
@@ -184,7 +169,7 @@ impl Interpreter<'_> {
             .filter_map(|&i| letter(i))
             .any(|l| w.get(l).is_some());
         let rules = self.dialect.cycles;
-        if !drills && rules == CycleRules::LinuxCnc && w.group(Group::Cycle).is_some() {
+        if !drills && rules.rs274_words && w.group(Group::Cycle).is_some() {
             // rs274: "All axes missing with motion code".
             return Err(alarms::needs_word(
                 cmd,
@@ -195,7 +180,7 @@ impl Interpreter<'_> {
         if !drills {
             // R, Q, P are stored only by a block that drills (1.2.31), and
             // only it repeats.
-            let data = rules.words();
+            let data = rules.words;
             for l in [b'R', b'Q', b'P', b'K', b'L', b'I', b'J'] {
                 if data & crate::dialect::bit(l) != 0
                     && let Some(word) = w.get(l)
@@ -205,8 +190,8 @@ impl Interpreter<'_> {
             }
             return Ok(());
         }
-        if rules == CycleRules::LinuxCnc {
-            self.linuxcnc_cycle_change(w, axes, cmd)?;
+        if rules.rs274_words {
+            self.rewritten_on_change(w, axes, cmd)?;
         }
         self.store_cycle_words(w, axes)?;
         // An M code of the block that reads the letter (Haas: `M98 P.. L..`,
@@ -214,20 +199,17 @@ impl Interpreter<'_> {
         // does not.
         let m_letters = w.m.iter().flatten().fold(0, |m, a| m | a.def.letters);
         let repeat = rules
-            .repeat_letter()
-            .filter(|l| m_letters & crate::dialect::bit(*l) == 0);
-        let count = match repeat.and_then(|l| w.get(l).map(|k| (l, k))) {
-            // LinuxCNC: "Cannot do zero repeats of cycle".
-            Some((l, k)) if rules == CycleRules::LinuxCnc => {
-                crate::block::convert::whole(&k, l, 1.0, 9999.0, "L is a repeat count 1-9999")?
-            }
-            Some((l, k)) => {
-                let why = if l == b'L' {
-                    "L is a repeat count 0-9999"
-                } else {
-                    "K is a repeat count 0-9999"
+            .repeat
+            .filter(|r| m_letters & crate::dialect::bit(r.letter) == 0);
+        let count = match repeat.and_then(|r| w.get(r.letter).map(|k| (r, k))) {
+            Some((r, k)) => {
+                // LinuxCNC: "Cannot do zero repeats of cycle".
+                let why = match (r.letter, r.least) {
+                    (b'L', 1) => "L is a repeat count 1-9999",
+                    (b'L', _) => "L is a repeat count 0-9999",
+                    _ => "K is a repeat count 0-9999",
                 };
-                crate::block::convert::whole(&k, l, 0.0, 9999.0, why)?
+                crate::block::convert::whole(&k, r.letter, f64::from(r.least), 9999.0, why)?
             }
             None => 1,
         };
@@ -242,7 +224,7 @@ impl Interpreter<'_> {
         }
         let c = self.cycle_ready(cmd, w.get(drill_letter))?;
         self.spindle_ready(c, cmd)?;
-        self.check_pecks(c, count.into(), cmd)?;
+        self.check_pecks(count.into(), cmd)?;
         let suspended = self.suspend_comp()?;
         for _ in 0..count {
             let mut goal = self.target(w, self.state.modal.incremental);
@@ -260,12 +242,12 @@ impl Interpreter<'_> {
         Ok(())
     }
 
-    /// LinuxCNC: a block that changes the cycle (or enters one) writes R,
+    /// rs274's words: a block that changes the cycle (or enters one) writes R,
     /// the depth, and the P of G82/G86/G89 or the Q of G73/G83 again
     /// (rs274: "R clearance plane unspecified in cycle", "Z value
     /// unspecified", "Dwell time P word missing with G86" …): nothing is
     /// taken over from the cycle before.
-    fn linuxcnc_cycle_change(
+    fn rewritten_on_change(
         &self,
         w: &Words<'_>,
         axes: CycleAxes,
@@ -279,9 +261,9 @@ impl Interpreter<'_> {
             return Ok(());
         };
         let depth = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
-        let extra = match c {
-            Cycle::G82 | Cycle::G86 | Cycle::G89 => Some((b'P', "P (the dwell)")),
-            Cycle::G73 | Cycle::G83 => Some((b'Q', "Q (the peck)")),
+        let extra = match data.hole {
+            Hole::DrillDwell | Hole::BoreStop | Hole::BoreDwell => Some((b'P', "P (the dwell)")),
+            Hole::HighSpeedPeck | Hole::DeepPeck => Some((b'Q', "Q (the peck)")),
             _ => None,
         };
         let missing: Vec<&str> = [(b'R', "R (the R level)"), (depth, "the depth")]
@@ -312,7 +294,7 @@ impl Interpreter<'_> {
         let r_word = w.get(b'R').map(|r| self.length_mm(&r));
         let z_word = w.get(z_letter).map(|z| self.axis_value(axes.z, &z));
         let cycle = &mut self.state.cycle;
-        let (r_word, z_word) = if self.dialect.cycles == CycleRules::LinuxCnc {
+        let (r_word, z_word) = if self.dialect.cycles.rs274_words {
             // LinuxCNC keeps the words and reads them under each block's
             // G90/G91 (`G90 G81 … R2`, then `G91 X10 L2`: R is 2 above the
             // initial level there).
@@ -331,11 +313,12 @@ impl Interpreter<'_> {
             cycle.z = Some(if inc { r_level + v } else { v });
         }
         let rules = self.dialect.cycles;
-        if let Some(code) = self.state.cycle.code {
+        let hole = self.state.cycle.hole;
+        if self.state.cycle.code.is_some() {
             // An M code of the block may read them (LinuxCNC's `M62 P1`).
             let m_letters =
                 w.other_letters | w.m.iter().flatten().fold(0, |m, a| m | a.def.letters);
-            for (l, read) in [(b'P', rules.reads_p(code)), (b'Q', rules.reads_q(code))] {
+            for (l, read) in [(b'P', rules.reads_p(hole)), (b'Q', rules.reads_q(hole))] {
                 let read = read || m_letters & crate::dialect::bit(l) != 0;
                 if let Some(word) = w.get(l).filter(|_| !read) {
                     return Err(alarms::word_not_allowed(word.span, l));
@@ -344,11 +327,10 @@ impl Interpreter<'_> {
         }
         if let Some(q) = w.get(b'Q') {
             let v = self.length_mm(&q);
-            let code = self.state.cycle.code;
-            let bad = match code {
-                Some(Cycle::G84) if self.eia() => false,
-                Some(Cycle::G84) => v < 0.0,
-                Some(c) => self.pecks_with_q(c) && v <= 0.0,
+            let bad = match self.state.cycle.code.map(|_| hole) {
+                // A tap that pecks takes Q ≥ 0 (0: no pecks).
+                Some(Hole::Tap) => v < 0.0,
+                Some(h) => pecks_with_q(h) && v <= 0.0,
                 None => false,
             };
             if bad {
@@ -368,7 +350,7 @@ impl Interpreter<'_> {
             crate::block::convert::dwell_not_negative(&p)?;
             self.state.cycle.p_s = Some(self.seconds(&p));
         }
-        if self.dialect.cycles.pecks_by_ijk() {
+        if self.dialect.cycles.reduced_pecks {
             self.store_reduced_peck(w)?;
         }
         Ok(())
@@ -384,7 +366,8 @@ impl Interpreter<'_> {
             return Ok(());
         };
         let code = self.state.cycle.code;
-        if !matches!(code, Some(Cycle::G73 | Cycle::G83)) {
+        let pecks = matches!(self.state.cycle.hole, Hole::HighSpeedPeck | Hole::DeepPeck);
+        if code.is_none() || !pecks {
             return Err(alarms::word_not_allowed(first_word.span, first_word.addr.0));
         }
         let (Some(i), Some(j), Some(k)) = (i, j, k) else {
@@ -415,27 +398,24 @@ impl Interpreter<'_> {
         let c = data
             .code
             .ok_or_else(|| alarms::pattern_without_cycle(cmd))?;
+        let rules = self.dialect.cycles;
         // EIA: R is optional, the R level is then the initial level.
-        let r = if self.eia() {
+        let r = if rules.r_optional {
             Some(data.r.unwrap_or(data.initial))
         } else {
             data.r
         };
         let (Some(z), Some(r)) = (data.z, r) else {
-            let what = if self.eia() {
+            let what = if rules.r_optional {
                 "Z (the hole depth)"
             } else {
                 "Z (the hole bottom) and R (the R level)"
             };
             return Err(alarms::needs_word(cmd, c.as_str(), what));
         };
-        let upward = c == Cycle::G87 && !self.eia();
+        let upward = data.hole == Hole::BackBore;
         // LinuxCNC refuses only a bottom above R ("R less than Z").
-        let flat = if self.dialect.cycles == CycleRules::LinuxCnc {
-            -SAME_MM
-        } else {
-            SAME_MM
-        };
+        let flat = if rules.bottom_at_r { -SAME_MM } else { SAME_MM };
         if (upward && z <= r + SAME_MM) || (!upward && z >= r - flat) {
             return Err(alarms::cycle_direction(
                 z_word.map_or(cmd, |w| w.span),
@@ -443,14 +423,17 @@ impl Interpreter<'_> {
             ));
         }
         // EIA G82/G89: the dwell is part of the cycle's data (§2).
-        if self.eia() && matches!(c, Cycle::G82 | Cycle::G89) && data.p_s.is_none() {
+        if rules.dwell_required
+            && matches!(data.hole, Hole::DrillDwell | Hole::BoreDwell)
+            && data.p_s.is_none()
+        {
             return Err(alarms::needs_word(
                 cmd,
                 c.as_str(),
                 "P (the dwell at the hole bottom)",
             ));
         }
-        if self.pecks_with_q(c) && data.reduced.is_none() && data.q.is_none_or(|q| q <= 0.0) {
+        if pecks_with_q(data.hole) && data.reduced.is_none() && data.q.is_none_or(|q| q <= 0.0) {
             return Err(alarms::needs_word(
                 cmd,
                 c.as_str(),
@@ -465,11 +448,11 @@ impl Interpreter<'_> {
     fn spindle_ready(&self, c: Cycle, cmd: Span) -> Result<(), Diagnostic> {
         let turning =
             matches!(self.state.spindle, SpindleDir::Cw | SpindleDir::Ccw) && self.state.rpm > 0.0;
-        let wanted = match c {
+        let wanted = match self.state.cycle.hole {
             // EIA: a tap in either direction (a left-hand tap turns M04).
-            Cycle::G84 if self.eia() => Some(None),
-            Cycle::G84 => Some(Some(SpindleDir::Cw)),
-            Cycle::G74 => Some(Some(SpindleDir::Ccw)),
+            Hole::TapEitherWay => Some(None),
+            Hole::Tap => Some(Some(SpindleDir::Cw)),
+            Hole::LeftTap => Some(Some(SpindleDir::Ccw)),
             _ => None,
         };
         if let Some(dir) = wanted
@@ -484,16 +467,16 @@ impl Interpreter<'_> {
     /// Alarms when `holes` holes of cycle `c` would peck more than
     /// `MAX_PECKS` times: a tiny Q over a deep hole would otherwise hold
     /// millions of moves until the block succeeds.
-    fn check_pecks(&self, c: Cycle, holes: u64, cmd: Span) -> Result<(), Diagnostic> {
+    fn check_pecks(&self, holes: u64, cmd: Span) -> Result<(), Diagnostic> {
         let data = self.state.cycle;
-        let pecking = self.pecks_with_q(c) || (c == Cycle::G84 && !self.eia());
+        let pecking = pecks_with_q(data.hole) || data.hole == Hole::Tap;
         let Some(z) = data.z.filter(|_| pecking) else {
             return Ok(());
         };
         let depth = (data.r.unwrap_or(data.initial) - z).abs();
         let per_hole = match data.reduced {
             // Count Haas's shrinking pecks, no further than the bound.
-            Some(_) if self.pecks_with_q(c) => {
+            Some(_) if pecks_with_q(data.hole) => {
                 let cap = MAX_PECKS / holes.max(1) + 1;
                 let (mut depths, mut done, mut n) = (PeckDepths::of(&data, depth), 0.0, 0u64);
                 while done < depth - SAME_MM && n <= cap {
@@ -530,14 +513,14 @@ impl Interpreter<'_> {
         self.straight(kind, Target::Program(p), w, cmd)
     }
 
-    /// LinuxCNC's way to a hole, before the move to R (its interpreter's
-    /// `convert_cycle_xy`, as rs274 moves): a tool whose cycle started
+    /// rs274's way to a hole, before the move to R (`Approach::ReturnLevelFirst`,
+    /// LinuxCNC's `convert_cycle_xy`): a tool whose cycle started
     /// below R first goes straight to R where it is (up, or down to a
     /// lowered R); the return level is R under G99, else the level the
     /// cycle started at (R if that was below); the tool goes to the hole at
     /// its own level when that is above R, else straight (diagonally, from
     /// R or below) to the return level. Returns the return level.
-    fn linuxcnc_positioning(
+    fn return_level_first(
         &mut self,
         s: &mut Steps<'_, '_>,
         zr: f64,
@@ -597,27 +580,29 @@ impl Interpreter<'_> {
         at.set(axes.z, zz);
         let at = self.state.frame.machine_of(at);
         self.emit(|loc| Event::Hole { loc, cycle: c, at });
-        let eia = self.eia();
-        let linuxcnc = self.dialect.cycles == CycleRules::LinuxCnc;
-        let mut ret = if eia || (self.state.modal.return_r && c != Cycle::G87) {
-            zr
-        } else {
-            data.initial
-        };
+        let rules = self.dialect.cycles;
+        let hole = data.hole;
+        let mut ret =
+            if rules.always_back_to_r || (self.state.modal.return_r && hole != Hole::BackBore) {
+                zr
+            } else {
+                data.initial
+            };
         let mut s = Steps {
             axes,
             xy: (a, b),
             w,
             cmd,
         };
-        if linuxcnc {
-            ret = self.linuxcnc_positioning(&mut s, zr, w, cmd)?;
-        } else {
-            // Positioning in the plane at the current level, then to R.
-            let z_now = self.state.prog.get(axes.z);
-            s.rapid(self, z_now)?;
+        match rules.approach {
+            Approach::ReturnLevelFirst => ret = self.return_level_first(&mut s, zr, w, cmd)?,
+            Approach::PlaneThenR => {
+                // Positioning in the plane at the current level, then to R.
+                let z_now = self.state.prog.get(axes.z);
+                s.rapid(self, z_now)?;
+            }
         }
-        if c == Cycle::G87 && !eia {
+        if hole == Hole::BackBore {
             return self.back_bore(&mut s, zr, zz, data);
         }
         s.rapid(self, zr)?;
@@ -625,45 +610,68 @@ impl Interpreter<'_> {
         let dwell = data.p_s.filter(|p| *p > 0.0);
         // A spindle the cycle stops or orients starts again as it turned.
         let turning = self.state.spindle;
-        match c {
-            _ if eia => return self.eia_hole(&mut s, c, (zr, zz), data, feed),
-            Cycle::G81 => s.feed(self, zz, feed)?,
-            Cycle::G82 | Cycle::G89 => {
+        match hole {
+            Hole::Drill => s.feed(self, zz, feed)?,
+            Hole::DrillDwell | Hole::BoreDwell => {
                 s.feed(self, zz, feed)?;
                 self.cycle_dwell(dwell);
-                if c == Cycle::G89 {
+                if hole == Hole::BoreDwell {
                     // LinuxCNC feeds out all the way to the return level.
-                    s.feed(self, if linuxcnc { ret } else { zr }, feed)?;
+                    let out = if rules.bore_out_to_return_level {
+                        ret
+                    } else {
+                        zr
+                    };
+                    s.feed(self, out, feed)?;
                 }
             }
-            Cycle::G73 | Cycle::G83 => self.pecks(&mut s, c, zr, zz, data, feed)?,
-            Cycle::G74 | Cycle::G84 => {
-                let (fwd, rev) = if c == Cycle::G84 {
+            Hole::HighSpeedPeck | Hole::DeepPeck => {
+                self.pecks(&mut s, hole, zr, zz, data, feed)?;
+            }
+            // Chip breaking: back off 0.010 inch between pecks.
+            Hole::ChipBreak => {
+                let q = PeckDepths::of(&data, zr - zz);
+                self.peck_moves(&mut s, (zr, zz), q, CHIP_BREAK_BACK_OFF_MM, false, feed)?;
+            }
+            Hole::Tap | Hole::LeftTap => {
+                let (fwd, rev) = if hole == Hole::Tap {
                     (SpindleDir::Cw, SpindleDir::Ccw)
                 } else {
                     (SpindleDir::Ccw, SpindleDir::Cw)
                 };
-                if linuxcnc {
-                    // LinuxCNC: reverse at the bottom, dwell P, feed out
-                    // all the way to the return level.
-                    s.feed(self, zz, feed)?;
-                    self.cycle_spindle(rev);
-                    self.cycle_dwell(dwell);
-                    s.feed(self, ret, feed)?;
-                    self.cycle_spindle(fwd);
-                } else {
-                    let peck = data.q.filter(|q| *q > 0.0 && c == Cycle::G84);
-                    self.tap(&mut s, (fwd, rev), (zr, zz), peck, dwell, feed)?;
+                match rules.tap {
+                    TapStyle::ReverseDwellOut => {
+                        // Reverse at the bottom, dwell P, feed out all the
+                        // way to the return level.
+                        s.feed(self, zz, feed)?;
+                        self.cycle_spindle(rev);
+                        self.cycle_dwell(dwell);
+                        s.feed(self, ret, feed)?;
+                        self.cycle_spindle(fwd);
+                    }
+                    TapStyle::PeckByQ => {
+                        let peck = data.q.filter(|q| *q > 0.0 && hole == Hole::Tap);
+                        self.tap(&mut s, (fwd, rev), (zr, zz), peck, dwell, feed)?;
+                    }
                 }
             }
-            Cycle::G85 => {
+            Hole::TapEitherWay => {
+                let fwd = self.state.spindle;
+                let rev = if fwd == SpindleDir::Ccw {
+                    SpindleDir::Cw
+                } else {
+                    SpindleDir::Ccw
+                };
+                self.tap(&mut s, (fwd, rev), (zr, zz), None, None, feed)?;
+            }
+            Hole::Bore => {
                 s.feed(self, zz, feed)?;
                 s.feed(self, zr, feed)?;
             }
-            Cycle::G86 => {
+            Hole::BoreStop => {
                 s.feed(self, zz, feed)?;
                 // LinuxCNC's G86 dwells P at the bottom; Fanuc's has no P.
-                if self.dialect.cycles == CycleRules::LinuxCnc {
+                if rules.bore_stop_dwell {
                     self.cycle_dwell(dwell);
                 }
                 self.cycle_spindle(SpindleDir::Stop);
@@ -671,13 +679,21 @@ impl Interpreter<'_> {
                 self.cycle_spindle(turning);
                 return Ok(());
             }
-            Cycle::G88 => {
+            Hole::BoreWaitStart => {
+                // The cutter rapids out when the operator presses START.
+                s.feed(self, zz, feed)?;
+                self.emit(|loc| Event::Wait {
+                    loc,
+                    reason: WaitReason::CycleStart,
+                });
+            }
+            Hole::BoreManual => {
                 // The way out is fed with the spindle stopped (1.2.41
                 // step 6): per revolution it cannot move.
                 if matches!(feed, Feed::PerRev(_)) {
                     return Err(alarms::per_rev_spindle_stopped(
                         cmd,
-                        self.dialect.g_for(GOp::PerMinute),
+                        self.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
                     ));
                 }
                 s.feed(self, zz, feed)?;
@@ -692,7 +708,7 @@ impl Interpreter<'_> {
                 self.cycle_spindle(turning);
                 return Ok(());
             }
-            Cycle::G76 => {
+            Hole::FineBore => {
                 s.feed(self, zz, feed)?;
                 self.cycle_dwell(dwell);
                 self.cycle_spindle(SpindleDir::Orient);
@@ -703,7 +719,8 @@ impl Interpreter<'_> {
                 self.cycle_spindle(turning);
                 return Ok(());
             }
-            Cycle::G87 => {}
+            // Bored above, from below the part.
+            Hole::BackBore => {}
         }
         s.rapid(self, ret)
     }
@@ -712,7 +729,7 @@ impl Interpreter<'_> {
     fn pecks(
         &mut self,
         s: &mut Steps<'_, '_>,
-        c: Cycle,
+        hole: Hole,
         zr: f64,
         zz: f64,
         data: CycleData,
@@ -720,12 +737,12 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         // LinuxCNC's clearance is fixed at 0.010 inch (its G73 back-off and
         // G83 rapid delta); the Fanuc's is a parameter (5114).
-        let d = if self.dialect.cycles == CycleRules::LinuxCnc {
-            LINUXCNC_PECK_CLEARANCE_MM
-        } else {
-            self.machine.params.peck_return_mm
+        let rules = self.dialect.cycles;
+        let d = match rules.peck_clearance {
+            PeckClearance::Fixed(d) => d,
+            PeckClearance::Parameter => self.machine.params.peck_return_mm,
         };
-        let back_to_r = c == Cycle::G83;
+        let back_to_r = hole == Hole::DeepPeck;
         self.peck_moves(
             s,
             (zr, zz),
@@ -734,7 +751,7 @@ impl Interpreter<'_> {
             back_to_r,
             feed,
         )?;
-        if self.dialect.cycles.reads_p(c) {
+        if rules.peck_dwell && rules.reads_p(hole) {
             self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
         }
         Ok(())
@@ -805,61 +822,6 @@ impl Interpreter<'_> {
             }
             depth = next;
         }
-    }
-
-    /// A hole of the EIA-274-D cycles (`docs/eia-spec.md` §5), after the
-    /// approach to R; the return is always to R.
-    fn eia_hole(
-        &mut self,
-        s: &mut Steps<'_, '_>,
-        c: Cycle,
-        (zr, zz): (f64, f64),
-        data: CycleData,
-        feed: Feed,
-    ) -> Result<(), Diagnostic> {
-        let dwell = data.p_s.filter(|p| *p > 0.0);
-        match c {
-            Cycle::G82 | Cycle::G89 => {
-                s.feed(self, zz, feed)?;
-                self.cycle_dwell(dwell);
-                if c == Cycle::G89 {
-                    s.feed(self, zr, feed)?;
-                }
-            }
-            // "Rapids back down to its previous depth": no clearance.
-            Cycle::G83 => {
-                let q = PeckDepths::of(&data, zr - zz);
-                self.peck_moves(s, (zr, zz), q, 0.0, true, feed)?;
-            }
-            // Chip breaking: back off 0.010 inch between pecks.
-            Cycle::G87 => {
-                let q = PeckDepths::of(&data, zr - zz);
-                self.peck_moves(s, (zr, zz), q, EIA_BACK_OFF_MM, false, feed)?;
-            }
-            Cycle::G84 => {
-                let fwd = self.state.spindle;
-                let rev = if fwd == SpindleDir::Ccw {
-                    SpindleDir::Cw
-                } else {
-                    SpindleDir::Ccw
-                };
-                self.tap(s, (fwd, rev), (zr, zz), None, None, feed)?;
-            }
-            Cycle::G85 => {
-                s.feed(self, zz, feed)?;
-                s.feed(self, zr, feed)?;
-            }
-            Cycle::G86 => {
-                // The cutter rapids out when the operator presses START.
-                s.feed(self, zz, feed)?;
-                self.emit(|loc| Event::Wait {
-                    loc,
-                    reason: WaitReason::CycleStart,
-                });
-            }
-            _ => s.feed(self, zz, feed)?,
-        }
-        s.rapid(self, zr)
     }
 
     /// G87 back boring: shifted down to R below the part, bore up to Z,
@@ -936,7 +898,12 @@ impl Interpreter<'_> {
 
     /// A hole pattern G134–G137.1: the holes of the active cycle at the
     /// pattern's positions, in the order of `docs/cycles-spec.md` §8.
-    pub(crate) fn pattern(&mut self, op: GOp, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+    pub(crate) fn pattern(
+        &mut self,
+        op: CycleOp,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
         let c = self.cycle_ready(cmd, None)?;
         self.spindle_ready(c, cmd)?;
         let axes = self.cycle_axes(cmd)?;
@@ -946,7 +913,7 @@ impl Interpreter<'_> {
             (goal.prog.get(axes.a), goal.prog.get(axes.b))
         };
         let holes = self.pattern_holes(op, w, cmd, (x, y))?;
-        self.check_pecks(c, holes.len() as u64, cmd)?;
+        self.check_pecks(holes.len() as u64, cmd)?;
         let suspended = self.suspend_comp()?;
         for (a, b) in holes {
             self.hole(c, axes, a, b, w, cmd)?;
@@ -958,7 +925,7 @@ impl Interpreter<'_> {
     /// The hole positions of a pattern.
     fn pattern_holes(
         &self,
-        op: GOp,
+        op: CycleOp,
         w: &Words<'_>,
         cmd: Span,
         (x, y): (f64, f64),
@@ -984,7 +951,7 @@ impl Interpreter<'_> {
         };
         let mut out = Vec::new();
         match op {
-            GOp::PatternCircle => {
+            CycleOp::PatternCircle => {
                 let i = need(b'I', "I (the radius)")?;
                 let r = positive(i, self.length_mm(&i), "the radius I is more than 0")?;
                 let start = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j));
@@ -1009,7 +976,7 @@ impl Interpreter<'_> {
                     i += 1.0;
                 }
             }
-            GOp::PatternLine => {
+            CycleOp::PatternLine => {
                 let i = need(b'I', "I (the interval)")?;
                 let step = self.length_mm(&i);
                 if step == 0.0 {
@@ -1031,7 +998,7 @@ impl Interpreter<'_> {
                     out.push((x + d * ang.cos(), y + d * ang.sin()));
                 }
             }
-            GOp::PatternArc => {
+            CycleOp::PatternArc => {
                 let i = need(b'I', "I (the radius)")?;
                 let r = positive(i, self.length_mm(&i), "the radius I is more than 0")?;
                 let start = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j));
@@ -1055,7 +1022,9 @@ impl Interpreter<'_> {
                     out.push((x + r * ang.cos(), y + r * ang.sin()));
                 }
             }
-            _ => {
+            // Not patterns: `axis_code` sends them elsewhere.
+            CycleOp::Drill(..) | CycleOp::Cancel | CycleOp::PocketRect | CycleOp::PocketCircle => {}
+            CycleOp::PatternGrid => {
                 let (iw, jw) = (
                     need(b'I', "I (the X interval)")?,
                     need(b'J', "J (the Y interval)")?,
@@ -1153,4 +1122,9 @@ impl Steps<'_, '_> {
         let p = self.point(it, s, z);
         self.go(it, MoveKind::Rapid, p)
     }
+}
+
+/// Whether a cycle doing `hole` pecks by Q (and so needs Q > 0).
+fn pecks_with_q(hole: Hole) -> bool {
+    matches!(hole, Hole::HighSpeedPeck | Hole::DeepPeck | Hole::ChipBreak)
 }

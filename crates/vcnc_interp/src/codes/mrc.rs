@@ -39,6 +39,7 @@ use crate::codes::profile::{Elem, Profile};
 use crate::codes::rough::{self, Across, Frame, Rough, Seg, Step};
 use crate::codes::turning_cycles::{How, Xz};
 use crate::dialect::GOp;
+use crate::dialect::TurnOp;
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
@@ -46,16 +47,6 @@ use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
 
 /// Most rough levels, passes or pecks one cycle block may make.
 const MAX_PASSES: f64 = 10_000.0;
-
-impl GOp {
-    /// G70–G73: cycles that read a profile.
-    pub(crate) fn reads_profile(self) -> bool {
-        matches!(
-            self,
-            GOp::FinishCycle | GOp::RoughTurnCycle | GOp::RoughFaceCycle | GOp::PatternCycle
-        )
-    }
-}
 
 impl Interpreter<'_> {
     /// G70–G73; returns where the program goes on after the block.
@@ -67,7 +58,7 @@ impl Interpreter<'_> {
         next: Cursor,
     ) -> Result<Option<Cursor>, Diagnostic> {
         let pq = (w.get(b'P'), w.get(b'Q'));
-        if op != GOp::FinishCycle && pq == (None, None) {
+        if op != GOp::Turn(TurnOp::FinishCycle) && pq == (None, None) {
             self.profile_first_block(op, w)?;
             return Ok(None);
         }
@@ -80,7 +71,7 @@ impl Interpreter<'_> {
         };
         self.refuse(w, b"XZ")?;
         match op {
-            GOp::FinishCycle => {
+            GOp::Turn(TurnOp::FinishCycle) => {
                 self.refuse(w, b"UWRD")?;
                 let profile = self.read_profile(p, q, next)?;
                 self.finish(&profile, w, cmd)?;
@@ -94,7 +85,7 @@ impl Interpreter<'_> {
                 // canned cycles): the next move in the plane starts it again.
                 let suspended = self.suspend_comp()?;
                 let profile = self.read_profile(p, q, next)?;
-                if op == GOp::PatternCycle {
+                if op == GOp::Turn(TurnOp::PatternCycle) {
                     self.pattern_repeat(&profile, w, cmd)?;
                 } else {
                     self.rough(op, &profile, w, cmd)?;
@@ -118,13 +109,13 @@ impl Interpreter<'_> {
         self.refuse(w, b"XZD")?;
         let len = |word: Option<Word>| word.map(|x| self.length_mm(&x));
         match op {
-            GOp::RoughTurnCycle | GOp::RoughFaceCycle => {
-                let depth_letter = if op == GOp::RoughTurnCycle {
+            GOp::Turn(TurnOp::RoughTurnCycle) | GOp::Turn(TurnOp::RoughFaceCycle) => {
+                let depth_letter = if op == GOp::Turn(TurnOp::RoughTurnCycle) {
                     b'U'
                 } else {
                     b'W'
                 };
-                let other = if op == GOp::RoughTurnCycle {
+                let other = if op == GOp::Turn(TurnOp::RoughTurnCycle) {
                     b'W'
                 } else {
                     b'U'
@@ -218,7 +209,7 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
         let a = self.here_xz(axes);
-        let across = if op == GOp::RoughTurnCycle {
+        let across = if op == GOp::Turn(TurnOp::RoughTurnCycle) {
             Across::X
         } else {
             Across::Z

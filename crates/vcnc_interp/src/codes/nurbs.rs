@@ -22,6 +22,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::MotionOp;
 use crate::dialect::{GOp, Group};
 use crate::events::{Event, Pos};
 use crate::interpreter::Interpreter;
@@ -47,7 +48,7 @@ impl Interpreter<'_> {
     pub(crate) fn nurbs_block(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let starts = w
             .group(Group::Motion)
-            .is_some_and(|g| g.def.op == GOp::Nurbs);
+            .is_some_and(|g| g.def.op == GOp::Motion(MotionOp::Nurbs));
         if starts {
             self.nurbs_start(w, cmd)?;
         }

@@ -12,7 +12,8 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::dialect::{G10Rules, GOp, OffsetDefault};
+use crate::dialect::SetOp;
+use crate::dialect::{GOp, OffsetDefault};
 use crate::interpreter::Interpreter;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -31,29 +32,20 @@ impl Interpreter<'_> {
     pub(crate) fn set_data(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let rules = self.dialect.g10;
         let l = w.get(b'L').ok_or_else(|| {
-            let forms = match rules {
-                G10Rules::LinuxCnc => "L (1 tool table, 2 work offset, 20 work offset here) and P",
-                _ => "L (2 work offset, 10/11 H geometry/wear, 12/13 D geometry/wear) and P",
+            let forms = if rules.tool_table_l1 {
+                "L (1 tool table, 2 work offset, 20 work offset here) and P"
+            } else {
+                "L (2 work offset, 10/11 H geometry/wear, 12/13 D geometry/wear) and P"
             };
             alarms::needs_word(cmd, "G10", forms)
         })?;
-        let which = match rules {
-            G10Rules::Fanuc => "G10 L is 2, 10, 11, 12 or 13",
-            G10Rules::Grbl => "G10 L is 2, 10, 11, 12, 13 or 20",
-            G10Rules::LinuxCnc => {
-                "G10 L is 1, 2 or 20 (L10/L11, the tool table from the current position, are not run by vcnc)"
-            }
-        };
-        let lowest = if rules == G10Rules::LinuxCnc {
-            1.0
-        } else {
-            2.0
-        };
-        match (rules, whole(&l, b'L', lowest, 20.0, which)?) {
-            (_, 2) => self.set_work_offset(w, cmd, false),
-            (G10Rules::Grbl | G10Rules::LinuxCnc, 20) => self.set_work_offset(w, cmd, true),
-            (G10Rules::Fanuc | G10Rules::Grbl, n @ 10..=13) => self.set_tool_offset(w, cmd, n),
-            (G10Rules::LinuxCnc, 1) => self.set_tool_entry(w, cmd),
+        let which = rules.forms();
+        let lowest = if rules.tool_table_l1 { 1.0 } else { 2.0 };
+        match whole(&l, b'L', lowest, 20.0, which)? {
+            2 => self.set_work_offset(w, cmd, false),
+            20 if rules.from_position_l20 => self.set_work_offset(w, cmd, true),
+            n @ 10..=13 if rules.registers_l10_l13 => self.set_tool_offset(w, cmd, n),
+            1 if rules.tool_table_l1 => self.set_tool_entry(w, cmd),
             _ => Err(alarms::value_out_of_range(l.span, b'L', l.value, which)),
         }
     }
@@ -75,8 +67,8 @@ impl Interpreter<'_> {
             .get(b'P')
             .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
         let rules = self.dialect.g10;
-        let lowest = if rules.l20() { 0.0 } else { 1.0 };
-        let last = rules.last_work_offset();
+        let lowest = if rules.from_position_l20 { 0.0 } else { 1.0 };
+        let last = f64::from(rules.last_work_offset);
         if p.point || !(lowest..=last).contains(&p.value) {
             return Err(alarms::bad_offset_number(p.span, p.value));
         }
@@ -101,7 +93,7 @@ impl Interpreter<'_> {
                     - self.tables.shift.get(i)
                     - s.frame.tool.get(i)
                     - v
-            } else if incremental && rules == G10Rules::Fanuc {
+            } else if incremental && rules.l2_adds_under_g91 {
                 // Fanuc adds under G91; grbl and LinuxCNC set L2's values
                 // as they are.
                 offset.get(i) + v
@@ -233,7 +225,10 @@ impl Interpreter<'_> {
         let values = self.named_values(w);
         // The code's own name for the messages: G92, a Fanuc lathe's G50.
         let name = || {
-            let g = self.dialect.g_for(GOp::PresetOrClamp).unwrap_or(92.0);
+            let g = self
+                .dialect
+                .g_for(GOp::Set(SetOp::PresetOrClamp))
+                .unwrap_or(92.0);
             format!("G{g}")
         };
         if let Some(s) = w.get(b'S') {

@@ -19,7 +19,7 @@
 use super::cycles::{CycleAxes, SAME_MM};
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::GOp;
+use crate::dialect::CycleOp;
 use crate::events::{Feed, Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{Move, MoveKind, Target};
@@ -59,7 +59,12 @@ struct Pocket {
 
 impl Interpreter<'_> {
     /// G78/G79: the whole pocket, or an alarm before any of it moves.
-    pub(crate) fn pocket(&mut self, op: GOp, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+    pub(crate) fn pocket(
+        &mut self,
+        op: CycleOp,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
         let axes = self.cycle_axes(cmd)?;
         // The centre: X/Y absolute, or from where the tool is under G91.
         let goal = self.target(w, self.state.modal.incremental);
@@ -104,14 +109,18 @@ impl Interpreter<'_> {
     /// The pocket's words, checked (§2, §6).
     fn pocket_words(
         &self,
-        op: GOp,
+        op: CycleOp,
         w: &Words<'_>,
         cmd: Span,
         axes: CycleAxes,
         centre: (f64, f64),
     ) -> Result<Pocket, Diagnostic> {
-        let code = if op == GOp::PocketRect { "G78" } else { "G79" };
-        let circle = op == GOp::PocketCircle;
+        let code = if op == CycleOp::PocketRect {
+            "G78"
+        } else {
+            "G79"
+        };
+        let circle = op == CycleOp::PocketCircle;
         if circle {
             for l in [b'J', b'K'] {
                 if let Some(word) = w.get(l) {

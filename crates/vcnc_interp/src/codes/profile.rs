@@ -36,6 +36,7 @@ use crate::codes::corner::corner_cut;
 use crate::codes::lathe_data::CornerKind;
 use crate::codes::rough::Seg;
 use crate::codes::turning_cycles::Xz;
+use crate::dialect::{CompOp, ModeOp, MotionOp, PaceOp};
 use crate::dialect::{GOp, MGroup, bit};
 use crate::flow::first_value;
 use crate::interpreter::Interpreter;
@@ -320,7 +321,7 @@ impl Interpreter<'_> {
         w.fill(self.dialect, self.machine, self.axis_mask)?;
         let mut dwell = false;
         for code in w.once_codes() {
-            if code.def.op != GOp::Dwell {
+            if code.def.op != GOp::Pace(PaceOp::Dwell) {
                 return Err(alarms::profile_word(
                     code.span,
                     "a one-shot G code other than G04",
@@ -333,14 +334,20 @@ impl Interpreter<'_> {
         let mut modes = false;
         for code in w.modal_codes() {
             match code.def.op {
-                GOp::Rapid | GOp::Linear | GOp::ArcCw | GOp::ArcCcw => {
+                GOp::Motion(MotionOp::Rapid)
+                | GOp::Motion(MotionOp::Linear)
+                | GOp::Motion(MotionOp::ArcCw)
+                | GOp::Motion(MotionOp::ArcCcw) => {
                     *motion = Some(code.def.op);
                     span = code.span;
                 }
-                GOp::CompCancel => comp = Some(CompSide::Off),
-                GOp::CompLeft => comp = Some(CompSide::Left),
-                GOp::CompRight => comp = Some(CompSide::Right),
-                GOp::SurfaceSpeed | GOp::SpindleRpm | GOp::PerMinute | GOp::PerRev => {
+                GOp::Comp(CompOp::Cancel) => comp = Some(CompSide::Off),
+                GOp::Comp(CompOp::Left) => comp = Some(CompSide::Left),
+                GOp::Comp(CompOp::Right) => comp = Some(CompSide::Right),
+                GOp::Mode(ModeOp::SurfaceSpeed)
+                | GOp::Mode(ModeOp::SpindleRpm)
+                | GOp::Mode(ModeOp::PerMinute)
+                | GOp::Mode(ModeOp::PerRev) => {
                     modes = true;
                 }
                 _ => return Err(alarms::profile_word(code.span, "this G code")),
@@ -407,7 +414,10 @@ impl Interpreter<'_> {
                 span,
             });
         }
-        let arc = matches!(op, GOp::ArcCw | GOp::ArcCcw);
+        let arc = matches!(
+            op,
+            GOp::Motion(MotionOp::ArcCw) | GOp::Motion(MotionOp::ArcCcw)
+        );
         if arc && comp.is_some() {
             return Err(alarms::comp_arc_startup(span));
         }
@@ -447,7 +457,7 @@ impl Interpreter<'_> {
             (None, Some(r)) => Some((CornerKind::Round(self.length_mm(&r)), r.span)),
             (None, None) => None,
         };
-        if let Some((_, word)) = corner.filter(|_| op != GOp::Linear) {
+        if let Some((_, word)) = corner.filter(|_| op != GOp::Motion(MotionOp::Linear)) {
             return Err(alarms::corner_fault(word, "only a G01 takes ,C or ,R"));
         }
         Ok(Move {
@@ -476,8 +486,11 @@ impl Interpreter<'_> {
             return Ok(None);
         }
         let arc = match (mv.motion, mv.arc) {
-            (Some(op @ (GOp::ArcCw | GOp::ArcCcw)), Some(words)) => {
-                let cw = op == GOp::ArcCw;
+            (
+                Some(op @ (GOp::Motion(MotionOp::ArcCw) | GOp::Motion(MotionOp::ArcCcw))),
+                Some(words),
+            ) => {
+                let cw = op == GOp::Motion(MotionOp::ArcCw);
                 Some((self.profile_center(at, mv.to, words, cw, mv.span)?, cw))
             }
             _ => None,
@@ -488,7 +501,7 @@ impl Interpreter<'_> {
                 to: mv.to,
                 arc,
             },
-            rapid: mv.motion == Some(GOp::Rapid),
+            rapid: mv.motion == Some(GOp::Motion(MotionOp::Rapid)),
             asides: (0, 0),
             comp: None,
             line,

@@ -17,13 +17,16 @@ use crate::alarms;
 use crate::block::convert::{dwell_not_negative, whole};
 use crate::block::words::Words;
 use crate::dialect::{BareReturn, DwellP, GOp};
+use crate::dialect::{CycleOp, FrameOp, MoveOp, PaceOp, SetOp, TurnOp};
 use crate::events::Event;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
 use vcnc_syntax::{Diagnostic, Span};
 
 impl Interpreter<'_> {
-    /// Steps 6 and 7: the code that takes the block's axis words.
+    /// Steps 6 and 7: the code that takes the block's axis words. Each
+    /// role is matched whole: an operation that takes no axis words (its
+    /// table row neither claims nor refuses them) does nothing here.
     pub(crate) fn axis_code(
         &mut self,
         op: GOp,
@@ -31,55 +34,120 @@ impl Interpreter<'_> {
         w: &Words<'_>,
     ) -> Result<(), Diagnostic> {
         match op {
-            GOp::Dwell => self.dwell(w, cmd),
-            GOp::SetData => self.set_data(w, cmd),
-            GOp::PresetOrClamp => self.preset(w, cmd),
-            GOp::LocalSystem => self.local_system(w, cmd),
-            GOp::ScaleOn => self.scale_on(w, cmd),
-            GOp::MirrorOn => self.mirror(w, cmd, true),
-            GOp::MirrorOff => self.mirror(w, cmd, false),
-            GOp::RotateOn => self.rotate_on(w, cmd),
-            GOp::RefReturn => self.reference_return(w, cmd, 1),
-            GOp::RefReturnN => {
+            GOp::Move(m) => self.move_code(m, cmd, w),
+            GOp::Set(s) => self.set_code(s, cmd, w),
+            GOp::Pace(p) => self.pace_code(p, cmd, w),
+            GOp::Frame(f) => self.frame_axis_code(f, cmd, w),
+            GOp::Cycle(c) => self.cycle_axis_code(c, cmd, w),
+            GOp::Turn(t) => self.turn_axis_code(t, cmd, w),
+            // Program flow runs in step 8; the modal roles move by the
+            // modal motion.
+            GOp::Flow(_) | GOp::Motion(_) | GOp::Mode(_) | GOp::Comp(_) => Ok(()),
+        }
+    }
+
+    /// The moves of G28, G29, G30, G53, G31, G38 and the seed lathe's
+    /// G74/G76.
+    fn move_code(&mut self, op: MoveOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match op {
+            MoveOp::RefReturn => self.reference_return(w, cmd, 1),
+            MoveOp::RefReturnN => {
                 let n = match w.get(b'P') {
                     Some(p) => whole(&p, b'P', 1.0, 4.0, "P is a reference point number")?,
                     None => 2,
                 };
                 self.reference_return(w, cmd, n as usize)
             }
-            GOp::RefFrom => self.return_from_reference(w, cmd),
-            GOp::MachineCoords => self.machine_move(w, cmd),
-            GOp::Skip => self.skip(w, cmd),
-            GOp::DwellSeconds => self.dwell_seconds(w),
-            GOp::HighSpeed => self.high_speed(w, cmd),
-            GOp::PathSmoothing => self.path_smoothing(w, cmd),
-            GOp::FeedUp => self.feed_step(1, cmd),
-            GOp::FeedDown => self.feed_step(-1, cmd),
-            GOp::OverrideCancel => {
-                self.set_magnification(100.0);
-                Ok(())
-            }
-            GOp::OverrideSet => self.magnification(w, cmd),
-            GOp::RefXThenZ => self.reference_x_then_z(w, cmd),
-            GOp::ProgramZero => self.program_zero(w, cmd),
-            GOp::StartPoint => {
+            MoveOp::RefFrom => self.return_from_reference(w, cmd),
+            MoveOp::MachineCoords => self.machine_move(w, cmd),
+            MoveOp::Skip => self.skip(w, cmd),
+            MoveOp::RefXThenZ => self.reference_x_then_z(w, cmd),
+            MoveOp::StartPoint => {
                 let to = self.machine.start;
                 self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)
             }
-            GOp::CylinderCycle => self.cylinder_cycle(w, cmd),
-            GOp::ThreadCycle => self.thread_cycle(w, cmd),
-            GOp::PatternCircle | GOp::PatternLine | GOp::PatternArc | GOp::PatternGrid => {
-                self.pattern(op, w, cmd)
+            MoveOp::Probe { must_trip } => self.probe(w, cmd, must_trip),
+        }
+    }
+
+    /// G10, G92, G52 and the seed lathe's G75. G28.1/G30.1 and G92.1
+    /// take no axis words (step 6b).
+    fn set_code(&mut self, op: SetOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match op {
+            SetOp::Data => self.set_data(w, cmd),
+            SetOp::PresetOrClamp => self.preset(w, cmd),
+            SetOp::LocalSystem => self.local_system(w, cmd),
+            SetOp::ProgramZero => self.program_zero(w, cmd),
+            SetOp::RefStore(_) | SetOp::ShiftCancel => Ok(()),
+        }
+    }
+
+    /// The dwells and the settings that read the block's words. G09,
+    /// G187 and EIA's G99 take no axis words.
+    fn pace_code(&mut self, op: PaceOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match op {
+            PaceOp::Dwell => self.dwell(w, cmd),
+            PaceOp::DwellSeconds => self.dwell_seconds(w),
+            PaceOp::DwellOrWait => self.dwell_or_wait(w),
+            PaceOp::DwellP => self.dwell_p(w, cmd),
+            PaceOp::HighSpeed => self.high_speed(w, cmd),
+            PaceOp::PathSmoothing => self.path_smoothing(w, cmd),
+            PaceOp::FeedUp => self.feed_step(1, cmd),
+            PaceOp::FeedDown => self.feed_step(-1, cmd),
+            PaceOp::OverrideCancel => {
+                self.set_magnification(100.0);
+                Ok(())
             }
-            GOp::DwellOrWait => self.dwell_or_wait(w),
-            GOp::DwellP => self.dwell_p(w, cmd),
-            GOp::Probe { must_trip } => self.probe(w, cmd, must_trip),
-            GOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
-            GOp::PocketRect | GOp::PocketCircle => self.pocket(op, w, cmd),
-            GOp::FacePeckCycle => self.peck_cycle(w, cmd, true),
-            GOp::GrooveCycle => self.peck_cycle(w, cmd, false),
-            GOp::ThreadMultiCycle => self.thread_cycle_multi(w, cmd),
-            _ => Ok(()),
+            PaceOp::OverrideSet => self.magnification(w, cmd),
+            PaceOp::ExactStopOnce | PaceOp::Smoothing | PaceOp::Junction => Ok(()),
+        }
+    }
+
+    /// G51, G51.1/G50.1, G68 and G43.1, which read the axis words as
+    /// their data; the other frame codes take none (step 6).
+    fn frame_axis_code(&mut self, op: FrameOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match op {
+            FrameOp::ScaleOn => self.scale_on(w, cmd),
+            FrameOp::MirrorOn => self.mirror(w, cmd, true),
+            FrameOp::MirrorOff => self.mirror(w, cmd, false),
+            FrameOp::RotateOn => self.rotate_on(w, cmd),
+            FrameOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
+            FrameOp::ToolLengthPlus
+            | FrameOp::ToolLengthMinus
+            | FrameOp::ToolLengthCancel
+            | FrameOp::PolarOn
+            | FrameOp::PolarOff
+            | FrameOp::ScaleOff
+            | FrameOp::RotateOff => Ok(()),
+        }
+    }
+
+    /// The hole patterns and pockets; the drilling cycles are modal (the
+    /// modal motion drills) and G80 takes no axis words.
+    fn cycle_axis_code(&mut self, op: CycleOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match op {
+            CycleOp::PatternCircle
+            | CycleOp::PatternLine
+            | CycleOp::PatternArc
+            | CycleOp::PatternGrid => self.pattern(op, w, cmd),
+            CycleOp::PocketRect | CycleOp::PocketCircle => self.pocket(op, w, cmd),
+            CycleOp::Drill(..) | CycleOp::Cancel => Ok(()),
+        }
+    }
+
+    /// The lathes' one-block cycles; G70–G73 read their profile from the
+    /// program text instead (`profile_cycle`).
+    fn turn_axis_code(&mut self, op: TurnOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
+        match op {
+            TurnOp::CylinderCycle => self.cylinder_cycle(w, cmd),
+            TurnOp::ThreadCycle => self.thread_cycle(w, cmd),
+            TurnOp::FacePeckCycle => self.peck_cycle(w, cmd, true),
+            TurnOp::GrooveCycle => self.peck_cycle(w, cmd, false),
+            TurnOp::ThreadMultiCycle => self.thread_cycle_multi(w, cmd),
+            TurnOp::FinishCycle
+            | TurnOp::RoughTurnCycle
+            | TurnOp::RoughFaceCycle
+            | TurnOp::PatternCycle => Ok(()),
         }
     }
 

@@ -17,6 +17,7 @@
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::FrameOp;
 use crate::dialect::{GOp, Group, OffsetDefault};
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
@@ -30,7 +31,7 @@ impl Interpreter<'_> {
     /// offset changed (the block then moves Z if nothing else moves it).
     pub(crate) fn frame_codes(&mut self, w: &Words<'_>) -> Result<bool, Diagnostic> {
         if let Some(p) = w.group(Group::Polar) {
-            let on = p.def.op == GOp::PolarOn;
+            let on = p.def.op == GOp::Frame(FrameOp::PolarOn);
             if on && !self.state.modal.polar {
                 // Incremental polar moves start from where the tool is.
                 self.state.modal.polar = true;
@@ -40,7 +41,7 @@ impl Interpreter<'_> {
         }
         if let Some(g) = w
             .group(Group::Scaling)
-            .filter(|g| g.def.op == GOp::ScaleOff)
+            .filter(|g| g.def.op == GOp::Frame(FrameOp::ScaleOff))
         {
             let next = self.tables.transforms.without(&Transform::Scale {
                 factor: [1.0; 3],
@@ -50,7 +51,7 @@ impl Interpreter<'_> {
         }
         if let Some(g) = w
             .group(Group::Rotation)
-            .filter(|g| g.def.op == GOp::RotateOff)
+            .filter(|g| g.def.op == GOp::Frame(FrameOp::RotateOff))
         {
             let next = self.tables.transforms.without(&Transform::Rotate {
                 plane: crate::events::Plane::Xy,
@@ -76,13 +77,13 @@ impl Interpreter<'_> {
         if code.is_none() && h.is_none() {
             return Ok(false);
         }
-        if code.is_some_and(|c| c.def.op == GOp::ToolLengthDynamic) {
+        if code.is_some_and(|c| c.def.op == GOp::Frame(FrameOp::ToolLengthDynamic)) {
             // G43.1 takes its value from the axis words (refs.rs dispatch).
             return Ok(false);
         }
         let mode = match code.map(|c| c.def.op) {
-            Some(GOp::ToolLengthPlus) => ToolLength::Plus,
-            Some(GOp::ToolLengthMinus) => ToolLength::Minus,
+            Some(GOp::Frame(FrameOp::ToolLengthPlus)) => ToolLength::Plus,
+            Some(GOp::Frame(FrameOp::ToolLengthMinus)) => ToolLength::Minus,
             Some(_) => ToolLength::Off,
             None => self.state.modal.tool_length,
         };

@@ -7,8 +7,9 @@
 use super::{
     BareReturn, CYCLE_WORDS, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
     GRow, Group, IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
-    ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
+    ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
+use super::{CompOp, CycleOp, Hole, ModeOp, MotionOp, PaceOp, SetOp};
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{LexRules, Semicolon};
@@ -23,37 +24,77 @@ const POCKET: u32 =
     bit(b'I') | bit(b'J') | bit(b'K') | bit(b'R') | bit(b'Q') | bit(b'P') | bit(b'E');
 
 const EIA_G: &[GRow] = &[
-    g(0, GOp::Rapid, Group::Motion),
-    g(10, GOp::Linear, Group::Motion),
-    g(20, GOp::ArcCw, Group::Motion),
-    g(30, GOp::ArcCcw, Group::Motion),
-    g(40, GOp::DwellOrWait, Group::NonModal)
+    g(0, GOp::Motion(MotionOp::Rapid), Group::Motion),
+    g(10, GOp::Motion(MotionOp::Linear), Group::Motion),
+    g(20, GOp::Motion(MotionOp::ArcCw), Group::Motion),
+    g(30, GOp::Motion(MotionOp::ArcCcw), Group::Motion),
+    g(40, GOp::Pace(PaceOp::DwellOrWait), Group::NonModal)
         .reads(bit(b'P'))
         .refuses_axes(),
-    g(400, GOp::CompCancel, Group::CutterComp),
-    g(410, GOp::CompLeft, Group::CutterComp).reads(bit(b'D')),
-    g(420, GOp::CompRight, Group::CutterComp).reads(bit(b'D')),
-    g(700, GOp::Inch, Group::Units),
-    g(710, GOp::Metric, Group::Units),
-    g(780, GOp::PocketRect, Group::NonModal)
+    g(400, GOp::Comp(CompOp::Cancel), Group::CutterComp),
+    g(410, GOp::Comp(CompOp::Left), Group::CutterComp).reads(bit(b'D')),
+    g(420, GOp::Comp(CompOp::Right), Group::CutterComp).reads(bit(b'D')),
+    g(700, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(710, GOp::Mode(ModeOp::Metric), Group::Units),
+    g(780, GOp::Cycle(CycleOp::PocketRect), Group::NonModal)
         .reads(POCKET)
         .claims_axes(),
-    g(790, GOp::PocketCircle, Group::NonModal)
+    g(790, GOp::Cycle(CycleOp::PocketCircle), Group::NonModal)
         .reads(POCKET)
         .claims_axes(),
-    g(800, GOp::CycleCancel, Group::Cycle),
-    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(DRILL),
-    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(DRILL),
-    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(DRILL),
-    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(DRILL),
-    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(DRILL),
-    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(DRILL),
-    g(870, GOp::Cycle(Cycle::G87), Group::Cycle).reads(DRILL),
-    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(DRILL),
-    g(900, GOp::Absolute, Group::Distance),
-    g(910, GOp::Incremental, Group::Distance),
-    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
-    g(990, GOp::Junction, Group::NonModal),
+    g(800, GOp::Cycle(CycleOp::Cancel), Group::Cycle),
+    g(
+        810,
+        GOp::Cycle(CycleOp::Drill(Cycle::G81, Hole::Drill)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        820,
+        GOp::Cycle(CycleOp::Drill(Cycle::G82, Hole::DrillDwell)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        830,
+        GOp::Cycle(CycleOp::Drill(Cycle::G83, Hole::DeepPeck)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        840,
+        GOp::Cycle(CycleOp::Drill(Cycle::G84, Hole::TapEitherWay)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        850,
+        GOp::Cycle(CycleOp::Drill(Cycle::G85, Hole::Bore)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        860,
+        GOp::Cycle(CycleOp::Drill(Cycle::G86, Hole::BoreWaitStart)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        870,
+        GOp::Cycle(CycleOp::Drill(Cycle::G87, Hole::ChipBreak)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(
+        890,
+        GOp::Cycle(CycleOp::Drill(Cycle::G89, Hole::BoreDwell)),
+        Group::Cycle,
+    )
+    .reads(DRILL),
+    g(900, GOp::Mode(ModeOp::Absolute), Group::Distance),
+    g(910, GOp::Mode(ModeOp::Incremental), Group::Distance),
+    g(920, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
+    g(990, GOp::Pace(PaceOp::Junction), Group::NonModal),
 ];
 
 /// RS-274-D reading: no `//` comments, no full-width `；` (Syntec habits).
@@ -70,7 +111,7 @@ const EIA_LEX: LexRules = LexRules {
 pub(super) fn eia() -> Dialect {
     // The drilling words are the shared cycle words without K.
     debug_assert_eq!(DRILL, CYCLE_WORDS & !bit(b'K'));
-    let (g, m) = Dialect::tables(&[EIA_G], MILL_M);
+    let (g, m) = Dialect::tables(&[EIA_G], super::m_codes::MILL);
     Dialect {
         name: "eia",
         lex: EIA_LEX,
@@ -88,9 +129,9 @@ pub(super) fn eia() -> Dialect {
         default_machine: DEFAULT_MILL_TOML,
         unsupported: &[],
         rapid: RapidPath::ZPriority,
-        cycles: CycleRules::Eia,
+        cycles: CycleRules::EIA,
         bare_return: BareReturn::NeedsAxes,
-        g10: G10Rules::Fanuc,
+        g10: G10Rules::FANUC,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
         offset_default: OffsetDefault::Modal,

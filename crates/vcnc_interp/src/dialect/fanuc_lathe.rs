@@ -20,8 +20,12 @@
 
 use super::{
     AxisWords, BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp,
-    GRow, Group, IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
+    GRow, Group, IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn,
+    ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
+};
+use super::{
+    CompOp, CycleOp, FlowOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp,
+    m_codes::{self, MRow},
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_FANUC_LATHE_TOML;
@@ -42,92 +46,80 @@ const ONE_BLOCK_THREAD: u32 = bit(b'K') | bit(b'D') | bit(b'I') | bit(b'A');
 
 const FANUC_LATHE_G: &[GRow] = &[
     // Custom Macro B calls, as on the mill: every letter is an argument.
-    g(650, GOp::MacroCall, Group::NonModal)
+    g(650, GOp::Flow(FlowOp::MacroCall), Group::NonModal)
         .reads(super::mill::ALL_LETTERS)
         .refuses_axes(),
-    g(660, GOp::MacroModal, Group::MacroModal)
+    g(660, GOp::Flow(FlowOp::MacroModal), Group::MacroModal)
         .reads(super::mill::ALL_LETTERS)
         .refuses_axes(),
-    g(670, GOp::MacroModalCancel, Group::MacroModal),
-    g(0, GOp::Rapid, Group::Motion),
-    g(10, GOp::Linear, Group::Motion),
-    g(20, GOp::ArcCw, Group::Motion),
-    g(30, GOp::ArcCcw, Group::Motion),
+    g(670, GOp::Flow(FlowOp::MacroModalCancel), Group::MacroModal),
+    g(0, GOp::Motion(MotionOp::Rapid), Group::Motion),
+    g(10, GOp::Motion(MotionOp::Linear), Group::Motion),
+    g(20, GOp::Motion(MotionOp::ArcCw), Group::Motion),
+    g(30, GOp::Motion(MotionOp::ArcCcw), Group::Motion),
     // G04 X/U seconds (milliseconds without a point), P milliseconds.
-    g(40, GOp::Dwell, Group::NonModal)
+    g(40, GOp::Pace(PaceOp::Dwell), Group::NonModal)
         .reads(bit(b'P') | bit(b'X') | bit(b'U'))
         .refuses_axes(),
-    g(180, GOp::PlaneZx, Group::Plane),
-    g(200, GOp::Inch, Group::Units),
-    g(210, GOp::Metric, Group::Units),
-    g(280, GOp::RefReturn, Group::NonModal).claims_axes(),
-    g(300, GOp::RefReturnN, Group::NonModal)
+    g(180, GOp::Mode(ModeOp::PlaneZx), Group::Plane),
+    g(200, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(210, GOp::Mode(ModeOp::Metric), Group::Units),
+    g(280, GOp::Move(MoveOp::RefReturn), Group::NonModal).claims_axes(),
+    g(300, GOp::Move(MoveOp::RefReturnN), Group::NonModal)
         .reads(bit(b'P'))
         .claims_axes(),
     // G32: lead F in program units (mm or inch), like the mill's G33.
-    g(320, GOp::Thread, Group::Motion),
-    g(400, GOp::CompCancel, Group::CutterComp),
-    g(410, GOp::CompLeft, Group::CutterComp),
-    g(420, GOp::CompRight, Group::CutterComp),
-    g(500, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
-    g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
-    g(540, GOp::WorkSystem(0), Group::Wcs),
-    g(550, GOp::WorkSystem(1), Group::Wcs),
-    g(560, GOp::WorkSystem(2), Group::Wcs),
-    g(570, GOp::WorkSystem(3), Group::Wcs),
-    g(580, GOp::WorkSystem(4), Group::Wcs),
-    g(590, GOp::WorkSystem(5), Group::Wcs),
-    g(700, GOp::FinishCycle, Group::NonModal)
+    g(320, GOp::Motion(MotionOp::Thread), Group::Motion),
+    g(400, GOp::Comp(CompOp::Cancel), Group::CutterComp),
+    g(410, GOp::Comp(CompOp::Left), Group::CutterComp),
+    g(420, GOp::Comp(CompOp::Right), Group::CutterComp),
+    g(500, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
+    g(530, GOp::Move(MoveOp::MachineCoords), Group::NonModal).claims_absolute_axes(),
+    g(540, GOp::Mode(ModeOp::WorkSystem(0)), Group::Wcs),
+    g(550, GOp::Mode(ModeOp::WorkSystem(1)), Group::Wcs),
+    g(560, GOp::Mode(ModeOp::WorkSystem(2)), Group::Wcs),
+    g(570, GOp::Mode(ModeOp::WorkSystem(3)), Group::Wcs),
+    g(580, GOp::Mode(ModeOp::WorkSystem(4)), Group::Wcs),
+    g(590, GOp::Mode(ModeOp::WorkSystem(5)), Group::Wcs),
+    g(700, GOp::Turn(TurnOp::FinishCycle), Group::NonModal)
         .reads(bit(b'P') | bit(b'Q'))
         .claims_axes(),
-    g(710, GOp::RoughTurnCycle, Group::NonModal)
+    g(710, GOp::Turn(TurnOp::RoughTurnCycle), Group::NonModal)
         .reads(MRC | bit(b'D'))
         .claims_axes(),
-    g(720, GOp::RoughFaceCycle, Group::NonModal)
+    g(720, GOp::Turn(TurnOp::RoughFaceCycle), Group::NonModal)
         .reads(MRC | bit(b'D'))
         .claims_axes(),
-    g(730, GOp::PatternCycle, Group::NonModal)
+    g(730, GOp::Turn(TurnOp::PatternCycle), Group::NonModal)
         .reads(MRC)
         .claims_axes(),
-    g(740, GOp::FacePeckCycle, Group::NonModal)
+    g(740, GOp::Turn(TurnOp::FacePeckCycle), Group::NonModal)
         .reads(MRC | ONE_BLOCK_PECK)
         .claims_axes(),
-    g(750, GOp::GrooveCycle, Group::NonModal)
+    g(750, GOp::Turn(TurnOp::GrooveCycle), Group::NonModal)
         .reads(MRC | ONE_BLOCK_PECK)
         .claims_axes(),
     // G76's F is the lead, not a feed.
-    g(760, GOp::ThreadMultiCycle, Group::NonModal)
+    g(760, GOp::Turn(TurnOp::ThreadMultiCycle), Group::NonModal)
         .reads(MRC | ONE_BLOCK_THREAD | bit(b'F'))
         .claims_axes(),
-    g(800, GOp::CycleCancel, Group::Cycle),
-    g(900, GOp::TurnCycle, Group::Motion),
-    g(920, GOp::ThreadingCycle, Group::Motion),
-    g(940, GOp::FaceCycle, Group::Motion),
-    g(960, GOp::SurfaceSpeed, Group::SpindleMode),
-    g(970, GOp::SpindleRpm, Group::SpindleMode),
-    g(980, GOp::PerMinute, Group::FeedMode),
-    g(990, GOp::PerRev, Group::FeedMode),
+    g(800, GOp::Cycle(CycleOp::Cancel), Group::Cycle),
+    g(900, GOp::Motion(MotionOp::TurnCycle), Group::Motion),
+    g(920, GOp::Motion(MotionOp::ThreadingCycle), Group::Motion),
+    g(940, GOp::Motion(MotionOp::FaceCycle), Group::Motion),
+    g(960, GOp::Mode(ModeOp::SurfaceSpeed), Group::SpindleMode),
+    g(970, GOp::Mode(ModeOp::SpindleRpm), Group::SpindleMode),
+    g(980, GOp::Mode(ModeOp::PerMinute), Group::FeedMode),
+    g(990, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
 ];
 
 /// Fanuc lathe M codes: the mill's without M06 (a T word indexes the
 /// turret) and without M19 (spindle orientation is the builder's).
-const FANUC_LATHE_M: &[MRow] = &[
-    (0, MOp::Stop, MGroup::Flow, 0),
-    (1, MOp::OptionalStop, MGroup::Flow, 0),
-    (2, MOp::End, MGroup::Flow, 0),
-    (3, MOp::SpindleCw, MGroup::Spindle, 0),
-    (4, MOp::SpindleCcw, MGroup::Spindle, 0),
-    (5, MOp::SpindleStop, MGroup::Spindle, 0),
-    (8, MOp::CoolantOn, MGroup::Coolant, 0),
-    (9, MOp::CoolantOff, MGroup::Coolant, 0),
-    (30, MOp::EndRewind, MGroup::Flow, 0),
-    (
-        98,
-        MOp::Call,
-        MGroup::Flow,
-        bit(b'P') | bit(b'H') | bit(b'L'),
-    ),
-    (99, MOp::Return, MGroup::Flow, bit(b'P')),
+const FANUC_LATHE_M: &[&[MRow]] = &[
+    m_codes::PROGRAM_END,
+    m_codes::SPINDLE,
+    m_codes::COOLANT,
+    m_codes::SUBPROGRAMS,
 ];
 
 /// `;` ends a block (Fanuc's EOB); `,C`/`,R` are chamfer and corner R; `:`
@@ -190,10 +182,10 @@ pub(super) fn fanuc_lathe() -> Dialect {
         default_machine: DEFAULT_FANUC_LATHE_TOML,
         unsupported: NOT_RUN,
         rapid: RapidPath::ByParameter,
-        cycles: CycleRules::Fanuc,
+        cycles: CycleRules::FANUC,
         // Haas lathes send every axis home on a bare G28.
         bare_return: BareReturn::AllAxes,
-        g10: G10Rules::Fanuc,
+        g10: G10Rules::FANUC,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         // A T word's offset applies at the next move.
         tool_length_change: ToolLengthChange::AtNextMove,

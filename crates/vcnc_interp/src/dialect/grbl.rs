@@ -8,79 +8,108 @@
 
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
-    IntegerWords, LongChord, MGroup, MOp, MRow, OffsetDefault, ProgramStop, RapidPath,
-    SurfaceSpeedOn, ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
+    IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ThreadLead,
+    ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
+};
+use super::{
+    CompOp, CycleOp, FrameOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp,
+    m_codes::{self, MRow},
 };
 use crate::events::Plane;
 use crate::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{LexRules, Semicolon};
 
 pub(super) const GRBL_G: &[GRow] = &[
-    g(0, GOp::Rapid, Group::Motion),
-    g(10, GOp::Linear, Group::Motion),
-    g(20, GOp::ArcCw, Group::Motion),
-    g(30, GOp::ArcCcw, Group::Motion),
-    g(40, GOp::DwellP, Group::NonModal)
+    g(0, GOp::Motion(MotionOp::Rapid), Group::Motion),
+    g(10, GOp::Motion(MotionOp::Linear), Group::Motion),
+    g(20, GOp::Motion(MotionOp::ArcCw), Group::Motion),
+    g(30, GOp::Motion(MotionOp::ArcCcw), Group::Motion),
+    g(40, GOp::Pace(PaceOp::DwellP), Group::NonModal)
         .reads(bit(b'P'))
         .refuses_axes(),
-    g(100, GOp::SetData, Group::NonModal)
+    g(100, GOp::Set(SetOp::Data), Group::NonModal)
         .reads(bit(b'L') | bit(b'P'))
         .claims_absolute_axes(),
-    g(170, GOp::PlaneXy, Group::Plane),
-    g(180, GOp::PlaneZx, Group::Plane),
-    g(190, GOp::PlaneYz, Group::Plane),
-    g(200, GOp::Inch, Group::Units),
-    g(210, GOp::Metric, Group::Units),
-    g(280, GOp::RefReturn, Group::NonModal).claims_axes(),
-    g(281, GOp::RefStore(1), Group::NonModal),
-    g(300, GOp::RefReturnN, Group::NonModal).claims_axes(),
-    g(301, GOp::RefStore(2), Group::NonModal),
+    g(170, GOp::Mode(ModeOp::PlaneXy), Group::Plane),
+    g(180, GOp::Mode(ModeOp::PlaneZx), Group::Plane),
+    g(190, GOp::Mode(ModeOp::PlaneYz), Group::Plane),
+    g(200, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(210, GOp::Mode(ModeOp::Metric), Group::Units),
+    g(280, GOp::Move(MoveOp::RefReturn), Group::NonModal).claims_axes(),
+    g(281, GOp::Set(SetOp::RefStore(1)), Group::NonModal),
+    g(300, GOp::Move(MoveOp::RefReturnN), Group::NonModal).claims_axes(),
+    g(301, GOp::Set(SetOp::RefStore(2)), Group::NonModal),
     // G38.2/G38.3 probe toward the work, G38.4/G38.5 away from it.
-    g(382, GOp::Probe { must_trip: true }, Group::NonModal).claims_axes(),
-    g(383, GOp::Probe { must_trip: false }, Group::NonModal).claims_axes(),
-    g(384, GOp::Probe { must_trip: true }, Group::NonModal).claims_axes(),
-    g(385, GOp::Probe { must_trip: false }, Group::NonModal).claims_axes(),
-    g(400, GOp::CompCancel, Group::CutterComp),
-    g(431, GOp::ToolLengthDynamic, Group::ToolLength).claims_absolute_axes(),
-    g(490, GOp::ToolLengthCancel, Group::ToolLength),
-    g(530, GOp::MachineCoords, Group::NonModal).claims_absolute_axes(),
-    g(540, GOp::WorkSystem(0), Group::Wcs),
-    g(550, GOp::WorkSystem(1), Group::Wcs),
-    g(560, GOp::WorkSystem(2), Group::Wcs),
-    g(570, GOp::WorkSystem(3), Group::Wcs),
-    g(580, GOp::WorkSystem(4), Group::Wcs),
-    g(590, GOp::WorkSystem(5), Group::Wcs),
-    g(610, GOp::PathExact, Group::Path),
+    g(
+        382,
+        GOp::Move(MoveOp::Probe { must_trip: true }),
+        Group::NonModal,
+    )
+    .claims_axes(),
+    g(
+        383,
+        GOp::Move(MoveOp::Probe { must_trip: false }),
+        Group::NonModal,
+    )
+    .claims_axes(),
+    g(
+        384,
+        GOp::Move(MoveOp::Probe { must_trip: true }),
+        Group::NonModal,
+    )
+    .claims_axes(),
+    g(
+        385,
+        GOp::Move(MoveOp::Probe { must_trip: false }),
+        Group::NonModal,
+    )
+    .claims_axes(),
+    g(400, GOp::Comp(CompOp::Cancel), Group::CutterComp),
+    g(
+        431,
+        GOp::Frame(FrameOp::ToolLengthDynamic),
+        Group::ToolLength,
+    )
+    .claims_absolute_axes(),
+    g(
+        490,
+        GOp::Frame(FrameOp::ToolLengthCancel),
+        Group::ToolLength,
+    ),
+    g(530, GOp::Move(MoveOp::MachineCoords), Group::NonModal).claims_absolute_axes(),
+    g(540, GOp::Mode(ModeOp::WorkSystem(0)), Group::Wcs),
+    g(550, GOp::Mode(ModeOp::WorkSystem(1)), Group::Wcs),
+    g(560, GOp::Mode(ModeOp::WorkSystem(2)), Group::Wcs),
+    g(570, GOp::Mode(ModeOp::WorkSystem(3)), Group::Wcs),
+    g(580, GOp::Mode(ModeOp::WorkSystem(4)), Group::Wcs),
+    g(590, GOp::Mode(ModeOp::WorkSystem(5)), Group::Wcs),
+    g(610, GOp::Mode(ModeOp::PathExact), Group::Path),
     // LinuxCNC's blending tolerances P (path) and Q (naive CAM), for the
     // planner to read one day; accepted as LinuxCNC-minded posts write them.
-    g(640, GOp::PathCutting, Group::Path).reads(bit(b'P') | bit(b'Q')),
+    g(640, GOp::Mode(ModeOp::PathCutting), Group::Path).reads(bit(b'P') | bit(b'Q')),
     // grbl's G80 cancels the motion mode; with no canned cycles it asks
     // for nothing (a safe-start line's G80 runs).
-    g(800, GOp::CycleCancel, Group::Cycle),
-    g(900, GOp::Absolute, Group::Distance),
-    g(901, GOp::ArcCentersAbsolute, Group::ArcDistance),
-    g(910, GOp::Incremental, Group::Distance),
-    g(911, GOp::ArcCentersIncremental, Group::ArcDistance),
-    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
-    g(921, GOp::ShiftCancel, Group::NonModal),
-    g(930, GOp::InverseTime, Group::FeedMode),
-    g(940, GOp::PerMinute, Group::FeedMode),
+    g(800, GOp::Cycle(CycleOp::Cancel), Group::Cycle),
+    g(900, GOp::Mode(ModeOp::Absolute), Group::Distance),
+    g(
+        901,
+        GOp::Mode(ModeOp::ArcCentersAbsolute),
+        Group::ArcDistance,
+    ),
+    g(910, GOp::Mode(ModeOp::Incremental), Group::Distance),
+    g(
+        911,
+        GOp::Mode(ModeOp::ArcCentersIncremental),
+        Group::ArcDistance,
+    ),
+    g(920, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
+    g(921, GOp::Set(SetOp::ShiftCancel), Group::NonModal),
+    g(930, GOp::Mode(ModeOp::InverseTime), Group::FeedMode),
+    g(940, GOp::Mode(ModeOp::PerMinute), Group::FeedMode),
 ];
 
 /// grbl's M codes; M07 is mist coolant, reported as coolant on.
-pub(super) const GRBL_M: &[MRow] = &[
-    (0, MOp::Stop, MGroup::Flow, 0),
-    (1, MOp::OptionalStop, MGroup::Flow, 0),
-    (2, MOp::End, MGroup::Flow, 0),
-    (3, MOp::SpindleCw, MGroup::Spindle, 0),
-    (4, MOp::SpindleCcw, MGroup::Spindle, 0),
-    (5, MOp::SpindleStop, MGroup::Spindle, 0),
-    (6, MOp::ToolChange, MGroup::Tool, 0),
-    (7, MOp::CoolantOn, MGroup::Coolant, 0),
-    (8, MOp::CoolantOn, MGroup::Coolant, 0),
-    (9, MOp::CoolantOff, MGroup::Coolant, 0),
-    (30, MOp::EndRewind, MGroup::Flow, 0),
-];
+pub(super) const GRBL_M: &[&[MRow]] = m_codes::GRBL;
 
 /// `;` starts a comment; no `//` comments, no full-width `；`.
 const GRBL_LEX: LexRules = LexRules {
@@ -113,9 +142,9 @@ pub(super) fn grbl() -> Dialect {
         default_machine: DEFAULT_MILL_TOML,
         unsupported: &[],
         rapid: RapidPath::ByParameter,
-        cycles: CycleRules::Fanuc,
+        cycles: CycleRules::FANUC,
         bare_return: BareReturn::AllAxes,
-        g10: G10Rules::Grbl,
+        g10: G10Rules::GRBL,
         program_stop: ProgramStop::Pause,
         tool_length_change: ToolLengthChange::AtNextMove,
         offset_default: OffsetDefault::Modal,

@@ -8,76 +8,81 @@
 use super::{
     BareReturn, CycleRules, Dialect, Diameter, DwellP, FeedAtPowerOn, G10Rules, GOp, GRow, Group,
     IntegerWords, LongChord, OffsetDefault, ProgramStop, RapidPath, SurfaceSpeedOn, ThreadLead,
-    ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g, mill::MILL_M,
+    ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
+use super::{FlowOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp};
 use crate::events::Plane;
 use crate::machine::DEFAULT_LATHE_TOML;
 use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 const LATHE_G: &[GRow] = &[
-    g(0, GOp::Rapid, Group::Motion),
-    g(10, GOp::Linear, Group::Motion),
-    g(20, GOp::ArcCw, Group::Motion),
-    g(30, GOp::ArcCcw, Group::Motion),
-    g(40, GOp::DwellSeconds, Group::NonModal)
+    g(0, GOp::Motion(MotionOp::Rapid), Group::Motion),
+    g(10, GOp::Motion(MotionOp::Linear), Group::Motion),
+    g(20, GOp::Motion(MotionOp::ArcCw), Group::Motion),
+    g(30, GOp::Motion(MotionOp::ArcCcw), Group::Motion),
+    g(40, GOp::Pace(PaceOp::DwellSeconds), Group::NonModal)
         .reads(bit(b'F') | bit(b'K'))
         .refuses_axes(),
-    g(50, GOp::ThreePointArc, Group::Motion),
-    g(80, GOp::FeedUp, Group::NonModal).refuses_axes().alone(),
-    g(90, GOp::FeedDown, Group::NonModal).refuses_axes().alone(),
-    g(200, GOp::SubCall, Group::NonModal)
+    g(50, GOp::Motion(MotionOp::ThreePointArc), Group::Motion),
+    g(80, GOp::Pace(PaceOp::FeedUp), Group::NonModal)
+        .refuses_axes()
+        .alone(),
+    g(90, GOp::Pace(PaceOp::FeedDown), Group::NonModal)
+        .refuses_axes()
+        .alone(),
+    g(200, GOp::Flow(FlowOp::SubCall), Group::NonModal)
         .reads(bit(b'L'))
         .refuses_axes()
         .alone(),
-    g(220, GOp::RadiusMode, Group::DiameterMode).alone(),
-    g(2200, GOp::RadiusMode, Group::DiameterMode).alone(),
-    g(230, GOp::DiameterMode, Group::DiameterMode).alone(),
-    g(2300, GOp::DiameterMode, Group::DiameterMode).alone(),
-    g(240, GOp::SubReturn, Group::NonModal)
+    g(220, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode).alone(),
+    g(2200, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode).alone(),
+    g(230, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode).alone(),
+    g(2300, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode).alone(),
+    g(240, GOp::Flow(FlowOp::SubReturn), Group::NonModal)
         .refuses_axes()
         .alone(),
-    g(250, GOp::Jump, Group::NonModal)
+    g(250, GOp::Flow(FlowOp::Jump), Group::NonModal)
         .reads(bit(b'L'))
         .refuses_axes(),
-    g(260, GOp::Loop, Group::NonModal)
+    g(260, GOp::Flow(FlowOp::Loop), Group::NonModal)
         .reads(bit(b'L') | bit(b'Q'))
         .refuses_axes(),
-    g(300, GOp::OverrideCancel, Group::NonModal)
+    g(300, GOp::Pace(PaceOp::OverrideCancel), Group::NonModal)
         .refuses_axes()
         .alone(),
-    g(310, GOp::OverrideSet, Group::NonModal)
+    g(310, GOp::Pace(PaceOp::OverrideSet), Group::NonModal)
         .reads(bit(b'F'))
         .refuses_axes(),
-    g(320, GOp::ThreadInch, Group::Motion),
-    g(330, GOp::Thread, Group::Motion),
-    g(530, GOp::CancelOffsets, Group::Wcs),
-    g(5000, GOp::CancelOffsets, Group::Wcs),
-    g(540, GOp::WorkSystem(0), Group::Wcs),
-    g(550, GOp::WorkSystem(1), Group::Wcs),
-    g(560, GOp::WorkSystem(2), Group::Wcs),
-    g(570, GOp::WorkSystem(3), Group::Wcs),
-    g(580, GOp::WorkSystem(4), Group::Wcs),
-    g(590, GOp::WorkSystem(5), Group::Wcs),
-    g(600, GOp::PathExact, Group::Path),
-    g(640, GOp::PathCutting, Group::Path),
-    g(700, GOp::Inch, Group::Units),
-    g(710, GOp::Metric, Group::Units),
-    g(740, GOp::RefXThenZ, Group::NonModal)
+    g(320, GOp::Motion(MotionOp::ThreadInch), Group::Motion),
+    g(330, GOp::Motion(MotionOp::Thread), Group::Motion),
+    g(530, GOp::Mode(ModeOp::CancelOffsets), Group::Wcs),
+    g(5000, GOp::Mode(ModeOp::CancelOffsets), Group::Wcs),
+    g(540, GOp::Mode(ModeOp::WorkSystem(0)), Group::Wcs),
+    g(550, GOp::Mode(ModeOp::WorkSystem(1)), Group::Wcs),
+    g(560, GOp::Mode(ModeOp::WorkSystem(2)), Group::Wcs),
+    g(570, GOp::Mode(ModeOp::WorkSystem(3)), Group::Wcs),
+    g(580, GOp::Mode(ModeOp::WorkSystem(4)), Group::Wcs),
+    g(590, GOp::Mode(ModeOp::WorkSystem(5)), Group::Wcs),
+    g(600, GOp::Mode(ModeOp::PathExact), Group::Path),
+    g(640, GOp::Mode(ModeOp::PathCutting), Group::Path),
+    g(700, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(710, GOp::Mode(ModeOp::Metric), Group::Units),
+    g(740, GOp::Move(MoveOp::RefXThenZ), Group::NonModal)
         .claims_axes()
         .alone(),
-    g(750, GOp::ProgramZero, Group::NonModal).claims_axes(),
-    g(760, GOp::StartPoint, Group::NonModal).refuses_axes(),
-    g(810, GOp::CylinderCycle, Group::NonModal)
+    g(750, GOp::Set(SetOp::ProgramZero), Group::NonModal).claims_axes(),
+    g(760, GOp::Move(MoveOp::StartPoint), Group::NonModal).refuses_axes(),
+    g(810, GOp::Turn(TurnOp::CylinderCycle), Group::NonModal)
         .reads(bit(b'R') | bit(b'I') | bit(b'K'))
         .claims_axes(),
-    g(3310, GOp::ThreadCycle, Group::NonModal)
+    g(3310, GOp::Turn(TurnOp::ThreadCycle), Group::NonModal)
         .reads(bit(b'I') | bit(b'K') | bit(b'R') | bit(b'P'))
         .claims_axes(),
-    g(900, GOp::Absolute, Group::Distance),
-    g(910, GOp::Incremental, Group::Distance),
-    g(920, GOp::PresetOrClamp, Group::NonModal).claims_absolute_axes(),
-    g(940, GOp::PerMinute, Group::FeedMode),
-    g(950, GOp::PerRev, Group::FeedMode),
+    g(900, GOp::Mode(ModeOp::Absolute), Group::Distance),
+    g(910, GOp::Mode(ModeOp::Incremental), Group::Distance),
+    g(920, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
+    g(940, GOp::Mode(ModeOp::PerMinute), Group::FeedMode),
+    g(950, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
 ];
 
 const LATHE_LEX: LexRules = LexRules {
@@ -102,7 +107,7 @@ const UNSPECIFIED: &[(u16, &str)] = &[(
 
 /// The lathe dialect.
 pub(super) fn lathe() -> Dialect {
-    let (g, m) = Dialect::tables(&[LATHE_G], MILL_M);
+    let (g, m) = Dialect::tables(&[LATHE_G], super::m_codes::MILL);
     Dialect {
         name: "lathe",
         lex: LATHE_LEX,
@@ -120,9 +125,9 @@ pub(super) fn lathe() -> Dialect {
         default_machine: DEFAULT_LATHE_TOML,
         unsupported: UNSPECIFIED,
         rapid: RapidPath::ByParameter,
-        cycles: CycleRules::Fanuc,
+        cycles: CycleRules::FANUC,
         bare_return: BareReturn::NeedsAxes,
-        g10: G10Rules::Fanuc,
+        g10: G10Rules::FANUC,
         program_stop: ProgramStop::StopsSpindleAndCoolant,
         tool_length_change: ToolLengthChange::MovesNow,
         offset_default: OffsetDefault::Modal,

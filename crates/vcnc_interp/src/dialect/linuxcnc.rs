@@ -18,8 +18,12 @@
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
-    AuxM, CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MGroup, MOp, MRow,
-    OffsetDefault, ThreadLead, ToolChangeSpindle, bit, g,
+    AuxM, CYCLE_WORDS_L, CycleRules, Dialect, G10Rules, GOp, GRow, Group, MOp, OffsetDefault,
+    ThreadLead, ToolChangeSpindle, bit, g,
+};
+use super::{
+    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, SetOp,
+    m_codes::{MRow, m},
 };
 use super::{Diameter, SurfaceSpeedOn};
 use crate::events::{Cycle, Plane};
@@ -30,50 +34,90 @@ use crate::machine::DEFAULT_FANUC_LATHE_TOML;
 const LINUXCNC_G: &[GRow] = &[
     // G4 P seconds; the block's axis words go to its motion, after the
     // dwell (`G4 P0.5 G0 X10`, LinuxCNC's order of execution).
-    g(40, GOp::DwellP, Group::NonModal).reads(bit(b'P')),
+    g(40, GOp::Pace(PaceOp::DwellP), Group::NonModal).reads(bit(b'P')),
     // L1 (tool table: P tool, R radius, Z length), L2/L20 (work offsets).
-    g(100, GOp::SetData, Group::NonModal)
+    g(100, GOp::Set(SetOp::Data), Group::NonModal)
         .reads(bit(b'L') | bit(b'P') | bit(b'R'))
         .claims_absolute_axes(),
-    g(410, GOp::CompLeft, Group::CutterComp).reads(bit(b'D')),
-    g(420, GOp::CompRight, Group::CutterComp).reads(bit(b'D')),
-    g(430, GOp::ToolLengthPlus, Group::ToolLength).reads(bit(b'H')),
-    g(520, GOp::LocalSystem, Group::NonModal).claims_absolute_axes(),
-    g(591, GOp::WorkSystem(6), Group::Wcs),
-    g(592, GOp::WorkSystem(7), Group::Wcs),
-    g(593, GOp::WorkSystem(8), Group::Wcs),
+    g(410, GOp::Comp(CompOp::Left), Group::CutterComp).reads(bit(b'D')),
+    g(420, GOp::Comp(CompOp::Right), Group::CutterComp).reads(bit(b'D')),
+    g(430, GOp::Frame(FrameOp::ToolLengthPlus), Group::ToolLength).reads(bit(b'H')),
+    g(520, GOp::Set(SetOp::LocalSystem), Group::NonModal).claims_absolute_axes(),
+    g(591, GOp::Mode(ModeOp::WorkSystem(6)), Group::Wcs),
+    g(592, GOp::Mode(ModeOp::WorkSystem(7)), Group::Wcs),
+    g(593, GOp::Mode(ModeOp::WorkSystem(8)), Group::Wcs),
     // G61.1 (exact stop) stops at every block end, as G61 does here.
-    g(611, GOp::PathExact, Group::Path),
-    g(730, GOp::Cycle(Cycle::G73), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(740, GOp::Cycle(Cycle::G74), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(810, GOp::Cycle(Cycle::G81), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(820, GOp::Cycle(Cycle::G82), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(830, GOp::Cycle(Cycle::G83), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(840, GOp::Cycle(Cycle::G84), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(850, GOp::Cycle(Cycle::G85), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(860, GOp::Cycle(Cycle::G86), Group::Cycle).reads(CYCLE_WORDS_L),
-    g(890, GOp::Cycle(Cycle::G89), Group::Cycle).reads(CYCLE_WORDS_L),
+    g(611, GOp::Mode(ModeOp::PathExact), Group::Path),
+    g(
+        730,
+        GOp::Cycle(CycleOp::Drill(Cycle::G73, Hole::HighSpeedPeck)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        740,
+        GOp::Cycle(CycleOp::Drill(Cycle::G74, Hole::LeftTap)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        810,
+        GOp::Cycle(CycleOp::Drill(Cycle::G81, Hole::Drill)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        820,
+        GOp::Cycle(CycleOp::Drill(Cycle::G82, Hole::DrillDwell)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        830,
+        GOp::Cycle(CycleOp::Drill(Cycle::G83, Hole::DeepPeck)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        840,
+        GOp::Cycle(CycleOp::Drill(Cycle::G84, Hole::Tap)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        850,
+        GOp::Cycle(CycleOp::Drill(Cycle::G85, Hole::Bore)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        860,
+        GOp::Cycle(CycleOp::Drill(Cycle::G86, Hole::BoreStop)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
+    g(
+        890,
+        GOp::Cycle(CycleOp::Drill(Cycle::G89, Hole::BoreDwell)),
+        Group::Cycle,
+    )
+    .reads(CYCLE_WORDS_L),
     // G33 X Z K: spindle-synchronized motion, K the distance per turn.
-    g(330, GOp::Thread, Group::Motion).reads(bit(b'K')),
-    g(950, GOp::PerRev, Group::FeedMode),
+    g(330, GOp::Motion(MotionOp::Thread), Group::Motion).reads(bit(b'K')),
+    g(950, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
     // G96 D S: D the highest spindle speed.
-    g(960, GOp::SurfaceSpeed, Group::SpindleMode).reads(bit(b'D')),
-    g(970, GOp::SpindleRpm, Group::SpindleMode),
-    g(980, GOp::ReturnInitial, Group::ReturnLevel),
-    g(990, GOp::ReturnR, Group::ReturnLevel),
+    g(960, GOp::Mode(ModeOp::SurfaceSpeed), Group::SpindleMode).reads(bit(b'D')),
+    g(970, GOp::Mode(ModeOp::SpindleRpm), Group::SpindleMode),
+    g(980, GOp::Mode(ModeOp::ReturnInitial), Group::ReturnLevel),
+    g(990, GOp::Mode(ModeOp::ReturnR), Group::ReturnLevel),
 ];
 
 /// LinuxCNC's M codes beyond grbl's: M19 orients the spindle (R angle, Q
 /// time-out, P direction: read, the angle is not modelled), M60 (pallet
 /// change pause) stops like M00.
 const LINUXCNC_M: &[MRow] = &[
-    (
-        19,
-        MOp::SpindleOrient,
-        MGroup::Spindle,
-        bit(b'R') | bit(b'Q') | bit(b'P'),
-    ),
-    (60, MOp::Stop, MGroup::Flow, 0),
+    m(19, MOp::SpindleOrient).reads(bit(b'R') | bit(b'Q') | bit(b'P')),
+    m(60, MOp::Stop),
 ];
 
 /// LinuxCNC's M codes for the machine's own functions, passed on as `aux`
@@ -192,15 +236,15 @@ const NOT_RUN: &[(u16, &str)] = &[
 /// The LinuxCNC dialect: grbl's reading (`;` comments, whole-unit
 /// integers, its codes and rules) with the codes and policies above.
 pub(super) fn linuxcnc() -> Dialect {
-    let m: Vec<MRow> = GRBL_M.iter().chain(LINUXCNC_M).copied().collect();
+    let m: Vec<&[MRow]> = GRBL_M.iter().copied().chain([LINUXCNC_M]).collect();
     let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
     Dialect {
         name: "linuxcnc",
         g,
         m,
         unsupported: NOT_RUN,
-        cycles: CycleRules::LinuxCnc,
-        g10: G10Rules::LinuxCnc,
+        cycles: CycleRules::RS274,
+        g10: G10Rules::RS274,
         offset_default: OffsetDefault::ToolInSpindle,
         aux_m: LINUXCNC_AUX_M,
         tool_change: ToolChangeSpindle::Stops,
@@ -212,15 +256,15 @@ pub(super) fn linuxcnc() -> Dialect {
 
 /// Lathe mode's G7 (X in diameters) and G8 (in radii).
 const LINUXCNC_LATHE_G: &[GRow] = &[
-    g(70, GOp::DiameterMode, Group::DiameterMode),
-    g(80, GOp::RadiusMode, Group::DiameterMode),
+    g(70, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode),
+    g(80, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode),
 ];
 
 /// LinuxCNC in lathe mode (a lathe configuration: X and Z, the XZ plane,
 /// G7/G8): the mill dialect's reading and codes, X in radii until G7, G96
 /// on the work diameter, the built-in turning centre.
 pub(super) fn linuxcnc_lathe() -> Dialect {
-    let m: Vec<MRow> = GRBL_M.iter().chain(LINUXCNC_M).copied().collect();
+    let m: Vec<&[MRow]> = GRBL_M.iter().copied().chain([LINUXCNC_M]).collect();
     let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, LINUXCNC_LATHE_G], &m);
     Dialect {
         name: "linuxcnc-lathe",

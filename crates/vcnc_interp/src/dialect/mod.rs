@@ -10,16 +10,23 @@
 //! subroutine call, G05 a three-point arc, G53 cancels the work offset) and
 //! adds word rules: U/W incremental axes, X in diameters, `CR=`, `IX`/`IZ`.
 
+mod cycle_rules;
 mod eia;
 mod fanuc_lathe;
 mod grbl;
 mod lathe;
 mod linuxcnc;
+mod m_codes;
 mod macro_rules;
 mod mill;
+mod ops;
 
+pub use cycle_rules::{Approach, CycleRules, PeckClearance, Repeat, TapStyle};
 pub use macro_rules::{
     ExtendedG, IsoMacros, MachineVars, MacroFiles, MacroRules, ModalLocals, VarTable,
+};
+pub use ops::{
+    CompOp, CycleOp, FlowOp, FrameOp, GOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp,
 };
 
 use crate::events::Plane;
@@ -95,131 +102,6 @@ impl Group {
     }
 }
 
-/// What a G code does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[allow(missing_docs)] // each variant is named after its code's function
-pub enum GOp {
-    Rapid,
-    Linear,
-    ArcCw,
-    ArcCcw,
-    Thread,
-    Dwell,
-    ExactStopOnce,
-    SetData,
-    PlaneXy,
-    PlaneZx,
-    PlaneYz,
-    RefReturn,
-    RefFrom,
-    RefReturnN,
-    Skip,
-    Inch,
-    Metric,
-    LocalSystem,
-    MachineCoords,
-    WorkSystem(u8),
-    PathExact,
-    PathSurface,
-    PathTapping,
-    PathCutting,
-    Absolute,
-    Incremental,
-    PresetOrClamp,
-    PerMinute,
-    PerRev,
-    SurfaceSpeed,
-    SpindleRpm,
-    HighSpeed,
-    /// Syntec G05.1 Q1 E / Q0: path smoothing of G01 chains.
-    PathSmoothing,
-    /// Syntec G06.2: NURBS interpolation (modal, group 01).
-    Nurbs,
-    // Lathe (seed 003).
-    CancelOffsets,
-    ThreadInch,
-    DwellSeconds,
-    ThreePointArc,
-    FeedUp,
-    FeedDown,
-    SubCall,
-    SubReturn,
-    Jump,
-    Loop,
-    RadiusMode,
-    DiameterMode,
-    OverrideCancel,
-    OverrideSet,
-    RefXThenZ,
-    ProgramZero,
-    StartPoint,
-    CylinderCycle,
-    ThreadCycle,
-    // Frames and tool length (Syntec 1.2.11, 1.2.19–1.2.21, 1.2.28).
-    ToolLengthPlus,
-    ToolLengthMinus,
-    ToolLengthCancel,
-    PolarOn,
-    PolarOff,
-    ScaleOn,
-    ScaleOff,
-    MirrorOn,
-    MirrorOff,
-    RotateOn,
-    RotateOff,
-    // Canned cycles and hole patterns (Syntec 1.2.30–1.2.53).
-    Cycle(crate::events::Cycle),
-    PatternCircle,
-    PatternLine,
-    PatternArc,
-    PatternGrid,
-    // grbl 1.1 (and LinuxCNC where they agree).
-    ArcCentersAbsolute,
-    ArcCentersIncremental,
-    /// G38.2–G38.5: alarm if the probe signal does not change (`true`:
-    /// G38.2 toward, G38.4 away).
-    Probe {
-        must_trip: bool,
-    },
-    InverseTime,
-    /// G28.1 (1) / G30.1 (2): store the position as that reference point.
-    RefStore(u8),
-    ToolLengthDynamic,
-    ShiftCancel,
-    DwellP,
-    // Haas.
-    Smoothing,
-    // EIA-274-D (seed 004).
-    DwellOrWait,
-    PocketRect,
-    PocketCircle,
-    Junction,
-    // Fanuc lathe (0i-TF, G-code system A): single cycles (modal, group
-    // 01) and the multiple repetitive cycles (one-shot).
-    TurnCycle,
-    ThreadingCycle,
-    FaceCycle,
-    FinishCycle,
-    RoughTurnCycle,
-    RoughFaceCycle,
-    PatternCycle,
-    FacePeckCycle,
-    GrooveCycle,
-    ThreadMultiCycle,
-    // Cutter radius compensation (Syntec 1.2.18).
-    CompCancel,
-    CompLeft,
-    CompRight,
-    // Macro calls (Syntec 1.2.26, 1.2.27).
-    MacroCall,
-    MacroModal,
-    // Cancels of modes later work adds: nothing to cancel yet.
-    CycleCancel,
-    MacroModalCancel,
-    ReturnInitial,
-    ReturnR,
-}
-
 /// What a one-shot code does with the block's axis words.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AxisWords {
@@ -235,8 +117,9 @@ pub enum AxisWords {
     Refuse,
 }
 
-/// What an M code does.
+/// What an M code does (in words: [`MOp::meaning`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(test, derive(strum::EnumIter))]
 #[allow(missing_docs)]
 pub enum MOp {
     Stop,
@@ -433,31 +316,60 @@ pub enum ToolLengthChange {
     AtNextMove,
 }
 
-/// Which G10 forms a dialect has.
+/// Which G10 forms a dialect has, as the behaviours they differ by.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum G10Rules {
-    /// L2 P1–P6 work offsets, L10–L13 P R tool offsets (Fanuc, Syntec); no
-    /// L20 (Fanuc's G54.1 extended offsets, which vcnc does not run: E109).
-    Fanuc,
-    /// Fanuc's, and L20: set work offset P (P0 the active one) so that the
-    /// current position reads as the axis words (grbl).
-    Grbl,
-    /// LinuxCNC: L1 P R Z writes tool P's radius and length, L2 and L20
-    /// take P0 (the active system) to P9 (G59.3); no L10–L13.
-    LinuxCnc,
+pub struct G10Rules {
+    /// L1 P R Z writes tool P's radius and length (LinuxCNC's tool table).
+    pub tool_table_l1: bool,
+    /// L10–L13 P R write the H and D registers, geometry and wear (Fanuc,
+    /// Syntec, grbl).
+    pub registers_l10_l13: bool,
+    /// L20 sets work offset P so that the current position reads as the
+    /// axis words, and P0 names the active system (grbl, LinuxCNC).
+    pub from_position_l20: bool,
+    /// The highest work offset number of L2/L20 (6: G59; 9: G59.3).
+    pub last_work_offset: u8,
+    /// L2 under G91 adds its values to the offset (Fanuc); elsewhere it
+    /// sets them as they are.
+    pub l2_adds_under_g91: bool,
 }
 
 impl G10Rules {
-    /// Whether G10 L20 sets a work offset from the current position.
-    pub(crate) fn l20(self) -> bool {
-        self != G10Rules::Fanuc
-    }
+    /// L2 P1–P6 work offsets, L10–L13 P R tool offsets (Fanuc, Syntec); no
+    /// L20 (Fanuc's G54.1 extended offsets, which vcnc does not run: E109).
+    pub const FANUC: G10Rules = G10Rules {
+        tool_table_l1: false,
+        registers_l10_l13: true,
+        from_position_l20: false,
+        last_work_offset: 6,
+        l2_adds_under_g91: true,
+    };
 
-    /// The highest work offset number of G10 L2/L20.
-    pub(crate) fn last_work_offset(self) -> f64 {
-        match self {
-            G10Rules::Fanuc | G10Rules::Grbl => 6.0,
-            G10Rules::LinuxCnc => 9.0,
+    /// Fanuc's, and L20 (grbl); L2 sets under G91 too.
+    pub const GRBL: G10Rules = G10Rules {
+        from_position_l20: true,
+        l2_adds_under_g91: false,
+        ..G10Rules::FANUC
+    };
+
+    /// LinuxCNC: L1 writes the tool table, L2 and L20 take P0 (the active
+    /// system) to P9 (G59.3); no L10–L13.
+    pub const RS274: G10Rules = G10Rules {
+        tool_table_l1: true,
+        registers_l10_l13: false,
+        from_position_l20: true,
+        last_work_offset: 9,
+        l2_adds_under_g91: false,
+    };
+
+    /// The L values this dialect has, for an alarm's help.
+    pub(crate) fn forms(self) -> &'static str {
+        match (self.tool_table_l1, self.from_position_l20) {
+            (true, _) => {
+                "G10 L is 1, 2 or 20 (L10/L11, the tool table from the current position, are not run by vcnc)"
+            }
+            (false, true) => "G10 L is 2, 10, 11, 12, 13 or 20",
+            (false, false) => "G10 L is 2, 10, 11, 12 or 13",
         }
     }
 }
@@ -513,77 +425,6 @@ pub enum ToolWords {
     /// (X/Z geometry and wear, nose radius, tip) applies; `oo = 00`
     /// cancels the offset; no M06 (Fanuc lathes).
     TurretOffset,
-}
-
-/// Which reading of the canned drilling cycles a dialect has.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CycleRules {
-    /// Syntec 900M / Fanuc 0i (`docs/cycles-spec.md`): G98/G99 return, R
-    /// required, K repeats, G87 back boring, G86 spindle stop.
-    Fanuc,
-    /// EIA-274-D (`docs/eia-spec.md` §5): return to R, R optional, no K,
-    /// G83 without clearance, G86 waits, G87 chip-breaking pecks.
-    Eia,
-    /// Haas mills: Fanuc's cycles, but L repeats them, and G73/G83 take I
-    /// (first peck), J (less each peck) and K (least peck) instead of a
-    /// constant Q (Haas mill operator's manual, G73/G83, "L Number of
-    /// repeats").
-    Haas,
-    /// LinuxCNC: Fanuc's cycles (G73, G81–G86, G89), repeated by L, the
-    /// dwell P in seconds (whole units).
-    LinuxCnc,
-}
-
-impl CycleRules {
-    /// Words a block may carry for the cycle data in cycle mode.
-    pub(crate) fn words(self) -> u32 {
-        match self {
-            CycleRules::Fanuc => CYCLE_WORDS,
-            CycleRules::Eia => bit(b'R') | bit(b'Q') | bit(b'P'),
-            CycleRules::Haas => CYCLE_WORDS_L | HAAS_PECK_WORDS,
-            CycleRules::LinuxCnc => CYCLE_WORDS_L,
-        }
-    }
-
-    /// Whether G73/G83 take I, J, K for a shrinking peck (Haas; elsewhere
-    /// K is the repeat count).
-    pub(crate) fn pecks_by_ijk(self) -> bool {
-        self == CycleRules::Haas
-    }
-
-    /// Whether cycle `c` reads a dwell P: LinuxCNC's G74, G82, G84, G86 and
-    /// G89 only (its other cycles alarm on P, "P word with no … to use it",
-    /// and a P kept from an earlier G82 does not make G73/G83 dwell);
-    /// everywhere else every cycle keeps P as modal data.
-    pub(crate) fn reads_p(self, c: crate::events::Cycle) -> bool {
-        use crate::events::Cycle;
-        self != CycleRules::LinuxCnc
-            || matches!(
-                c,
-                Cycle::G74 | Cycle::G82 | Cycle::G84 | Cycle::G86 | Cycle::G89
-            )
-    }
-
-    /// Whether cycle `c` reads a peck Q: LinuxCNC's G73 and G83 only.
-    pub(crate) fn reads_q(self, c: crate::events::Cycle) -> bool {
-        use crate::events::Cycle;
-        self != CycleRules::LinuxCnc || matches!(c, Cycle::G73 | Cycle::G83)
-    }
-
-    /// Whether the cycles return to R (G99) at power-on: LinuxCNC's initial
-    /// modes list G99; Fanuc and Syntec start in G98.
-    pub(crate) fn return_r_at_power_on(self) -> bool {
-        self == CycleRules::LinuxCnc
-    }
-
-    /// The letter that repeats a cycle block: K, Haas's L (EIA: none).
-    pub(crate) fn repeat_letter(self) -> Option<u8> {
-        match self {
-            CycleRules::Fanuc => Some(b'K'),
-            CycleRules::Eia => None,
-            CycleRules::Haas | CycleRules::LinuxCnc => Some(b'L'),
-        }
-    }
 }
 
 /// A dialect profile: code tables plus the word rules that differ.
@@ -693,7 +534,7 @@ const G_SLOTS: usize = 10_000;
 /// Largest M code + 1.
 const M_SLOTS: usize = 1_000;
 
-type MRow = (u16, MOp, MGroup, u32);
+use m_codes::MRow;
 
 impl Dialect {
     /// Looks a dialect up by its `--dialect` name.
@@ -782,17 +623,39 @@ impl Dialect {
     /// caller with struct update syntax.
     pub(crate) fn tables(
         g_rows: &[&[GRow]],
-        m_rows: &[MRow],
+        m_rows: &[&[MRow]],
     ) -> (Vec<Option<GDef>>, Vec<Option<MDef>>) {
         let mut g = vec![None; G_SLOTS];
         for row in g_rows.iter().flat_map(|r| r.iter()) {
             g[usize::from(row.code)] = Some(row.def);
         }
         let mut m = vec![None; M_SLOTS];
-        for &(code, op, group, letters) in m_rows {
-            m[usize::from(code)] = Some(MDef { op, group, letters });
+        for row in m_rows.iter().flat_map(|r| r.iter()) {
+            m[usize::from(row.code)] = Some(MDef {
+                op: row.op,
+                group: row.op.group(),
+                letters: row.letters,
+            });
         }
         (g, m)
+    }
+
+    /// Every G code of the table, in code order: the code × 10 (`591` is
+    /// G59.1) and its row. `vcnc explain`, the dialect matrix and the
+    /// editor's hover read the tables through this.
+    pub fn g_rows(&self) -> impl Iterator<Item = (u16, GDef)> + '_ {
+        self.g
+            .iter()
+            .enumerate()
+            .filter_map(|(i, d)| Some((u16::try_from(i).ok()?, (*d)?)))
+    }
+
+    /// Every M code of the table, in code order, and its row.
+    pub fn m_rows(&self) -> impl Iterator<Item = (u16, MDef)> + '_ {
+        self.m
+            .iter()
+            .enumerate()
+            .filter_map(|(i, d)| Some((u16::try_from(i).ok()?, (*d)?)))
     }
 
     /// The embedded machine this dialect runs on by default.
@@ -831,7 +694,7 @@ impl Dialect {
         self.offset_default == OffsetDefault::Modal
             && self
                 .g(41.0)
-                .is_some_and(|g| g.op == GOp::CompLeft && g.letters & bit(b'D') != 0)
+                .is_some_and(|g| g.op == GOp::Comp(CompOp::Left) && g.letters & bit(b'D') != 0)
     }
 
     /// The G code that does `op` in this dialect (the first in the table),
@@ -903,11 +766,14 @@ mod tests {
     fn units_codes_differ_by_dialect_only() {
         let s = Dialect::syntec();
         let f = Dialect::fanuc();
-        assert_eq!(s.g(70.0).map(|d| d.op), Some(GOp::Inch));
+        assert_eq!(s.g(70.0).map(|d| d.op), Some(GOp::Mode(ModeOp::Inch)));
         assert_eq!(s.g(20.0), None);
-        assert_eq!(f.g(20.0).map(|d| d.op), Some(GOp::Inch));
+        assert_eq!(f.g(20.0).map(|d| d.op), Some(GOp::Mode(ModeOp::Inch)));
         assert_eq!(f.g(70.0), None);
-        assert_eq!(s.g(59.1).map(|d| d.op), Some(GOp::WorkSystem(6)));
+        assert_eq!(
+            s.g(59.1).map(|d| d.op),
+            Some(GOp::Mode(ModeOp::WorkSystem(6)))
+        );
         assert_eq!(s.g(59.15), None);
         assert_eq!(s.g(-1.0), None);
         assert_eq!(s.g_elsewhere(20.0), Some("fanuc"));
@@ -928,10 +794,19 @@ mod tests {
     fn the_lathe_gives_the_same_numbers_other_meanings() {
         let l = Dialect::lathe();
         let s = Dialect::syntec();
-        assert_eq!(l.g(20.0).map(|d| d.op), Some(GOp::SubCall));
-        assert_eq!(l.g(5.0).map(|d| d.op), Some(GOp::ThreePointArc));
-        assert_eq!(l.g(53.0).map(|d| d.op), Some(GOp::CancelOffsets));
-        assert_eq!(s.g(53.0).map(|d| d.op), Some(GOp::MachineCoords));
+        assert_eq!(l.g(20.0).map(|d| d.op), Some(GOp::Flow(FlowOp::SubCall)));
+        assert_eq!(
+            l.g(5.0).map(|d| d.op),
+            Some(GOp::Motion(MotionOp::ThreePointArc))
+        );
+        assert_eq!(
+            l.g(53.0).map(|d| d.op),
+            Some(GOp::Mode(ModeOp::CancelOffsets))
+        );
+        assert_eq!(
+            s.g(53.0).map(|d| d.op),
+            Some(GOp::Move(MoveOp::MachineCoords))
+        );
         assert_eq!(l.g(16.0), None);
         // A lathe program is not sent to a mill dialect; a mill's is.
         assert_eq!(l.g_elsewhere(16.0), None);
@@ -942,12 +817,24 @@ mod tests {
     #[test]
     fn the_fanuc_lathe_reads_system_a() {
         let f = Dialect::fanuc_lathe();
-        assert_eq!(f.g(90.0).map(|d| d.op), Some(GOp::TurnCycle));
-        assert_eq!(f.g(92.0).map(|d| d.op), Some(GOp::ThreadingCycle));
-        assert_eq!(f.g(94.0).map(|d| d.op), Some(GOp::FaceCycle));
-        assert_eq!(f.g(99.0).map(|d| d.op), Some(GOp::PerRev));
-        assert_eq!(f.g(50.0).map(|d| d.op), Some(GOp::PresetOrClamp));
-        assert_eq!(f.g(32.0).map(|d| d.op), Some(GOp::Thread));
+        assert_eq!(
+            f.g(90.0).map(|d| d.op),
+            Some(GOp::Motion(MotionOp::TurnCycle))
+        );
+        assert_eq!(
+            f.g(92.0).map(|d| d.op),
+            Some(GOp::Motion(MotionOp::ThreadingCycle))
+        );
+        assert_eq!(
+            f.g(94.0).map(|d| d.op),
+            Some(GOp::Motion(MotionOp::FaceCycle))
+        );
+        assert_eq!(f.g(99.0).map(|d| d.op), Some(GOp::Mode(ModeOp::PerRev)));
+        assert_eq!(
+            f.g(50.0).map(|d| d.op),
+            Some(GOp::Set(SetOp::PresetOrClamp))
+        );
+        assert_eq!(f.g(32.0).map(|d| d.op), Some(GOp::Motion(MotionOp::Thread)));
         assert_eq!(f.m(6.0), None);
         // The seed lathe's G18 now points at the Fanuc lathe, not a mill;
         // a Fanuc lathe's G17 (live tooling) is listed as not run.

@@ -23,6 +23,7 @@
 
 use crate::alarms;
 use crate::block::words::At;
+use crate::dialect::FlowOp;
 use crate::dialect::{GDef, GOp, IntegerWords, ModalLocals, VarTable};
 use crate::flow::{CallKind, Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
@@ -77,7 +78,7 @@ impl Interpreter<'_> {
         next: Cursor,
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
-        let name = if code.def.op == GOp::MacroCall {
+        let name = if code.def.op == GOp::Flow(FlowOp::MacroCall) {
             "G65"
         } else {
             "G66"
@@ -90,7 +91,7 @@ impl Interpreter<'_> {
                 "P (the program to call)",
             ));
         };
-        if code.def.op == GOp::MacroModal {
+        if code.def.op == GOp::Flow(FlowOp::MacroModal) {
             self.macros.modal = Some(ModalCall {
                 program: Program::Number(number),
                 repeats: p.repeats,

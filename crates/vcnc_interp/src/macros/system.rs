@@ -29,6 +29,7 @@
 //! read-only one alarms E606.
 
 use crate::alarms;
+use crate::dialect::ModeOp;
 use crate::dialect::{GOp, MachineVars, VarTable};
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
@@ -136,7 +137,7 @@ impl Interpreter<'_> {
                 Motion::ArcCw => Value::Long(2),
                 Motion::ArcCcw => Value::Long(3),
                 Motion::Thread | Motion::ThreadInch => Value::Long(33),
-                Motion::ThreePoint => Value::Long(5),
+                Motion::ThreePointArc => Value::Long(5),
                 // G06.2 has no whole code.
                 Motion::Nurbs => Value::Double(6.2),
                 // Fanuc lathe system A (not a Syntec dialect, for completeness).
@@ -216,7 +217,7 @@ impl Interpreter<'_> {
                 Motion::ArcCcw => 3.0,
                 Motion::Thread => 33.0,
                 Motion::ThreadInch => 32.0,
-                Motion::ThreePoint => 5.0,
+                Motion::ThreePointArc => 5.0,
                 Motion::Nurbs => 6.2,
                 // Fanuc lathe system A: the modal turning cycles.
                 Motion::TurnCycle => 90.0,
@@ -246,7 +247,10 @@ impl Interpreter<'_> {
             }
             6 => {
                 // The dialect's own codes: G20/G21, or Syntec's G70/G71.
-                let fanuc = self.dialect.g(20.0).is_some_and(|d| d.op == GOp::Inch);
+                let fanuc = self
+                    .dialect
+                    .g(20.0)
+                    .is_some_and(|d| d.op == GOp::Mode(ModeOp::Inch));
                 match (fanuc, m.inch) {
                     (true, true) => 20.0,
                     (true, false) => 21.0,

@@ -5,6 +5,7 @@
 use super::{Move, MoveKind, Target};
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::PaceOp;
 use crate::dialect::{GOp, Group, ThreadLead};
 use crate::events::{Feed, MAX_AXES, Pos};
 use crate::interpreter::Interpreter;
@@ -22,7 +23,7 @@ impl Interpreter<'_> {
         }
         match motion {
             Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
-            Motion::ThreePoint => self.three_point_arc(w, cmd),
+            Motion::ThreePointArc => self.three_point_arc(w, cmd),
             Motion::Nurbs => self.nurbs_block(w, cmd),
             Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
                 self.single_cycle(w, cmd, motion)
@@ -91,7 +92,7 @@ impl Interpreter<'_> {
 
     /// Whether G09 is in the block.
     pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
-        w.once(GOp::ExactStopOnce).is_some()
+        w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()
     }
 
     /// The current feed (clamped to the machine's maximum), or E301 when

@@ -26,6 +26,7 @@ pub(crate) mod travel;
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
 use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Interpreter;
@@ -244,7 +245,7 @@ impl Interpreter<'_> {
         if per_rev {
             let per_minute = match mv.kind {
                 MoveKind::Thread { .. } => None,
-                _ => self.dialect.g_for(GOp::PerMinute),
+                _ => self.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
             };
             return Err(alarms::per_rev_spindle_stopped(mv.cmd, per_minute));
         }
