@@ -16,7 +16,7 @@
 use crate::Sink;
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::Dialect;
+use crate::dialect::{AxisWord, Dialect};
 use crate::events::{EndCode, Event};
 use crate::flow::{Flow, ProgramStore, first_value};
 use crate::machine::Machine;
@@ -35,43 +35,6 @@ use vcnc_syntax::{
 /// done is asked after every block, so it is noticed at the first block
 /// after the batch that made it done.
 pub const HAND_OVER: usize = 1024;
-
-/// How one machine axis is addressed in the dialect.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct AxisWord {
-    /// Its letter (absolute under G90).
-    pub letter: u8,
-    /// Its always-incremental word (U for X on a lathe).
-    pub inc: Option<u8>,
-    /// Programmed in diameters under G23.
-    pub diameter: bool,
-    /// A rotary axis (degrees).
-    pub rotary: bool,
-    /// `letter` and `inc` as a letter mask (bit 0 = 'A'): a block without
-    /// either skips the axis with one test.
-    pub mask: u32,
-    /// The masks of this axis and the ones after it: a block that names
-    /// none of them is done with its axis words here.
-    pub rest: u32,
-}
-
-impl AxisWord {
-    fn of(letter: u8, dialect: &Dialect) -> AxisWord {
-        let inc = dialect
-            .incremental_words
-            .iter()
-            .find(|(_, a)| *a == letter)
-            .map(|(w, _)| *w);
-        AxisWord {
-            letter,
-            inc,
-            diameter: dialect.diameter.axis == Some(letter),
-            rotary: matches!(letter, b'A' | b'B' | b'C'),
-            mask: crate::dialect::bit(letter) | inc.map_or(0, crate::dialect::bit),
-            rest: 0,
-        }
-    }
-}
 
 /// Operator switches.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -113,62 +76,56 @@ pub(crate) enum Step {
     ProgramEnd,
 }
 
+/// What a run reads and never changes: the machine, the dialect, the
+/// operator's switches and what follows from them.
+pub(crate) struct Config<'a> {
+    pub machine: &'a Machine,
+    pub dialect: &'a Dialect,
+    pub opts: Options,
+    /// Letters that address axes (axis letters and incremental words).
+    pub axis_mask: u32,
+    /// How each machine axis is written, in axis order.
+    pub axis_words: Vec<AxisWord>,
+    /// Whether the machine has travel limits to check (E501).
+    pub travel_limited: bool,
+    /// The highest cutting feed, mm/min (the control's clamp).
+    pub max_feed: f64,
+    /// The dialect reads `%@MACRO` files (checked for every block).
+    pub macro_files: bool,
+}
+
+/// What the run loop keeps between blocks: the runaway budget, and whether
+/// a macro statement has run.
+pub(crate) struct Looping {
+    pub executed: u64,
+    /// How far each source has been read (a line's offset + 1, by source
+    /// index), and the sum: a block budget that grows with the text read,
+    /// so that only blocks run again count against the runaway limit.
+    pub read_high: Vec<u64>,
+    pub read_total: u64,
+    /// Whether the current line was read before (a loop or a repeat): its
+    /// blocks are then charged by the events they make, so that a loop
+    /// around a block of thousands of holes meets the limit as soon.
+    pub rereading: bool,
+    /// A macro statement has run (the cache is worth a look before lexing).
+    pub macro_active: bool,
+}
+
 /// The interpreter. Create one per run.
 pub struct Interpreter<'a> {
-    pub(crate) machine: &'a Machine,
-    pub(crate) dialect: &'a Dialect,
-    pub(crate) opts: Options,
+    pub(crate) cfg: Config<'a>,
     pub(crate) state: State,
     /// Work and tool offsets (journaled writes).
     pub(crate) tables: Tables,
     pub(crate) flow: Flow,
-    /// Letters that address axes (axis letters and incremental words).
-    pub(crate) axis_mask: u32,
-    /// How each machine axis is written, in axis order.
-    pub(crate) axis_words: Vec<AxisWord>,
-    executed: u64,
-    /// How far each source has been read (a line's offset + 1, by source
-    /// index), and the sum: a block budget that grows with the text read,
-    /// so that only blocks run again count against the runaway limit.
-    read_high: Vec<u64>,
-    read_total: u64,
-    /// Whether the current line was read before (a loop or a repeat): its
-    /// blocks are then charged by the events they make, so that a loop
-    /// around a block of thousands of holes meets the limit as soon.
-    rereading: bool,
-    /// Moves committed so far (a block compares it to know if it moved).
-    pub(crate) moves: u64,
-    /// The cutter compensation stage, and its copy taken before a block
-    /// while it is engaged (not before a plain move that undoes the stage
-    /// by its `Mark`: the copy is then stale until the next block takes one).
-    pub(crate) comp: crate::motion::comp::Comp,
-    comp_saved: crate::motion::comp::Comp,
-    /// The source and line of the block being executed (for alarms about
-    /// moves that compensation releases later).
-    pub(crate) cur_line: Option<(usize, Line)>,
-    /// Events of blocks that succeeded and not yet handed to the sink,
-    /// then those of the block being executed (from the mark its start
-    /// took; they are dropped if it alarms). Handed over once they reach
-    /// [`HAND_OVER`] and when the run ends.
-    pub(crate) pending: Vec<Event>,
-    /// What the program's length words look like (warning W101).
-    pub(crate) points: crate::block::convert::PointStyle,
-    /// W104 was given and the spindle has not turned since (or it turns:
-    /// no check needed until it stops).
-    pub(crate) spindle_warned: bool,
-    /// The highest cutting feed, mm/min (the control's clamp).
-    pub(crate) max_feed: f64,
+    pub(crate) looping: Looping,
+    pub(crate) stage: crate::motion::stage::Stage,
     /// Variables, compiled macro statements, macro calls.
     pub(crate) macros: Box<crate::macros::Macros>,
-    /// Checked for every block, so kept out of the box: the dialect reads
-    /// `%@MACRO` files, and a macro statement has run (the cache is worth
-    /// a look before lexing).
-    pub(crate) macro_files: bool,
-    pub(crate) macro_active: bool,
-    /// Whether the machine has travel limits to check (E501).
-    pub(crate) travel_limited: bool,
+    /// What the program's length words look like (warning W101).
+    pub(crate) points: crate::state::PointStyle,
     /// A G06.2 curve whose definition is still being read.
-    pub(crate) nurbs: Option<crate::codes::nurbs::NurbsBuild>,
+    pub(crate) nurbs: Option<crate::state::NurbsBuild>,
 }
 
 impl<'a> Interpreter<'a> {
@@ -185,30 +142,29 @@ impl<'a> Interpreter<'a> {
             a.rest = rest;
         }
         Interpreter {
-            machine,
-            dialect,
-            opts,
+            cfg: Config {
+                machine,
+                dialect,
+                opts,
+                axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask),
+                axis_words,
+                travel_limited: machine.has_travel_limits(),
+                max_feed: machine.max_feed_mm_per_min(),
+                macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
+            },
             state: State::power_on(machine, dialect),
             tables: Tables::new(machine),
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),
-            axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask),
-            axis_words,
-            executed: 0,
-            rereading: false,
-            read_high: Vec::new(),
-            read_total: 0,
-            moves: 0,
-            comp: Default::default(),
-            comp_saved: Default::default(),
-            cur_line: None,
-            pending: Vec::new(),
-            points: crate::block::convert::PointStyle::new(machine, dialect),
-            spindle_warned: false,
-            max_feed: machine.max_feed_mm_per_min(),
+            looping: Looping {
+                executed: 0,
+                rereading: false,
+                read_high: Vec::new(),
+                read_total: 0,
+                macro_active: false,
+            },
+            stage: crate::motion::stage::Stage::new(),
+            points: crate::state::PointStyle::new(machine, dialect),
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
-            macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
-            macro_active: false,
-            travel_limited: machine.has_travel_limits(),
             nurbs: None,
         }
     }
@@ -269,12 +225,12 @@ impl<'a> Interpreter<'a> {
         sink: &mut S,
     ) -> Result<Option<EndCode>, Diagnostic> {
         let mut block = Block::default();
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let mut col = 0usize;
         loop {
             let src = self.flow.frames.last().map_or(0, |f| f.source);
             // Syntec `%@MACRO` files are read statement by statement.
-            if self.macro_files && self.is_macro_file(src) {
+            if self.cfg.macro_files && self.is_macro_file(src) {
                 match self.run_macro_file(src, &mut col, &mut block, store, sink)? {
                     Some(end) => return Ok(end),
                     None => continue,
@@ -292,10 +248,10 @@ impl<'a> Interpreter<'a> {
             loop {
                 let start = i;
                 let depth = self.flow.frames.len();
-                self.cur_line = Some((src, line));
+                self.stage.cur_line = Some((src, line));
                 // A macro statement compiled on an earlier pass runs as is
                 // (a program that never showed macro syntax skips the look).
-                let cached = if self.macro_active {
+                let cached = if self.looping.macro_active {
                     self.macro_cached(src, &line, &mut i, &mut block, store, sink)?
                 } else {
                     None
@@ -397,16 +353,16 @@ impl<'a> Interpreter<'a> {
     /// Counts text read for the first time towards the block budget.
     #[inline]
     pub(crate) fn note_read(&mut self, src: usize, offset: u64) {
-        if src >= self.read_high.len() {
-            self.read_high.resize(src + 1, 0);
+        if src >= self.looping.read_high.len() {
+            self.looping.read_high.resize(src + 1, 0);
         }
-        self.rereading = true;
-        if let Some(high) = self.read_high.get_mut(src)
+        self.looping.rereading = true;
+        if let Some(high) = self.looping.read_high.get_mut(src)
             && offset + 1 > *high
         {
-            self.read_total += offset + 1 - *high;
+            self.looping.read_total += offset + 1 - *high;
             *high = offset + 1;
-            self.rereading = false;
+            self.looping.rereading = false;
         }
     }
 
@@ -511,7 +467,7 @@ impl<'a> Interpreter<'a> {
         if before.ends_with(b";") {
             d.help = format!(
                 "`;` ends the block in the {} dialect, so the text after it is read as words: write comments in ( ), or run with --dialect grbl where `;` starts a comment ({})",
-                self.dialect.name, d.help
+                self.cfg.dialect.name, d.help
             );
         }
         d
@@ -545,7 +501,7 @@ impl<'a> Interpreter<'a> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        if block.deleted.is_some() && self.opts.block_delete {
+        if block.deleted.is_some() && self.cfg.opts.block_delete {
             return Ok(Step::Next);
         }
         if block.percent || first_value(block, b'O').is_some() {
@@ -557,7 +513,7 @@ impl<'a> Interpreter<'a> {
         }
         let mut words = Words::new(block);
         self.count_executed(words.first)?;
-        if let Err(d) = words.fill(self.dialect, self.machine, self.axis_mask) {
+        if let Err(d) = words.fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask) {
             // Syntec's G200–G999 call macro files of the program directory.
             if d.code == vcnc_syntax::Code::E201
                 && self.macros.rules.extended_g == crate::dialect::ExtendedG::Files
@@ -570,16 +526,16 @@ impl<'a> Interpreter<'a> {
         if let Some(call) = words.macro_call {
             return self.macro_call_block(block, call, next, store);
         }
-        if !self.machine.m_macros.is_empty()
+        if !self.cfg.machine.m_macros.is_empty()
             && let Some(m) = words
                 .other_m
                 .iter()
                 .flatten()
-                .find(|m| self.machine.m_macros.contains_key(&m.def))
+                .find(|m| self.cfg.machine.m_macros.contains_key(&m.def))
         {
             return self.m_macro_call(block, *m, next, store);
         }
-        for a in self.axis_words.iter().filter(|a| a.inc.is_some()) {
+        for a in self.cfg.axis_words.iter().filter(|a| a.inc.is_some()) {
             if let (Some(_), Some(inc)) = (words.get(a.letter), a.inc.and_then(|l| words.get(l))) {
                 return Err(alarms::absolute_and_incremental(
                     inc.span, a.letter, inc.addr.0,
@@ -589,15 +545,12 @@ impl<'a> Interpreter<'a> {
         // All or nothing: events wait in `pending`, the state is restored
         // and the tables' writes are undone if the block alarms.
         let jumps = self.flow.jumps;
-        let comp_engaged = self.comp.engaged();
-        let plain = words.is_plain_motion(self.axis_mask);
+        let comp_engaged = self.stage.comp.engaged();
+        let plain = words.is_plain_motion(self.cfg.axis_mask);
         let in_place = plain && self.moves_in_place(&words, comp_engaged);
         // Under compensation such a block undoes the stage by itself.
         let comp_in_place = comp_engaged && in_place;
-        if comp_engaged && !comp_in_place {
-            self.comp_saved.clone_from(&self.comp);
-        }
-        let mark = self.pending.len();
+        let mark = self.stage.begin(comp_in_place);
         let result = if !plain {
             self.keeping_state(|s| s.execute(&words, here, next, store))
         } else if comp_in_place {
@@ -617,30 +570,25 @@ impl<'a> Interpreter<'a> {
         let step = match result {
             Ok(step) => step,
             Err(d) => {
-                self.pending.truncate(mark);
+                self.stage.abandon(mark);
                 self.flow.jumps = jumps;
                 self.tables.rollback();
-                // A plain move under compensation undid the stage itself
-                // (`CompMoveUndo`).
-                if !comp_in_place {
-                    if comp_engaged {
-                        std::mem::swap(&mut self.comp, &mut self.comp_saved);
-                    } else {
-                        self.comp = crate::motion::comp::Comp::default();
-                    }
-                }
                 return Err(d);
             }
         };
         self.tables.commit();
-        if self.rereading {
-            let made = self.pending.len() - mark;
-            self.executed = self.executed.saturating_add(made.saturating_sub(1) as u64);
+        if self.looping.rereading {
+            let made = self.stage.made_since(mark);
+            self.looping.executed = self
+                .looping
+                .executed
+                .saturating_add(made.saturating_sub(1) as u64);
         }
         self.hand_over_when_full(sink);
         // Under G66 a block that moves calls the macro after its move.
-        let modal_call =
-            self.state.modal.macro_call && words.any(self.axis_mask) && words.axis_user.is_none();
+        let modal_call = self.state.modal.macro_call
+            && words.any(self.cfg.axis_mask)
+            && words.axis_user.is_none();
         if modal_call && matches!(step, Step::Next) {
             return self.modal_macro_call(next, store);
         }
@@ -665,17 +613,18 @@ impl<'a> Interpreter<'a> {
     /// budget, which grows with the program text read.
     #[inline]
     pub(crate) fn count_executed(&mut self, span: Span) -> Result<(), Diagnostic> {
-        self.executed += 1;
-        if self.executed
+        self.looping.executed += 1;
+        if self.looping.executed
             > self
+                .cfg
                 .machine
                 .limits
                 .max_executed_blocks
-                .saturating_add(self.read_total)
+                .saturating_add(self.looping.read_total)
         {
             return Err(alarms::block_limit(
                 span,
-                self.machine.limits.max_executed_blocks,
+                self.cfg.machine.limits.max_executed_blocks,
             ));
         }
         Ok(())
@@ -731,7 +680,7 @@ impl<'a> Interpreter<'a> {
         }
         self.flow.loc.file = self.flow.source(frame.source).and_then(|s| s.name.clone());
         // What the end makes is dropped if it alarms, as a block's is.
-        let mark = self.pending.len();
+        let mark = self.stage.pending.len();
         if self.flow.frames.len() == 1 {
             let mut w = alarms::no_program_end(span);
             match last {
@@ -743,13 +692,13 @@ impl<'a> Interpreter<'a> {
                     w.file = self.flow.loc.file.as_deref().map(str::to_string);
                 }
             }
-            self.pending.push(Event::Warning(w));
+            self.stage.pending.push(Event::Warning(w));
         }
         match self.finish_program(span, sink) {
             Ok(Step::End(code)) => Ok(Some(code)),
             Ok(_) => Ok(None),
             Err(d) => {
-                self.pending.truncate(mark);
+                self.stage.pending.truncate(mark);
                 Err(match last {
                     Some((line, _)) => self.locate(d, frame.source, &line),
                     // A program without a block (an empty subprogram): its start.
@@ -780,9 +729,9 @@ impl<'a> Interpreter<'a> {
         self.comp_finish()?;
         self.report_frame();
         if let Some(e) = self.unset_report() {
-            self.pending.push(e);
+            self.stage.pending.push(e);
         }
-        for e in self.pending.drain(..) {
+        for e in self.stage.pending.drain(..) {
             sink.event(&e);
         }
         let loc = self.flow().loc.clone();
@@ -795,8 +744,8 @@ impl<'a> Interpreter<'a> {
 
     /// Hands the events waiting in `pending` to the sink.
     pub(crate) fn hand_over<S: Sink>(&mut self, sink: &mut S) {
-        if !self.pending.is_empty() {
-            sink.take_events(&mut self.pending);
+        if !self.stage.pending.is_empty() {
+            sink.take_events(&mut self.stage.pending);
         }
     }
 
@@ -804,14 +753,14 @@ impl<'a> Interpreter<'a> {
     /// over once [`HAND_OVER`] have gathered.
     #[inline]
     pub(crate) fn hand_over_when_full<S: Sink>(&mut self, sink: &mut S) {
-        if self.pending.len() >= HAND_OVER {
+        if self.stage.pending.len() >= HAND_OVER {
             self.hand_over(sink);
         }
     }
 
     /// Counts a jump against the runaway limit.
     pub(crate) fn count_jump(&mut self, span: Span) -> Result<(), Diagnostic> {
-        let max = self.machine.limits.max_jumps;
+        let max = self.cfg.machine.limits.max_jumps;
         let flow = self.flow();
         if flow.jumps >= max {
             return Err(alarms::jump_limit(span, max));

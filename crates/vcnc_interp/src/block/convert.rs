@@ -8,12 +8,14 @@
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::dialect::AxisWord;
 use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
 use crate::events::Pos;
-use crate::interpreter::{AxisWord, Interpreter};
+use crate::interpreter::Interpreter;
 use crate::machine::DecimalInput;
 use crate::state::Motion;
+use crate::state::PointStyle;
 use vcnc_syntax::{Diagnostic, Word};
 
 /// mm per inch.
@@ -31,8 +33,8 @@ impl Interpreter<'_> {
 
     fn whole_units(&self, w: &Word) -> bool {
         w.point
-            || self.dialect.integers == IntegerWords::WholeUnits
-            || self.machine.params.decimal_input == DecimalInput::Calculator
+            || self.cfg.dialect.integers == IntegerWords::WholeUnits
+            || self.cfg.machine.params.decimal_input == DecimalInput::Calculator
     }
 
     /// A length word in mm.
@@ -76,7 +78,7 @@ impl Interpreter<'_> {
 
     /// The value of the axis word of machine axis `i`.
     pub(crate) fn axis_value(&self, i: usize, w: &Word) -> f64 {
-        match self.axis_words.get(i) {
+        match self.cfg.axis_words.get(i) {
             Some(a) => self.axis_mm(a, w),
             None => self.length_mm(w),
         }
@@ -114,7 +116,7 @@ impl Interpreter<'_> {
     #[inline(never)]
     fn note_points_by_letter(&mut self, w: &Words<'_>) {
         let extra = self.length_letters(w);
-        let mask = self.axis_mask | extra;
+        let mask = self.cfg.axis_mask | extra;
         let plain = w.plain_values() & mask;
         if plain == 0 && (self.points.seen_point || w.pointed() & mask == 0) {
             return;
@@ -129,7 +131,7 @@ impl Interpreter<'_> {
         // Under G16 the plane's second axis word is an angle.
         let polar_angle = if self.state.modal.polar {
             let [_, lb, _] = self.state.modal.plane.letters();
-            self.machine.axis_of(lb)
+            self.cfg.machine.axis_of(lb)
         } else {
             None
         };
@@ -141,8 +143,8 @@ impl Interpreter<'_> {
                 (mm, " mm")
             }
         };
-        for i in 0..self.axis_words.len() {
-            let Some(a) = self.axis_words.get(i).copied() else {
+        for i in 0..self.cfg.axis_words.len() {
+            let Some(a) = self.cfg.axis_words.get(i).copied() else {
                 continue;
             };
             let Some(word) = w.get(a.letter).or_else(|| a.inc.and_then(|l| w.get(l))) else {
@@ -181,7 +183,7 @@ impl Interpreter<'_> {
         {
             m |= bit(b'R');
         }
-        m & !self.axis_mask
+        m & !self.cfg.axis_mask
     }
 
     /// One length word for W101: a point marks the program's style (and
@@ -209,7 +211,7 @@ impl Interpreter<'_> {
                 self.warn(d());
             } else if self.points.first_plain.is_none() {
                 let d = d();
-                let d = match self.cur_line {
+                let d = match self.stage.cur_line {
                     Some((src, line)) => self.locate(d, src, &line),
                     None => d,
                 };
@@ -230,7 +232,7 @@ impl Interpreter<'_> {
         let (mut named, mut all_incremental) = (0u32, true);
         let (mut prog, mut delta) = (self.state.prog, Pos::default());
         let present = w.present();
-        for (i, a) in self.axis_words.iter().enumerate() {
+        for (i, a) in self.cfg.axis_words.iter().enumerate() {
             if present & a.rest == 0 {
                 break;
             }
@@ -288,7 +290,8 @@ impl Interpreter<'_> {
     /// axes it set.
     fn polar_target(&mut self, w: &Words<'_>, incremental: bool, to: &mut Pos) -> u32 {
         let [la, lb, _] = self.state.modal.plane.letters();
-        let (Some(ia), Some(ib)) = (self.machine.axis_of(la), self.machine.axis_of(lb)) else {
+        let (Some(ia), Some(ib)) = (self.cfg.machine.axis_of(la), self.cfg.machine.axis_of(lb))
+        else {
             return 0;
         };
         let (r_word, a_word) = (w.get(la), w.get(lb));
@@ -323,39 +326,12 @@ impl Interpreter<'_> {
     /// The polar radius and angle that `to` has (after a G16 move).
     pub(crate) fn polar_of(&self, to: Pos) -> (f64, f64) {
         let [la, lb, _] = self.state.modal.plane.letters();
-        match (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+        match (self.cfg.machine.axis_of(la), self.cfg.machine.axis_of(lb)) {
             (Some(ia), Some(ib)) => {
                 let (x, y) = (to.get(ia), to.get(ib));
                 (x.hypot(y), y.atan2(x).to_degrees())
             }
             _ => (0.0, 0.0),
-        }
-    }
-}
-
-/// What the program's axis words look like so far (warning W101).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct PointStyle {
-    /// Integers are least increments here (else nothing to warn about).
-    pub active: bool,
-    /// A length with a decimal point was written.
-    pub seen_point: bool,
-    /// The first length without one, before any point was seen.
-    pub first_plain: Option<vcnc_syntax::Diagnostic>,
-    /// Warnings given (at most `MAX_WARNINGS`).
-    pub warned: u32,
-}
-
-impl PointStyle {
-    /// Past this many, the trap is reported no more (the program has it
-    /// throughout).
-    pub const MAX_WARNINGS: u32 = 10;
-
-    pub fn new(machine: &crate::machine::Machine, dialect: &crate::dialect::Dialect) -> PointStyle {
-        PointStyle {
-            active: dialect.integers == IntegerWords::LeastIncrement
-                && machine.params.decimal_input == DecimalInput::Increment,
-            ..PointStyle::default()
         }
     }
 }

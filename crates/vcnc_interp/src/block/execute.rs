@@ -24,10 +24,11 @@ use crate::dialect::{
     ToolLengthChange, ToolWords, bit,
 };
 use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
-use crate::events::{EndCode, Event, PathMode, Plane, Pos, SpindleDir, StopCode};
+use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
-use crate::state::{Motion, State};
+use crate::motion::stage::Stage;
+use crate::state::Motion;
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
@@ -44,66 +45,10 @@ impl Words<'_> {
     }
 }
 
-/// What a plain G00/G01 block that [`Interpreter::moves_in_place`] accepts
-/// may have changed in the state when it alarms: every check of such a
-/// block (a negative or zero feed, a per-revolution feed with the spindle
-/// stopped, G93's F, the travel limits) comes before the move changes the
-/// positions and reports the frame, so only the modal motion, F, the
-/// smoothing's bookkeeping and the last polar point can have changed
-/// before them. Keeping these spares the block the copy of the whole state
-/// (~1 KB, the largest single cost of a plain move).
-#[derive(Clone, Copy)]
-pub(crate) struct MoveUndo {
-    motion: Motion,
-    feed: f64,
-    smoothing: crate::codes::smoothing::Smoothing,
-    polar: (f64, f64),
-}
-
-impl MoveUndo {
-    /// The fields of `s` a plain move may change before its last check.
-    #[inline]
-    pub(crate) fn of(s: &State) -> MoveUndo {
-        MoveUndo {
-            motion: s.modal.motion,
-            feed: s.feed,
-            smoothing: s.smoothing,
-            polar: s.polar,
-        }
-    }
-
-    /// Puts them back after the block alarmed.
-    #[cold]
-    pub(crate) fn restore(self, s: &mut State) {
-        s.modal.motion = self.motion;
-        s.feed = self.feed;
-        s.smoothing = self.smoothing;
-        s.polar = self.polar;
-    }
-}
-
-/// What a plain G00/G01 under compensation may change before its last
-/// check, beyond [`MoveUndo`]'s fields: the compensation stage hands the
-/// held move on and releases it (moving the tool) before the corner after
-/// it, or the travel limits, can alarm; the programmed point and the frame
-/// report move first. The stage itself is undone by its [`Mark`].
-///
-/// [`Mark`]: crate::motion::comp::Mark
-#[derive(Clone, Copy)]
-pub(crate) struct CompMoveUndo {
-    plain: MoveUndo,
-    pos: Pos,
-    prog: Pos,
-    nominal: Pos,
-    detached: bool,
-    frame_dirty: bool,
-    reported: u64,
-    comp: crate::motion::comp::Mark,
-}
-
 impl Interpreter<'_> {
-    /// Whether a plain motion block `w` is a G00/G01 that [`MoveUndo`] (or
-    /// under compensation [`CompMoveUndo`]) can undo: no canned cycle,
+    /// Whether a plain motion block `w` is a G00/G01 that the stage's
+    /// [`MoveMark`](Stage::mark_move) (or under compensation its
+    /// [`CompensatedMoveMark`](Stage::mark_compensated_move)) can undo: no canned cycle,
     /// lathe corner or G96 in force (each changes more before it can
     /// alarm), compensation either off or holding a move with nothing
     /// queued behind it, and nothing in the block beyond axes, F and N (no
@@ -111,11 +56,11 @@ impl Interpreter<'_> {
     #[inline(always)]
     pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
         let s = &self.state;
-        if (comp_engaged && !self.comp.can_mark())
+        if (comp_engaged && !self.stage.comp.can_mark())
             || s.cycle.code.is_some()
             || s.lathe.corner.is_some()
             || s.modal.css
-            || w.has_arc_words(self.axis_mask)
+            || w.has_arc_words(self.cfg.axis_mask)
         {
             return false;
         }
@@ -129,20 +74,20 @@ impl Interpreter<'_> {
     }
 
     /// A plain move that [`moves_in_place`](Self::moves_in_place)
-    /// accepted, all or nothing with a [`MoveUndo`] instead of a copy of
+    /// accepted, all or nothing with the stage's mark instead of a copy of
     /// the state.
     #[inline(always)]
     pub(crate) fn move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        let undo = MoveUndo::of(&self.state);
+        let mark = Stage::mark_move(&self.state);
         #[cfg(debug_assertions)]
         let whole = self.state;
         let result = self.execute_motion_only(w);
         if result.is_err() {
-            undo.restore(&mut self.state);
+            Stage::rollback_move(mark, &mut self.state);
             #[cfg(debug_assertions)]
             debug_assert!(
                 self.state == whole,
-                "a plain move changed a field that MoveUndo does not keep"
+                "a plain move changed a field that the stage's MoveMark does not keep"
             );
         }
         result
@@ -152,42 +97,19 @@ impl Interpreter<'_> {
     /// block that [`moves_in_place`](Self::moves_in_place) accepts.
     #[inline(never)]
     pub(crate) fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        let s = &self.state;
-        let undo = CompMoveUndo {
-            plain: MoveUndo::of(s),
-            pos: s.pos,
-            prog: s.prog,
-            nominal: s.nominal,
-            detached: s.detached,
-            frame_dirty: s.frame_dirty,
-            reported: s.reported,
-            comp: self.comp.mark(),
-        };
+        let mark = self.stage.mark_compensated_move(&self.state);
         #[cfg(debug_assertions)]
-        let whole = (self.state, self.comp.clone());
+        let whole = (self.state, self.stage.comp.clone());
         let result = self.execute_motion_only(w);
         if result.is_err() {
-            self.undo_compensated_move(undo);
+            self.stage.rollback_compensated_move(mark, &mut self.state);
             #[cfg(debug_assertions)]
             debug_assert!(
-                self.state == whole.0 && self.comp == whole.1,
-                "a compensated move changed a field that CompMoveUndo does not keep"
+                self.state == whole.0 && self.stage.comp == whole.1,
+                "a compensated move changed a field that the stage's CompensatedMoveMark does not keep"
             );
         }
         result
-    }
-
-    #[cold]
-    fn undo_compensated_move(&mut self, undo: CompMoveUndo) {
-        let s = &mut self.state;
-        undo.plain.restore(s);
-        s.pos = undo.pos;
-        s.prog = undo.prog;
-        s.nominal = undo.nominal;
-        s.detached = undo.detached;
-        s.frame_dirty = undo.frame_dirty;
-        s.reported = undo.reported;
-        self.comp.restore(undo.comp);
     }
 
     /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
@@ -204,7 +126,7 @@ impl Interpreter<'_> {
                 self.cycle_modes(w)?;
             }
         }
-        if w.has_arc_words(self.axis_mask) {
+        if w.has_arc_words(self.cfg.axis_mask) {
             let (allowed, ext) = self.allowed_letters(w);
             w.check_used(allowed, ext)?;
         }
@@ -216,7 +138,7 @@ impl Interpreter<'_> {
         if self.state.lathe.corner.is_some() {
             self.check_corner_cut(w)?;
         }
-        if self.comp.engaged() {
+        if self.stage.comp.engaged() {
             self.comp_block_end(w.first)?;
         }
         Ok(())
@@ -270,7 +192,7 @@ impl Interpreter<'_> {
         self.smoothing_frame_change(w);
         self.comp_codes(w)?;
         self.setting_codes(w)?;
-        let moves_before = self.moves;
+        let moves_before = self.stage.moves;
         let mut resume = None;
         match w.axis_user {
             // G70–G73 read their profile from the program text.
@@ -283,8 +205,8 @@ impl Interpreter<'_> {
         if self.state.lathe.corner.is_some() {
             self.check_corner_cut(w)?;
         }
-        if tool_moved && self.moves == moves_before {
-            match self.dialect.tool_length_change {
+        if tool_moved && self.stage.moves == moves_before {
+            match self.cfg.dialect.tool_length_change {
                 ToolLengthChange::MovesNow => self.tool_length_move(w)?,
                 ToolLengthChange::AtNextMove => {
                     let s = &mut self.state;
@@ -299,7 +221,7 @@ impl Interpreter<'_> {
                 self.state.modal.motion,
                 Motion::Linear | Motion::ArcCw | Motion::ArcCcw
             );
-            if !cuts || self.moves == moves_before || w.axis_user.is_some() {
+            if !cuts || self.stage.moves == moves_before || w.axis_user.is_some() {
                 return Err(alarms::needs_word(
                     g99.span,
                     "G99",
@@ -308,7 +230,7 @@ impl Interpreter<'_> {
             }
             self.emit(|loc| Event::Junction { loc, blend: true });
         }
-        if self.comp.engaged() {
+        if self.stage.comp.engaged() {
             self.comp_block_end(w.first)?;
         }
         // A frame changed without a move is reported with its block, before
@@ -410,19 +332,19 @@ impl Interpreter<'_> {
         }
         if self.state.cycle.code.is_some() && w.axis_user.is_none() {
             // In cycle mode a drilling block may change the cycle's data.
-            allowed |= self.dialect.cycles.words;
+            allowed |= self.cfg.dialect.cycles.words;
         }
         let mut ext = 0u8;
         match w.axis_user.map(|u| u.def.axes) {
             Some(AxisWords::Refuse) => {}
-            Some(AxisWords::ClaimAbsolute) => allowed |= self.machine.axis_letter_mask(),
-            Some(_) => allowed |= self.axis_mask,
+            Some(AxisWords::ClaimAbsolute) => allowed |= self.cfg.machine.axis_letter_mask(),
+            Some(_) => allowed |= self.cfg.axis_mask,
             None => {
-                allowed |= self.axis_mask;
+                allowed |= self.cfg.axis_mask;
                 match self.state.modal.motion {
                     Motion::ArcCw | Motion::ArcCcw => {
                         allowed |= bit(b'R')
-                            | self.dialect.arc_letters
+                            | self.cfg.dialect.arc_letters
                             | plane_offsets(self.state.modal.plane);
                         ext |= ext_bit(Addr::CR);
                     }
@@ -435,7 +357,7 @@ impl Interpreter<'_> {
                         allowed |= bit(b'R');
                     }
                     // LinuxCNC's G33 K: the lead, modal blocks too.
-                    Motion::Thread if self.dialect.thread_lead == ThreadLead::K => {
+                    Motion::Thread if self.cfg.dialect.thread_lead == ThreadLead::K => {
                         allowed |= bit(b'K');
                     }
                     Motion::Rapid | Motion::Thread | Motion::ThreadInch => {}
@@ -465,7 +387,7 @@ impl Interpreter<'_> {
         not_negative_feed(&f)?;
         match self.state.modal.motion {
             Motion::Thread | Motion::ThreadingCycle
-                if w.axis_user.is_none() && self.dialect.thread_lead == ThreadLead::F =>
+                if w.axis_user.is_none() && self.cfg.dialect.thread_lead == ThreadLead::F =>
             {
                 self.state.thread_lead_mm = Some(f.value * self.unit_mm())
             }
@@ -483,8 +405,8 @@ impl Interpreter<'_> {
         let mm_per_min = f.value * self.unit_mm() * self.state.feed_factor;
         // Under G93 F is no rate: the move checks its own.
         let rate = !self.state.modal.per_rev && !self.state.modal.inverse_time;
-        if rate && mm_per_min > self.max_feed {
-            self.warn(alarms::feed_clamped(f.span, mm_per_min, self.max_feed));
+        if rate && mm_per_min > self.cfg.max_feed {
+            self.warn(alarms::feed_clamped(f.span, mm_per_min, self.cfg.max_feed));
         }
     }
 
@@ -522,7 +444,7 @@ impl Interpreter<'_> {
 
     /// Step 2b: T selects, M06 changes (a lathe turret indexes on T).
     fn tool_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if self.dialect.tool_words == ToolWords::TurretOffset {
+        if self.cfg.dialect.tool_words == ToolWords::TurretOffset {
             return self.turret_word(w);
         }
         if let Some(t) = w.get(b'T') {
@@ -536,7 +458,7 @@ impl Interpreter<'_> {
                 .tool_selected
                 .ok_or_else(|| alarms::m06_without_tool(m6.span))?;
             self.state.tool_active = Some(tool);
-            if self.dialect.tool_change == ToolChangeSpindle::Stops
+            if self.cfg.dialect.tool_change == ToolChangeSpindle::Stops
                 && matches!(self.state.spindle, SpindleDir::Cw | SpindleDir::Ccw)
             {
                 self.cycle_spindle(SpindleDir::Stop);
@@ -608,7 +530,7 @@ impl Interpreter<'_> {
         } else {
             (0.0, None)
         };
-        let max_rpm = self.machine.params.max_spindle_rpm;
+        let max_rpm = self.cfg.machine.params.max_spindle_rpm;
         if max_rpm > 0.0 && rpm > max_rpm {
             // The warning points at the speed asked for when there is one.
             self.warn(alarms::spindle_clamped(
@@ -628,7 +550,7 @@ impl Interpreter<'_> {
         self.state.spindle = dir;
         self.state.rpm = rpm;
         if rpm > 0.0 {
-            self.spindle_warned = false;
+            self.stage.spindle_warned = false;
         }
         self.emit(|loc| Event::Spindle {
             loc,
@@ -647,7 +569,7 @@ impl Interpreter<'_> {
         }
         // S is m/min, or ft/min in inch mode.
         let surface_m_per_min = self.surface_m_per_min();
-        if self.dialect.surface_speed == SurfaceSpeedOn::WorkDiameter {
+        if self.cfg.dialect.surface_speed == SurfaceSpeedOn::WorkDiameter {
             let rpm = self.work_css_rpm(self.state.prog, surface_m_per_min, span)?;
             return Ok((rpm, Some(surface_m_per_min)));
         }
@@ -668,7 +590,7 @@ impl Interpreter<'_> {
     /// M00, or M01 with the optional-stop switch on: the program waits for
     /// the operator; on most controls the spindle and coolant stop first.
     fn program_stop(&mut self, code: StopCode) {
-        if self.dialect.program_stop == ProgramStop::StopsSpindleAndCoolant {
+        if self.cfg.dialect.program_stop == ProgramStop::StopsSpindleAndCoolant {
             if self.state.spindle != SpindleDir::Stop {
                 self.state.spindle = SpindleDir::Stop;
                 self.state.rpm = 0.0;
@@ -797,8 +719,9 @@ impl Interpreter<'_> {
     /// warn.
     fn other_m_codes(&mut self, w: &Words<'_>) {
         for m in w.other_m.iter().flatten() {
-            let description = self.machine.m_codes.get(&m.def).cloned().or_else(|| {
-                self.dialect
+            let description = self.cfg.machine.m_codes.get(&m.def).cloned().or_else(|| {
+                self.cfg
+                    .dialect
                     .aux_m(m.def)
                     .map(|a| std::sync::Arc::<str>::from(a.what))
             });
@@ -810,7 +733,11 @@ impl Interpreter<'_> {
                         description,
                     });
                 }
-                None => self.warn(alarms::unknown_m_ignored(m.span, m.def, self.dialect.name)),
+                None => self.warn(alarms::unknown_m_ignored(
+                    m.span,
+                    m.def,
+                    self.cfg.dialect.name,
+                )),
             }
         }
     }
@@ -822,7 +749,7 @@ impl Interpreter<'_> {
         };
         match m.def.op {
             MOp::Stop => self.program_stop(StopCode::M00),
-            MOp::OptionalStop if self.opts.optional_stop => self.program_stop(StopCode::M01),
+            MOp::OptionalStop if self.cfg.opts.optional_stop => self.program_stop(StopCode::M01),
             MOp::End => return self.end_program(EndCode::M02),
             MOp::EndRewind => return self.end_program(EndCode::M30),
             // Calls and returns were resolved before (`prepare_flow`); the
@@ -909,7 +836,7 @@ impl Interpreter<'_> {
     /// reaches the sink with the block's events.
     #[cold]
     pub(crate) fn warn(&mut self, d: Diagnostic) {
-        let d = match self.cur_line {
+        let d = match self.stage.cur_line {
             Some((src, line)) => self.locate(d, src, &line),
             None => d,
         };
@@ -921,11 +848,11 @@ impl Interpreter<'_> {
     pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
         let loc = self.flow.loc.clone();
         let e = make(loc);
-        if self.comp.holding() {
+        if self.stage.comp.holding() {
             // Behind a move cutter compensation still holds.
-            self.comp.queue_event(e);
+            self.stage.comp.queue_event(e);
         } else {
-            self.pending.push(e);
+            self.stage.pending.push(e);
         }
     }
 }

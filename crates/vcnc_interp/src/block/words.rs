@@ -216,14 +216,13 @@ impl<'b> Words<'b> {
             def,
             span: word.span,
         };
-        if matches!(
-            def.op,
-            GOp::Flow(FlowOp::MacroCall) | GOp::Flow(FlowOp::MacroModal)
-        ) {
+        // Most codes are group 01's: one test, then the rest.
+        let motion = def.group == Group::Motion;
+        if !motion && matches!(def.op, GOp::Flow(FlowOp::MacroCall | FlowOp::MacroModal)) {
             self.macro_call = Some(at);
             return Ok(());
         }
-        self.has_codes |= def.group != Group::Motion;
+        self.has_codes |= !motion;
         if def.takes_axes() {
             // G28 X0, G92 X0, G51 X0 P2., G68 X0 R90.: the code's own arguments.
             if self.axis_user.is_some_and(|u| u.span != word.span) {

@@ -56,7 +56,7 @@ impl Interpreter<'_> {
             });
         }
         self.check_call_depth(m)?;
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let caller = self.flow().frame();
         let (source, program_start) = match program {
             Some((n, span)) => match self.flow().find_program(n, &lex, store) {
@@ -122,7 +122,7 @@ impl Interpreter<'_> {
     /// E406 when one more call level would pass `limits.max_call_depth`.
     pub(crate) fn check_call_depth(&self, at: Span) -> Result<(), Diagnostic> {
         let depth = self.flow.frames.len() as u64;
-        let max = self.machine.limits.max_call_depth;
+        let max = self.cfg.machine.limits.max_call_depth;
         if depth > u64::from(max) {
             return Err(alarms::nesting_too_deep(at, max));
         }
@@ -138,7 +138,7 @@ impl Interpreter<'_> {
         // The limit is checked (and the jump counted) before anything moves:
         // an M99 that alarms leaves the flow as it was.
         self.count_jump(m)?;
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let flow = self.flow();
         let frame = flow.frame();
         if flow.frames.len() == 1 {
@@ -197,7 +197,7 @@ impl Interpreter<'_> {
             alarms::needs_word(cmd, "this code", "L (the sequence number to go to)")
         })?;
         let n = whole(&l, b'L', 1.0, 99_999_999.0, "L is a sequence number")?;
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let frame = self.flow().frame();
         self.flow()
             .find_sequence(frame.source, frame.program, n, &lex)

@@ -36,7 +36,7 @@ impl Interpreter<'_> {
             None => match code {
                 Some(c)
                     if c.def.op != GOp::Comp(CompOp::Cancel)
-                        && self.dialect.offset_default == OffsetDefault::ToolInSpindle =>
+                        && self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle =>
                 {
                     Some(self.tool_in_spindle(c.span)?)
                 }
@@ -46,7 +46,7 @@ impl Interpreter<'_> {
         if let Some(n) = d_number {
             let t = self.tables.tool(n);
             self.state.d_number = n;
-            if self.dialect.diameter.axis.is_some() {
+            if self.cfg.dialect.diameter.axis.is_some() {
                 // A lathe's tool number (LinuxCNC lathe mode): its nose
                 // radius and orientation (LinuxCNC's numbering).
                 self.state.comp_d_mm = t.nose_radius_mm + t.nose_radius_wear_mm;
@@ -69,15 +69,15 @@ impl Interpreter<'_> {
     /// cancels (a block's code, or a profile block's run by G70).
     pub(crate) fn set_comp_side(&mut self, side: CompSide) {
         self.state.modal.comp = side;
-        match (side, self.comp.mode) {
+        match (side, self.stage.comp.mode) {
             (CompSide::Off, Mode::Off) => {}
-            (CompSide::Off, Mode::Starting) => self.comp.mode = Mode::Off,
-            (CompSide::Off, _) => self.comp.mode = Mode::Cancelling,
+            (CompSide::Off, Mode::Starting) => self.stage.comp.mode = Mode::Off,
+            (CompSide::Off, _) => self.stage.comp.mode = Mode::Cancelling,
             (_, Mode::Off | Mode::Cancelling) => {
-                if self.comp.mode == Mode::Off {
-                    self.comp.plane = self.state.modal.plane;
+                if self.stage.comp.mode == Mode::Off {
+                    self.stage.comp.plane = self.state.modal.plane;
                 }
-                self.comp.mode = if self.comp.holding() {
+                self.stage.comp.mode = if self.stage.comp.holding() {
                     Mode::On
                 } else {
                     Mode::Starting
@@ -100,26 +100,26 @@ impl Interpreter<'_> {
     pub(crate) fn comp_on_reads_d(&self) -> bool {
         self.state.modal.comp != CompSide::Off
             && !self.arc_reads_d()
-            && self.dialect.d_is_radius_offset()
+            && self.cfg.dialect.d_is_radius_offset()
     }
 
     /// Whether the modal motion is an arc that reads D as its diameter
     /// (the lathe's).
     fn arc_reads_d(&self) -> bool {
-        self.dialect.arc_letters & bit(b'D') != 0
+        self.cfg.dialect.arc_letters & bit(b'D') != 0
             && matches!(self.state.modal.motion, Motion::ArcCw | Motion::ArcCcw)
     }
 
     /// Whether a D outside G41/G42 is a cutter-radius offset number to
     /// keep for the next G41/G42, not an arc's diameter.
     pub(crate) fn d_alone_is_radius(&self) -> bool {
-        self.dialect.d_is_radius_offset() && !self.arc_reads_d()
+        self.cfg.dialect.d_is_radius_offset() && !self.arc_reads_d()
     }
 
     /// E320 when compensation is on and the block changes what it cannot
     /// change under it: the plane, rotation, scaling.
     pub(crate) fn check_comp_changes(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if !self.comp.engaged() || self.comp.mode == Mode::Cancelling {
+        if !self.stage.comp.engaged() || self.stage.comp.mode == Mode::Cancelling {
             return Ok(());
         }
         for (group, what) in [
@@ -130,7 +130,7 @@ impl Interpreter<'_> {
             if let Some(g) = w.group(group) {
                 let same_plane = group == Group::Plane
                     && matches!(
-                        (g.def.op, self.comp.plane),
+                        (g.def.op, self.stage.comp.plane),
                         (GOp::Mode(ModeOp::PlaneXy), crate::events::Plane::Xy)
                             | (GOp::Mode(ModeOp::PlaneZx), crate::events::Plane::Zx)
                             | (GOp::Mode(ModeOp::PlaneYz), crate::events::Plane::Yz)

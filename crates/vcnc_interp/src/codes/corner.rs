@@ -21,10 +21,10 @@
 use crate::alarms;
 use crate::block::convert::Goal;
 use crate::block::words::Words;
-use crate::codes::lathe_data::{CornerKind, PendingCorner};
 use crate::events::{Feed, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{Move, MoveKind, Target};
+use crate::state::lathe::{CornerKind, PendingCorner};
 use vcnc_syntax::{Addr, Diagnostic, Span};
 
 /// A point or direction of the plane (first, second axis).
@@ -139,7 +139,7 @@ impl Interpreter<'_> {
             word: word.span,
             line: self.flow.loc.line,
             block_at: w.first.start,
-            source_line: self.cur_line,
+            source_line: self.stage.cur_line,
         });
         self.state.prog = goal.prog;
         Ok(())
@@ -183,7 +183,7 @@ impl Interpreter<'_> {
         };
         // The held block's moves carry its line (and its alarms its place).
         let line = std::mem::replace(&mut self.flow.loc.line, held.line);
-        let cur_line = std::mem::replace(&mut self.cur_line, held.source_line);
+        let cur_line = std::mem::replace(&mut self.stage.cur_line, held.source_line);
         self.state.prog = held.start;
         let first = Move {
             kind: MoveKind::Feed(held.feed),
@@ -191,7 +191,7 @@ impl Interpreter<'_> {
             exact_stop: false,
             cmd: held.cmd,
         };
-        let mut out = self.commit(first, w);
+        let mut out = self.send(first, w);
         if out.is_ok() {
             let kind = match cut.arc {
                 Some((c, ccw)) => {
@@ -213,14 +213,14 @@ impl Interpreter<'_> {
                 exact_stop: false,
                 cmd: held.cmd,
             };
-            out = self.commit(round, w);
+            out = self.send(round, w);
         }
         self.flow.loc.line = line;
         let out = match (out, held.source_line) {
             (Err(d), Some((src, l))) => Err(self.locate(d, src, &l)),
             (out, _) => out,
         };
-        self.cur_line = cur_line;
+        self.stage.cur_line = cur_line;
         out
     }
 

@@ -162,13 +162,13 @@ impl Interpreter<'_> {
     pub(crate) fn drill(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let cmd = w.group(Group::Cycle).map_or(cmd, |c| c.span);
         let axes = self.cycle_axes(cmd)?;
-        let letters: Vec<u8> = self.axis_words.iter().map(|a| a.letter).collect();
+        let letters: Vec<u8> = self.cfg.axis_words.iter().map(|a| a.letter).collect();
         let letter = |i: usize| letters.get(i).copied();
         let drills = [axes.a, axes.b, axes.z]
             .iter()
             .filter_map(|&i| letter(i))
             .any(|l| w.get(l).is_some());
-        let rules = self.dialect.cycles;
+        let rules = self.cfg.dialect.cycles;
         if !drills && rules.rs274_words && w.group(Group::Cycle).is_some() {
             // rs274: "All axes missing with motion code".
             return Err(alarms::needs_word(
@@ -260,7 +260,7 @@ impl Interpreter<'_> {
         else {
             return Ok(());
         };
-        let depth = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
+        let depth = self.cfg.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
         let extra = match data.hole {
             Hole::DrillDwell | Hole::BoreStop | Hole::BoreDwell => Some((b'P', "P (the dwell)")),
             Hole::HighSpeedPeck | Hole::DeepPeck => Some((b'Q', "Q (the peck)")),
@@ -290,11 +290,11 @@ impl Interpreter<'_> {
     /// and Z from the R level).
     fn store_cycle_words(&mut self, w: &Words<'_>, axes: CycleAxes) -> Result<(), Diagnostic> {
         let inc = self.state.modal.incremental;
-        let z_letter = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
+        let z_letter = self.cfg.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
         let r_word = w.get(b'R').map(|r| self.length_mm(&r));
         let z_word = w.get(z_letter).map(|z| self.axis_value(axes.z, &z));
         let cycle = &mut self.state.cycle;
-        let (r_word, z_word) = if self.dialect.cycles.rs274_words {
+        let (r_word, z_word) = if self.cfg.dialect.cycles.rs274_words {
             // LinuxCNC keeps the words and reads them under each block's
             // G90/G91 (`G90 G81 … R2`, then `G91 X10 L2`: R is 2 above the
             // initial level there).
@@ -312,7 +312,7 @@ impl Interpreter<'_> {
             let r_level = cycle.r.unwrap_or(cycle.initial);
             cycle.z = Some(if inc { r_level + v } else { v });
         }
-        let rules = self.dialect.cycles;
+        let rules = self.cfg.dialect.cycles;
         let hole = self.state.cycle.hole;
         if self.state.cycle.code.is_some() {
             // An M code of the block may read them (LinuxCNC's `M62 P1`).
@@ -350,7 +350,7 @@ impl Interpreter<'_> {
             crate::block::convert::dwell_not_negative(&p)?;
             self.state.cycle.p_s = Some(self.seconds(&p));
         }
-        if self.dialect.cycles.reduced_pecks {
+        if self.cfg.dialect.cycles.reduced_pecks {
             self.store_reduced_peck(w)?;
         }
         Ok(())
@@ -398,7 +398,7 @@ impl Interpreter<'_> {
         let c = data
             .code
             .ok_or_else(|| alarms::pattern_without_cycle(cmd))?;
-        let rules = self.dialect.cycles;
+        let rules = self.cfg.dialect.cycles;
         // EIA: R is optional, the R level is then the initial level.
         let r = if rules.r_optional {
             Some(data.r.unwrap_or(data.initial))
@@ -544,7 +544,7 @@ impl Interpreter<'_> {
     /// Cutter compensation is suspended for a cycle's holes (Fanuc): the
     /// held move ends square to its path.
     pub(crate) fn suspend_comp(&mut self) -> Result<bool, Diagnostic> {
-        if !self.comp.engaged() {
+        if !self.stage.comp.engaged() {
             return Ok(false);
         }
         self.comp_finish()?;
@@ -554,7 +554,7 @@ impl Interpreter<'_> {
     /// After the holes: the next move in the plane starts compensation again.
     pub(crate) fn resume_comp(&mut self, suspended: bool) {
         if suspended {
-            self.comp.mode = crate::motion::comp::Mode::Starting;
+            self.stage.comp.mode = crate::motion::comp::Mode::Starting;
         }
     }
 
@@ -580,7 +580,7 @@ impl Interpreter<'_> {
         at.set(axes.z, zz);
         let at = self.state.frame.machine_of(at);
         self.emit(|loc| Event::Hole { loc, cycle: c, at });
-        let rules = self.dialect.cycles;
+        let rules = self.cfg.dialect.cycles;
         let hole = data.hole;
         let mut ret =
             if rules.always_back_to_r || (self.state.modal.return_r && hole != Hole::BackBore) {
@@ -693,7 +693,7 @@ impl Interpreter<'_> {
                 if matches!(feed, Feed::PerRev(_)) {
                     return Err(alarms::per_rev_spindle_stopped(
                         cmd,
-                        self.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
+                        self.cfg.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
                     ));
                 }
                 s.feed(self, zz, feed)?;
@@ -737,10 +737,10 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         // LinuxCNC's clearance is fixed at 0.010 inch (its G73 back-off and
         // G83 rapid delta); the Fanuc's is a parameter (5114).
-        let rules = self.dialect.cycles;
+        let rules = self.cfg.dialect.cycles;
         let d = match rules.peck_clearance {
             PeckClearance::Fixed(d) => d,
-            PeckClearance::Parameter => self.machine.params.peck_return_mm,
+            PeckClearance::Parameter => self.cfg.machine.params.peck_return_mm,
         };
         let back_to_r = hole == Hole::DeepPeck;
         self.peck_moves(
@@ -801,8 +801,8 @@ impl Interpreter<'_> {
         dwell: Option<f64>,
         feed: Feed,
     ) -> Result<(), Diagnostic> {
-        let type_two = self.machine.params.tapping_type == 1;
-        let d = self.machine.params.peck_return_mm;
+        let type_two = self.cfg.machine.params.tapping_type == 1;
+        let d = self.cfg.machine.params.peck_return_mm;
         let mut depth = zr;
         loop {
             let next = match peck {
@@ -857,7 +857,7 @@ impl Interpreter<'_> {
     fn shift_vector(&self, axes: CycleAxes, data: CycleData) -> (f64, f64) {
         let q = data.q.unwrap_or(0.0).abs();
         let mut m = Pos::default();
-        let (i, sign) = match self.machine.params.shift_direction {
+        let (i, sign) = match self.cfg.machine.params.shift_direction {
             0 => (axes.a, 1.0),
             1 => (axes.a, -1.0),
             2 => (axes.b, 1.0),

@@ -53,7 +53,10 @@ enum Step {
 impl Interpreter<'_> {
     /// Machine axis indices of X and Z.
     fn xz_axes(&self, cmd: Span) -> Result<(usize, usize), Diagnostic> {
-        match (self.machine.axis_of(b'X'), self.machine.axis_of(b'Z')) {
+        match (
+            self.cfg.machine.axis_of(b'X'),
+            self.cfg.machine.axis_of(b'Z'),
+        ) {
             (Some(x), Some(z)) => Ok((x, z)),
             _ => Err(alarms::cycle_parameters(
                 cmd,

@@ -461,10 +461,10 @@ impl Interpreter<'_> {
     fn finish(&mut self, profile: &Profile, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
         let a = self.here_xz(axes);
-        let (line, cur_line) = (self.flow.loc.line, self.cur_line);
+        let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
         let out = self.finish_moves(profile, axes, w);
         self.flow.loc.line = line;
-        self.cur_line = cur_line;
+        self.stage.cur_line = cur_line;
         out?;
         self.return_to(a, axes, w, cmd)
     }
@@ -479,7 +479,7 @@ impl Interpreter<'_> {
             self.finish_asides(profile, e.asides)?;
             // The moves, warnings and alarms of an element are its block's.
             self.flow.loc.line = e.line.number;
-            self.cur_line = Some((profile.src, e.line));
+            self.stage.cur_line = Some((profile.src, e.line));
             self.finish_elem(e, axes, w)
                 .map_err(|d| self.locate(d, profile.src, &e.line))?;
         }
@@ -497,9 +497,9 @@ impl Interpreter<'_> {
         let (from, to) = (range.0 as usize, range.1 as usize);
         for aside in profile.asides.get(from..to).unwrap_or_default() {
             self.flow.loc.line = aside.line.number;
-            self.cur_line = Some((profile.src, aside.line));
+            self.stage.cur_line = Some((profile.src, aside.line));
             let mut w = Words::new(&aside.block);
-            w.fill(self.dialect, self.machine, self.axis_mask)
+            w.fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)
                 .and_then(|()| self.profile_words(&w))
                 .map_err(|d| self.locate(d, profile.src, &aside.line))?;
         }

@@ -27,20 +27,11 @@ use crate::dialect::{GOp, Group};
 use crate::events::{Event, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{MachineKind, MachineMove, Target, travel};
+use crate::state::NurbsBuild;
 use std::sync::Arc;
 use vcnc_core::Nurbs;
 use vcnc_core::nurbs::MAX_NURBS_POINTS;
 use vcnc_syntax::{Diagnostic, Span};
-
-/// A curve whose blocks are being read.
-#[derive(Debug, Clone)]
-pub(crate) struct NurbsBuild {
-    curve: Nurbs,
-    /// The K-only blocks have begun: no more control points.
-    knots_only: bool,
-    /// The G06.2 word, for alarms about the whole curve.
-    cmd: Span,
-}
 
 impl Interpreter<'_> {
     /// One block under the modal G06.2.
@@ -62,7 +53,7 @@ impl Interpreter<'_> {
                         "every block of a NURBS definition has a knot K"
                     },
                 )),
-                None if w.any(self.axis_mask) => Err(alarms::bad_nurbs(
+                None if w.any(self.cfg.axis_mask) => Err(alarms::bad_nurbs(
                     w.first,
                     "a new curve starts with G06.2 (P K X Y Z R)",
                 )),
@@ -79,7 +70,7 @@ impl Interpreter<'_> {
             return Err(alarms::bad_nurbs(k.span, "the knots must not decrease"));
         }
         b.curve.knots.push(k.value);
-        if w.any(self.axis_mask) {
+        if w.any(self.cfg.axis_mask) {
             self.nurbs_point(&mut b, w)?;
         } else {
             b.knots_only = true;
@@ -108,7 +99,7 @@ impl Interpreter<'_> {
         if self.nurbs.is_some() {
             return Err(alarms::bad_nurbs(cmd, "the previous curve is not complete"));
         }
-        if self.comp.engaged() {
+        if self.stage.comp.engaged() {
             return Err(alarms::bad_nurbs(
                 cmd,
                 "no NURBS under cutter compensation (G41/G42)",
@@ -182,8 +173,8 @@ impl Interpreter<'_> {
             to: machine,
             exact_stop: false,
         };
-        if let Err(out) = travel::check(self.machine, &check, None) {
-            return Err(out.alarm(self.machine, w.first));
+        if let Err(out) = travel::check(self.cfg.machine, &check, None) {
+            return Err(out.alarm(self.cfg.machine, w.first));
         }
         if b.curve.points.is_empty() && distance(&machine, &self.state.pos) > 1e-6 {
             return Err(alarms::bad_nurbs(
@@ -206,7 +197,7 @@ impl Interpreter<'_> {
         let feed = self.feed(b.cmd)?;
         let end = b.curve.points.last().copied().unwrap_or(self.state.pos);
         self.report_frame();
-        self.moves += 1;
+        self.stage.moves += 1;
         let curve = Arc::new(b.curve);
         self.emit(|loc| Event::Nurbs { loc, curve, feed });
         self.state.pos = end;

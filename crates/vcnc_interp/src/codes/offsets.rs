@@ -20,7 +20,8 @@ use vcnc_syntax::{Diagnostic, Span};
 impl Interpreter<'_> {
     /// `(axis index, value in mm)` of each named axis.
     fn named_values(&self, w: &Words<'_>) -> Vec<(usize, f64)> {
-        self.machine
+        self.cfg
+            .machine
             .axes
             .iter()
             .enumerate()
@@ -30,7 +31,7 @@ impl Interpreter<'_> {
 
     /// G10: L2 work offsets, L10–L13 tool offsets.
     pub(crate) fn set_data(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let rules = self.dialect.g10;
+        let rules = self.cfg.dialect.g10;
         let l = w.get(b'L').ok_or_else(|| {
             let forms = if rules.tool_table_l1 {
                 "L (1 tool table, 2 work offset, 20 work offset here) and P"
@@ -66,7 +67,7 @@ impl Interpreter<'_> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
-        let rules = self.dialect.g10;
+        let rules = self.cfg.dialect.g10;
         let lowest = if rules.from_position_l20 { 0.0 } else { 1.0 };
         let last = f64::from(rules.last_work_offset);
         if p.point || !(lowest..=last).contains(&p.value) {
@@ -174,6 +175,7 @@ impl Interpreter<'_> {
     /// E203 on the first axis word of the block but those of `allowed`.
     fn no_axis_words(&self, w: &Words<'_>, allowed: &[u8]) -> Result<(), Diagnostic> {
         match self
+            .cfg
             .machine
             .axes
             .iter()
@@ -188,7 +190,7 @@ impl Interpreter<'_> {
 
     /// An H, D or G10 P offset number within the machine's offset registers.
     pub(crate) fn offset_number(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
-        let max = self.machine.params.offset_registers;
+        let max = self.cfg.machine.params.offset_registers;
         if w.point || w.value < 0.0 || w.value > f64::from(max) {
             return Err(alarms::bad_tool_offset_number(
                 w.span, w.addr.0, w.value, max,
@@ -202,7 +204,7 @@ impl Interpreter<'_> {
     /// `D0`).
     pub(crate) fn offset_word(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
         match self.offset_number(w)? {
-            0 if self.dialect.offset_default == OffsetDefault::ToolInSpindle => {
+            0 if self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle => {
                 self.tool_in_spindle(w.span)
             }
             n => Ok(n),
@@ -213,7 +215,7 @@ impl Interpreter<'_> {
     /// H, G41/G42 without D): 0, no offset, before the first tool change.
     pub(crate) fn tool_in_spindle(&self, at: Span) -> Result<u32, Diagnostic> {
         let t = self.state.tool_active.unwrap_or(0);
-        let max = self.machine.params.offset_registers;
+        let max = self.cfg.machine.params.offset_registers;
         if t > max {
             return Err(alarms::bad_tool_offset_number(at, b'T', f64::from(t), max));
         }
@@ -226,6 +228,7 @@ impl Interpreter<'_> {
         // The code's own name for the messages: G92, a Fanuc lathe's G50.
         let name = || {
             let g = self
+                .cfg
                 .dialect
                 .g_for(GOp::Set(SetOp::PresetOrClamp))
                 .unwrap_or(92.0);

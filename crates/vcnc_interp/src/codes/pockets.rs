@@ -192,7 +192,7 @@ impl Interpreter<'_> {
             .map(|t| t.d_mm + t.d_wear_mm)
             .filter(|r| *r > 0.0)
             .ok_or_else(|| alarms::pocket_too_small(cmd, "tool", 0.0))?;
-        let stepover = self.machine.params.pocket_stepover_pct / 100.0 * 2.0 * r;
+        let stepover = self.cfg.machine.params.pocket_stepover_pct / 100.0 * 2.0 * r;
         let too_small = |what: &str| alarms::pocket_too_small(cmd, what, 2.0 * r);
         let wall = if circle {
             let rho = size_i / 2.0 - r;
@@ -245,7 +245,7 @@ impl Interpreter<'_> {
             }
             None => initial,
         };
-        let z_letter = self.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
+        let z_letter = self.cfg.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
         let zw = need(z_letter, "Z (the pocket's depth)")?;
         let bottom = {
             let v = self.axis_value(axes.z, &zw);
@@ -403,7 +403,7 @@ impl PocketSteps<'_, '_> {
             exact_stop: false,
             cmd: self.cmd,
         };
-        it.commit(mv, self.w)
+        it.send(mv, self.w)
     }
 
     /// From the plunge at the centre to the first ring's start: along the

@@ -33,7 +33,6 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::codes::corner::corner_cut;
-use crate::codes::lathe_data::CornerKind;
 use crate::codes::rough::Seg;
 use crate::codes::turning_cycles::Xz;
 use crate::dialect::{CompOp, ModeOp, MotionOp, PaceOp};
@@ -41,6 +40,7 @@ use crate::dialect::{GOp, MGroup, bit};
 use crate::flow::first_value;
 use crate::interpreter::Interpreter;
 use crate::state::CompSide;
+use crate::state::lathe::CornerKind;
 use vcnc_syntax::{Addr, Block, Cursor, Diagnostic, Line, Span, Word, lex_block};
 
 /// Most blocks a profile may have.
@@ -156,7 +156,7 @@ impl Interpreter<'_> {
             "Q is the profile's last sequence number",
         )?;
         let frame = self.flow.frame();
-        let (src, lex) = (frame.source, self.dialect.lex);
+        let (src, lex) = (frame.source, self.cfg.dialect.lex);
         let start = self
             .flow
             .find_sequence(src, frame.program, ns, &lex)
@@ -207,7 +207,7 @@ impl Interpreter<'_> {
                     Err(d) => self.profile_macro_block(&bytes, i, d, &mut block),
                 }
                 .map_err(|d| self.locate(d, src, &line))?;
-                if block.is_empty() || (block.deleted.is_some() && self.opts.block_delete) {
+                if block.is_empty() || (block.deleted.is_some() && self.cfg.opts.block_delete) {
                     continue;
                 }
                 if block.percent || first_value(&block, b'O').is_some() {
@@ -318,7 +318,7 @@ impl Interpreter<'_> {
         first: bool,
     ) -> Result<Move, Diagnostic> {
         let mut w = Words::new(block);
-        w.fill(self.dialect, self.machine, self.axis_mask)?;
+        w.fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)?;
         let mut dwell = false;
         for code in w.once_codes() {
             if code.def.op != GOp::Pace(PaceOp::Dwell) {
@@ -518,7 +518,7 @@ impl Interpreter<'_> {
         cw: bool,
         span: Span,
     ) -> Result<Xz, Diagnostic> {
-        let tol = self.machine.params.arc_tolerance_mm;
+        let tol = self.cfg.machine.params.arc_tolerance_mm;
         // In the (Z, X) frame of the plane: first Z, second X.
         let (sz, sx, ez, ex) = (s.1, s.0, e.1, e.0);
         let c = match words {

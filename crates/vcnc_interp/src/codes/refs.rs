@@ -63,7 +63,7 @@ impl Interpreter<'_> {
             MoveOp::Skip => self.skip(w, cmd),
             MoveOp::RefXThenZ => self.reference_x_then_z(w, cmd),
             MoveOp::StartPoint => {
-                let to = self.machine.start;
+                let to = self.cfg.machine.start;
                 self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)
             }
             MoveOp::Probe { must_trip } => self.probe(w, cmd, must_trip),
@@ -160,7 +160,7 @@ impl Interpreter<'_> {
         };
         let seconds = match (w.get(b'P'), x) {
             (Some(_), Some(x)) => return Err(alarms::word_not_allowed(x.span, x.addr.0)),
-            (Some(p), None) if p.point && self.dialect.dwell_p == DwellP::SecondsWithPoint => {
+            (Some(p), None) if p.point && self.cfg.dialect.dwell_p == DwellP::SecondsWithPoint => {
                 dwell_not_negative(&p)?;
                 p.value
             }
@@ -230,9 +230,10 @@ impl Interpreter<'_> {
     /// the path crosses it. G38.2/G38.4 alarm when it does not.
     fn probe(&mut self, w: &Words<'_>, cmd: Span, must_trip: bool) -> Result<(), Diagnostic> {
         // Only this move's events: `pending` also holds earlier blocks'.
-        let from = self.pending.len();
+        let from = self.stage.pending.len();
         self.skip(w, cmd)?;
         let tripped = self
+            .stage
             .pending
             .get(from..)
             .unwrap_or_default()
@@ -299,7 +300,7 @@ impl Interpreter<'_> {
         let goal = self.target(w, self.state.modal.incremental);
         let (mid, named) = (goal.prog, goal.named);
         let reference = self.tables.reference.get(n - 1).copied().flatten();
-        if named == 0 && self.dialect.bare_return == BareReturn::NeedsAxes {
+        if named == 0 && self.cfg.dialect.bare_return == BareReturn::NeedsAxes {
             return Err(alarms::needs_axes(cmd, "a reference return"));
         }
         let reference = reference
@@ -308,7 +309,7 @@ impl Interpreter<'_> {
             // Haas, grbl: every axis goes straight to the reference point.
             return self.straight(MoveKind::Rapid, Target::Machine(reference), w, cmd);
         }
-        for i in 0..self.machine.axes.len() {
+        for i in 0..self.cfg.machine.axes.len() {
             if named & (1 << i) != 0 {
                 self.state.intermediate.set(i, mid.get(i));
             }
@@ -319,7 +320,7 @@ impl Interpreter<'_> {
         // block is all or nothing, so a second leg that alarms drops the first.
         self.straight(MoveKind::Rapid, self.to_target(&goal), w, cmd)?;
         let mut end = self.settled_tool_pos()?;
-        for i in 0..self.machine.axes.len() {
+        for i in 0..self.cfg.machine.axes.len() {
             if named & (1 << i) != 0 {
                 end.set(i, reference.get(i));
             }
@@ -332,7 +333,7 @@ impl Interpreter<'_> {
         let mut named = 0u32;
         let mut mid = self.state.prog;
         let mut target = self.state.prog;
-        for (i, axis) in self.machine.axes.iter().enumerate() {
+        for (i, axis) in self.cfg.machine.axes.iter().enumerate() {
             let Some(word) = w.get(axis.letter) else {
                 continue;
             };
@@ -366,7 +367,7 @@ impl Interpreter<'_> {
         }
         let mut to = self.settled_tool_pos()?;
         let mut named = 0;
-        for (i, axis) in self.machine.axes.iter().enumerate() {
+        for (i, axis) in self.cfg.machine.axes.iter().enumerate() {
             if let Some(word) = w.get(axis.letter) {
                 to.set(i, self.axis_value(i, &word));
                 named |= 1 << i;

@@ -172,7 +172,7 @@ impl Interpreter<'_> {
         face: bool,
     ) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
-        if !w.any(self.axis_mask) {
+        if !w.any(self.cfg.axis_mask) {
             // The first block: R, the retract after each peck.
             no_one_block_words(w, b"IKD")?;
             for l in [b'P', b'Q'] {
@@ -253,7 +253,7 @@ impl Interpreter<'_> {
         cmd: Span,
     ) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
-        if !w.any(self.axis_mask) {
+        if !w.any(self.cfg.axis_mask) {
             no_one_block_words(w, b"KDIA")?;
             return self.thread_first_block(w);
         }

@@ -91,7 +91,7 @@ impl Interpreter<'_> {
             self.state.h_number = self.offset_word(&h)?;
         } else if mode != ToolLength::Off
             && code.is_some()
-            && self.dialect.offset_default == OffsetDefault::ToolInSpindle
+            && self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle
         {
             self.state.h_number = self.tool_in_spindle(code.map_or(w.first, |c| c.span))?;
         }
@@ -104,7 +104,7 @@ impl Interpreter<'_> {
         let offset = sign * (t.h_mm + t.h_wear_mm);
         let before = self.state.frame.tool;
         let mut tool = before;
-        match self.machine.axis_of(b'Z') {
+        match self.cfg.machine.axis_of(b'Z') {
             Some(z) => tool.set(z, offset),
             None if offset != 0.0 => {
                 let at = code.map_or(w.first, |c| c.span);
@@ -130,13 +130,14 @@ impl Interpreter<'_> {
         cmd: Span,
     ) -> Result<(), Diagnostic> {
         let z = self
+            .cfg
             .machine
             .axis_of(b'Z')
             .ok_or_else(|| alarms::tool_length_without_z(cmd))?;
         let word = w
             .get(b'Z')
             .ok_or_else(|| alarms::needs_word(cmd, "G43.1", "Z (the tool length offset)"))?;
-        for a in self.axis_words.iter().filter(|a| a.letter != b'Z') {
+        for a in self.cfg.axis_words.iter().filter(|a| a.letter != b'Z') {
             if let Some(other) = w.get(a.letter) {
                 return Err(alarms::word_not_allowed(other.span, a.letter));
             }

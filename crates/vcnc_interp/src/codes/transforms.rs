@@ -31,7 +31,7 @@ impl Interpreter<'_> {
     fn centre(&self, w: &Words<'_>) -> [f64; 3] {
         let mut c = [0.0; 3];
         for (k, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
-            let Some(i) = self.machine.axis_of(*letter) else {
+            let Some(i) = self.cfg.machine.axis_of(*letter) else {
                 continue;
             };
             c[k] = match w.get(*letter) {
@@ -128,7 +128,8 @@ impl Interpreter<'_> {
         }
         let (i, j) = plane_rows(plane);
         let letters = [b'X', b'Y', b'Z'];
-        if self.machine.axis_of(letters[i]).is_none() || self.machine.axis_of(letters[j]).is_none()
+        if self.cfg.machine.axis_of(letters[i]).is_none()
+            || self.cfg.machine.axis_of(letters[j]).is_none()
         {
             return Err(alarms::arc_without_center(cmd, plane.as_str()));
         }

@@ -86,11 +86,12 @@ impl Interpreter<'_> {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let reference = self.machine.reference[0].ok_or_else(|| alarms::no_reference(cmd, 1))?;
+        let reference =
+            self.cfg.machine.reference[0].ok_or_else(|| alarms::no_reference(cmd, 1))?;
         let mut any = false;
         // The document: "return to zero in order of X, Z".
-        let mut order: Vec<(usize, crate::interpreter::AxisWord)> =
-            self.axis_words.iter().copied().enumerate().collect();
+        let mut order: Vec<(usize, crate::dialect::AxisWord)> =
+            self.cfg.axis_words.iter().copied().enumerate().collect();
         order.sort_by_key(|(_, a)| match a.letter {
             b'X' => 0,
             b'Z' => 1,
@@ -115,7 +116,7 @@ impl Interpreter<'_> {
     pub(crate) fn program_zero(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let mut to = self.state.prog;
         let mut any = false;
-        for (i, a) in self.axis_words.iter().enumerate() {
+        for (i, a) in self.cfg.axis_words.iter().enumerate() {
             if w.get(a.letter).is_some() || a.inc.and_then(|l| w.get(l)).is_some() {
                 to.set(i, 0.0);
                 any = true;

@@ -23,12 +23,12 @@
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::codes::lathe_data::SingleCycle;
 use crate::dialect::Group;
 use crate::events::{Feed, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
 use crate::state::Motion;
+use crate::state::lathe::SingleCycle;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// A point of the lathe plane, program coordinates: (X radius, Z).
@@ -51,7 +51,10 @@ const SAME_MM: f64 = 1e-9;
 impl Interpreter<'_> {
     /// The machine (and program) indices of X and Z.
     pub(crate) fn lathe_axes(&self, cmd: Span) -> Result<(usize, usize), Diagnostic> {
-        match (self.machine.axis_of(b'X'), self.machine.axis_of(b'Z')) {
+        match (
+            self.cfg.machine.axis_of(b'X'),
+            self.cfg.machine.axis_of(b'Z'),
+        ) {
             (Some(x), Some(z)) => Ok((x, z)),
             _ => Err(alarms::cycle_parameters(
                 cmd,
@@ -102,7 +105,7 @@ impl Interpreter<'_> {
         cmd: Span,
         motion: Motion,
     ) -> Result<(), Diagnostic> {
-        if !w.any(self.axis_mask) {
+        if !w.any(self.cfg.axis_mask) {
             // Only a block that cuts reads R.
             if let Some(r) = w.get(b'R') {
                 return Err(alarms::word_not_allowed(r.span, b'R'));
@@ -201,7 +204,14 @@ impl Interpreter<'_> {
         // Where the chamfer starts on the thread line (a taper included).
         let t = (length - gamma) / length;
         let start = (from.0 + (end.0 - from.0) * t, from.1 + (end.1 - from.1) * t);
-        let lift = gamma * self.machine.params.thread_chamfer_deg.to_radians().tan();
+        let lift = gamma
+            * self
+                .cfg
+                .machine
+                .params
+                .thread_chamfer_deg
+                .to_radians()
+                .tan();
         let dir = (out_x - start.0).signum();
         let lifted = start.0 + dir * lift.min((out_x - start.0).abs());
         vec![(thread, start), (thread, (lifted, end.1))]

@@ -43,12 +43,12 @@ impl Interpreter<'_> {
             "T is the turret station and offset register, two digits each (T0101)",
         )?;
         let (station, register) = (n / 100, n % 100);
-        if register > self.machine.params.offset_registers {
+        if register > self.cfg.machine.params.offset_registers {
             return Err(alarms::bad_tool_offset_number(
                 t.span,
                 b'T',
                 t.value,
-                self.machine.params.offset_registers,
+                self.cfg.machine.params.offset_registers,
             ));
         }
         if station != 0 && self.state.tool_active != Some(station) {
@@ -58,10 +58,10 @@ impl Interpreter<'_> {
         }
         let tool = self.tables.tool(register);
         let mut offset = Pos::default();
-        if let Some(x) = self.machine.axis_of(b'X') {
+        if let Some(x) = self.cfg.machine.axis_of(b'X') {
             offset.set(x, tool.x_mm + tool.x_wear_mm);
         }
-        if let Some(z) = self.machine.axis_of(b'Z') {
+        if let Some(z) = self.cfg.machine.axis_of(b'Z') {
             offset.set(z, tool.z_mm + tool.z_wear_mm);
         }
         self.state.lathe.offset = register;
@@ -86,7 +86,7 @@ impl Interpreter<'_> {
         surface_m_per_min: f64,
         span: Span,
     ) -> Result<f64, Diagnostic> {
-        let x = self.machine.axis_of(b'X').map_or(0.0, |i| at.get(i));
+        let x = self.cfg.machine.axis_of(b'X').map_or(0.0, |i| at.get(i));
         let diameter_mm = 2.0 * x.abs();
         let mut rpm = if diameter_mm > 1e-9 {
             1000.0 * surface_m_per_min / (std::f64::consts::PI * diameter_mm)
@@ -96,7 +96,7 @@ impl Interpreter<'_> {
         if let Some(max) = self.state.max_rpm {
             rpm = rpm.min(max);
         }
-        let top = self.machine.params.max_spindle_rpm;
+        let top = self.cfg.machine.params.max_spindle_rpm;
         if top > 0.0 {
             rpm = rpm.min(top);
         }
@@ -110,7 +110,7 @@ impl Interpreter<'_> {
     /// asks for, as a `spindle` event when it changes.
     pub(crate) fn css_follow(&mut self, mv: &Move) -> Result<(), Diagnostic> {
         let turning = matches!(self.state.spindle, SpindleDir::Cw | SpindleDir::Ccw);
-        if !turning || self.dialect.surface_speed != SurfaceSpeedOn::WorkDiameter {
+        if !turning || self.cfg.dialect.surface_speed != SurfaceSpeedOn::WorkDiameter {
             return Ok(());
         }
         let to = match mv.to {

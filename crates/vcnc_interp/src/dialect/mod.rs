@@ -10,6 +10,7 @@
 //! subroutine call, G05 a three-point arc, G53 cancels the work offset) and
 //! adds word rules: U/W incremental axes, X in diameters, `CR=`, `IX`/`IZ`.
 
+mod axes;
 mod cycle_rules;
 mod eia;
 mod fanuc_lathe;
@@ -21,6 +22,7 @@ mod macro_rules;
 mod mill;
 mod ops;
 
+pub(crate) use axes::AxisWord;
 pub use cycle_rules::{Approach, CycleRules, PeckClearance, Repeat, TapStyle};
 pub use macro_rules::{
     ExtendedG, IsoMacros, MachineVars, MacroFiles, MacroRules, ModalLocals, VarTable,

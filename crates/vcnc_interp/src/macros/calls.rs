@@ -197,8 +197,8 @@ impl Interpreter<'_> {
             };
         }
         let whole_units = w.point
-            || self.dialect.integers == IntegerWords::WholeUnits
-            || self.machine.params.decimal_input == DecimalInput::Calculator;
+            || self.cfg.dialect.integers == IntegerWords::WholeUnits
+            || self.cfg.machine.params.decimal_input == DecimalInput::Calculator;
         match self.increments_per_unit(w.addr.0) {
             Some(per_unit) if !whole_units => Value::Double(w.value / per_unit),
             _ => Value::Double(w.value),
@@ -251,13 +251,13 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
         let depth = self.flow.frames.len() as u64;
-        if depth > u64::from(self.machine.limits.max_call_depth) {
+        if depth > u64::from(self.cfg.machine.limits.max_call_depth) {
             return Err(alarms::nesting_too_deep(
                 span,
-                self.machine.limits.max_call_depth,
+                self.cfg.machine.limits.max_call_depth,
             ));
         }
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let (source, start) = match program {
             Program::Number(n) => match self.flow.find_program(*n, &lex, store) {
                 Ok(Some(found)) => found,
@@ -396,7 +396,7 @@ impl Interpreter<'_> {
         let Some(g) = block.words().iter().find(|w| {
             w.addr.as_letter() == Some(b'G')
                 && (200.0..1000.0).contains(&w.value)
-                && self.dialect.g(w.value).is_none()
+                && self.cfg.dialect.g(w.value).is_none()
         }) else {
             return Ok(None);
         };
@@ -439,6 +439,7 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
         let name = self
+            .cfg
             .machine
             .m_macros
             .get(&m.def)

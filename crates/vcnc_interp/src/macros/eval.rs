@@ -504,7 +504,7 @@ impl Interpreter<'_> {
         let rotary = match (f, texts.get(1)) {
             (Func::StdAx, Some(Arg::Name(axis))) => {
                 let letter = axis.as_bytes().first().copied().unwrap_or(b'?');
-                if axis.len() != 1 || self.machine.axis_of(letter).is_none() {
+                if axis.len() != 1 || self.cfg.machine.axis_of(letter).is_none() {
                     return Err(alarms::macro_domain(
                         span,
                         &format!("STDAX: {axis} is not an axis of the machine"),

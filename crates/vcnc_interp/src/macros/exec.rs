@@ -43,7 +43,7 @@ impl Interpreter<'_> {
             f.started = true;
         }
         self.count_executed(c.st.first)?;
-        let mark = self.pending.len();
+        let mark = self.stage.pending.len();
         let jumps = self.flow.jumps;
         let result = self.statement(c, src);
         match &result {
@@ -53,7 +53,7 @@ impl Interpreter<'_> {
                 self.hand_over_when_full(sink);
             }
             Err(_) => {
-                self.pending.truncate(mark);
+                self.stage.pending.truncate(mark);
                 self.tables.rollback();
                 self.flow.jumps = jumps;
             }
@@ -189,7 +189,7 @@ impl Interpreter<'_> {
         // Whole and in range, checked above.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let n = x as u32;
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let frame = self.flow.frame();
         let to = self
             .flow

@@ -176,7 +176,7 @@ impl Interpreter<'_> {
         let syn = self
             .macros
             .rules
-            .syntax(Lang::MacroB, self.dialect.lex.slash_comments);
+            .syntax(Lang::MacroB, self.cfg.dialect.lex.slash_comments);
         let parsed = match self.flow.source(src) {
             Some(s) => parse_iso_block(s.reader.bytes(line), start, &syn)?,
             None => None,
@@ -202,7 +202,7 @@ impl Interpreter<'_> {
         });
         let id = self.source_id(src);
         self.macros.remember(key(id, here), &c);
-        self.macro_active = true;
+        self.looping.macro_active = true;
         // Before the first macro statement of a program runs, its loops are
         // paired (the scan moves the reader: the statement then re-reads).
         self.ensure_structure(src)?;
@@ -238,7 +238,7 @@ impl Interpreter<'_> {
         let read = super::ngc::read_line(bytes, start, params)?;
         let end = bytes.len();
         // Block delete skips the settings of a `/` line too.
-        if !(read.deleted && self.opts.block_delete) {
+        if !(read.deleted && self.cfg.opts.block_delete) {
             params.commit(&read);
         }
         self.macros.used = true;
@@ -315,7 +315,7 @@ impl Interpreter<'_> {
         let syn = self
             .macros
             .rules
-            .syntax(Lang::MacroB, self.dialect.lex.slash_comments);
+            .syntax(Lang::MacroB, self.cfg.dialect.lex.slash_comments);
         let Some((st, next)) = parse_iso_block(bytes, start, &syn)? else {
             return Err(lexed);
         };
@@ -402,7 +402,7 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        if c.st.deleted.is_some() && self.opts.block_delete {
+        if c.st.deleted.is_some() && self.cfg.opts.block_delete {
             return Ok(Step::Next);
         }
         match &c.st.kind {
@@ -411,9 +411,9 @@ impl Interpreter<'_> {
                 // expression) comes before the block's mark: it was always
                 // dropped (the block's start cleared `pending`), and must
                 // not now stay behind to reach the sink.
-                let mark = self.pending.len();
+                let mark = self.stage.pending.len();
                 let evaluated = self.eval_words(words, c.lang, block);
-                self.pending.truncate(mark);
+                self.stage.pending.truncate(mark);
                 evaluated?;
                 if block.is_empty() {
                     return Ok(Step::Next);
@@ -510,7 +510,7 @@ impl Interpreter<'_> {
             let depth = self.flow.frames.len();
             self.flow.loc.line = c.here.line;
             let line = c.first_line();
-            self.cur_line = Some((src, line));
+            self.stage.cur_line = Some((src, line));
             let (step, first) = self.run_compiled(&c, src, block, store, sink)?;
             let step = match step {
                 Step::Next => Step::Jump(c.next),

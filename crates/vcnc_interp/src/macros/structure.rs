@@ -602,7 +602,7 @@ impl Interpreter<'_> {
 
     fn scan_iso(&mut self, src: usize, program: Cursor) -> Result<Pairing, Diagnostic> {
         let id = self.source_id(src);
-        let lex = self.dialect.lex;
+        let lex = self.cfg.dialect.lex;
         let syn = self.macros.rules.syntax(Lang::MacroB, lex.slash_comments);
         let mut pairing = Pairing::new(id);
         let mut block = vcnc_syntax::Block::default();

@@ -62,14 +62,14 @@ impl Interpreter<'_> {
     /// mm (or degrees) → the program's input unit for axis `i`.
     fn to_input(&self, i: usize, mm: f64) -> f64 {
         let rotary = matches!(
-            self.machine.axes.get(i).map(|a| a.letter),
+            self.cfg.machine.axes.get(i).map(|a| a.letter),
             Some(b'A' | b'B' | b'C')
         );
         if rotary {
             return mm;
         }
         let diameter = self.state.modal.diameter
-            && self.dialect.diameter.axis == self.machine.axes.get(i).map(|a| a.letter);
+            && self.cfg.dialect.diameter.axis == self.cfg.machine.axes.get(i).map(|a| a.letter);
         let v = mm / self.unit_mm();
         if diameter { 2.0 * v } else { v }
     }
@@ -165,13 +165,13 @@ impl Interpreter<'_> {
     /// An H/D offset number of a tool offset variable, within the machine's
     /// registers.
     fn offset_register(&self, k: u32, n: u32, span: Span) -> Result<u32, Diagnostic> {
-        if k == 0 || k > self.machine.params.offset_registers {
+        if k == 0 || k > self.cfg.machine.params.offset_registers {
             return Err(alarms::no_such_variable_why(
                 span,
                 n,
                 &format!(
                     "offset {k} is beyond the machine's {} registers",
-                    self.machine.params.offset_registers
+                    self.cfg.machine.params.offset_registers
                 ),
             ));
         }
@@ -182,7 +182,7 @@ impl Interpreter<'_> {
     fn work_var(&self, n: u32, span: Span) -> Result<(usize, usize), Diagnostic> {
         let base = n - 5221;
         let (k, a) = ((base / 20) as usize, (base % 20) as usize);
-        if k > 5 || a >= self.machine.axes.len() {
+        if k > 5 || a >= self.cfg.machine.axes.len() {
             return Err(alarms::system_variable_missing(span, n));
         }
         Ok((k, a))
@@ -190,7 +190,7 @@ impl Interpreter<'_> {
 
     fn position_var(&self, n: u32, span: Span) -> Result<Value, Diagnostic> {
         let (base, a) = ((n - 5001) / 20, ((n - 5001) % 20) as usize);
-        if a >= self.machine.axes.len() {
+        if a >= self.cfg.machine.axes.len() {
             return Err(alarms::system_variable_missing(span, n));
         }
         let s = &self.state;
@@ -248,6 +248,7 @@ impl Interpreter<'_> {
             6 => {
                 // The dialect's own codes: G20/G21, or Syntec's G70/G71.
                 let fanuc = self
+                    .cfg
                     .dialect
                     .g(20.0)
                     .is_some_and(|d| d.op == GOp::Mode(ModeOp::Inch));
@@ -393,7 +394,7 @@ impl Interpreter<'_> {
                 let value = x.ok_or_else(|| alarms::vacant_value(span, "a work offset"))?;
                 let mut w: Pos = self.tables.work.get(k).copied().unwrap_or_default();
                 let rotary = matches!(
-                    self.machine.axes.get(a).map(|ax| ax.letter),
+                    self.cfg.machine.axes.get(a).map(|ax| ax.letter),
                     Some(b'A' | b'B' | b'C')
                 );
                 w.set(

@@ -104,12 +104,12 @@ impl Interpreter<'_> {
             return Some(Radius {
                 mm: self.length_mm(&r),
                 span: r.span,
-                line_if_short: self.dialect.long_chord == LongChord::Line,
+                line_if_short: self.cfg.dialect.long_chord == LongChord::Line,
             });
         }
         // `CR=` and D behave like R (the lathe document: "the formats behave
         // alike"), a too-long chord included.
-        let line_if_short = self.dialect.long_chord == LongChord::Line;
+        let line_if_short = self.cfg.dialect.long_chord == LongChord::Line;
         if let Some(cr) = w.get_ext(Addr::CR) {
             return Some(Radius {
                 mm: self.length_mm(&cr),
@@ -117,7 +117,7 @@ impl Interpreter<'_> {
                 line_if_short,
             });
         }
-        if self.dialect.arc_letters & bit(b'D') == 0 {
+        if self.cfg.dialect.arc_letters & bit(b'D') == 0 {
             // Elsewhere D is the cutter radius offset (G41/G42), not a diameter.
             return None;
         }
@@ -189,7 +189,7 @@ impl Interpreter<'_> {
         let from = self.state.prog;
         let mut mid = from;
         for (addr, letter) in mid_words {
-            let (Some(word), Some(i)) = (w.get_ext(addr), self.machine.axis_of(letter)) else {
+            let (Some(word), Some(i)) = (w.get_ext(addr), self.cfg.machine.axis_of(letter)) else {
                 continue;
             };
             let v = self.axis_value(i, &word);
@@ -241,7 +241,7 @@ impl Interpreter<'_> {
         }
         let half = chord / 2.0;
         let h2 = r * r - half * half;
-        if h2 < 0.0 && chord - 2.0 * r.abs() > self.machine.params.arc_tolerance_mm {
+        if h2 < 0.0 && chord - 2.0 * r.abs() > self.cfg.machine.params.arc_tolerance_mm {
             if radius.line_if_short {
                 return Ok(None);
             }
@@ -270,7 +270,7 @@ impl Interpreter<'_> {
         if r_start < ZERO_MM {
             return Err(alarms::zero_radius(cmd));
         }
-        if (r_start - r_end).abs() > self.machine.params.arc_tolerance_mm {
+        if (r_start - r_end).abs() > self.cfg.machine.params.arc_tolerance_mm {
             return Err(alarms::end_off_circle(cmd, r_start, r_end));
         }
         Ok(())

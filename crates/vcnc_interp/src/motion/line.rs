@@ -1,100 +1,18 @@
-//! Straight motion: G00, G01, G33 threads and G31 skip as [`Move`]s, and
-//! the two machine-side details of a straight move the event stage needs:
-//! the dog-leg of a G00 under parameter 411 = 1 and where a skip fires.
+//! Straight motion's details: the feed a move runs at (F, its clamp, G93's
+//! inverse time), G31 skip, and the two machine-side details of a straight
+//! move the event stage needs: the dog-leg of a G00 under parameter 411 = 1
+//! and where a skip fires. The group-01 dispatcher that builds the moves is
+//! `codes/modal.rs`.
 
-use super::{Move, MoveKind, Target};
+use super::MoveKind;
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::PaceOp;
-use crate::dialect::{GOp, Group, ThreadLead};
 use crate::events::{Feed, MAX_AXES, Pos};
 use crate::interpreter::Interpreter;
 use crate::machine::Machine;
-use crate::state::Motion;
 use vcnc_syntax::{Diagnostic, Span};
 
 impl Interpreter<'_> {
-    /// Step 7 without a one-shot code: the modal motion, if the block moves.
-    pub(crate) fn modal_motion(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        let motion = self.state.modal.motion;
-        let cmd = w.group(Group::Motion).map_or(w.first, |a| a.span);
-        if self.state.cycle.code.is_some() {
-            return self.drill(w, cmd);
-        }
-        match motion {
-            Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
-            Motion::ThreePointArc => self.three_point_arc(w, cmd),
-            Motion::Nurbs => self.nurbs_block(w, cmd),
-            Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
-                self.single_cycle(w, cmd, motion)
-            }
-            _ if !w.any(self.axis_mask) => Ok(()),
-            Motion::Rapid => {
-                let goal = self.target(w, self.state.modal.incremental);
-                let to = self.to_target(&goal);
-                self.straight(MoveKind::Rapid, to, w, cmd)
-            }
-            Motion::Linear => {
-                self.smoothing_before_linear();
-                let goal = self.target(w, self.state.modal.incremental);
-                let feed = if self.state.modal.inverse_time {
-                    let from = self.state.prog;
-                    let len = (0..MAX_AXES)
-                        .map(|i| (goal.prog.get(i) - from.get(i)).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    self.inverse_time_feed(w, cmd, len)?
-                } else {
-                    self.feed(cmd)?
-                };
-                let to = self.to_target(&goal);
-                if w.ext_present != 0 {
-                    // `,C`/`,R`: the corner waits for the next block.
-                    return self.hold_corner(w, cmd, feed, &goal);
-                }
-                self.straight(MoveKind::Feed(feed), to, w, cmd)
-            }
-            Motion::Thread | Motion::ThreadInch => {
-                if self.dialect.thread_lead == ThreadLead::K
-                    && let Some(k) = w.get(b'K')
-                {
-                    // LinuxCNC's G33 K: distance per revolution.
-                    self.state.thread_lead_mm = Some(self.length_mm(&k));
-                }
-                let lead_mm = self
-                    .state
-                    .thread_lead_mm
-                    .filter(|l| *l > 0.0)
-                    .ok_or_else(|| alarms::thread_without_lead(cmd))?;
-                let goal = self.target(w, self.state.modal.incremental);
-                let to = self.to_target(&goal);
-                self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)
-            }
-        }
-    }
-
-    /// Commits a straight move of this block.
-    pub(crate) fn straight(
-        &mut self,
-        kind: MoveKind,
-        to: Target,
-        w: &Words<'_>,
-        cmd: Span,
-    ) -> Result<(), Diagnostic> {
-        let mv = Move {
-            kind,
-            to,
-            exact_stop: self.exact_stop(w),
-            cmd,
-        };
-        self.commit(mv, w)
-    }
-
-    /// Whether G09 is in the block.
-    pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
-        w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()
-    }
-
     /// The current feed (clamped to the machine's maximum), or E301 when
     /// it is zero.
     #[inline]
@@ -108,7 +26,7 @@ impl Interpreter<'_> {
         } else {
             // The control clamps a feed above its maximum (warning W102
             // when F was given).
-            Feed::PerMin(f.min(self.max_feed))
+            Feed::PerMin(f.min(self.cfg.max_feed))
         })
     }
 
@@ -128,21 +46,21 @@ impl Interpreter<'_> {
             return Err(alarms::zero_feed(f.span));
         }
         let rate = length_mm * f.value;
-        if rate > self.max_feed {
-            self.warn(alarms::feed_clamped(f.span, rate, self.max_feed));
+        if rate > self.cfg.max_feed {
+            self.warn(alarms::feed_clamped(f.span, rate, self.cfg.max_feed));
         }
         // A move of no length takes no time: any feed will do, and a
         // zero feed would stall a planner.
         Ok(Feed::PerMin(if rate > 0.0 {
-            rate.min(self.max_feed)
+            rate.min(self.cfg.max_feed)
         } else {
-            self.max_feed
+            self.cfg.max_feed
         }))
     }
 
     /// G31: moves like G01 until the skip signal of the machine file fires.
     pub(crate) fn skip(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        if self.comp.engaged() {
+        if self.stage.comp.engaged() {
             // The compensated corner at its end would be wrong once it stops short.
             return Err(alarms::skip_under_comp(cmd));
         }

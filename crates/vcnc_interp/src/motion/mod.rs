@@ -4,6 +4,7 @@
 //! ```text
 //!  codes (G00…G03, G28, cycles …)
 //!        │  Move { kind, target (program or machine point), command span }
+//!        │  (through `codes/modal.rs`'s `send`: a lathe's corner and G96 first)
 //!        ▼
 //!   commit ─▶ 1 frame      program → machine (offsets, G68/G51/G51.1, G43)
 //!             2 compensation  (G41/G42 — a slot for now: passes moves on)
@@ -22,6 +23,7 @@ pub(crate) mod arc;
 pub(crate) mod comp;
 pub(crate) mod frame;
 pub(crate) mod line;
+pub(crate) mod stage;
 pub(crate) mod travel;
 
 use crate::alarms;
@@ -130,14 +132,6 @@ impl Interpreter<'_> {
     /// Sends one move of the block `w` through the stages. Nothing is
     /// changed unless every stage accepts it (and the block as a whole).
     pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if self.state.lathe.corner.is_some() {
-            // A G01's chamfer or corner R is cut before this move.
-            self.cut_corner(&mv, w)?;
-        }
-        if self.state.modal.css {
-            // A lathe's G96: the speed follows the diameter.
-            self.css_follow(&mv)?;
-        }
         if self.state.rpm <= 0.0 {
             // Once W104 is given only a per-revolution move needs a look.
             let per_rev = match mv.kind {
@@ -147,17 +141,17 @@ impl Interpreter<'_> {
                 }
                 _ => false,
             };
-            if per_rev || !self.spindle_warned {
+            if per_rev || !self.stage.spindle_warned {
                 self.stopped_spindle(&mv, per_rev)?;
             }
         } else if let MoveKind::Thread { lead_mm } = mv.kind {
             // Syntec 1.2.17: 1 <= S <= maximum feed / lead.
-            if self.state.rpm * lead_mm > self.max_feed {
+            if self.state.rpm * lead_mm > self.cfg.max_feed {
                 return Err(alarms::thread_too_fast(
                     mv.cmd,
                     self.state.rpm,
                     lead_mm,
-                    self.max_feed,
+                    self.cfg.max_feed,
                 ));
             }
         }
@@ -166,7 +160,7 @@ impl Interpreter<'_> {
         let kind = self.machine_kind(&mv)?;
         // 2 compensation works from the uncompensated point, the rest
         // from where the tool is.
-        let engaged = self.comp.engaged();
+        let engaged = self.stage.comp.engaged();
         let mm = MachineMove {
             kind,
             from: if engaged {
@@ -183,7 +177,7 @@ impl Interpreter<'_> {
         // 3 travel, before anything changes: a move that leaves the
         // machine's limits leaves the state as the block found it (which a
         // plain move block relies on, see `Interpreter::block`).
-        if self.travel_limited {
+        if self.cfg.travel_limited {
             self.travel_alarm(&mm, mv.cmd, Some(w))?;
         }
         self.accept_move(prog_to, mm.to, mv.to);
@@ -211,7 +205,7 @@ impl Interpreter<'_> {
         // next move in the plane starts compensation again.
         self.comp_finish()?;
         if self.state.modal.comp != crate::state::CompSide::Off {
-            self.comp.mode = comp::Mode::Starting;
+            self.stage.comp.mode = comp::Mode::Starting;
         }
         self.keep_programmed_plane(&mm, mv.cmd)?;
         let at = comp::Origin {
@@ -228,7 +222,7 @@ impl Interpreter<'_> {
     /// before it (also when it waits in the compensation stage).
     #[inline]
     fn accept_move(&mut self, prog_to: Pos, nominal: Pos, to: Target) {
-        self.moves += 1;
+        self.stage.moves += 1;
         self.state.prog = prog_to;
         self.state.nominal = nominal;
         if !matches!(to, Target::Relative(_)) {
@@ -245,13 +239,13 @@ impl Interpreter<'_> {
         if per_rev {
             let per_minute = match mv.kind {
                 MoveKind::Thread { .. } => None,
-                _ => self.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
+                _ => self.cfg.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
             };
             return Err(alarms::per_rev_spindle_stopped(mv.cmd, per_minute));
         }
         let cut = matches!(mv.kind, MoveKind::Feed(_) | MoveKind::Arc { .. });
-        if cut && !self.spindle_warned {
-            self.spindle_warned = true;
+        if cut && !self.stage.spindle_warned {
+            self.stage.spindle_warned = true;
             self.warn(alarms::cut_spindle_stopped(mv.cmd));
         }
         Ok(())
@@ -284,9 +278,9 @@ impl Interpreter<'_> {
             MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, cmd)?),
             _ => None,
         };
-        if let Err(out) = travel::check(self.machine, mm, arc.as_ref()) {
+        if let Err(out) = travel::check(self.cfg.machine, mm, arc.as_ref()) {
             let span = w.and_then(|w| self.axis_span(w, out.axis)).unwrap_or(cmd);
-            return Err(out.alarm(self.machine, span));
+            return Err(out.alarm(self.cfg.machine, span));
         }
         Ok(())
     }
@@ -308,7 +302,7 @@ impl Interpreter<'_> {
             ..mm
         };
         // 3 travel: nothing to check on a machine without limits.
-        if self.travel_limited {
+        if self.cfg.travel_limited {
             self.check_travel(&mm, at, w)?;
         }
         self.report_frame();
@@ -334,7 +328,7 @@ impl Interpreter<'_> {
 
     /// The word that positioned machine axis `i` in this block, if any.
     fn axis_span(&self, w: &Words<'_>, i: usize) -> Option<Span> {
-        let a = self.axis_words.get(i)?;
+        let a = self.cfg.axis_words.get(i)?;
         w.get(a.letter)
             .or_else(|| a.inc.and_then(|l| w.get(l)))
             .map(|word| word.span)
@@ -407,11 +401,11 @@ impl Interpreter<'_> {
     /// The machine axes of a plane (E305 when the machine lacks one).
     pub(crate) fn plane_axes(&self, plane: Plane, cmd: Span) -> Result<PlaneAxes, Diagnostic> {
         let [la, lb, ln] = plane.letters();
-        match (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+        match (self.cfg.machine.axis_of(la), self.cfg.machine.axis_of(lb)) {
             (Some(a), Some(b)) => Ok(PlaneAxes {
                 a,
                 b,
-                n: self.machine.axis_of(ln),
+                n: self.cfg.machine.axis_of(ln),
             }),
             _ => Err(alarms::arc_without_center(cmd, plane.as_str())),
         }
@@ -443,16 +437,16 @@ impl Interpreter<'_> {
     #[inline(always)]
     fn emit_motion(&mut self, m: &MachineMove, loc: crate::events::Loc) -> Option<Pos> {
         let (exact_stop, to) = (m.exact_stop, m.to);
-        let pending = &mut self.pending;
+        let pending = &mut self.stage.pending;
         match m.kind {
             MachineKind::Rapid(may_dog_leg) => {
-                let legs = match self.dialect.rapid {
+                let legs = match self.cfg.dialect.rapid {
                     _ if !may_dog_leg => None,
-                    RapidPath::ByParameter if self.machine.params.g00_mode == 1 => {
-                        Some(line::dog_leg(self.machine, m.from, m.to))
+                    RapidPath::ByParameter if self.cfg.machine.params.g00_mode == 1 => {
+                        Some(line::dog_leg(self.cfg.machine, m.from, m.to))
                     }
                     RapidPath::ByParameter => None,
-                    RapidPath::ZPriority => Some(line::z_priority(self.machine, m.from, m.to)),
+                    RapidPath::ZPriority => Some(line::z_priority(self.cfg.machine, m.from, m.to)),
                 };
                 if let Some((corners, count)) = legs {
                     for &to in &corners[..count] {
@@ -488,7 +482,9 @@ impl Interpreter<'_> {
             } => {
                 let [la, lb, _] = plane.letters();
                 let mut center = m.from;
-                if let (Some(a), Some(b)) = (self.machine.axis_of(la), self.machine.axis_of(lb)) {
+                if let (Some(a), Some(b)) =
+                    (self.cfg.machine.axis_of(la), self.cfg.machine.axis_of(lb))
+                {
                     center.set(a, ca);
                     center.set(b, cb);
                 }
@@ -508,7 +504,7 @@ impl Interpreter<'_> {
                 None
             }
             MachineKind::Skip(feed) => {
-                let hit = line::skip_fraction(self.machine, m.from, m.to);
+                let hit = line::skip_fraction(self.cfg.machine, m.from, m.to);
                 let to = hit.map_or(m.to, |t| line::lerp(m.from, m.to, t));
                 let triggered = hit.is_some();
                 push_built(pending, || Event::Skip {

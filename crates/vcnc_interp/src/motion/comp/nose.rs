@@ -25,8 +25,6 @@
 //! On a mill the tip is 0 and nothing changes.
 
 use super::geom::V2;
-use crate::events::Plane;
-use crate::interpreter::Interpreter;
 use crate::motion::MachineKind;
 
 /// The unit direction (Z, X) from the nose centre to the imaginary tip.
@@ -83,19 +81,5 @@ pub(crate) fn shifted_kind(kind: MachineKind, shift: V2) -> MachineKind {
             feed,
         },
         k => k,
-    }
-}
-
-impl Interpreter<'_> {
-    /// The vector from the nose centre to the controlled point for a nose
-    /// of radius `r`, in the compensation plane's (first, second) axes:
-    /// the tip direction of the offset in force, in the ZX plane (G18),
-    /// whose first axis is Z.
-    pub(crate) fn nose_shift(&self, r: f64) -> V2 {
-        if self.comp.plane != Plane::Zx {
-            return V2::default();
-        }
-        let (z, x) = tip_direction(self.state.lathe.tip);
-        V2::new(z * r, x * r)
     }
 }

@@ -23,6 +23,17 @@ use crate::machine::{Machine, Tool, WORK_SYSTEMS};
 use crate::motion::frame::{Frame, Transforms, Xyz};
 use std::collections::BTreeMap;
 
+mod cycle;
+pub(crate) mod lathe;
+mod nurbs;
+mod points;
+mod smoothing;
+
+pub use cycle::{CycleData, ReducedPeck};
+pub(crate) use nurbs::NurbsBuild;
+pub(crate) use points::PointStyle;
+pub(crate) use smoothing::Smoothing;
+
 /// Active codes of the modal groups.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Modal {
@@ -115,64 +126,6 @@ impl Modal {
     }
 }
 
-/// Canned-cycle mode and the data its blocks store (program coordinates on
-/// the drilling axis, mm; seconds).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CycleData {
-    /// The active cycle (`None`: G80 or a group-01 code).
-    pub code: Option<crate::events::Cycle>,
-    /// What the active cycle does at each hole (the dialect table's
-    /// reading of its code).
-    pub hole: crate::dialect::Hole,
-    /// The drilling-axis level when the cycle mode was entered.
-    pub initial: f64,
-    /// Z point (the hole bottom).
-    pub z: Option<f64>,
-    /// R level.
-    pub r: Option<f64>,
-    /// Q: peck depth, or the G76/G87 shift.
-    pub q: Option<f64>,
-    /// P: dwell at the bottom, seconds.
-    pub p_s: Option<f64>,
-    /// Haas's reduced peck (G73/G83 I, J, K), mm: the first peck, how much
-    /// less each next one, the least.
-    pub reduced: Option<ReducedPeck>,
-    /// LinuxCNC: R and Z as written (mm), which every block reads again
-    /// under its own G90/G91 (`r`, `z` are their levels for this block).
-    pub written_rz: (Option<f64>, Option<f64>),
-    /// The cycle code before the last block that wrote one (LinuxCNC wants
-    /// R, the depth and the cycle's P or Q again when the code changes).
-    pub before: Option<crate::events::Cycle>,
-}
-
-/// Pecks that start at `first` and shrink by `less` each time down to
-/// `least` (Haas G73/G83 I, J, K).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ReducedPeck {
-    /// I: the first peck.
-    pub first: f64,
-    /// J: how much less each next peck.
-    pub less: f64,
-    /// K: the least peck.
-    pub least: f64,
-}
-
-impl CycleData {
-    /// No cycle mode, no data.
-    pub const OFF: CycleData = CycleData {
-        code: None,
-        hole: crate::dialect::Hole::Drill,
-        initial: 0.0,
-        z: None,
-        r: None,
-        q: None,
-        p_s: None,
-        reduced: None,
-        written_rz: (None, None),
-        before: None,
-    };
-}
-
 /// Everything a block may change, copied before each block so that an
 /// alarm restores it whole (but for the plain moves that
 /// `block::execute::MoveUndo` covers).
@@ -241,9 +194,9 @@ pub struct State {
     /// G05 parameter set in force (0: off).
     pub(crate) high_speed_p: u32,
     /// G05.1 path smoothing (Syntec 1.2.7).
-    pub(crate) smoothing: crate::codes::smoothing::Smoothing,
+    pub(crate) smoothing: crate::state::Smoothing,
     /// Fanuc lathe: turret offset, cycle data, a pending chamfer.
-    pub(crate) lathe: crate::codes::lathe_data::LatheData,
+    pub(crate) lathe: crate::state::lathe::LatheData,
 }
 
 impl State {
@@ -284,8 +237,8 @@ impl State {
             magnification_pct: 100.0,
             feed_factor: 1.0,
             high_speed_p: 0,
-            smoothing: crate::codes::smoothing::Smoothing::OFF,
-            lathe: crate::codes::lathe_data::LatheData::power_on(machine),
+            smoothing: crate::state::Smoothing::OFF,
+            lathe: crate::state::lathe::LatheData::power_on(machine),
         };
         s.frame.origin = machine.work_offsets[0];
         s.prog = s.frame.program_of(s.pos);

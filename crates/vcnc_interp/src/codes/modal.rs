@@ -1,0 +1,124 @@
+//! Step 7's modal motion: what a block in group 01's mode does with its
+//! axis words (a straight move, an arc, a canned cycle's holes, a NURBS
+//! block, a lathe's single cycle), and the way every move of a code takes
+//! to the motion stage.
+//!
+//! ```text
+//!   modal_motion ─▶ straight / arc / drill / nurbs / single cycle
+//!                     └▶ send: lathe corner (,C/,R held by the G01 before)
+//!                              G96 on a lathe (the speed follows X)
+//!                          └▶ commit (motion/: frame → comp → travel → events)
+//! ```
+//!
+//! The features that act on every move (a held corner, constant surface
+//! speed) act here, before the motion stage, so that `motion/` knows
+//! nothing of the codes.
+
+use crate::alarms;
+use crate::block::words::Words;
+use crate::dialect::{GOp, Group, PaceOp, ThreadLead};
+use crate::events::MAX_AXES;
+use crate::interpreter::Interpreter;
+use crate::motion::{Move, MoveKind, Target};
+use crate::state::Motion;
+use vcnc_syntax::{Diagnostic, Span};
+
+impl Interpreter<'_> {
+    /// Step 7 without a one-shot code: the modal motion, if the block moves.
+    pub(crate) fn modal_motion(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let motion = self.state.modal.motion;
+        let cmd = w.group(Group::Motion).map_or(w.first, |a| a.span);
+        if self.state.cycle.code.is_some() {
+            return self.drill(w, cmd);
+        }
+        match motion {
+            Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
+            Motion::ThreePointArc => self.three_point_arc(w, cmd),
+            Motion::Nurbs => self.nurbs_block(w, cmd),
+            Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
+                self.single_cycle(w, cmd, motion)
+            }
+            _ if !w.any(self.cfg.axis_mask) => Ok(()),
+            Motion::Rapid => {
+                let goal = self.target(w, self.state.modal.incremental);
+                let to = self.to_target(&goal);
+                self.straight(MoveKind::Rapid, to, w, cmd)
+            }
+            Motion::Linear => {
+                self.smoothing_before_linear();
+                let goal = self.target(w, self.state.modal.incremental);
+                let feed = if self.state.modal.inverse_time {
+                    let from = self.state.prog;
+                    let len = (0..MAX_AXES)
+                        .map(|i| (goal.prog.get(i) - from.get(i)).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    self.inverse_time_feed(w, cmd, len)?
+                } else {
+                    self.feed(cmd)?
+                };
+                let to = self.to_target(&goal);
+                if w.ext_present != 0 {
+                    // `,C`/`,R`: the corner waits for the next block.
+                    return self.hold_corner(w, cmd, feed, &goal);
+                }
+                self.straight(MoveKind::Feed(feed), to, w, cmd)
+            }
+            Motion::Thread | Motion::ThreadInch => {
+                if self.cfg.dialect.thread_lead == ThreadLead::K
+                    && let Some(k) = w.get(b'K')
+                {
+                    // LinuxCNC's G33 K: distance per revolution.
+                    self.state.thread_lead_mm = Some(self.length_mm(&k));
+                }
+                let lead_mm = self
+                    .state
+                    .thread_lead_mm
+                    .filter(|l| *l > 0.0)
+                    .ok_or_else(|| alarms::thread_without_lead(cmd))?;
+                let goal = self.target(w, self.state.modal.incremental);
+                let to = self.to_target(&goal);
+                self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)
+            }
+        }
+    }
+
+    /// Commits a straight move of this block.
+    pub(crate) fn straight(
+        &mut self,
+        kind: MoveKind,
+        to: Target,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let mv = Move {
+            kind,
+            to,
+            exact_stop: self.exact_stop(w),
+            cmd,
+        };
+        self.send(mv, w)
+    }
+
+    /// A move of a code on its way to the motion stage: a chamfer or corner
+    /// R that the G01 before holds is cut ahead of it, and under a lathe's
+    /// G96 the spindle speed follows the diameter it goes to; then
+    /// [`commit`](Self::commit) takes it.
+    #[inline]
+    pub(crate) fn send(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.state.lathe.corner.is_some() {
+            // A G01's chamfer or corner R is cut before this move.
+            self.cut_corner(&mv, w)?;
+        }
+        if self.state.modal.css {
+            // A lathe's G96: the speed follows the diameter.
+            self.css_follow(&mv)?;
+        }
+        self.commit(mv, w)
+    }
+
+    /// Whether G09 is in the block.
+    pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
+        w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()
+    }
+}

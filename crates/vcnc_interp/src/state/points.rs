@@ -1,0 +1,33 @@
+//! What the program's length words have looked like so far, for warning
+//! W101 (a length without its decimal point read in least increments; the
+//! check is `block/convert.rs`).
+
+use crate::dialect::IntegerWords;
+use crate::machine::DecimalInput;
+
+/// What the program's axis words look like so far (warning W101).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct PointStyle {
+    /// Integers are least increments here (else nothing to warn about).
+    pub active: bool,
+    /// A length with a decimal point was written.
+    pub seen_point: bool,
+    /// The first length without one, before any point was seen.
+    pub first_plain: Option<vcnc_syntax::Diagnostic>,
+    /// Warnings given (at most `MAX_WARNINGS`).
+    pub warned: u32,
+}
+
+impl PointStyle {
+    /// Past this many, the trap is reported no more (the program has it
+    /// throughout).
+    pub const MAX_WARNINGS: u32 = 10;
+
+    pub fn new(machine: &crate::machine::Machine, dialect: &crate::dialect::Dialect) -> PointStyle {
+        PointStyle {
+            active: dialect.integers == IntegerWords::LeastIncrement
+                && machine.params.decimal_input == DecimalInput::Increment,
+            ..PointStyle::default()
+        }
+    }
+}
