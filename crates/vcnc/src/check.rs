@@ -118,7 +118,12 @@ fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, Stri
     let timing::Tee(summary, plan) = beside.join()?;
     let planned = plan.into_timeline();
     eprint!("{}", render::warnings(&summary, input));
-    if let Outcome::Alarm(d) = &outcome {
+    if args.opts.keep_going {
+        // Every alarm the run went on after, in program order.
+        for d in &summary.alarms {
+            eprint!("{}", render::diagnostic(d, input));
+        }
+    } else if let Outcome::Alarm(d) = &outcome {
         eprint!("{}", render::diagnostic(d, input));
     }
     let mut out = std::io::stdout().lock();

@@ -150,6 +150,9 @@ pub struct Options {
     /// Optional stop switch on: stop at M01.
     #[arg(long)]
     pub optional_stop: bool,
+    /// After an alarm, go on with the next block (the state as it was before the alarmed one) and report every alarm; the exit code is still 1.
+    #[arg(long)]
+    pub keep_going: bool,
     /// Keep the macro variables a controller keeps across power-off (Fanuc #500-#999; Syntec #401-#999, @656-@1999) in FILE: read before the run when it exists, written after it. One program at a time.
     #[arg(long, value_name = "FILE")]
     pub variables: Option<PathBuf>,

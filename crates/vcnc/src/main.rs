@@ -96,6 +96,7 @@ pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, St
     let options = vcnc_interp::Options {
         block_delete: c.block_delete,
         optional_stop: c.optional_stop,
+        keep_going: c.keep_going,
     };
     Ok(Setup {
         machine,

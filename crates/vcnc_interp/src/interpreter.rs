@@ -43,7 +43,16 @@ pub struct Options {
     pub block_delete: bool,
     /// Stop at M01.
     pub optional_stop: bool,
+    /// Go on after an alarm with the next block, the state as it was
+    /// before the alarmed one (`vcnc check --keep-going`, the language
+    /// server): every alarm becomes an `alarm` event and the run ends as
+    /// the program does, its outcome the first alarm.
+    pub keep_going: bool,
 }
+
+/// The most alarms a run under [`Options::keep_going`] reports before it
+/// stops at the next one.
+pub const MAX_ALARMS: u32 = 100;
 
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,6 +118,9 @@ pub(crate) struct Looping {
     pub rereading: bool,
     /// A macro statement has run (the cache is worth a look before lexing).
     pub macro_active: bool,
+    /// Alarms the run went on after (`Options::keep_going`), and the first.
+    pub alarms: u32,
+    pub first_alarm: Option<Diagnostic>,
 }
 
 /// The interpreter. Create one per run.
@@ -161,6 +173,8 @@ impl<'a> Interpreter<'a> {
                 read_high: Vec::new(),
                 read_total: 0,
                 macro_active: false,
+                alarms: 0,
+                first_alarm: None,
             },
             stage: crate::motion::stage::Stage::new(),
             points: crate::state::PointStyle::new(machine, dialect),
@@ -200,6 +214,11 @@ impl<'a> Interpreter<'a> {
         let result = self.run_loop(store, sink);
         // What the blocks before the end or the alarm made.
         self.hand_over(sink);
+        // Under keep-going the first alarm is the outcome of a run that
+        // went on to its end.
+        if let (Ok(_), Some(first)) = (&result, self.looping.first_alarm.take()) {
+            return Outcome::Alarm(first);
+        }
         match result {
             Ok(Some(code)) => Outcome::Ended(code),
             Ok(None) => Outcome::Stopped,
@@ -282,7 +301,13 @@ impl<'a> Interpreter<'a> {
                                             After::Return(end) => return Ok(end),
                                         }
                                     }
-                                    Err(d) => return Err(self.located(d, src, &line, start)),
+                                    Err(d) => {
+                                        let d = self.located(d, src, &line, start);
+                                        self.go_on_after(d)?;
+                                        // The rest of the line is the
+                                        // statement's: on with the next.
+                                        break;
+                                    }
                                 }
                             }
                         }
@@ -300,7 +325,7 @@ impl<'a> Interpreter<'a> {
                         };
                         let step = self
                             .block(&block, here, next, store, sink)
-                            .map_err(|d| self.located(d, src, &line, start))?;
+                            .or_else(|d| self.skip_block(d, src, &line, start))?;
                         (step, block.first_span())
                     }
                 };
@@ -311,6 +336,44 @@ impl<'a> Interpreter<'a> {
                 }
             }
         }
+    }
+
+    /// An alarm in the block at `start` of `line`, located: the end of the
+    /// run, or under keep-going a step on to the next block.
+    #[cold]
+    #[inline(never)]
+    fn skip_block(
+        &mut self,
+        d: Diagnostic,
+        src: usize,
+        line: &Line,
+        start: usize,
+    ) -> Result<Step, Diagnostic> {
+        let d = self.located(d, src, line, start);
+        self.go_on_after(d).map(|()| Step::Next)
+    }
+
+    /// An alarm in a block: the end of the run, or under
+    /// [`Options::keep_going`] an `alarm` event after which the run goes on
+    /// with the next block, the state as it was before the alarmed one (an
+    /// editor shows every mistake of a program at once). Runaway limits
+    /// (E404, E405), an unreadable program (E408) and more than
+    /// [`MAX_ALARMS`] alarms still end it.
+    #[cold]
+    fn go_on_after(&mut self, d: Diagnostic) -> Result<(), Diagnostic> {
+        let fatal = matches!(
+            d.code,
+            vcnc_syntax::Code::E404 | vcnc_syntax::Code::E405 | vcnc_syntax::Code::E408
+        );
+        if !self.cfg.opts.keep_going || fatal || self.looping.alarms >= MAX_ALARMS {
+            return Err(d);
+        }
+        self.looping.alarms += 1;
+        if self.looping.first_alarm.is_none() {
+            self.looping.first_alarm = Some(d.clone());
+        }
+        self.stage.pending.push(Event::Alarm(d));
+        Ok(())
     }
 
     /// What follows a block's step: the sink's wish to stop, the level's

@@ -32,7 +32,7 @@ pub mod state;
 
 pub use dialect::Dialect;
 pub use flow::{NoPrograms, ProgramStore};
-pub use interpreter::{HAND_OVER, Interpreter, Options, Outcome};
+pub use interpreter::{HAND_OVER, Interpreter, MAX_ALARMS, Options, Outcome};
 pub use state::{State, Tables};
 pub use vcnc_core::{
     ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode,

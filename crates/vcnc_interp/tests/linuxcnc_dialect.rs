@@ -35,7 +35,7 @@ fn run_with_block_delete(program: &str) -> (Vec<Event>, Outcome) {
     let mut sink = vcnc_interp::VecSink::default();
     let opts = vcnc_interp::Options {
         block_delete: true,
-        optional_stop: false,
+        ..vcnc_interp::Options::default()
     };
     let out = vcnc_interp::Interpreter::new(&machine, &Dialect::linuxcnc(), opts)
         .run_str(program, &mut sink);

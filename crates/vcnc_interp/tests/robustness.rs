@@ -688,13 +688,13 @@ proptest! {
     #[test]
     fn token_soup_ends_or_alarms(program in soup(), fanuc: bool, alt: bool, block_delete: bool, optional_stop: bool) {
         let machine: &'static Machine = if alt { &SMALL_ALT } else { &SMALL };
-        check_run(machine, dialect(fanuc), Options { block_delete, optional_stop }, program.as_bytes(), soup_store())?;
+        check_run(machine, dialect(fanuc), Options { block_delete, optional_stop, ..Options::default() }, program.as_bytes(), soup_store())?;
     }
 
     #[test]
     fn plausible_programs_end_or_alarm(program in plausible_program(), fanuc: bool, alt: bool, block_delete: bool, optional_stop: bool) {
         let machine: &'static Machine = if alt { &SMALL_ALT } else { &SMALL };
-        check_run(machine, dialect(fanuc), Options { block_delete, optional_stop }, program.as_bytes(), soup_store())?;
+        check_run(machine, dialect(fanuc), Options { block_delete, optional_stop, ..Options::default() }, program.as_bytes(), soup_store())?;
     }
 }
 

@@ -67,6 +67,9 @@ pub struct Summary {
     pub warning_counts: BTreeMap<Code, u64>,
     /// The first warnings (at most [`KEPT_WARNINGS`]).
     pub warnings: Vec<Diagnostic>,
+    /// The alarms, in order: one (the run's end), or under keep-going
+    /// every alarm the run went on after (at most [`KEPT_WARNINGS`]).
+    pub alarms: Vec<Diagnostic>,
     /// Auxiliary (machine-builder) M codes passed to the machine.
     pub aux_codes: u64,
     /// Messages of macro programs (#3006 stops, MSG).
@@ -100,6 +103,7 @@ impl Summary {
             waits: 0,
             warning_counts: BTreeMap::new(),
             warnings: Vec::new(),
+            alarms: Vec::new(),
             aux_codes: 0,
             messages: 0,
             unset_variables: Vec::new(),
@@ -369,6 +373,9 @@ impl Sink for Summary {
             }
             Event::UnsetVariables { variables, .. } => {
                 self.unset_variables.extend(variables.iter().cloned());
+            }
+            Event::Alarm(d) if self.alarms.len() < KEPT_WARNINGS => {
+                self.alarms.push(d.clone());
             }
             Event::Warning(d) => {
                 *self.warning_counts.entry(d.code).or_insert(0) += 1;

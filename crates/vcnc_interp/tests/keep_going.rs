@@ -1,0 +1,124 @@
+//! `Options::keep_going`: after an alarm the run goes on with the next
+//! block, the state as it was before the alarmed one, so that an editor
+//! (the language server) or `vcnc check --keep-going` shows every mistake
+//! of a program at once. Expected positions are worked out from the
+//! programs by hand.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+
+use vcnc_interp::{Dialect, Event, Interpreter, MAX_ALARMS, Machine, Options, Outcome, VecSink};
+use vcnc_syntax::Code;
+
+fn run(program: &str) -> (Vec<Event>, Outcome) {
+    let machine = Machine::default_mill();
+    let dialect = Dialect::fanuc();
+    let opts = Options {
+        keep_going: true,
+        ..Options::default()
+    };
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&machine, &dialect, opts).run_str(program, &mut sink);
+    (sink.0, out)
+}
+
+fn alarms(events: &[Event]) -> Vec<(Code, u64)> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Alarm(d) => Some((d.code, d.line)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The X of every feed, in order.
+fn feed_xs(events: &[Event]) -> Vec<f64> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } => Some(to.get(0)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn three_mistakes_give_three_alarms_and_the_program_runs_on() {
+    // Line 3: an arc whose end is off its circle (E303); line 5: a
+    // negative dwell (E109); line 6: G0 with a word G0 does not read (E203).
+    let program = "G21 G90 G17 S1000 M03\nG01 X10. F100.\nG02 X20. Y0 I-99. J0\nG01 X30.\nG04 X-1.\nG00 X5. Q2.\nG01 X40.\nM30\n";
+    let (events, out) = run(program);
+    assert_eq!(
+        alarms(&events),
+        vec![(Code::E303, 3), (Code::E109, 5), (Code::E203, 6)]
+    );
+    // The alarmed blocks move nothing; the others move from where the
+    // last good block left the tool.
+    assert_eq!(feed_xs(&events), vec![10.0, 30.0, 40.0]);
+    assert!(matches!(events.last(), Some(Event::End { .. })));
+    // The run's outcome is its first alarm: it is not a clean run.
+    match out {
+        Outcome::Alarm(d) => assert_eq!((d.code, d.line), (Code::E303, 3)),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn the_alarmed_block_leaves_the_modes_as_they_were() {
+    // G91 in a block that alarms (an unknown G code) does not take effect:
+    // the next X10. is absolute, to X10, not 20 more.
+    let program = "G21 G90 S1000 M03\nG01 X10. F100.\nG91 G999 X5.\nG01 X10.\nM30\n";
+    let (events, _) = run(program);
+    assert_eq!(alarms(&events), vec![(Code::E201, 3)]);
+    assert_eq!(feed_xs(&events), vec![10.0, 10.0]);
+}
+
+#[test]
+fn runaway_limits_still_end_the_run() {
+    // A GOTO loop without end: E405 (jumps) ends it even under keep-going.
+    let program = "N1 #1=[#1+1]\nGOTO 1\nM30\n";
+    let mut machine = Machine::default_mill();
+    machine.limits.max_jumps = 1000;
+    let dialect = Dialect::fanuc();
+    let opts = Options {
+        keep_going: true,
+        ..Options::default()
+    };
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&machine, &dialect, opts).run_str(program, &mut sink);
+    match out {
+        Outcome::Alarm(d) => assert!(matches!(d.code, Code::E404 | Code::E405), "{d:?}"),
+        other => panic!("{other:?}"),
+    }
+    assert!(!matches!(sink.0.last(), Some(Event::End { .. })));
+}
+
+#[test]
+fn a_flood_of_alarms_stops_at_the_limit() {
+    let bad = "G999\n".repeat(MAX_ALARMS as usize + 50);
+    let (events, out) = run(&format!("{bad}M30\n"));
+    // The limit's alarms as events, and the next one as the run's end.
+    assert_eq!(alarms(&events).len(), MAX_ALARMS as usize + 1);
+    assert!(matches!(out, Outcome::Alarm(_)));
+}
+
+#[test]
+fn a_bad_macro_statement_does_not_stall_the_line() {
+    // An unreadable statement, then a good block on the next line.
+    let program = "#1=[1+\nG01 X7. F100.\nM30\n";
+    let (events, _) = run(program);
+    assert_eq!(alarms(&events).len(), 1);
+    assert_eq!(feed_xs(&events), vec![7.0]);
+}
+
+#[test]
+fn without_keep_going_the_first_alarm_ends_the_run() {
+    let machine = Machine::default_mill();
+    let dialect = Dialect::fanuc();
+    let mut sink = VecSink::default();
+    let out = Interpreter::new(&machine, &dialect, Options::default())
+        .run_str("G999\nG01 X1. F1.\nM30\n", &mut sink);
+    assert!(matches!(out, Outcome::Alarm(_)));
+    assert_eq!(alarms(&sink.0).len(), 1);
+    assert!(feed_xs(&sink.0).is_empty());
+}
