@@ -560,6 +560,37 @@ impl Event {
         }
     }
 
+    /// Where the event comes from, to change: a consumer that numbers the
+    /// blocks itself (the plot's planned-time stamps) rewrites the line.
+    pub fn loc_mut(&mut self) -> Option<&mut Loc> {
+        match self {
+            Event::Rapid { loc, .. }
+            | Event::Feed { loc, .. }
+            | Event::Arc { loc, .. }
+            | Event::Thread { loc, .. }
+            | Event::Skip { loc, .. }
+            | Event::Dwell { loc, .. }
+            | Event::ToolChange { loc, .. }
+            | Event::Spindle { loc, .. }
+            | Event::Coolant { loc, .. }
+            | Event::PathMode { loc, .. }
+            | Event::HighSpeed { loc, .. }
+            | Event::Stop { loc, .. }
+            | Event::End { loc, .. }
+            | Event::Frame { loc, .. }
+            | Event::Contour { loc, .. }
+            | Event::Hole { loc, .. }
+            | Event::Wait { loc, .. }
+            | Event::Junction { loc, .. }
+            | Event::Aux { loc, .. }
+            | Event::Smoothing { loc, .. }
+            | Event::Nurbs { loc, .. }
+            | Event::Message { loc, .. }
+            | Event::UnsetVariables { loc, .. } => Some(loc),
+            Event::Warning(_) | Event::Alarm(_) => None,
+        }
+    }
+
     /// The end point of a motion event.
     pub fn motion_end(&self) -> Option<Pos> {
         match self {

@@ -7,9 +7,13 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
 use proptest::prelude::*;
-use vcnc_core::{ArcDir, Cycle, Event, Feed, FrameInfo, Loc, Machine, Plane, Pos, Sink};
+use vcnc_core::display::DisplayUnits;
+use vcnc_core::{
+    ArcDir, Cycle, Event, Feed, FrameInfo, Loc, Machine, Plane, Pos, Sink, ToolLibrary, ToolShape,
+};
 use vcnc_plot::{
-    ColorBy, Legend, Look, Page, PlotOptions, PlotSink, Projection, Space, Theme, View,
+    ColorBy, FitTo, Legend, Look, Mesh, Page, PlotOptions, PlotSink, Projection, Source, Space,
+    Theme, View,
 };
 
 fn pos() -> impl Strategy<Value = Pos> {
@@ -73,13 +77,23 @@ proptest! {
         let machine = Machine::default_mill();
         let view = [View::Xy, View::Xz, View::Yz, View::Iso][usize::from(view)];
         let projection = Projection::new(view, false);
-        let look = Look { theme: Theme::Dark, color: ColorBy::Feed, width_px: 400, height_px: 300 };
+        let fit = if view == View::Xz { FitTo::All } else { FitTo::Cuts };
+        let look = Look {
+            theme: Theme::Dark,
+            color: ColorBy::Feed,
+            width_px: 400,
+            height_px: 300,
+            fit,
+            rapids: view != View::Yz,
+            units: if view == View::Iso { DisplayUnits::In } else { DisplayUnits::Mm },
+        };
         let (width_px, height_px) = vcnc_plot::plot_area(400, 300);
         let flat = PlotOptions {
             space: Space::Flat { projection, width_px, height_px },
             color: ColorBy::Feed,
             max_vertices: 64,
             max_marks: 16,
+            fit,
         };
         let volume = PlotOptions { space: Space::Volume { resolution: 2048.0 }, ..flat };
         for options in [flat, volume] {
@@ -94,13 +108,29 @@ proptest! {
             let mut out = Vec::new();
             vcnc_plot::write_svg(&scene, &mut out).unwrap();
             vcnc_plot::write_png(&scene, &mut out).unwrap();
+            let mut tools = ToolLibrary::default();
+            tools.insert(ToolShape::assumed(3));
+            let mesh = Mesh {
+                name: "stock".into(),
+                color: vcnc_plot::Rgb(200, 200, 200),
+                visible: true,
+                positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                // One good triangle and one whose indices are out of range.
+                triangles: vec![[0, 1, 2], [0, 7, 9]],
+            };
             let page = Page {
                 theme: Theme::Light,
                 color: ColorBy::Tool,
                 lathe: false,
+                view,
+                fit,
+                rapids: false,
+                units: DisplayUnits::Mm,
                 legend: &Legend::default(),
                 time_label: "none",
-                sources: &[],
+                sources: &[Source::new("prog".into(), b"G1 X1\n".to_vec())],
+                tools: Some(&tools),
+                meshes: std::slice::from_ref(&mesh),
             };
             vcnc_plot::write_html(&plot, Some((&plot, "same")), &page, &mut out).unwrap();
         }
