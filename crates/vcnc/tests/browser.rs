@@ -39,6 +39,11 @@ use webdriver::Browser;
 /// One browser at a time.
 static ONE: Mutex<()> = Mutex::new(());
 
+fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    ONE.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
 fn shots() -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("browser");
     std::fs::create_dir_all(&dir).unwrap();
@@ -118,9 +123,7 @@ fn browser() -> Browser {
 
 #[test]
 fn the_viewer_page_draws_and_its_slider_follows_the_program() {
-    let _one = ONE
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _one = one_at_a_time();
     let out_dir = shots();
     let page = out_dir.join("1.2.18_example.html");
     let program = workspace().join("tests/fixtures/manual/1.2.18_example.nc");
@@ -327,6 +330,20 @@ fn pixels_near(b: &Browser, at: (f64, f64), r: i64, rgb: [u8; 3]) -> u64 {
     .unwrap()
 }
 
+/// The measure tool's report between two machine points it is clicked at.
+fn measure(b: &Browser, from: [f64; 3], to: [f64; 3]) -> String {
+    b.post(
+        &format!("/element/{}/click", b.element("#measure")),
+        &json!({}),
+    );
+    click_at(b, from);
+    click_at(b, to);
+    b.js("return document.getElementById('measureOut').textContent;")
+        .as_str()
+        .unwrap()
+        .to_string()
+}
+
 fn screen_of(b: &Browser, p: [f64; 3]) -> (f64, f64) {
     let v = b.js(&format!(
         "return window.vcnc.screenOf({}, {}, {});",
@@ -337,9 +354,7 @@ fn screen_of(b: &Browser, p: [f64; 3]) -> (f64, f64) {
 
 #[test]
 fn clicks_select_lines_the_pointer_reads_positions_and_the_measure_tool_measures() {
-    let _one = ONE
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _one = one_at_a_time();
     let page = page_of("square", SQUARE, &["--view", "xy"]);
     let b = browser();
     b.open(&page);
@@ -390,14 +405,7 @@ fn clicks_select_lines_the_pointer_reads_positions_and_the_measure_tool_measures
     b.screenshot(&shots().join("hover.png"));
 
     // Measure from work (0, 0) to (30, 40): 50 mm, ΔX 30, ΔY 40.
-    b.post(
-        &format!("/element/{}/click", b.element("#measure")),
-        &json!({}),
-    );
-    click_at(&b, [100.0, 50.0, -1.0]);
-    click_at(&b, [130.0, 90.0, -1.0]);
-    let out = b.js("return document.getElementById('measureOut').textContent;");
-    let out = out.as_str().unwrap();
+    let out = measure(&b, [100.0, 50.0, -1.0], [130.0, 90.0, -1.0]);
     assert!(
         out.starts_with("distance 50.000 mm\nΔX 30.000  ΔY 40.000  ΔZ 0.000"),
         "{out}"
@@ -408,9 +416,7 @@ fn clicks_select_lines_the_pointer_reads_positions_and_the_measure_tool_measures
 
 #[test]
 fn playback_at_x10_takes_a_tenth_of_the_planned_time() {
-    let _one = ONE
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _one = one_at_a_time();
     let page = page_of("square_play", SQUARE, &[]);
     // The page's total is the planner's, as `vcnc time` prints it.
     let prog = shots().join("square_play.nc");
@@ -468,9 +474,7 @@ fn playback_at_x10_takes_a_tenth_of_the_planned_time() {
 
 #[test]
 fn a_lathe_shows_its_section_a_mesh_its_toggle_and_inches_their_unit() {
-    let _one = ONE
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let _one = one_at_a_time();
     let dir = shots();
     let lathe = dir.join("lathe.html");
     let o = vcnc(&[
@@ -535,17 +539,8 @@ fn a_lathe_shows_its_section_a_mesh_its_toggle_and_inches_their_unit() {
     let tip = tip_text(&b);
     let work = readout(&tip, "work");
     assert_eq!([work[0], work[2]], [1.1811, -0.0394], "{tip}");
-    b.post(
-        &format!("/element/{}/click", b.element("#measure")),
-        &json!({}),
-    );
-    click_at(&b, [100.0, 50.0, -1.0]);
-    click_at(&b, [130.0, 90.0, -1.0]);
-    let out = b.js("return document.getElementById('measureOut').textContent;");
-    assert!(
-        out.as_str().unwrap().starts_with("distance 1.9685 in"),
-        "{out}"
-    );
+    let out = measure(&b, [100.0, 50.0, -1.0], [130.0, 90.0, -1.0]);
+    assert!(out.starts_with("distance 1.9685 in"), "{out}");
     b.screenshot(&dir.join("inch.png"));
     assert_eq!(b.console_errors(), Vec::<String>::new());
 }

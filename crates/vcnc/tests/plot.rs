@@ -754,3 +754,53 @@ fn inches_label_the_ticks_and_the_legend() {
     // 13.2 s planned: the time format is the same in either unit.
     assert!(svg.contains(" planned ("));
 }
+
+/// A machine file with travel limits on X, Y and Z: `--fit all` frames
+/// their box and draws it dotted; the legend names it.
+#[test]
+fn travel_limits_are_drawn_as_a_box() {
+    let dir = TempDir::new("limits");
+    let mill = std::fs::read_to_string(workspace().join("crates/vcnc_core/src/default_mill.toml"))
+        .unwrap()
+        .replacen(
+            "letter = \"x\"\n",
+            "letter = \"x\"\nmin_mm = -100.0\nmax_mm = 600.0\n",
+            1,
+        )
+        .replacen(
+            "letter = \"y\"\n",
+            "letter = \"y\"\nmin_mm = -50.0\nmax_mm = 550.0\n",
+            1,
+        )
+        .replacen(
+            "letter = \"z\"\n",
+            "letter = \"z\"\nmin_mm = -400.0\nmax_mm = 100.0\n",
+            1,
+        );
+    let machine = dir.write("mill.toml", &mill);
+    let prog = dir.write("far.nc", FAR_POCKET);
+    let out = dir.file("limits.svg");
+    let o = vcnc(&[
+        "plot",
+        prog.to_str().unwrap(),
+        "--machine",
+        machine.to_str().unwrap(),
+        "--fit",
+        "all",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains(">travel limits</text>"));
+    // The box's dotted edges: the legend's sample and, seen from the top,
+    // its four sides (each drawn twice, at Z −400 and Z 100) and its
+    // vertical edges (points from the top, not drawn).
+    let dotted = svg.matches("stroke-dasharray=\"2 3\"").count();
+    assert!(dotted >= 9, "{dotted}");
+    // X −100 .. 600 fills the plot area's width: a tick at −100 and at 600.
+    assert!(
+        svg.contains(">-100</text>") && svg.contains(">600</text>"),
+        "ticks"
+    );
+}

@@ -159,15 +159,32 @@ fn json_num(out: &mut String, v: f64) {
     }
 }
 
-fn json_p3(out: &mut String, p: P3) {
+/// A JSON array of `items`, each written by `each`.
+fn json_list<T>(
+    out: &mut String,
+    items: impl IntoIterator<Item = T>,
+    mut each: impl FnMut(&mut String, T),
+) {
     out.push('[');
-    for (i, v) in p.iter().enumerate() {
+    for (i, item) in items.into_iter().enumerate() {
         if i > 0 {
             out.push(',');
         }
-        json_num(out, *v);
+        each(out, item);
     }
     out.push(']');
+}
+
+fn json_p3(out: &mut String, p: P3) {
+    json_list(out, p, json_num);
+}
+
+/// A box `[lo, hi]` relative to the centre, or `null`.
+fn json_box(out: &mut String, b: Option<(P3, P3)>, rel: &dyn Fn(P3) -> P3) {
+    match b {
+        Some((lo, hi)) => json_list(out, [lo, hi], |o, p| json_p3(o, rel(p))),
+        None => out.push_str("null"),
+    }
 }
 
 fn json_rgb(out: &mut String, c: Rgb) {
@@ -266,53 +283,28 @@ fn json_marks(o: &mut String, plot: &Plot, origin_q: [i64; 3], rel: &dyn Fn(P3) 
     });
     t.col("line", |b| deltas(b, tc.iter().map(|c| i64::from(c.line))));
     t.write_json(o, tc.len());
-    o.push_str(",\"origins\":[");
-    for (i, g) in plot.origins.iter().enumerate() {
-        if i > 0 {
-            o.push(',');
-        }
-        o.push('[');
-        json_p3(o, rel(g.at));
-        o.push(',');
-        json_p3(o, g.x_dir);
-        o.push(',');
-        json_p3(o, g.y_dir);
-        o.push(']');
-    }
-    o.push_str("],\"frames\":[");
-    for (i, f) in plot.frames.iter().enumerate() {
-        if i > 0 {
-            o.push(',');
-        }
+    o.push_str(",\"origins\":");
+    json_list(o, &plot.origins, |o, g| {
+        json_list(o, [rel(g.at), g.x_dir, g.y_dir], json_p3);
+    });
+    o.push_str(",\"frames\":");
+    json_list(o, &plot.frames, |o, f| {
         o.push('[');
         json_p3(o, rel(f.origin));
         o.push(',');
         match f.linear {
-            Some(m) => {
-                o.push('[');
-                for (r, row) in m.iter().enumerate() {
-                    if r > 0 {
-                        o.push(',');
-                    }
-                    json_p3(o, *row);
-                }
-                o.push(']');
-            }
+            Some(m) => json_list(o, m, json_p3),
             None => o.push_str("null"),
         }
         o.push(',');
         json_p3(o, f.tool_offset);
         o.push(']');
-    }
-    o.push_str("],\"frameRuns\":[");
-    for (i, (v, f)) in plot.frame_runs.iter().enumerate() {
-        let _ = write!(o, "{}[{v},{f}]", if i > 0 { "," } else { "" });
-    }
-    let _ = write!(
-        o,
-        "],\"framesComplete\":{},\"alarm\":",
-        plot.frames_complete
-    );
+    });
+    o.push_str(",\"frameRuns\":");
+    json_list(o, &plot.frame_runs, |o, (v, f)| {
+        let _ = write!(o, "[{v},{f}]");
+    });
+    let _ = write!(o, ",\"framesComplete\":{},\"alarm\":", plot.frames_complete);
     match &plot.alarm {
         Some(a) => {
             o.push_str("{\"at\":");
@@ -470,27 +462,9 @@ fn data(plot: &Plot, compare: Option<(&Plot, &str)>, page: &Page<'_>) -> String 
     o.push_str(",\"hi\":");
     json_p3(&mut o, rel(hi));
     o.push_str(",\"cuts\":");
-    match cuts {
-        Some((a, b)) => {
-            o.push('[');
-            json_p3(&mut o, rel(a));
-            o.push(',');
-            json_p3(&mut o, rel(b));
-            o.push(']');
-        }
-        None => o.push_str("null"),
-    }
+    json_box(&mut o, cuts, &rel);
     o.push_str(",\"limits\":");
-    match plot.limits {
-        Some((a, b)) => {
-            o.push('[');
-            json_p3(&mut o, rel(a));
-            o.push(',');
-            json_p3(&mut o, rel(b));
-            o.push(']');
-        }
-        None => o.push_str("null"),
-    }
+    json_box(&mut o, plot.limits, &rel);
     let _ = write!(
         o,
         ",\"moves\":{},\"cutMoves\":{}",

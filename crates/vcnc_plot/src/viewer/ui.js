@@ -185,12 +185,14 @@ function herePoint() {
   return [0, 1, 2].map((k) => lerp(P.pos[3 * i + k], P.pos[3 * j + k], f));
 }
 function update() {
-  const f = P.file ? P.file[cur] : 0;
+  // The block running: the one whose move is in progress, else the last.
+  const run = timed && cur + 1 < P.n && curT > P.time[cur] ? cur + 1 : cur;
+  const f = P.file ? P.file[run] : 0;
   // Line 0: the power-on position, before any block; nothing is lit.
-  highlight(f, P.line[cur]);
+  highlight(f, P.line[run]);
   const hp = herePoint(), m = hp.map((v, k) => v + D.center[k]);
-  $("info").textContent = (P.line[cur] ? "line " + P.line[cur] + (f ? " of " + D.files[f] : "") : "power-on position") +
-    " | " + toolName(P.tool[cur]) + " | machine " + fmtPoint(m);
+  $("info").textContent = (P.line[run] ? "line " + P.line[run] + (f ? " of " + D.files[f] : "") : "power-on position") +
+    " | " + toolName(P.tool[run]) + " | machine " + fmtPoint(m);
   $("clock").textContent = timed ? fmtTime(curT) + " / " + fmtTime(D.totalTime) + " " + D.timeLabel : "vertex " + cur + " / " + (P.n - 1);
   request();
 }
@@ -392,6 +394,8 @@ window.vcnc = {
   // CSS pixels, from the view's top left, of a machine point.
   screenOf: (x, y, z) => project(x - D.center[0], y - D.center[1], z - D.center[2]),
   vertex: (i) => ({ at: [P.abs[3 * i], P.abs[3 * i + 1], P.abs[3 * i + 2]], line: P.line[i], kind: P.kind[i], time: P.time ? P.time[i] : 0 }),
+  // The segment under a CSS point of the view (what hover and clicks use).
+  nearestAt: (x, y) => nearest(x, y, 10),
   webgl: !!gl,
   software,
   // Mean ms of n synchronous frames; `whileMoving`: as drawn during a drag.
