@@ -244,7 +244,7 @@ pub struct PlotSink<C: Clock = NoClock> {
 
 /// f64 → f32 for stored attributes (times, feeds): rounding is intended.
 #[allow(clippy::cast_possible_truncation)]
-fn f32_of(v: f64) -> f32 {
+pub(crate) fn f32_of(v: f64) -> f32 {
     v as f32
 }
 
@@ -316,7 +316,7 @@ impl<C: Clock> PlotSink<C> {
         self.plot.path.finish();
         self.plot.contour.finish();
         self.plot.total_time_s = self.clock.now();
-        self.plot.frame_runs = frame_runs(&self.plot.path, &self.plot.frames);
+        self.plot.frame_runs = crate::retime::frame_runs(&self.plot.path, &self.plot.frames);
         (self.plot, self.clock)
     }
 
@@ -632,87 +632,6 @@ fn travel_box(machine: &Machine, map: &AxisMap) -> Option<(P3, P3)> {
         hi[k] = axis.max_mm;
     }
     map.index.iter().any(Option::is_some).then_some((lo, hi))
-}
-
-/// Which frame each vertex of `path` was drawn under: the last frame whose
-/// stamp is at or before the vertex's (a frame is reported before the
-/// motion of its block, which carries the same stamp), as runs.
-fn frame_runs(path: &Path, frames: &[FrameMark]) -> Vec<(u32, u32)> {
-    let mut runs = Vec::new();
-    let mut next = 0usize;
-    for (i, v) in path.vertices.iter().enumerate() {
-        let before = next;
-        while frames.get(next).is_some_and(|f| f.time_s <= v.time_s) {
-            next += 1;
-        }
-        if next != before
-            && let (Ok(i), Ok(f)) = (u32::try_from(i), u32::try_from(next - 1))
-        {
-            runs.push((i, f));
-        }
-    }
-    runs
-}
-
-impl Plot {
-    /// Turns the clock's stamps into seconds: `time_of` maps a stamp to the
-    /// time at the end of that point of the run (monotone), and `total_s`
-    /// is the run's whole time. Vertices that share a stamp (the chords of
-    /// one arc, the steps of one cycle) share its time by length, from the
-    /// end of the vertex before them to the end of the stamp.
-    pub fn retime(&mut self, total_s: f64, time_of: impl Fn(f64) -> f64) {
-        retime_path(&mut self.path, &time_of);
-        retime_path(&mut self.contour, &time_of);
-        for f in &mut self.frames {
-            f.time_s = f32_of(time_of(f64::from(f.time_s)));
-        }
-        self.total_time_s = total_s;
-    }
-}
-
-/// Length of the segment from `a` to `b`.
-fn dist(a: P3, b: P3) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// [`Plot::retime`] for one path.
-fn retime_path(path: &mut Path, time_of: &impl Fn(f64) -> f64) {
-    let vs = &mut path.vertices;
-    let mut start = 0usize;
-    let mut t_before = 0.0f64;
-    while start < vs.len() {
-        let stamp = vs.get(start).map_or(0.0, |v| v.time_s);
-        let mut end = start;
-        while vs
-            .get(end + 1)
-            .is_some_and(|v| v.time_s.to_bits() == stamp.to_bits())
-        {
-            end += 1;
-        }
-        let t_end = time_of(f64::from(stamp));
-        // Lengths of the segments that end at start..=end.
-        let lens: Vec<f64> = (start..=end)
-            .map(
-                |i| match (i.checked_sub(1).and_then(|j| vs.get(j)), vs.get(i)) {
-                    (Some(a), Some(b)) if b.kind != Kind::Jump => dist(a.at, b.at),
-                    _ => 0.0,
-                },
-            )
-            .collect();
-        let total: f64 = lens.iter().sum();
-        let mut run = 0.0;
-        for (v, len) in vs.iter_mut().skip(start).zip(&lens) {
-            run += len;
-            let t = if total > 0.0 && t_end > t_before {
-                t_before + (t_end - t_before) * run / total
-            } else {
-                t_end
-            };
-            v.time_s = f32_of(t);
-        }
-        t_before = t_end;
-        start = end + 1;
-    }
 }
 
 impl<C: Clock> Sink for PlotSink<C> {

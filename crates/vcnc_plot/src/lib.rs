@@ -27,6 +27,7 @@ mod html;
 mod legend;
 pub mod path;
 mod png;
+mod retime;
 pub mod scene;
 mod svg;
 pub mod theme;
