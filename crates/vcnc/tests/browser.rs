@@ -17,7 +17,9 @@
 //!   planned time (which is `vcnc time`'s); `--view xy` opens the page
 //!   from the top; `--units in` shows inches.
 //! - A lathe page offers the section only and a drag pans it; a page with
-//!   a mesh (the material-removal hook) draws it and its toggle hides it.
+//!   a mesh (the material-removal hook) draws it and its toggle hides it;
+//!   under G68 R90 the readout's work coordinates are the program's; the
+//!   page's time format is `vcnc_core::display::duration`'s.
 //!
 //! No page may log a console error. The tests run one at a time (one
 //! browser on a shared 2-core machine) and save screenshots in the
@@ -542,6 +544,33 @@ fn a_lathe_shows_its_section_a_mesh_its_toggle_and_inches_their_unit() {
     let out = measure(&b, [100.0, 50.0, -1.0], [130.0, 90.0, -1.0]);
     assert!(out.starts_with("distance 1.9685 in"), "{out}");
     b.screenshot(&dir.join("inch.png"));
+    assert_eq!(b.console_errors(), Vec::<String>::new());
+
+    // Under G68 R90 the work coordinates are the program's: the cut of
+    // line 6 from program (30, 0) to (30, 40) runs in the machine from
+    // (100, 80) to (60, 80) (rotated a quarter turn about work zero, which
+    // G52 puts at machine (100, 50)); its middle, program (30, 20), is
+    // machine (80, 80).
+    let turned = page_of(
+        "rotated",
+        "G52 X100. Y50.\nG68 X0 Y0 R90.\nG0 X0. Y0. Z5.\nG1 Z-1. F600.\nG1 X30.\nG1 Y40.\nM30\n",
+        &["--view", "xy"],
+    );
+    b.open(&turned);
+    point_at(&b, [80.0, 80.0, -1.0]);
+    let tip = tip_text(&b);
+    assert!(tip.starts_with("line 6: G1 Y40."), "{tip}");
+    let work = readout(&tip, "work");
+    let machine = readout(&tip, "machine");
+    assert_eq!([work[0], work[2]], [30.0, -1.0], "{tip}");
+    assert!((work[1] - 20.0).abs() < 0.2, "{tip}");
+    assert_eq!([machine[1], machine[2]], [80.0, -1.0], "{tip}");
+    assert!((machine[0] - 80.0).abs() < 0.2, "{tip}");
+    // The page writes times as vcnc_core::display::duration does.
+    assert_eq!(
+        b.js("return [59.96, 3599.96, 61.24, 0.04].map(window.vcnc.fmtTime);"),
+        json!(["1m 00.0s", "1h 00m 00.0s", "1m 01.2s", "0.0s"])
+    );
     assert_eq!(b.console_errors(), Vec::<String>::new());
 }
 

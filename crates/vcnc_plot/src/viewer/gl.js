@@ -640,12 +640,32 @@ function drawChuck() {
   ctx2d.textBaseline = "bottom";
   ctx2d.fillText("chuck", b[0] + nx * off, b[1] + ny * off - 4);
 }
+// The alarm: a ⊗ where the tool stopped, with its code and line.
+function drawAlarm() {
+  if (!D.alarm) return;
+  const [x, y] = project(...D.alarm.at);
+  ctx2d.strokeStyle = ctx2d.fillStyle = rgb(pal().alarm);
+  ctx2d.lineWidth = 2;
+  ctx2d.beginPath();
+  ctx2d.arc(x, y, 10, 0, 2 * Math.PI);
+  ctx2d.moveTo(x - 6, y - 6); ctx2d.lineTo(x + 6, y + 6);
+  ctx2d.moveTo(x - 6, y + 6); ctx2d.lineTo(x + 6, y - 6);
+  ctx2d.stroke();
+  ctx2d.font = "bold 12px system-ui, sans-serif";
+  const label = D.alarm.code + " line " + D.alarm.line, w = ctx2d.measureText(label).width;
+  // Beside the mark, on the side where it fits in the view.
+  const right = x + 14 + w < overlay.width / dpr();
+  ctx2d.textAlign = right ? "left" : "right";
+  ctx2d.textBaseline = "bottom";
+  ctx2d.fillText(label, right ? x + 14 : x - 14, y - 8);
+}
 function drawOverlay() {
   const r = dpr(), W = overlay.width / r, H = overlay.height / r;
   ctx2d.setTransform(r, 0, 0, r, 0, 0);
   ctx2d.clearRect(0, 0, W, H);
   drawExits(W, H);
   drawChuck();
+  drawAlarm();
   drawTriad(W, H);
   drawScale(W, H);
   drawPicks();

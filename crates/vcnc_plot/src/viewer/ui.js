@@ -394,6 +394,8 @@ window.vcnc = {
   // CSS pixels, from the view's top left, of a machine point.
   screenOf: (x, y, z) => project(x - D.center[0], y - D.center[1], z - D.center[2]),
   vertex: (i) => ({ at: [P.abs[3 * i], P.abs[3 * i + 1], P.abs[3 * i + 2]], line: P.line[i], kind: P.kind[i], time: P.time ? P.time[i] : 0 }),
+  // The page's time format, to hold it to vcnc_core::display::duration.
+  fmtTime,
   // The segment under a CSS point of the view (what hover and clicks use).
   nearestAt: (x, y) => nearest(x, y, 10),
   webgl: !!gl,
