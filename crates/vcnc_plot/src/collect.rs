@@ -956,4 +956,35 @@ mod tests {
             Some(([-10.0, 0.0, -300.0], [500.0, 400.0, 0.0]))
         );
     }
+
+    #[test]
+    fn a_nurbs_curve_is_drawn_as_a_cut_through_its_points() {
+        // Order 2 with clamped knots: the polyline through its control
+        // points (0, 0) → (10, 0) → (10, 10).
+        let m = Machine::default_mill();
+        let mut s = PlotSink::new(&m, volume());
+        s.event(&Event::Nurbs {
+            loc: loc(1),
+            curve: Arc::new(vcnc_core::Nurbs {
+                order: 2,
+                knots: vec![0.0, 0.0, 1.0, 2.0, 2.0],
+                points: vec![at(0.0, 0.0, 0.0), at(10.0, 0.0, 0.0), at(10.0, 10.0, 0.0)],
+                weights: vec![1.0, 1.0, 1.0],
+            }),
+            feed: Feed::PerMin(100.0),
+        });
+        let plot = s.into_plot();
+        let at_corner = plot
+            .path
+            .vertices
+            .iter()
+            .any(|v| (v.at[0] - 10.0).abs() < 1e-9 && v.at[1].abs() < 1e-9);
+        assert!(at_corner, "{:?}", plot.path.vertices);
+        assert_eq!(
+            plot.path.vertices.last().map(|v| (v.at, v.kind)),
+            Some(([10.0, 10.0, 0.0], Kind::Cut))
+        );
+        assert_eq!(plot.cut_bounds, Some(([0.0, 0.0, 0.0], [10.0, 10.0, 0.0])));
+        assert_eq!(plot.cut_moves, 1);
+    }
 }

@@ -1,6 +1,6 @@
 //! Property test: any sequence of motion events — lines, arcs of every
-//! plane and direction (helices included), holes, tool changes, frames,
-//! contours, an alarm — collects into a plot whose vertex count stays
+//! plane and direction (helices included), NURBS curves valid or not,
+//! holes, tool changes, frames, contours, an alarm — collects into a plot whose vertex count stays
 //! within its budget, and lays out and draws as SVG, PNG and HTML without
 //! a panic, in every view.
 
@@ -9,7 +9,8 @@
 use proptest::prelude::*;
 use vcnc_core::display::DisplayUnits;
 use vcnc_core::{
-    ArcDir, Cycle, Event, Feed, FrameInfo, Loc, Machine, Plane, Pos, Sink, ToolLibrary, ToolShape,
+    ArcDir, Cycle, Event, Feed, FrameInfo, Loc, Machine, Nurbs, Plane, Pos, Sink, ToolLibrary,
+    ToolShape,
 };
 use vcnc_plot::{
     ColorBy, FitTo, Legend, Look, Mesh, Page, PlotOptions, PlotSink, Projection, Source, Space,
@@ -60,6 +61,24 @@ fn event() -> impl Strategy<Value = Event> {
                 tool_offset: Pos::default()
             },
         }),
+        // Any NURBS, valid or not (knots out of order, weights ≤ 0).
+        (
+            loc.clone(),
+            2u8..5,
+            prop::collection::vec(pos(), 0..6),
+            prop::collection::vec(-1.0..10.0f64, 0..12),
+            prop::collection::vec(-0.5..3.0f64, 0..6),
+        )
+            .prop_map(|(loc, order, points, knots, weights)| Event::Nurbs {
+                loc,
+                curve: std::sync::Arc::new(Nurbs {
+                    order,
+                    knots,
+                    points,
+                    weights,
+                }),
+                feed: Feed::PerMin(300.0),
+            }),
         (loc, pos(), pos()).prop_map(|(loc, from, to)| Event::Contour {
             loc,
             from,
