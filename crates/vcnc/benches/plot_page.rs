@@ -1,6 +1,8 @@
 //! The viewer page in headless Chromium: how long a page takes to load
-//! (decode its arrays, build the vertex buffer, draw the first frame), how
-//! long a frame takes after loading, and how long a slider move takes.
+//! (inflate and decode its tables and program text, build the vertex
+//! buffer, draw the first frame), how long a frame takes after loading,
+//! how long a slider move takes, and how long finding the segment under
+//! the pointer takes after the view changed.
 //!
 //! `VCNC_PLOT_PAGE=out.html cargo bench -p vcnc --bench plot_page`;
 //! `tools/bench/plot.sh` makes a 1,000,000-block page and runs this. A
@@ -48,6 +50,19 @@ fn main() {
              return (performance.now() - t) / 20;")
         .as_f64()
         .unwrap();
+    // A pick as hover and clicks make it, after a turn of the view (the
+    // path's screen positions are projected again, then scanned).
+    let pick_ms = b
+        .js(
+            "const c = document.getElementById('gl'), w = c.clientWidth, h = c.clientHeight; \
+             const t = performance.now(); \
+             for (let k = 0; k < 10; k++) { window.vcnc.setIndex(window.vcnc.count() - 1 - k); \
+               document.querySelector('[data-view=\"' + ['top', 'iso'][k % 2] + '\"]').click(); \
+               window.vcnc.nearestAt(w * (0.3 + 0.04 * k), h / 2); } \
+             return (performance.now() - t) / 10;",
+        )
+        .as_f64()
+        .unwrap();
     let size = std::fs::metadata(&page).unwrap().len();
     println!(
         "page        {} ({:.1} MB, {n} vertices, WebGL {webgl})",
@@ -61,4 +76,7 @@ fn main() {
     println!("frame       {frame_ms:.1} ms (mean of 20 redraws, GPU finished)");
     println!("drag frame  {moving_ms:.1} ms (the preview drawn while the view moves)");
     println!("slider move {scrub_ms:.1} ms (text pane and a redraw, mean of 20)");
+    println!(
+        "pick        {pick_ms:.1} ms (a view change, then the segment under the pointer, mean of 10)"
+    );
 }

@@ -1,13 +1,18 @@
 //! `vcnc plot`: runs a program into a [`PlotSink`] and writes its back-plot
-//! as SVG, PNG or a self-contained HTML page (`docs/plot.md`).
+//! as SVG, PNG or a self-contained HTML page (`docs/plot.md`); without
+//! `-o`, the page `NAME.html` in the current directory.
 //!
-//! One run feeds both the plot and the `check` summary: the summary is the
-//! plot's [`Clock`] (its distance/feed time estimate dates every vertex —
-//! the seam where the planner's times will come in) and gives the legend
-//! its cycle time, extents and tools. A program that alarms is plotted up
-//! to the alarm, which is marked; the picture is written, the alarm is
-//! printed like `check` prints it, and the exit code is 1. A progress bar
-//! appears on stderr when a plot takes longer than a second on a terminal.
+//! One run feeds the plot, the `check` summary and the planner. The plot's
+//! [`Clock`] numbers the blocks; for the page, the planner is fed the same
+//! events with those numbers as their lines (`Numbered`), and its timeline
+//! (`Stamps`) keeps the planned time at the end of each block, so that
+//! after the run every vertex is retimed to the planner's seconds — a
+//! look-ahead planner knows a block's time only some blocks after it ran.
+//! The summary gives the legend its distances, extents and tools. A
+//! program that alarms is plotted up to the alarm, which is marked; the
+//! picture is written, the alarm is printed like `check` prints it, and the
+//! exit code is 1. A progress bar appears on stderr when a plot takes
+//! longer than a second on a terminal.
 
 use crate::cli::Options;
 use crate::files::Input;
@@ -19,29 +24,42 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
-use vcnc_interp::{Event, Interpreter, Outcome, Sink};
+use vcnc_core::display::{DisplayUnits, duration};
+use vcnc_core::{ToolKind, ToolLibrary, ToolShape, ToolSource};
+use vcnc_interp::{Event, Interpreter, Machine, Outcome, Sink};
 use vcnc_output::Summary;
+use vcnc_planner::{AxesMove, CycleTime, Pause, Planner, Profile, Segment, Timeline};
 use vcnc_plot::{
-    Clock, ColorBy, Legend, Look, Page, Plot, PlotOptions, PlotSink, Projection, Source, Space,
-    Theme, View,
+    Clock, ColorBy, FitTo, Legend, Look, Page, Plot, PlotOptions, PlotSink, Projection, Source,
+    Space, Theme, View,
 };
 
 /// Options of `vcnc plot`.
 #[derive(Debug, Args)]
 pub struct PlotArgs {
-    /// The main program.
+    /// The main program (`-`: standard input).
     pub file: PathBuf,
     /// Program and machine options.
     #[command(flatten)]
     pub opts: Options,
-    /// Output file; its extension picks the format: .svg, .png or .html.
+    /// Output file; its extension picks the format: .svg, .png or .html (default: the program's name with .html, in the current directory).
     #[arg(short, long)]
-    pub output: PathBuf,
-    /// View of SVG and PNG plots (default: xy, or the xz half-section under a lathe dialect).
+    pub output: Option<PathBuf>,
+    /// The view (default: xy, or the xz half-section on a lathe; the page opens in iso); a lathe without a Y axis has only xz.
     #[arg(long, value_enum)]
     pub view: Option<ViewArg>,
-    /// What colours the cuts (default: depth; tool in the HTML page).
+    /// What the picture is framed on: the cuts (moves outside are clipped at the edge, marked where they leave) or everything.
+    #[arg(long, value_enum, default_value_t = FitArg::Cuts)]
+    pub fit: FitArg,
+    /// Do not draw rapids (a program of rapids alone still shows them).
+    #[arg(long)]
+    pub no_rapids: bool,
+    /// Unit of the ticks, legend and page readouts.
+    #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
+    pub units: UnitsArg,
+    /// What colours the cuts (default: depth; in the page, tool when the program uses two tools or more).
     #[arg(long, value_enum)]
     pub color: Option<ColorArg>,
     /// Light or dark picture.
@@ -53,6 +71,24 @@ pub struct PlotArgs {
     /// Picture size of SVG and PNG plots, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1200x800", value_parser = parse_size)]
     pub size: (u32, u32),
+}
+
+/// `--fit`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum FitArg {
+    /// The cuts, holes and the programmed contour.
+    Cuts,
+    /// Every move and mark (and the travel limits).
+    All,
+}
+
+/// `--units`.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum UnitsArg {
+    /// Millimetres.
+    Mm,
+    /// Inches.
+    In,
 }
 
 /// `--view`.
@@ -136,55 +172,223 @@ const MAX_MARKS: usize = 100_000;
 const PAGE_RESOLUTION: f64 = 2048.0;
 /// The page carries at most this much of each program text.
 const MAX_SOURCE_BYTES: u64 = 64 << 20;
+/// What the page's times are.
+const TIME_LABEL: &str = "planned";
 
-/// The check summary as the plot's clock: distance/feed estimate.
-struct Estimate(Summary);
+/// Numbers the blocks as events arrive: a new number whenever the source
+/// line or file changes. The plot's clock and the planner's feed count
+/// alike, so that a vertex's stamp names the block the planner timed.
+#[derive(Debug, Default)]
+struct Blocks {
+    n: u64,
+    last: Option<(u64, Option<Arc<str>>)>,
+}
 
-impl Sink for Estimate {
+impl Blocks {
+    fn see(&mut self, event: &Event) -> u64 {
+        if let Some(loc) = event.loc() {
+            let same = self.last.as_ref().is_some_and(|(line, file)| {
+                *line == loc.line
+                    && match (file, &loc.file) {
+                        (Some(a), Some(b)) => Arc::ptr_eq(a, b) || a == b,
+                        (None, None) => true,
+                        _ => false,
+                    }
+            });
+            if !same {
+                self.n += 1;
+                self.last = Some((loc.line, loc.file.clone()));
+            }
+        }
+        self.n
+    }
+}
+
+/// The plot's clock: the check summary (for the legend) and the block
+/// number as the stamp.
+struct BlockClock {
+    summary: Summary,
+    blocks: Blocks,
+}
+
+impl Sink for BlockClock {
     fn event(&mut self, event: &Event) {
-        self.0.event(event);
+        self.summary.event(event);
+        self.blocks.see(event);
     }
 }
 
-impl Clock for Estimate {
-    fn elapsed_s(&self) -> f64 {
-        self.0.cycle_time_s
+impl Clock for BlockClock {
+    fn now(&self) -> f64 {
+        // Block counts are far below 2^53: exact.
+        #[allow(clippy::cast_precision_loss)]
+        let n = self.blocks.n as f64;
+        n
     }
 }
 
-/// What the times of the plot are, for the legend and the page.
-const TIME_LABEL: &str = "distance/feed estimate";
+/// Feeds `inner` (the planner) the events with their block number in
+/// place of the line.
+struct Numbered<S> {
+    inner: S,
+    blocks: Blocks,
+}
+
+impl<S: Sink> Sink for Numbered<S> {
+    fn event(&mut self, event: &Event) {
+        let n = self.blocks.see(event);
+        let mut e = event.clone();
+        if let Some(loc) = e.loc_mut() {
+            loc.line = n;
+        }
+        self.inner.event(&e);
+    }
+    fn is_done(&self) -> bool {
+        self.inner.is_done()
+    }
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.inner.finish()
+    }
+}
+
+/// Most blocks whose end time is kept (16 bytes each); past it every
+/// other one is dropped and the rest are interpolated.
+const MAX_STAMPS: usize = 1 << 18;
+
+/// The planned timeline summed up, and the time at the end of each block
+/// (the block number is the line `Numbered` gave it): exact up to
+/// `MAX_STAMPS` blocks, then for every second, fourth … block.
+#[derive(Debug, Default)]
+struct Stamps {
+    sum: CycleTime,
+    table: Vec<(u64, f64)>,
+    stride: u64,
+}
+
+impl Stamps {
+    fn mark(&mut self, block: u64) {
+        let t = self.sum.total_s;
+        match self.table.last_mut() {
+            Some(last) if last.0 == block => last.1 = t,
+            Some(last) if block < last.0 + self.stride.max(1) => {}
+            _ => {
+                self.table.push((block, t));
+                if self.table.len() >= MAX_STAMPS {
+                    let mut k = 0usize;
+                    self.table.retain(|_| {
+                        k += 1;
+                        k.is_multiple_of(2)
+                    });
+                    self.stride = self.stride.max(1) * 2;
+                }
+            }
+        }
+    }
+
+    /// The planned time at the end of block `stamp` (interpolated between
+    /// the blocks kept around it).
+    fn time_of(&self, stamp: f64) -> f64 {
+        let i = self.table.partition_point(|(b, _)| (*b as f64) < stamp);
+        let Some(&(b1, t1)) = self.table.get(i) else {
+            return self.sum.total_s;
+        };
+        let (b0, t0) = i
+            .checked_sub(1)
+            .and_then(|j| self.table.get(j))
+            .copied()
+            .unwrap_or((0, 0.0));
+        let (b0, b1) = (b0 as f64, b1 as f64);
+        if b1 <= b0 || stamp >= b1 {
+            t1
+        } else {
+            t0 + (t1 - t0) * (stamp - b0).max(0.0) / (b1 - b0)
+        }
+    }
+}
+
+impl Timeline for Stamps {
+    fn segment(&mut self, seg: &Segment, profile: &Profile) {
+        self.sum.segment(seg, profile);
+        self.mark(seg.attr.line);
+    }
+    fn axes(&mut self, mv: &AxesMove) {
+        self.sum.axes(mv);
+        self.mark(mv.attr.line);
+    }
+    fn pause(&mut self, p: &Pause) {
+        self.sum.pause(p);
+        self.mark(p.attr.line);
+    }
+    fn untimed(&mut self, from: vcnc_interp::Pos, to: vcnc_interp::Pos, attr: &vcnc_planner::Attr) {
+        self.sum.untimed(from, to, attr);
+        self.mark(attr.line);
+    }
+}
 
 /// What the options ask for, resolved once.
 struct Settings {
     format: Format,
+    output: PathBuf,
+    view: View,
     projection: Projection,
     look: Look,
     options: PlotOptions,
     lathe: bool,
 }
 
-/// Resolves the view, colours, theme and merge space; `lathe` when the
-/// dialect programs an axis in diameters.
-fn settings(args: &PlotArgs, format: Format, lathe: bool) -> Settings {
+/// The page `vcnc plot FILE` writes without `-o`: FILE's name with
+/// `.html`, in the current directory (`stdin.html` for `-`).
+fn default_output(file: &Path) -> PathBuf {
+    if file.as_os_str() == "-" {
+        return PathBuf::from("stdin.html");
+    }
+    let stem = file
+        .file_stem()
+        .map_or_else(|| "plot".into(), |s| s.to_os_string());
+    let mut name = PathBuf::from(stem);
+    name.set_extension("html");
+    name
+}
+
+/// Resolves the output, view, colours, theme and merge space; `lathe` when
+/// the dialect programs an axis in diameters.
+fn settings(args: &PlotArgs, machine: &Machine, lathe: bool) -> Result<Settings, String> {
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| default_output(&args.file));
+    let format = format_of(&output)?;
     let view = match args.view {
         Some(ViewArg::Xy) => View::Xy,
         Some(ViewArg::Xz) => View::Xz,
         Some(ViewArg::Yz) => View::Yz,
         Some(ViewArg::Iso) => View::Iso,
         None if lathe => View::Xz,
+        None if format == Format::Html => View::Iso,
         None => View::Xy,
     };
+    if lathe && view != View::Xz && machine.axis_of(b'Y').is_none() {
+        return Err(format!(
+            "--view {}: a lathe without a Y axis is drawn as its XZ half-section (--view xz)",
+            view.name()
+        ));
+    }
     let projection = Projection::new(view, lathe);
-    let color = match (args.color, format) {
-        (Some(ColorArg::Depth), _) => ColorBy::Depth,
-        (Some(ColorArg::Tool), _) | (None, Format::Html) => ColorBy::Tool,
-        (Some(ColorArg::Feed), _) => ColorBy::Feed,
-        (None, _) => ColorBy::Depth,
+    let color = match args.color {
+        Some(ColorArg::Depth) => ColorBy::Depth,
+        Some(ColorArg::Tool) => ColorBy::Tool,
+        Some(ColorArg::Feed) => ColorBy::Feed,
+        // The page picks tool or depth once it knows the tools.
+        None if format == Format::Html => ColorBy::Tool,
+        None => ColorBy::Depth,
     };
     let theme = match args.theme {
         ThemeArg::Light => Theme::Light,
         ThemeArg::Dark => Theme::Dark,
+    };
+    let fit = match args.fit {
+        FitArg::Cuts => FitTo::Cuts,
+        FitArg::All => FitTo::All,
     };
     let (width_px, height_px) = args.size;
     let look = Look {
@@ -192,6 +396,12 @@ fn settings(args: &PlotArgs, format: Format, lathe: bool) -> Settings {
         color,
         width_px,
         height_px,
+        fit,
+        rapids: !args.no_rapids,
+        units: match args.units {
+            UnitsArg::Mm => DisplayUnits::Mm,
+            UnitsArg::In => DisplayUnits::In,
+        },
     };
     let (space, max_vertices) = match format {
         Format::Html => (
@@ -215,59 +425,129 @@ fn settings(args: &PlotArgs, format: Format, lathe: bool) -> Settings {
         color,
         max_vertices,
         max_marks: MAX_MARKS,
+        fit,
     };
-    Settings {
+    Ok(Settings {
         format,
+        output,
+        view,
         projection,
         look,
         options,
         lathe,
-    }
+    })
 }
 
 /// `vcnc plot`.
 pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     let started = Instant::now();
-    let format = format_of(&args.output)?;
     let c = &args.opts;
     let s = crate::setup(c, &[args.file.as_path()])?;
-    let input = Input::File(args.file.clone());
+    let set = settings(args, &s.machine, s.dialect.diameter.axis.is_some())?;
     // An unreadable program is a usage error before anything is written.
+    let input = Input::from_arg(&args.file)?;
     drop(input.open()?);
-    let set = settings(args, format, s.dialect.diameter.axis.is_some());
     // Created before the run, so that an output that cannot be written is
     // known before a long program has run.
-    let file = std::fs::File::create(&args.output)
-        .map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
-    let progress = Progress::start(&args.file, started);
-    let sink = PlotSink::with_clock(&s.machine, set.options, Estimate(Summary::new(&s.machine)));
+    let file = std::fs::File::create(&set.output)
+        .map_err(|e| format!("cannot write {}: {e}", set.output.display()))?;
+    // The page's program text is read and deflated on the second core
+    // while the program runs.
+    let main_text = (set.format == Format::Html).then(|| main_source(&input));
+    let progress = Progress::start(&input, started);
+    let clock = BlockClock {
+        summary: Summary::new(&s.machine),
+        blocks: Blocks::default(),
+    };
+    let sink = PlotSink::with_clock(&s.machine, set.options, clock);
     let mut counted = Counted::new(sink, progress.bar());
-    // The legend's cycle time is the planned one, as `check` prints; the
-    // vertices are dated by the distance/feed estimate as they stream.
-    let mut plan = timing::planner(&s.machine, None);
-    let (outcome, diameter) = execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut plan))?;
-    let planned = plan.into_timeline();
-    let (plot, Estimate(summary)) = counted.inner.into_parts();
+    let (outcome, diameter, planned_s, stamps) = if set.format == Format::Html {
+        let plan = Planner::with_profile(&s.machine, s.machine.motion.profile, Stamps::default());
+        let mut numbered = Numbered {
+            inner: plan,
+            blocks: Blocks::default(),
+        };
+        let (outcome, diameter) =
+            execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut numbered))?;
+        let stamps = numbered.inner.into_timeline();
+        (outcome, diameter, stamps.sum.total_s, Some(stamps))
+    } else {
+        let mut plan = timing::planner(&s.machine, None);
+        let (outcome, diameter) =
+            execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut plan))?;
+        (outcome, diameter, plan.into_timeline().total_s, None)
+    };
+    let (mut plot, clock) = counted.inner.into_parts();
+    if let Some(stamps) = &stamps {
+        plot.retime(planned_s, |stamp| stamps.time_of(stamp));
+    }
     let compare = match &args.compare {
         Some(other) => Some(run_compare(other, &s, set.options)?),
         None => None,
     };
-    progress.phase(&format!("writing {}", args.output.display()));
+    progress.phase(&format!("writing {}", set.output.display()));
     let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
-    let legend = legend(
-        &args.file,
-        &s,
-        (&summary, planned.total_s),
-        &outcome,
+    let tools = tool_library(&s.machine);
+    let facts = Facts {
+        summary: &clock.summary,
+        planned_s,
+        outcome: &outcome,
         diameter_axis,
-        args.compare.as_deref(),
-    );
+        units: set.look.units,
+        tools: &tools,
+    };
+    let legend = legend(&input, &s, &facts, args.compare.as_deref());
     let compare = compare.as_ref().map(|p| (p, compare_name(args)));
-    let written = write(file, args, &set, &plot, compare, &legend);
+    let text = main_text.map(|h| {
+        h.join()
+            .unwrap_or_else(|_| Source::new(input.name(), Vec::new()))
+    });
+    let page = Written {
+        set: &set,
+        legend: &legend,
+        tools: &tools,
+        main_text: text,
+        color_given: args.color.is_some(),
+    };
+    let written = write(file, &page, &plot, compare);
     progress.finish();
-    written.map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
+    written.map_err(|e| format!("cannot write {}: {e}", set.output.display()))?;
+    if args.output.is_none() {
+        println!("wrote {}", set.output.display());
+    }
     report(&input, &plot, &outcome);
     Ok(exit_code(&outcome, false))
+}
+
+/// Reads (and deflates, when long) the main program's text on a thread.
+fn main_source(input: &Input) -> JoinHandle<Source> {
+    let input = input.clone();
+    std::thread::spawn(move || {
+        let bytes = match &input {
+            Input::File(p) => read_capped(p),
+            Input::Stdin(text) => text.to_vec(),
+        };
+        Source::deflated(input.name(), &bytes)
+    })
+}
+
+/// The shapes of the tools, for the page's tool marker. Today: the
+/// machine's D registers (a flat end mill of diameter 2·D, D geometry plus
+/// wear), and nothing else; `--tools` tables and CAM comments come here.
+fn tool_library(machine: &Machine) -> ToolLibrary {
+    let mut lib = ToolLibrary::default();
+    for (n, t) in &machine.tools {
+        let d = t.d_mm + t.d_wear_mm;
+        if d > 0.0 {
+            lib.insert(ToolShape {
+                kind: ToolKind::Flat,
+                diameter_mm: 2.0 * d,
+                source: ToolSource::Registers,
+                ..ToolShape::assumed(*n)
+            });
+        }
+    }
+    lib
 }
 
 fn compare_name(args: &PlotArgs) -> &str {
@@ -295,17 +575,50 @@ fn run_compare(other: &Path, s: &Setup, options: PlotOptions) -> Result<Plot, St
     Ok(sink.into_plot())
 }
 
-/// The legend's rows: what `check` says, shortened.
-fn legend(
-    file: &Path,
-    s: &Setup,
-    (summary, planned_s): (&Summary, f64),
-    outcome: &Outcome,
+/// What the legend reports, from the run.
+struct Facts<'a> {
+    summary: &'a Summary,
+    planned_s: f64,
+    outcome: &'a Outcome,
     diameter_axis: Option<u8>,
-    compare: Option<&Path>,
-) -> Legend {
+    units: DisplayUnits,
+    tools: &'a ToolLibrary,
+}
+
+/// The extents, one axis a line (the legend is narrow), in the display
+/// unit; a lathe's X as a diameter.
+fn extents_rows(f: &Facts<'_>) -> String {
+    let Some((lo, hi)) = f.summary.extents else {
+        return "no motion".to_string();
+    };
+    let u = f.units;
+    let s = f.summary;
     let mut rows = Vec::new();
-    let result = match outcome {
+    for (i, l) in s.axis_letters().iter().enumerate() {
+        if !s.reports_axis(i) {
+            continue;
+        }
+        let (k, what) = if f.diameter_axis == Some(*l) {
+            (2.0, " diameter")
+        } else {
+            (1.0, "")
+        };
+        rows.push(format!(
+            "{}{what} {} .. {}",
+            char::from(*l),
+            u.len(k * lo.get(i)),
+            u.len(k * hi.get(i))
+        ));
+    }
+    rows.join("\n")
+}
+
+/// The legend's rows: what `check` says, shortened, in the display unit;
+/// the planned time first, the distance/feed estimate second.
+fn legend(input: &Input, s: &Setup, f: &Facts<'_>, compare: Option<&Path>) -> Legend {
+    let mut rows = Vec::new();
+    let u = f.units;
+    let result = match f.outcome {
         Outcome::Ended(code) => format!("ended by {}", code.as_str()),
         Outcome::Stopped => "stopped".to_string(),
         Outcome::Alarm(d) => format!("alarm {} at line {}", d.code.as_str(), d.line),
@@ -315,27 +628,29 @@ fn legend(
         "cycle time".to_string(),
         format!(
             "{} planned ({} dist/feed)",
-            render::duration(planned_s),
-            render::duration(summary.cycle_time_s)
+            duration(f.planned_s),
+            duration(f.summary.cycle_time_s)
         ),
     ));
     rows.push((
         "distance".to_string(),
         format!(
-            "rapid {:.3} mm, cutting {:.3} mm",
-            summary.rapid_mm, summary.cut_mm
+            "rapid {} {n}, cutting {} {n}",
+            u.len(f.summary.rapid_mm),
+            u.len(f.summary.cut_mm),
+            n = u.name()
         ),
     ));
-    // One axis a line: the legend is narrow.
-    let extents = match summary.extents {
-        Some(ext) => render::extents_text(summary, ext, diameter_axis)
-            .split("   ")
-            .collect::<Vec<_>>()
-            .join("\n"),
-        None => "no motion".to_string(),
-    };
-    rows.push(("extents (machine mm)".to_string(), extents));
-    let tools: Vec<String> = summary.tools.iter().map(|t| format!("T{t}")).collect();
+    rows.push((format!("extents (machine {})", u.name()), extents_rows(f)));
+    let tools: Vec<String> = f
+        .summary
+        .tools
+        .iter()
+        .map(|t| match f.tools.get(*t) {
+            Some(shape) => format!("T{t} dia {}", u.len(shape.diameter_mm)),
+            None => format!("T{t}"),
+        })
+        .collect();
     rows.push((
         "tools".to_string(),
         if tools.is_empty() {
@@ -345,20 +660,28 @@ fn legend(
         },
     ));
     Legend {
-        title: format!("{} ({})", file.display(), s.dialect.name),
+        title: format!("{} ({})", input.name(), s.dialect.name),
         rows,
         compare: compare.map(|p| p.display().to_string()),
     }
 }
 
+/// What is written besides the plot.
+struct Written<'a> {
+    set: &'a Settings,
+    legend: &'a Legend,
+    tools: &'a ToolLibrary,
+    main_text: Option<Source>,
+    color_given: bool,
+}
+
 fn write(
     file: std::fs::File,
-    args: &PlotArgs,
-    set: &Settings,
+    w: &Written<'_>,
     plot: &Plot,
     compare: Option<(&Plot, &str)>,
-    legend: &Legend,
 ) -> std::io::Result<()> {
+    let set = w.set;
     let mut out = BufWriter::with_capacity(1 << 20, file);
     match set.format {
         Format::Svg | Format::Png => {
@@ -367,7 +690,7 @@ fn write(
                 compare.map(|c| c.0),
                 &set.projection,
                 &set.look,
-                legend,
+                w.legend,
             );
             if set.format == Format::Svg {
                 vcnc_plot::write_svg(&scene, &mut out)?;
@@ -376,14 +699,27 @@ fn write(
             }
         }
         Format::Html => {
-            let sources = sources(&args.file, plot);
+            let mut sources: Vec<Source> = w.main_text.iter().cloned().collect();
+            sources.extend(called_sources(plot));
+            // One colour per tool says little about a one-tool program.
+            let color = if w.color_given || plot.tools.len() >= 2 {
+                set.look.color
+            } else {
+                ColorBy::Depth
+            };
             let page = Page {
                 theme: set.look.theme,
-                color: set.look.color,
+                color,
                 lathe: set.lathe,
-                legend,
+                view: set.view,
+                fit: set.look.fit,
+                rapids: set.look.rapids,
+                units: set.look.units,
+                legend: w.legend,
                 time_label: TIME_LABEL,
                 sources: &sources,
+                tools: Some(w.tools),
+                meshes: &[],
             };
             vcnc_plot::write_html(plot, compare, &page, &mut out)?;
         }
@@ -391,29 +727,22 @@ fn write(
     out.flush()
 }
 
-/// The program texts the page shows: the main program, then the called
-/// programs in the plot's file order (a file that cannot be read again is
-/// left out; a text over 64 MiB is cut there).
-fn sources(main: &Path, plot: &Plot) -> Vec<Source> {
-    let read = |p: &Path| -> Vec<u8> {
-        let Ok(f) = std::fs::File::open(p) else {
-            return Vec::new();
-        };
-        let mut bytes = Vec::new();
-        let _ = f.take(MAX_SOURCE_BYTES).read_to_end(&mut bytes);
-        bytes
+/// A file's first 64 MiB (nothing when it cannot be read again).
+fn read_capped(p: &Path) -> Vec<u8> {
+    let Ok(f) = std::fs::File::open(p) else {
+        return Vec::new();
     };
-    let mut out = vec![Source {
-        name: main.display().to_string(),
-        bytes: read(main),
-    }];
-    for f in &plot.files {
-        out.push(Source {
-            name: f.to_string(),
-            bytes: read(Path::new(&**f)),
-        });
-    }
-    out
+    let mut bytes = Vec::new();
+    let _ = f.take(MAX_SOURCE_BYTES).read_to_end(&mut bytes);
+    bytes
+}
+
+/// The called programs' texts, in the plot's file order.
+fn called_sources(plot: &Plot) -> Vec<Source> {
+    plot.files
+        .iter()
+        .map(|f| Source::deflated(f.to_string(), &read_capped(Path::new(&**f))))
+        .collect()
 }
 
 /// Prints the alarm (like `check`) or a note on an empty plot.
@@ -421,9 +750,9 @@ fn report(input: &Input, plot: &Plot, outcome: &Outcome) {
     if let Outcome::Alarm(d) = outcome {
         eprint!("{}", render::diagnostic(d, input));
         eprintln!("note: the plot shows the path up to the alarm and marks where it stopped");
-    } else if plot.path.vertices.len() <= 1 {
+    } else if plot.moves == 0 {
         eprintln!(
-            "warning: {} has no motion: the plot shows only the start point",
+            "warning: {} has no motion: the plot is an empty frame",
             input.name()
         );
     }
@@ -478,13 +807,16 @@ struct Progress {
 }
 
 impl Progress {
-    fn start(file: &Path, started: Instant) -> Progress {
+    fn start(input: &Input, started: Instant) -> Progress {
         let done = Arc::new(AtomicBool::new(false));
+        let Input::File(file) = input else {
+            return Progress { bar: None, done };
+        };
         if !std::io::stderr().is_terminal() {
             return Progress { bar: None, done };
         }
         let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-        let (shown, flag, path) = (bar.clone(), done.clone(), file.to_path_buf());
+        let (shown, flag, path) = (bar.clone(), done.clone(), file.clone());
         std::thread::spawn(move || {
             while started.elapsed() < Duration::from_secs(1) {
                 if flag.load(Ordering::Relaxed) {
@@ -551,4 +883,83 @@ fn count_lines(path: &Path) -> u64 {
             .map_or(0, |b| b.iter().filter(|c| **c == b'\n').count() as u64);
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vcnc_interp::Loc;
+
+    fn at_line(line: u64, file: Option<&Arc<str>>) -> Event {
+        Event::Dwell {
+            loc: Loc {
+                line,
+                file: file.cloned(),
+            },
+            seconds: 1.0,
+        }
+    }
+
+    #[test]
+    fn blocks_are_numbered_by_a_change_of_line_or_file() {
+        let sub: Arc<str> = Arc::from("O0010");
+        let mut b = Blocks::default();
+        let seen: Vec<u64> = [
+            at_line(5, None),
+            at_line(5, None),
+            at_line(6, None),
+            at_line(6, Some(&sub)),
+            at_line(6, Some(&Arc::from("O0010"))),
+            at_line(5, None),
+        ]
+        .iter()
+        .map(|e| b.see(e))
+        .collect();
+        assert_eq!(seen, vec![1, 1, 2, 3, 3, 4]);
+    }
+
+    #[test]
+    fn stamps_give_each_block_its_end_time_exactly_then_within_a_stride() {
+        // Odd blocks take 1 s, even blocks 2 s: block b ends at
+        // b + ⌊b/2⌋ seconds.
+        let end = |b: u64| (b + b / 2) as f64;
+        let mut s = Stamps::default();
+        let few = 1000u64;
+        for b in 1..=few {
+            s.sum.total_s = end(b);
+            s.mark(b);
+        }
+        for b in [1, 2, 3, 500, 999, 1000] {
+            assert_eq!(s.time_of(b as f64), end(b));
+        }
+        assert_eq!(s.time_of(0.0), 0.0);
+        // Past MAX_STAMPS blocks every other one is dropped: the kept ones
+        // stay exact and the others are interpolated within a block's time.
+        let many = 3 * MAX_STAMPS as u64;
+        for b in few + 1..=many {
+            s.sum.total_s = end(b);
+            s.mark(b);
+        }
+        assert!(s.table.len() < MAX_STAMPS);
+        assert!(s.stride >= 4, "{}", s.stride);
+        let mut worst = 0.0f64;
+        for b in (1..=many).step_by(997) {
+            worst = worst.max((s.time_of(b as f64) - end(b)).abs());
+        }
+        assert!(worst <= 1.0, "{worst}");
+        assert_eq!(s.time_of(many as f64 + 5.0), end(many));
+    }
+
+    #[test]
+    fn without_output_the_page_is_named_after_the_program_here() {
+        assert_eq!(
+            default_output(Path::new("dir/part.nc")),
+            PathBuf::from("part.html")
+        );
+        assert_eq!(
+            default_output(Path::new("O1234")),
+            PathBuf::from("O1234.html")
+        );
+        assert_eq!(default_output(Path::new("-")), PathBuf::from("stdin.html"));
+    }
 }

@@ -398,19 +398,26 @@ fn an_unreadable_program_is_a_usage_error() {
 }
 
 #[test]
-fn an_empty_program_plots_its_start_point_and_says_so() {
+fn an_empty_program_draws_an_empty_frame_with_a_note() {
     let dir = TempDir::new("empty");
     let prog = dir.write("empty.nc", "");
-    let out = dir.file("empty.png");
-    let o = vcnc(&["plot", prog.to_str().unwrap(), "-o", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("has no motion: the plot shows only the start point"),
-        "{}",
-        stderr(&o)
-    );
-    let png = std::fs::read(&out).unwrap();
-    assert_eq!(&png[1..4], b"PNG");
+    for ext in ["png", "svg"] {
+        let out = dir.file(&format!("empty.{ext}"));
+        let o = vcnc(&["plot", prog.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("has no motion: the plot is an empty frame"),
+            "{}",
+            stderr(&o)
+        );
+        let bytes = std::fs::read(&out).unwrap();
+        if ext == "png" {
+            assert_eq!(&bytes[1..4], b"PNG");
+        } else {
+            let svg = String::from_utf8(bytes).unwrap();
+            assert!(svg.contains(">no motion: the program moves nothing</text>"));
+        }
+    }
 }
 
 #[test]
@@ -465,7 +472,8 @@ fn the_page_is_self_contained_and_overlays_the_compared_program() {
     let text =
         std::fs::read(workspace().join("tests/fixtures/manual/1.2.2_g01_ex2_absolute.nc")).unwrap();
     let b64 = base64_of(&text);
-    assert!(html.contains(&format!("id=\"vcnc-src-0\">{b64}</script>")));
+    // A short text travels as it is (a long one deflated, `data-z="1"`).
+    assert!(html.contains(&format!("id=\"vcnc-src-0\" data-z=\"0\">{b64}</script>")));
 }
 
 /// Plain base64 (RFC 4648, padded), written here so that the test does not
@@ -533,4 +541,266 @@ fn the_page_carries_holes_origins_and_the_alarm() {
     assert_eq!(code, Some(1));
     assert_eq!(d["alarm"]["code"], "E303");
     assert_eq!(d["alarm"]["line"], 2);
+}
+
+/// A pocket cut 500 mm from the tool change: the machine starts at
+/// 0, 0, 0, changes the tool there, and cuts a 20 mm square at X500 Y500.
+const FAR_POCKET: &str = "G90 G17\nT1 M6\nG0 X500. Y500.\nG0 Z5.\nG1 Z-2. F300.\nG1 X520.\nG1 Y520.\nG1 X500.\nG1 Y500.\nG0 Z50.\nG53 G0 Z0.\nG53 X0. Y0.\nM30\n";
+
+/// Whether a pixel is `color` laid over the white background with some
+/// coverage of at least a quarter: each channel must say the same coverage
+/// (within 0.08), which a blend of any other colour with white does not.
+fn is_blend_of(p: [u8; 3], color: [u8; 3]) -> bool {
+    let cover: Vec<f64> = (0..3)
+        .map(|k| (255.0 - f64::from(p[k])) / (255.0 - f64::from(color[k])))
+        .collect();
+    let (lo, hi) = cover
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), c| (a.min(*c), b.max(*c)));
+    lo >= 0.25 && hi <= 1.05 && hi - lo <= 0.08
+}
+
+/// The bounding box of the pixels drawn in `color` in the plot area (left
+/// of the legend panel), as a fraction of the plot area's size. A pixel
+/// counts when two of its neighbours match too: a line is continuous,
+/// while a stray blend where two marks' edges overlap is not.
+fn share_of(png: &[u8], color: [u8; 3]) -> f64 {
+    let pm = tiny_skia::Pixmap::decode_png(png).unwrap();
+    // The legend panel is 300 px wide; the plot area's margins are 56 px
+    // left, 16 right, 24 top and 36 bottom (scene.rs).
+    let (x0, x1, y0, y1) = (56, pm.width() - 300 - 16, 24, pm.height() - 36);
+    let w = pm.width();
+    let hits: Vec<bool> = pm
+        .pixels()
+        .iter()
+        .map(|p| {
+            let p = p.demultiply();
+            is_blend_of([p.red(), p.green(), p.blue()], color)
+        })
+        .collect();
+    let hit = |x: u32, y: u32| hits[(y * w + x) as usize];
+    let mut bx: Option<[u32; 4]> = None;
+    for y in y0 + 1..y1 - 1 {
+        for x in x0 + 1..x1 - 1 {
+            if !hit(x, y) {
+                continue;
+            }
+            let neighbours = (0..9)
+                .filter(|k| *k != 4 && hit(x + k % 3 - 1, y + k / 3 - 1))
+                .count();
+            if neighbours >= 2 {
+                let b = bx.get_or_insert([x, y, x, y]);
+                b[0] = b[0].min(x);
+                b[1] = b[1].min(y);
+                b[2] = b[2].max(x);
+                b[3] = b[3].max(y);
+            }
+        }
+    }
+    let [a, b, c, d] = bx.expect("cut pixels");
+    f64::from((c - a + 1) * (d - b + 1)) / f64::from((x1 - x0) * (y1 - y0))
+}
+
+/// The cuts fill the picture, not the machine: with `--fit cuts` (the
+/// default) the cut pixels' box fills at least a fifth of the plot area in
+/// the XY and iso views; with `--fit all` the same pocket is a speck (the
+/// measure can fail).
+#[test]
+fn a_pocket_far_from_its_tool_change_fills_the_picture() {
+    let dir = TempDir::new("far");
+    let prog = dir.write("far.nc", FAR_POCKET);
+    // One tool, coloured by tool: every cut in the palette's first colour
+    // (theme.rs, light), which nothing else in the plot area uses.
+    let t1 = [0x1f, 0x77, 0xb4];
+    let mut shares = Vec::new();
+    for (view, fit) in [
+        ("xy", "cuts"),
+        ("iso", "cuts"),
+        ("xy", "all"),
+        ("iso", "all"),
+    ] {
+        let out = dir.file(&format!("far-{view}-{fit}.png"));
+        let o = vcnc(&[
+            "plot",
+            prog.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--color",
+            "tool",
+            "--view",
+            view,
+            "--fit",
+            fit,
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let png = std::fs::read(&out).unwrap();
+        let shots = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("plot");
+        std::fs::create_dir_all(&shots).unwrap();
+        std::fs::write(shots.join(format!("far-{view}-{fit}.png")), &png).unwrap();
+        shares.push(share_of(&png, t1));
+    }
+    assert!(shares[0] >= 0.2, "xy: {shares:?}");
+    assert!(shares[1] >= 0.2, "iso: {shares:?}");
+    assert!(shares[2] < 0.01 && shares[3] < 0.01, "all: {shares:?}");
+}
+
+/// `vcnc` run in `dir`, with `stdin` as its standard input.
+fn vcnc_in(dir: &Path, args: &[&str], stdin: &[u8]) -> Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(stdin).unwrap();
+    child.wait_with_output().unwrap()
+}
+
+/// Quick look: `vcnc plot FILE` writes FILE's name with `.html` here and
+/// says so; `vcnc plot -` reads the program from standard input.
+#[test]
+fn without_output_the_page_is_written_here_and_standard_input_plots() {
+    let dir = TempDir::new("quick");
+    let prog = dir.write("far.nc", FAR_POCKET);
+    let here = dir.0.join("here");
+    std::fs::create_dir_all(&here).unwrap();
+    let o = vcnc_in(&here, &["plot", prog.to_str().unwrap()], b"");
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(String::from_utf8_lossy(&o.stdout), "wrote far.html\n");
+    let html = std::fs::read_to_string(here.join("far.html")).unwrap();
+    assert!(html.contains("\"files\":[") && html.contains("far.nc"));
+
+    let o = vcnc_in(&here, &["plot", "-"], FAR_POCKET.as_bytes());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(String::from_utf8_lossy(&o.stdout), "wrote stdin.html\n");
+    let html = std::fs::read_to_string(here.join("stdin.html")).unwrap();
+    // The text from standard input is in the page.
+    assert!(html.contains(&base64_of(FAR_POCKET.as_bytes())));
+    let o = vcnc_in(&here, &["plot", "-", "-o", "in.svg"], FAR_POCKET.as_bytes());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        std::fs::read_to_string(here.join("in.svg"))
+            .unwrap()
+            .contains("(syntec)")
+    );
+}
+
+#[test]
+fn a_lathe_without_y_has_only_its_half_section() {
+    let o = vcnc(&[
+        "plot",
+        "examples/fanuc-lathe/01_od_rough_finish.nc",
+        "--dialect",
+        "fanuc-lathe",
+        "--view",
+        "iso",
+        "-o",
+        "never.png",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o),
+        "error: --view iso: a lathe without a Y axis is drawn as its XZ half-section (--view xz)\n"
+    );
+    assert!(!workspace().join("never.png").exists());
+}
+
+/// `--no-rapids` hides the rapids of a program that cuts; a program of
+/// rapids alone still shows them, and says so.
+#[test]
+fn no_rapids_hides_rapids_unless_there_is_nothing_else() {
+    // Rapids are the only dashed 1 px paths (rapid_stroke in scene.rs).
+    let dashed = |svg: &str| {
+        svg.matches("stroke-width=\"1\" stroke-dasharray=\"4 3\"")
+            .count()
+    };
+    let cuts = svg_of("tests/fixtures/manual/1.2.18_example.nc", &[]);
+    assert!(dashed(&cuts) > 0);
+    let hidden = svg_of("tests/fixtures/manual/1.2.18_example.nc", &["--no-rapids"]);
+    assert_eq!(dashed(&hidden), 0);
+    assert!(hidden.contains(">rapids hidden</text>"));
+    let dir = TempDir::new("rapids");
+    let prog = dir.write("r.nc", "G0 X10. Y10.\nG0 X20.\nM30\n");
+    let out = dir.file("r.svg");
+    let o = vcnc(&[
+        "plot",
+        prog.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--no-rapids",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(dashed(&svg) > 0);
+    assert!(svg.contains(">every move is a rapid: rapids are drawn although hidden</text>"));
+    assert!(svg.contains(">framed on all moves (no cuts)</text>"));
+}
+
+/// `--units in`: ticks, axis names and the legend's figures in inches.
+#[test]
+fn inches_label_the_ticks_and_the_legend() {
+    let svg = svg_of(
+        "tests/fixtures/manual/1.2.2_g01_ex2_absolute.nc",
+        &["--units", "in"],
+    );
+    assert!(svg.contains(">X in</text>"), "axis name");
+    assert!(svg.contains(">extents (machine in)</text>"));
+    // 55 mm of X travel is 2.1654 in.
+    assert!(svg.contains(">X 0.0000 .. 2.1654</text>"), "{svg}");
+    // 13.2 s planned: the time format is the same in either unit.
+    assert!(svg.contains(" planned ("));
+}
+
+/// A machine file with travel limits on X, Y and Z: `--fit all` frames
+/// their box and draws it dotted; the legend names it.
+#[test]
+fn travel_limits_are_drawn_as_a_box() {
+    let dir = TempDir::new("limits");
+    let mill = std::fs::read_to_string(workspace().join("crates/vcnc_core/src/default_mill.toml"))
+        .unwrap()
+        .replacen(
+            "letter = \"x\"\n",
+            "letter = \"x\"\nmin_mm = -100.0\nmax_mm = 600.0\n",
+            1,
+        )
+        .replacen(
+            "letter = \"y\"\n",
+            "letter = \"y\"\nmin_mm = -50.0\nmax_mm = 550.0\n",
+            1,
+        )
+        .replacen(
+            "letter = \"z\"\n",
+            "letter = \"z\"\nmin_mm = -400.0\nmax_mm = 100.0\n",
+            1,
+        );
+    let machine = dir.write("mill.toml", &mill);
+    let prog = dir.write("far.nc", FAR_POCKET);
+    let out = dir.file("limits.svg");
+    let o = vcnc(&[
+        "plot",
+        prog.to_str().unwrap(),
+        "--machine",
+        machine.to_str().unwrap(),
+        "--fit",
+        "all",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains(">travel limits</text>"));
+    // The box's dotted edges: the legend's sample and, seen from the top,
+    // its four sides (each drawn twice, at Z −400 and Z 100) and its
+    // vertical edges (points from the top, not drawn).
+    let dotted = svg.matches("stroke-dasharray=\"2 3\"").count();
+    assert!(dotted >= 9, "{dotted}");
+    // X −100 .. 600 fills the plot area's width: a tick at −100 and at 600.
+    assert!(
+        svg.contains(">-100</text>") && svg.contains(">600</text>"),
+        "ticks"
+    );
 }

@@ -498,6 +498,40 @@ pub struct Nurbs {
     pub weights: Vec<f64>,
 }
 
+/// `Some(body)` with `loc` bound to the event's source location, `None`
+/// for the events that carry their own (warnings, alarms): one list of the
+/// variants for [`Event::loc`] and [`Event::loc_mut`].
+macro_rules! with_loc {
+    ($event:expr, $loc:ident => $body:expr) => {
+        match $event {
+            Event::Rapid { $loc, .. }
+            | Event::Feed { $loc, .. }
+            | Event::Arc { $loc, .. }
+            | Event::Thread { $loc, .. }
+            | Event::Skip { $loc, .. }
+            | Event::Dwell { $loc, .. }
+            | Event::ToolChange { $loc, .. }
+            | Event::Spindle { $loc, .. }
+            | Event::Coolant { $loc, .. }
+            | Event::PathMode { $loc, .. }
+            | Event::HighSpeed { $loc, .. }
+            | Event::Stop { $loc, .. }
+            | Event::End { $loc, .. }
+            | Event::Frame { $loc, .. }
+            | Event::Contour { $loc, .. }
+            | Event::Hole { $loc, .. }
+            | Event::Wait { $loc, .. }
+            | Event::Junction { $loc, .. }
+            | Event::Aux { $loc, .. }
+            | Event::Smoothing { $loc, .. }
+            | Event::Nurbs { $loc, .. }
+            | Event::Message { $loc, .. }
+            | Event::UnsetVariables { $loc, .. } => Some($body),
+            Event::Warning(_) | Event::Alarm(_) => None,
+        }
+    };
+}
+
 impl Event {
     /// The `type` of the event in the JSON-lines contract.
     pub fn kind(&self) -> &'static str {
@@ -532,32 +566,13 @@ impl Event {
 
     /// Where the event comes from (an alarm carries its own line and file).
     pub fn loc(&self) -> Option<&Loc> {
-        match self {
-            Event::Rapid { loc, .. }
-            | Event::Feed { loc, .. }
-            | Event::Arc { loc, .. }
-            | Event::Thread { loc, .. }
-            | Event::Skip { loc, .. }
-            | Event::Dwell { loc, .. }
-            | Event::ToolChange { loc, .. }
-            | Event::Spindle { loc, .. }
-            | Event::Coolant { loc, .. }
-            | Event::PathMode { loc, .. }
-            | Event::HighSpeed { loc, .. }
-            | Event::Stop { loc, .. }
-            | Event::End { loc, .. }
-            | Event::Frame { loc, .. }
-            | Event::Contour { loc, .. }
-            | Event::Hole { loc, .. }
-            | Event::Wait { loc, .. }
-            | Event::Junction { loc, .. }
-            | Event::Aux { loc, .. }
-            | Event::Smoothing { loc, .. }
-            | Event::Nurbs { loc, .. }
-            | Event::Message { loc, .. }
-            | Event::UnsetVariables { loc, .. } => Some(loc),
-            Event::Warning(_) | Event::Alarm(_) => None,
-        }
+        with_loc!(self, loc => loc)
+    }
+
+    /// Where the event comes from, to change: a consumer that numbers the
+    /// blocks itself (the plot's planned-time stamps) rewrites the line.
+    pub fn loc_mut(&mut self) -> Option<&mut Loc> {
+        with_loc!(self, loc => loc)
     }
 
     /// The end point of a motion event.

@@ -1,18 +1,32 @@
 //! [`PlotSink`]: the [`Sink`] that turns a run's events into a [`Plot`] —
 //! the merged tool path, the programmed contour under cutter compensation,
-//! and the marks (start, holes, tool changes, work origins, the alarm).
+//! and the marks (start, holes, tool changes, work origins and frames, the
+//! alarm).
 //!
 //! It reads events only (no interpreter, no files), in one pass: merge
-//! units follow the extents seen so far, which only grow, so early points
+//! units follow the extents seen so far of what the picture is framed on
+//! (the cuts, or everything: [`FitTo`]), which only grow, so early points
 //! are merged at least as finely as the finished picture needs (see
-//! `path.rs` for the rule). Times come from a [`Clock`], a sink fed the same
-//! events: today the CLI's distance/feed estimate, later the planner.
+//! `path.rs` for the rule). Vertices are dated by a [`Clock`], a sink fed
+//! the same events: seconds, or a stamp (the CLI numbers the blocks) that
+//! [`Plot::retime`] turns into the planner's seconds after the run, since
+//! a look-ahead planner knows a block's time only some blocks later.
 
 use crate::path::{ArcRec, Kind, Metric, NO_ARC, Path, Vertex, arc_path};
 use crate::view::{AxisMap, P3, Projection};
 use std::collections::HashSet;
 use std::sync::Arc;
-use vcnc_core::{Cycle, EndCode, Event, Feed, Loc, Machine, Pos, Sink};
+use vcnc_core::{Cycle, EndCode, Event, Feed, FrameInfo, Loc, Machine, Pos, Sink};
+
+/// What a picture is framed on (`--fit`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FitTo {
+    /// The cuts (and holes, the programmed contour, the alarm): home, G53
+    /// and tool-change moves leave the frame and are clipped at its edge.
+    Cuts,
+    /// Everything drawn.
+    All,
+}
 
 /// How cuts are coloured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -56,14 +70,19 @@ pub struct PlotOptions {
     pub max_vertices: usize,
     /// Most marks of each kind kept (holes, tool changes).
     pub max_marks: usize,
+    /// What the picture is framed on: the merge units follow its extents.
+    pub fit: FitTo,
 }
 
 /// The time seam: a sink fed every event before the plot sees it, which
-/// says how long the program has run so far. The distance/feed estimate
-/// implements it today; the planner will.
+/// says where the program is. Its [`Clock::now`] dates each vertex: either
+/// seconds from the start, or any stamp that grows with the program (the
+/// CLI counts blocks) which [`Plot::retime`] turns into seconds once the
+/// run is over. Stamps are kept as `f32`: block numbers stay exact to
+/// 2²⁴ blocks and within a few blocks beyond.
 pub trait Clock: Sink {
-    /// Time from the start of the program to the end of the last event, s.
-    fn elapsed_s(&self) -> f64;
+    /// Seconds (or the stamp) at the end of the last event.
+    fn now(&self) -> f64;
 }
 
 /// A clock that never moves (no timing known).
@@ -75,7 +94,7 @@ impl Sink for NoClock {
 }
 
 impl Clock for NoClock {
-    fn elapsed_s(&self) -> f64 {
+    fn now(&self) -> f64 {
         0.0
     }
 }
@@ -115,6 +134,22 @@ pub struct OriginMark {
     pub line: u32,
 }
 
+/// A program frame in force from a point of the run on: how work
+/// coordinates map to machine ones (`machine = linear · work + origin +
+/// tool_offset`), for the page's readout in work coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameMark {
+    /// The clock's stamp when it took effect (seconds after a retime).
+    pub time_s: f32,
+    /// Machine coordinates of program zero.
+    pub origin: P3,
+    /// Rotation, scaling and mirror (rows and columns x, y, z); `None`:
+    /// the identity.
+    pub linear: Option<[[f64; 3]; 3]>,
+    /// The tool length (or a lathe's offset register) in force.
+    pub tool_offset: P3,
+}
+
 /// Where and why the program alarmed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AlarmMark {
@@ -151,12 +186,30 @@ pub struct Plot {
     pub tool_changes: Vec<ToolMark>,
     /// Distinct work origins, in order (at most 64).
     pub origins: Vec<OriginMark>,
+    /// Every frame change, in order (at most 65,536; later ones are not
+    /// kept and `frames_complete` is false).
+    pub frames: Vec<FrameMark>,
+    /// For each vertex of `path` from `.0` on, the frame `frames[.1]` is
+    /// in force (runs in vertex order; before the first run, no frame).
+    pub frame_runs: Vec<(u32, u32)>,
+    /// Whether every frame change was kept.
+    pub frames_complete: bool,
     /// The alarm that stopped the program, if one did.
     pub alarm: Option<AlarmMark>,
     /// How the program ended, if it did.
     pub end: Option<EndCode>,
     /// Plot-space box of everything drawn (path, contour, marks).
     pub bounds: (P3, P3),
+    /// Plot-space box of the cuts, the holes, the contour and the alarm
+    /// (`None`: the program cut nothing).
+    pub cut_bounds: Option<(P3, P3)>,
+    /// The machine's travel limits on X, Y and Z, when the machine file
+    /// gives both limits of each of them it has.
+    pub limits: Option<(P3, P3)>,
+    /// Motion events drawn (rapids and cuts).
+    pub moves: u64,
+    /// Cutting motion events drawn.
+    pub cut_moves: u64,
     /// Time at the end of the run (the clock's), s.
     pub total_time_s: f64,
     /// Events seen.
@@ -165,6 +218,8 @@ pub struct Plot {
 
 /// Most work origins marked.
 const MAX_ORIGINS: usize = 64;
+/// Most frame changes kept for the readout.
+const MAX_FRAMES: usize = 1 << 16;
 /// Size of the cell, in merge units, in which holes share one mark (a hole
 /// mark is 12 px across).
 const HOLE_CELL: f64 = 8.0;
@@ -182,14 +237,14 @@ pub struct PlotSink<C: Clock = NoClock> {
     rpm: f64,
     tool: u16,
     metric: Metric,
-    /// Screen box (u, v) and depth range of what was drawn so far.
+    /// Screen box (u, v) and depth range of what was framed so far.
     uv: Option<([f64; 3], [f64; 3])>,
     hole_cells: HashSet<[i64; 3]>,
 }
 
 /// f64 → f32 for stored attributes (times, feeds): rounding is intended.
 #[allow(clippy::cast_possible_truncation)]
-fn f32_of(v: f64) -> f32 {
+pub(crate) fn f32_of(v: f64) -> f32 {
     v as f32
 }
 
@@ -224,9 +279,16 @@ impl<C: Clock> PlotSink<C> {
                 hole_count: 0,
                 tool_changes: Vec::new(),
                 origins: Vec::new(),
+                frames: Vec::new(),
+                frame_runs: Vec::new(),
+                frames_complete: true,
                 alarm: None,
                 end: None,
                 bounds: (start, start),
+                cut_bounds: None,
+                limits: travel_box(machine, &map),
+                moves: 0,
+                cut_moves: 0,
                 total_time_s: 0.0,
                 events: 0,
             },
@@ -240,7 +302,10 @@ impl<C: Clock> PlotSink<C> {
             uv: None,
             hole_cells: HashSet::new(),
         };
-        sink.extend(start);
+        // Until something framed is seen, points are merged as finely as
+        // an empty box asks (none is dropped).
+        sink.metric = sink.metric_now();
+        sink.extend(start, false);
         let v = sink.vertex(start, Kind::Jump, &Loc::default(), 0.0);
         sink.plot.path.push_line(v, &sink.metric);
         sink
@@ -250,7 +315,8 @@ impl<C: Clock> PlotSink<C> {
     pub fn into_parts(mut self) -> (Plot, C) {
         self.plot.path.finish();
         self.plot.contour.finish();
-        self.plot.total_time_s = self.clock.elapsed_s();
+        self.plot.total_time_s = self.clock.now();
+        self.plot.frame_runs = crate::retime::frame_runs(&self.plot.path, &self.plot.frames);
         (self.plot, self.clock)
     }
 
@@ -259,12 +325,23 @@ impl<C: Clock> PlotSink<C> {
         self.into_parts().0
     }
 
-    /// Grows the boxes by `p` and updates the merge units.
-    fn extend(&mut self, p: P3) {
+    /// Grows the boxes by `p` (`cut`: a point of a cut, a hole, the
+    /// contour or the alarm) and updates the merge units.
+    fn extend(&mut self, p: P3, cut: bool) {
         let (lo, hi) = &mut self.plot.bounds;
         for i in 0..3 {
             lo[i] = lo[i].min(p[i]);
             hi[i] = hi[i].max(p[i]);
+        }
+        if cut {
+            let (lo, hi) = self.plot.cut_bounds.get_or_insert((p, p));
+            for i in 0..3 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        } else if self.opts.fit == FitTo::Cuts {
+            // Outside the frame: merged at the frame's units, never coarser.
+            return;
         }
         let q = match self.opts.space {
             Space::Flat { projection, .. } => {
@@ -282,7 +359,7 @@ impl<C: Clock> PlotSink<C> {
                 grew = true;
             }
         }
-        if grew || self.metric.rows[0] == [0.0; 3] {
+        if grew {
             self.metric = self.metric_now();
         }
     }
@@ -350,7 +427,7 @@ impl<C: Clock> PlotSink<C> {
             file: self.file_index(loc),
             line: line_of(loc),
             feed_mm_per_min: f32_of(feed),
-            time_s: f32_of(self.clock.elapsed_s()),
+            time_s: f32_of(self.clock.now()),
         }
     }
 
@@ -363,7 +440,12 @@ impl<C: Clock> PlotSink<C> {
 
     fn line(&mut self, loc: &Loc, to: &Pos, kind: Kind, feed: f64) {
         let p = self.map.p3(to);
-        self.extend(p);
+        let cut = kind == Kind::Cut;
+        self.count(cut);
+        if cut {
+            self.extend(self.pos, true);
+        }
+        self.extend(p, cut);
         let v = self.vertex(p, kind, loc, feed);
         self.plot.path.push_line(v, &self.metric);
         self.pos = p;
@@ -375,8 +457,8 @@ impl<C: Clock> PlotSink<C> {
     fn arc_into(&mut self, contour: bool, from: P3, v: Vertex, rec: ArcRec) {
         let arc = arc_path(from, v.at, &rec);
         let (lo, hi) = arc.bounds(3);
-        self.extend([lo.get(0), lo.get(1), lo.get(2)]);
-        self.extend([hi.get(0), hi.get(1), hi.get(2)]);
+        self.extend([lo.get(0), lo.get(1), lo.get(2)], true);
+        self.extend([hi.get(0), hi.get(1), hi.get(2)], true);
         let metric = self.metric;
         let true_arc = match self.opts.space {
             Space::Flat { projection, .. } => {
@@ -403,8 +485,8 @@ impl<C: Clock> PlotSink<C> {
 
     fn contour(&mut self, loc: &Loc, from: &Pos, to: &Pos, arc: Option<ArcRec>) {
         let (from, to) = (self.map.p3(from), self.map.p3(to));
-        self.extend(from);
-        self.extend(to);
+        self.extend(from, true);
+        self.extend(to, true);
         let joined = self
             .plot
             .contour
@@ -424,7 +506,7 @@ impl<C: Clock> PlotSink<C> {
     fn hole(&mut self, loc: &Loc, cycle: Cycle, at: &Pos) {
         let p = self.map.p3(at);
         self.plot.hole_count += 1;
-        self.extend(p);
+        self.extend(p, true);
         if self.plot.holes.len() >= self.opts.max_marks {
             return;
         }
@@ -468,7 +550,30 @@ impl<C: Clock> PlotSink<C> {
         }
     }
 
-    fn frame(&mut self, loc: &Loc, f: &vcnc_core::FrameInfo) {
+    /// A NURBS curve, drawn as a cut of chords within the merge tolerance.
+    fn nurbs(&mut self, loc: &Loc, curve: &vcnc_core::Nurbs, feed: &Feed) {
+        let f = self.feed_mm_per_min(feed);
+        self.count(true);
+        let tol_mm = self.plot.path.tolerance() * self.metric.unit_mm();
+        for q in curve.flatten(tol_mm) {
+            let p = self.map.p3(&q);
+            self.extend(self.pos, true);
+            self.extend(p, true);
+            let v = self.vertex(p, Kind::Cut, loc, f);
+            self.plot.path.push_line(v, &self.metric);
+            self.pos = p;
+        }
+    }
+
+    fn count(&mut self, cut: bool) {
+        self.plot.moves += 1;
+        if cut {
+            self.plot.cut_moves += 1;
+        }
+    }
+
+    fn frame(&mut self, loc: &Loc, f: &FrameInfo) {
+        self.frame_change(f);
         let at = self.map.p3(&f.origin);
         let lin = f
             .linear
@@ -490,10 +595,43 @@ impl<C: Clock> PlotSink<C> {
             .iter()
             .any(|o| o.at == mark.at && o.x_dir == mark.x_dir && o.y_dir == mark.y_dir);
         if !known && self.plot.origins.len() < MAX_ORIGINS {
-            self.extend(at);
+            self.extend(at, false);
             self.plot.origins.push(mark);
         }
     }
+
+    /// Keeps the frame for the readout (the origin and tool offset on X,
+    /// Y and Z; rotary axes are not drawn).
+    fn frame_change(&mut self, f: &FrameInfo) {
+        let mark = FrameMark {
+            time_s: f32_of(self.clock.now()),
+            origin: self.map.p3(&f.origin),
+            linear: f.linear,
+            tool_offset: self.map.p3(&f.tool_offset),
+        };
+        if self.plot.frames.len() < MAX_FRAMES {
+            self.plot.frames.push(mark);
+        } else {
+            self.plot.frames_complete = false;
+        }
+    }
+}
+
+/// The travel-limit box in plot space: every X, Y, Z axis the machine has
+/// must have both limits (an axis it lacks is 0).
+fn travel_box(machine: &Machine, map: &AxisMap) -> Option<(P3, P3)> {
+    let mut lo = [0.0; 3];
+    let mut hi = [0.0; 3];
+    for (k, index) in map.index.iter().enumerate() {
+        let Some(i) = index else { continue };
+        let axis = machine.axes.get(*i)?;
+        if !(axis.min_mm.is_finite() && axis.max_mm.is_finite()) {
+            return None;
+        }
+        lo[k] = axis.min_mm;
+        hi[k] = axis.max_mm;
+    }
+    map.index.iter().any(Option::is_some).then_some((lo, hi))
 }
 
 impl<C: Clock> Sink for PlotSink<C> {
@@ -538,12 +676,14 @@ impl<C: Clock> Sink for PlotSink<C> {
                 });
                 self.contour(loc, from, to, rec);
             }
+            Event::Nurbs { loc, curve, feed } => self.nurbs(loc, curve, feed),
             Event::Spindle { rpm, .. } => self.rpm = *rpm,
             Event::ToolChange { loc, tool } => self.tool_change(loc, *tool),
             Event::Hole { loc, cycle, at } => self.hole(loc, *cycle, at),
             Event::Frame { loc, frame } => self.frame(loc, frame),
             Event::End { code, .. } => self.plot.end = Some(*code),
             Event::Alarm(d) => {
+                self.extend(self.pos, true);
                 self.plot.alarm = Some(AlarmMark {
                     at: self.pos,
                     code: d.code.as_str(),
@@ -577,6 +717,7 @@ mod tests {
             color: ColorBy::Depth,
             max_vertices: 1 << 16,
             max_marks: 1000,
+            fit: FitTo::Cuts,
         }
     }
 
@@ -662,5 +803,188 @@ mod tests {
             ("E301", 4, [5.0, 5.0, 0.0])
         );
         assert_eq!(plot.path.vertices.last().map(|v| v.tool), Some(1));
+    }
+
+    /// A clock whose stamp is the line of the last event: block n ends at
+    /// stamp n.
+    #[derive(Default)]
+    struct LineClock(f64);
+
+    impl Sink for LineClock {
+        fn event(&mut self, e: &Event) {
+            if let Some(l) = e.loc() {
+                self.0 = l.line as f64;
+            }
+        }
+    }
+
+    impl Clock for LineClock {
+        fn now(&self) -> f64 {
+            self.0
+        }
+    }
+
+    fn volume() -> PlotOptions {
+        PlotOptions {
+            space: Space::Volume { resolution: 2048.0 },
+            ..flat(View::Xy)
+        }
+    }
+
+    fn feed(line: u64, x: f64, y: f64, z: f64) -> Event {
+        Event::Feed {
+            loc: loc(line),
+            to: at(x, y, z),
+            feed: Feed::PerMin(100.0),
+            exact_stop: false,
+        }
+    }
+
+    #[test]
+    fn retiming_spreads_a_block_over_its_chords_by_length() {
+        let m = Machine::default_mill();
+        let mut s = PlotSink::with_clock(&m, volume(), LineClock::default());
+        s.event(&feed(1, 10.0, 0.0, 0.0));
+        // A half circle about (0, 0) from (10, 0) to (−10, 0): in the 3D
+        // page it is drawn as equal chords.
+        s.event(&Event::Arc {
+            loc: loc(2),
+            to: at(-10.0, 0.0, 0.0),
+            center: at(0.0, 0.0, 0.0),
+            plane: Plane::Xy,
+            dir: ArcDir::Ccw,
+            feed: Feed::PerMin(100.0),
+            exact_stop: false,
+        });
+        s.event(&feed(3, -10.0, -5.0, 0.0));
+        let mut plot = s.into_plot();
+        // Block n ends at 10·n seconds.
+        plot.retime(30.0, |stamp| 10.0 * stamp);
+        let vs = &plot.path.vertices;
+        let times: Vec<f32> = vs.iter().map(|v| v.time_s).collect();
+        assert_eq!(times.first(), Some(&0.0));
+        assert_eq!(times.get(1), Some(&10.0), "{times:?}");
+        assert_eq!(times.last(), Some(&30.0));
+        let arc: Vec<&Vertex> = vs.iter().filter(|v| v.line == 2).collect();
+        assert!(arc.len() > 8, "{}", arc.len());
+        // The chords are equal: times step evenly from 10 s to 20 s, and
+        // the top of the circle (0, 10) is passed at 15 s.
+        for (k, v) in arc.iter().enumerate() {
+            let want = 10.0 + 10.0 * (k + 1) as f64 / arc.len() as f64;
+            assert!(
+                (f64::from(v.time_s) - want).abs() < 1e-3,
+                "{k}: {} {want}",
+                v.time_s
+            );
+            if v.at[0].abs() < 1e-9 {
+                assert!((f64::from(v.time_s) - 15.0).abs() < 1e-3);
+            }
+        }
+        assert_eq!(plot.total_time_s, 30.0);
+    }
+
+    #[test]
+    fn each_vertex_knows_the_frame_it_was_cut_in() {
+        let m = Machine::default_mill();
+        let mut s = PlotSink::with_clock(&m, volume(), LineClock::default());
+        s.event(&feed(1, 10.0, 0.0, 0.0));
+        s.event(&Event::Frame {
+            loc: loc(2),
+            frame: FrameInfo {
+                origin: at(100.0, 50.0, 0.0),
+                linear: None,
+                tool_offset: at(0.0, 0.0, 25.0),
+            },
+        });
+        s.event(&feed(3, 110.0, 50.0, 0.0));
+        s.event(&feed(4, 120.0, 50.0, 0.0));
+        let plot = s.into_plot();
+        assert_eq!(plot.frames.len(), 1);
+        assert_eq!(plot.frames[0].origin, [100.0, 50.0, 0.0]);
+        assert_eq!(plot.frames[0].tool_offset, [0.0, 0.0, 25.0]);
+        // Vertex 0 is the start, 1 the cut of line 1; from vertex 2 (line
+        // 3) on, the frame of line 2.
+        assert_eq!(plot.path.vertices[2].line, 3);
+        assert_eq!(plot.frame_runs, vec![(2, 0)]);
+    }
+
+    #[test]
+    fn the_cuts_box_leaves_out_the_rapids_around_them() {
+        let m = Machine::default_mill();
+        let mut s = PlotSink::new(&m, flat(View::Xy));
+        for (line, to) in [(1, at(500.0, 500.0, 0.0)), (2, at(0.0, 0.0, 5.0))] {
+            s.event(&Event::Rapid {
+                loc: loc(line),
+                to,
+                exact_stop: false,
+            });
+        }
+        s.event(&feed(3, 0.0, 0.0, -1.0));
+        s.event(&feed(4, 10.0, 0.0, -1.0));
+        let plot = s.into_plot();
+        // The plunge starts at Z 5: both ends of every cut are in the box.
+        assert_eq!(plot.cut_bounds, Some(([0.0, 0.0, -1.0], [10.0, 0.0, 5.0])));
+        assert_eq!(plot.bounds.1, [500.0, 500.0, 5.0]);
+        assert_eq!((plot.moves, plot.cut_moves), (4, 2));
+        assert_eq!(plot.limits, None, "the built-in mill has no travel limits");
+    }
+
+    #[test]
+    fn travel_limits_make_a_box_when_every_axis_has_both() {
+        let toml = vcnc_core::machine::DEFAULT_MILL_TOML.replace(
+            "letter = \"x\"\n",
+            "letter = \"x\"\nmin_mm = -10.0\nmax_mm = 500.0\n",
+        );
+        let half = Machine::from_toml(&toml).unwrap();
+        assert_eq!(
+            travel_box(&half, &AxisMap::of(&half)),
+            None,
+            "Y and Z have none"
+        );
+        let toml = toml
+            .replace(
+                "letter = \"y\"\n",
+                "letter = \"y\"\nmin_mm = 0.0\nmax_mm = 400.0\n",
+            )
+            .replace(
+                "letter = \"z\"\n",
+                "letter = \"z\"\nmin_mm = -300.0\nmax_mm = 0.0\n",
+            );
+        let m = Machine::from_toml(&toml).unwrap();
+        assert_eq!(
+            travel_box(&m, &AxisMap::of(&m)),
+            Some(([-10.0, 0.0, -300.0], [500.0, 400.0, 0.0]))
+        );
+    }
+
+    #[test]
+    fn a_nurbs_curve_is_drawn_as_a_cut_through_its_points() {
+        // Order 2 with clamped knots: the polyline through its control
+        // points (0, 0) → (10, 0) → (10, 10).
+        let m = Machine::default_mill();
+        let mut s = PlotSink::new(&m, volume());
+        s.event(&Event::Nurbs {
+            loc: loc(1),
+            curve: Arc::new(vcnc_core::Nurbs {
+                order: 2,
+                knots: vec![0.0, 0.0, 1.0, 2.0, 2.0],
+                points: vec![at(0.0, 0.0, 0.0), at(10.0, 0.0, 0.0), at(10.0, 10.0, 0.0)],
+                weights: vec![1.0, 1.0, 1.0],
+            }),
+            feed: Feed::PerMin(100.0),
+        });
+        let plot = s.into_plot();
+        let at_corner = plot
+            .path
+            .vertices
+            .iter()
+            .any(|v| (v.at[0] - 10.0).abs() < 1e-9 && v.at[1].abs() < 1e-9);
+        assert!(at_corner, "{:?}", plot.path.vertices);
+        assert_eq!(
+            plot.path.vertices.last().map(|v| (v.at, v.kind)),
+            Some(([10.0, 10.0, 0.0], Kind::Cut))
+        );
+        assert_eq!(plot.cut_bounds, Some(([0.0, 0.0, 0.0], [10.0, 10.0, 0.0])));
+        assert_eq!(plot.cut_moves, 1);
     }
 }

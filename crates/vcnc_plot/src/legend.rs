@@ -6,11 +6,12 @@
 use crate::collect::{ColorBy, Plot};
 use crate::path::Kind;
 use crate::scene::{
-    Anchor, Coloring, Item, Legend, Look, PANEL_W, Stroke, TextSize, contour_stroke, cut_stroke,
-    line_item, rapid_stroke, shapes, text,
+    Anchor, Coloring, Framing, Item, Legend, Look, PANEL_W, Stroke, TextSize, contour_stroke,
+    cut_stroke, line_item, rapid_stroke, shapes, text,
 };
 use crate::theme::{DEPTH_STEPS, FEED_STEPS, Palette, Rgb, ramp, tool_color};
 use crate::view::{Projection, View};
+use vcnc_core::display::DisplayUnits;
 
 /// Characters of 12 px text that fit a legend line.
 const LEGEND_CHARS: usize = 37;
@@ -141,12 +142,45 @@ impl Panel<'_> {
     }
 }
 
+/// An arrowhead mark, as the frame's exits are drawn.
+fn exit_mark(c: [f64; 2], pal: &Palette, out: &mut Vec<Item>) {
+    out.push(Item::Shape {
+        pts: vec![
+            [c[0] + 5.0, c[1]],
+            [c[0] - 4.0, c[1] - 4.0],
+            [c[0] - 4.0, c[1] + 4.0],
+        ],
+        closed: true,
+        stroke: None,
+        fill: Some(pal.rapid),
+    });
+}
+
+/// A hatched jaw, as the half-section marks the chuck side.
+fn chuck_mark(c: [f64; 2], pal: &Palette, out: &mut Vec<Item>) {
+    let s = Stroke {
+        color: pal.muted,
+        width: 1.0,
+        dash: None,
+    };
+    out.push(line_item(
+        [c[0] + 4.0, c[1] - 7.0],
+        [c[0] + 4.0, c[1] + 7.0],
+        s,
+    ));
+    for k in 0..3 {
+        let y = c[1] + 7.0 - 5.0 * f64::from(k);
+        out.push(line_item([c[0] - 4.0, y], [c[0] + 4.0, y - 6.0], s));
+    }
+}
+
 /// Draws the legend panel at the right of the picture.
 pub(crate) fn panel(
     plot: &Plot,
     coloring: &Coloring,
     look: &Look,
     legend: &Legend,
+    framing: &Framing,
     out: &mut Vec<Item>,
 ) {
     let pal = &coloring.pal;
@@ -170,8 +204,18 @@ pub(crate) fn panel(
         (View::Iso, _) => "view isometric".into(),
     };
     p.line(view, TextSize::Normal, pal.muted);
+    let frame = match (framing.on_cuts, look.fit) {
+        (true, _) => "framed on the cuts",
+        (false, crate::FitTo::Cuts) => "framed on all moves (no cuts)",
+        (false, crate::FitTo::All) => "framed on all moves",
+    };
+    p.line(frame.into(), TextSize::Normal, pal.muted);
     p.gap();
-    p.key(rapid_stroke(pal.rapid), "rapid");
+    if framing.rapids_hidden {
+        p.line("rapids hidden".into(), TextSize::Normal, pal.muted);
+    } else {
+        p.key(rapid_stroke(pal.rapid), "rapid");
+    }
     let cut_label = match look.color {
         ColorBy::Depth => "cut, coloured by depth",
         ColorBy::Tool => "cut, coloured by tool",
@@ -196,8 +240,24 @@ pub(crate) fn panel(
             &tail(&format!("compare: {name}"), LEGEND_CHARS - 6),
         );
     }
+    if coloring.proj.diameter_up {
+        p.mark(chuck_mark, "chuck side (-Z)".into());
+    }
+    if plot.limits.is_some() {
+        p.key(
+            Stroke {
+                color: pal.muted,
+                width: 1.0,
+                dash: Some([2.0, 3.0]),
+            },
+            "travel limits",
+        );
+    }
     p.gap();
     color_scale(&mut p, plot, coloring, look);
+    if framing.exits > 0 {
+        p.mark(exit_mark, format!("leaves the frame ({})", framing.exits));
+    }
     p.mark(shapes::start, "start".into());
     if plot.hole_count > 0 {
         p.mark(shapes::hole, format!("holes ({})", plot.hole_count));
@@ -241,7 +301,7 @@ fn color_scale(p: &mut Panel<'_>, plot: &Plot, c: &Coloring, look: &Look) {
     }
     match look.color {
         ColorBy::Depth => {
-            let name = depth_name(&c.proj);
+            let name = depth_name(&c.proj, look.units);
             let (lo, hi) = c.depth;
             let k = if c.proj.depth == [1.0, 0.0, 0.0] {
                 2.0
@@ -253,15 +313,26 @@ fn color_scale(p: &mut Panel<'_>, plot: &Plot, c: &Coloring, look: &Look) {
             p.ramp(
                 &ramp_at,
                 DEPTH_STEPS,
-                format!("{:.3}", lo * k),
-                format!("{:.3}", hi * k),
+                look.units.len(lo * k),
+                look.units.len(hi * k),
             );
         }
         ColorBy::Feed => {
             let (lo, hi) = c.feed;
-            p.line("feed mm/min".into(), TextSize::Normal, p.pal.muted);
+            let u = look.units;
+            p.line(
+                format!("feed {}/min", u.name()),
+                TextSize::Normal,
+                p.pal.muted,
+            );
             let ramp_at = |t: f64| ramp(&c.pal.feed, t, FEED_STEPS);
-            p.ramp(&ramp_at, FEED_STEPS, format!("{lo:.0}"), format!("{hi:.0}"));
+            let decimals = if u == DisplayUnits::In { 1 } else { 0 };
+            p.ramp(
+                &ramp_at,
+                FEED_STEPS,
+                format!("{:.*}", decimals, u.of_mm(lo)),
+                format!("{:.*}", decimals, u.of_mm(hi)),
+            );
         }
         ColorBy::Tool => {
             let mut used: Vec<u16> = plot
@@ -296,11 +367,11 @@ fn color_scale(p: &mut Panel<'_>, plot: &Plot, c: &Coloring, look: &Look) {
 }
 
 /// The depth axis as the legend names it.
-fn depth_name(proj: &Projection) -> &'static str {
+fn depth_name(proj: &Projection, units: DisplayUnits) -> String {
     if proj.depth == [1.0, 0.0, 0.0] {
-        "X diameter, mm (deep .. high)"
+        format!("X diameter, {} (deep .. high)", units.name())
     } else {
-        "Z, mm (deep .. high)"
+        format!("Z, {} (deep .. high)", units.name())
     }
 }
 

@@ -7,7 +7,8 @@
 //! and the writers turn a plot into bytes. Flat pictures go through one
 //! [`scene`] (layout, colours, marks and legend) that both the SVG writer
 //! and the PNG rasterizer draw, so the two always agree; the HTML page gets
-//! the path as typed arrays and draws it with hand-written WebGL.
+//! the path as deflated columns of varints (`encode.rs`) and draws it with
+//! hand-written WebGL.
 //!
 //! ```text
 //!   events ─▶ PlotSink ─▶ Plot ─┬─▶ scene ─┬─▶ svg  (hand-written, byte-stable)
@@ -18,21 +19,25 @@
 //! Arc geometry is `vcnc_core::geometry`'s, shared with the interpreter and
 //! the summary, so a plot's arcs are the arcs the travel check saw.
 
+mod axes;
+mod clip;
 mod collect;
+mod encode;
 mod html;
 mod legend;
 pub mod path;
 mod png;
+mod retime;
 pub mod scene;
 mod svg;
 pub mod theme;
 pub mod view;
 
 pub use collect::{
-    AlarmMark, Clock, ColorBy, HoleMark, NoClock, OriginMark, Plot, PlotOptions, PlotSink, Space,
-    ToolMark,
+    AlarmMark, Clock, ColorBy, FitTo, FrameMark, HoleMark, NoClock, OriginMark, Plot, PlotOptions,
+    PlotSink, Space, ToolMark,
 };
-pub use html::{Page, Source, write_html};
+pub use html::{Mesh, Page, Source, write_html};
 pub use png::{render as render_png, write_png};
 pub use scene::{Legend, Look, Scene, plot_area, scene};
 pub use svg::write_svg;

@@ -5,6 +5,7 @@
 //! as chords within a quarter pixel of the circle, and characters outside
 //! Latin-1 show as `?`.
 
+use crate::clip::arc_points;
 use crate::scene::{Anchor, Item, Scene, Seg, Stroke, TextSize};
 use crate::theme::Rgb;
 use embedded_graphics::Drawable;
@@ -41,32 +42,6 @@ fn ts_stroke(s: &Stroke) -> tiny_skia::Stroke {
             .and_then(|[a, b]| StrokeDash::new(vec![f(a), f(b)], 0.0)),
         ..tiny_skia::Stroke::default()
     }
-}
-
-/// Chords of a screen arc within a quarter pixel of it.
-fn arc_points(
-    center: [f64; 2],
-    radius: f64,
-    start: f64,
-    sweep: f64,
-) -> impl Iterator<Item = [f64; 2]> {
-    let step = if radius > 0.25 {
-        2.0 * (1.0 - 0.25 / radius).clamp(-1.0, 1.0).acos()
-    } else {
-        std::f64::consts::PI
-    };
-    let wanted = (sweep.abs() / step.max(1e-3)).ceil();
-    // Clamped to 1..=4096, so the conversion is exact.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let n = if wanted.is_finite() {
-        wanted.clamp(1.0, 4096.0) as u32
-    } else {
-        1
-    };
-    (1..=n).map(move |k| {
-        let a = start + sweep * f64::from(k) / f64::from(n);
-        [center[0] + radius * a.cos(), center[1] + radius * a.sin()]
-    })
 }
 
 fn draw_path(pm: &mut Pixmap, stroke: &Stroke, start: [f64; 2], segs: &[Seg]) {

@@ -4,25 +4,35 @@
 //!
 //! ```text
 //!   ┌──────────────────────────────────────┬──────────────┐
-//!   │ ┆ grid, ticks (mm)                    │ legend panel │
-//!   │ ┆    path fitted, aspect kept,        │ title, view  │
-//!   │ ┆    centred in the plot area         │ line key     │
-//!   │ ┆                                     │ colour scale │
+//!   │ ┆ grid, ticks (mm or in)              │ legend panel │
+//!   │ ┆    the frame (the cuts, or all)     │ title, view  │
+//!   │ ┆    fitted, aspect kept, centred;    ▶ line key     │
+//!   │ ┆    moves leaving it clipped, ▶      │ colour scale │
 //!   │ └──────────────────────────────       │ marks, rows  │
 //!   └──────────────────────────────────────┴──────────────┘
 //! ```
 //!
-//! Drawing order, bottom to top: grid and axes, the compared program, the
-//! spindle centre line (lathe), rapids, cuts, the programmed contour, then
-//! the marks (holes, work origins, tool changes, start, alarm) and the
-//! legend. Coordinates are rounded only by the writers.
+//! The frame is the box of the cuts (`FitTo::Cuts`: every cutting move,
+//! both its ends, the programmed contour, the holes and the alarm; a
+//! lathe's from the spindle axis up) or of everything drawn; a program
+//! that cut nothing is framed on everything. What lies outside is clipped
+//! (`clip.rs`), with an arrowhead where a move leaves.
+//!
+//! Drawing order, bottom to top: grid and axes, the travel limits, the
+//! compared program, the spindle centre line and chuck side (lathe),
+//! rapids, cuts, the programmed contour, the exit arrowheads, then the
+//! marks (holes, work origins, tool changes, start, alarm), the notes and
+//! the legend. Coordinates are rounded only by the writers.
 
-use crate::collect::{ColorBy, Plot};
+use crate::axes;
+use crate::clip::{Clip, Exits, Runs, arc_points};
+use crate::collect::{ColorBy, FitTo, Plot};
 use crate::path::{Kind, Path, Vertex};
 use crate::theme::{
     DEPTH_STEPS, FEED_STEPS, Palette, Rgb, Theme, fraction, palette, ramp, tool_color,
 };
-use crate::view::{P3, Projection, View};
+use crate::view::{P3, Projection};
+use vcnc_core::display::DisplayUnits;
 
 /// Width of the legend panel, px.
 pub const PANEL_W: f64 = 300.0;
@@ -46,6 +56,13 @@ pub struct Look {
     pub width_px: u32,
     /// Picture size, px.
     pub height_px: u32,
+    /// What the picture is framed on.
+    pub fit: FitTo,
+    /// Whether rapids are drawn (a program of rapids alone always shows
+    /// them).
+    pub rapids: bool,
+    /// The unit of ticks and legend figures.
+    pub units: DisplayUnits,
 }
 
 /// What the legend says besides what the scene knows: a title and rows of
@@ -204,7 +221,7 @@ fn area(width: f64, height: f64) -> (f64, f64, f64, f64) {
 /// (one scale on both axes, so shapes keep their proportions).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fit {
-    proj: Projection,
+    pub(crate) proj: Projection,
     s: f64,
     u0: f64,
     v0: f64,
@@ -216,14 +233,26 @@ impl Fit {
     /// The screen point of a plot-space point, px.
     pub fn xy(&self, p: P3) -> [f64; 2] {
         let (u, v) = self.proj.uv(p);
-        [
-            self.x0 + self.s * (u - self.u0),
-            self.y0 - self.s * (v - self.v0),
-        ]
+        [self.x_of(u), self.y_of(v)]
+    }
+
+    /// Screen x of a plot-space `u`.
+    pub(crate) fn x_of(&self, u: f64) -> f64 {
+        self.x0 + self.s * (u - self.u0)
+    }
+
+    /// Screen y of a plot-space `v`.
+    pub(crate) fn y_of(&self, v: f64) -> f64 {
+        self.y0 - self.s * (v - self.v0)
+    }
+
+    /// Pixels per mm.
+    pub fn scale(&self) -> f64 {
+        self.s
     }
 
     /// Plot-space (u, v) at a screen point.
-    fn uv_at(&self, x: f64, y: f64) -> (f64, f64) {
+    pub(crate) fn uv_at(&self, x: f64, y: f64) -> (f64, f64) {
         (
             self.u0 + (x - self.x0) / self.s,
             self.v0 + (self.y0 - y) / self.s,
@@ -231,43 +260,107 @@ impl Fit {
     }
 }
 
-/// Screen (u, v) box of a plot: its vertices, arcs and marks.
-fn uv_box(plot: &Plot, proj: &Projection, bx: &mut Option<[f64; 4]>) {
-    let mut add = |p: P3| {
-        let (u, v) = proj.uv(p);
-        let b = bx.get_or_insert([u, v, u, v]);
+/// A screen (u, v) box being grown.
+struct UvBox<'a> {
+    proj: &'a Projection,
+    bx: Option<[f64; 4]>,
+}
+
+impl UvBox<'_> {
+    fn add(&mut self, p: P3) {
+        let (u, v) = self.proj.uv(p);
+        let b = self.bx.get_or_insert([u, v, u, v]);
         b[0] = b[0].min(u);
         b[1] = b[1].min(v);
         b[2] = b[2].max(u);
         b[3] = b[3].max(v);
-    };
-    for path in [&plot.path, &plot.contour] {
-        for (i, v) in path.vertices.iter().enumerate() {
-            add(v.at);
-            if let Some(arc) = path.arc_of(i) {
-                let (lo, hi) = arc.bounds(3);
-                // Arcs are kept only in the view plane, where the box of
-                // the arc projects onto the box of its picture.
-                add([lo.get(0), lo.get(1), lo.get(2)]);
-                add([hi.get(0), hi.get(1), hi.get(2)]);
-            }
+    }
+
+    /// Vertex `i` of `path` and, for an arc, the box of the arc (arcs are
+    /// kept only in the view plane, where the box of the arc projects onto
+    /// the box of its picture).
+    fn vertex(&mut self, path: &Path, i: usize, v: &Vertex) {
+        self.add(v.at);
+        if let Some(arc) = path.arc_of(i) {
+            let (lo, hi) = arc.bounds(3);
+            self.add([lo.get(0), lo.get(1), lo.get(2)]);
+            self.add([hi.get(0), hi.get(1), hi.get(2)]);
         }
     }
-    plot.holes.iter().for_each(|h| add(h.at));
-    plot.origins.iter().for_each(|o| add(o.at));
-    plot.tool_changes.iter().for_each(|t| add(t.at));
-    if let Some(a) = &plot.alarm {
-        add(a.at);
+
+    /// Everything drawn: vertices, arcs and marks.
+    fn all(&mut self, plot: &Plot) {
+        for path in [&plot.path, &plot.contour] {
+            for (i, v) in path.vertices.iter().enumerate() {
+                self.vertex(path, i, v);
+            }
+        }
+        plot.holes.iter().for_each(|h| self.add(h.at));
+        plot.origins.iter().for_each(|o| self.add(o.at));
+        plot.tool_changes.iter().for_each(|t| self.add(t.at));
+        if let Some(a) = &plot.alarm {
+            self.add(a.at);
+        }
+    }
+
+    /// The cuts (both ends of each), the contour, the holes and the alarm.
+    fn cuts(&mut self, plot: &Plot) {
+        let vs = &plot.path.vertices;
+        for (i, v) in vs.iter().enumerate() {
+            if v.kind == Kind::Cut {
+                if let Some(from) = i.checked_sub(1).and_then(|j| vs.get(j)) {
+                    self.add(from.at);
+                }
+                self.vertex(&plot.path, i, v);
+            }
+        }
+        for (i, v) in plot.contour.vertices.iter().enumerate() {
+            self.vertex(&plot.contour, i, v);
+        }
+        plot.holes.iter().for_each(|h| self.add(h.at));
+        if let Some(a) = &plot.alarm {
+            self.add(a.at);
+        }
     }
 }
 
-fn fit(plot: &Plot, compare: Option<&Plot>, proj: &Projection, look: &Look) -> Fit {
-    let mut bx = None;
-    uv_box(plot, proj, &mut bx);
-    if let Some(c) = compare {
-        uv_box(c, proj, &mut bx);
+/// Whether a plot cut anything (or drilled, or alarmed): else it is
+/// framed on everything.
+fn has_cuts(plot: &Plot) -> bool {
+    plot.cut_bounds.is_some()
+}
+
+/// The screen box the picture is framed on.
+fn frame_box(plot: &Plot, compare: Option<&Plot>, proj: &Projection, look: &Look) -> [f64; 4] {
+    let mut bx = UvBox { proj, bx: None };
+    let on_cuts = look.fit == FitTo::Cuts && (has_cuts(plot) || compare.is_some_and(has_cuts));
+    for p in std::iter::once(plot).chain(compare) {
+        if on_cuts {
+            bx.cuts(p);
+        } else {
+            bx.all(p);
+        }
     }
-    let [u_lo, v_lo, u_hi, v_hi] = bx.unwrap_or([0.0; 4]);
+    if !on_cuts && let Some((lo, hi)) = plot.limits {
+        for k in 0..8usize {
+            bx.add([0, 1, 2].map(|i| if k >> i & 1 == 1 { hi[i] } else { lo[i] }));
+        }
+    }
+    let mut b = bx.bx.unwrap_or([0.0; 4]);
+    // A half-section reaches from the spindle axis to the largest radius.
+    if proj.diameter_up {
+        b[1] = b[1].min(0.0);
+        b[3] = b[3].max(0.0);
+    }
+    // A single point (one hole seen from the top) gets a 10 mm frame.
+    if b[2] - b[0] < 1e-6 && b[3] - b[1] < 1e-6 {
+        b = [b[0] - 5.0, b[1] - 5.0, b[2] + 5.0, b[3] + 5.0];
+    }
+    b
+}
+
+fn fit(plot: &Plot, compare: Option<&Plot>, proj: &Projection, look: &Look) -> Fit {
+    let [u_lo, v_lo, u_hi, v_hi] = frame_box(plot, compare, proj, look);
     let (ax, ay, aw, ah) = area(f64::from(look.width_px), f64::from(look.height_px));
     let (aw, ah) = (aw - 2.0 * PAD, ah - 2.0 * PAD);
     let (du, dv) = (u_hi - u_lo, v_hi - v_lo);
@@ -277,13 +370,20 @@ fn fit(plot: &Plot, compare: Option<&Plot>, proj: &Projection, look: &Look) -> F
         (false, true) => ah / dv,
         (false, false) => 1.0,
     };
+    // A half-section stands on its spindle axis at the bottom of the plot
+    // area; other pictures are centred.
+    let spare_v = if proj.diameter_up {
+        0.0
+    } else {
+        (ah - s * dv) / 2.0
+    };
     Fit {
         proj: *proj,
         s,
         u0: u_lo,
         v0: v_lo,
         x0: ax + PAD + (aw - s * du) / 2.0,
-        y0: ay + PAD + ah - (ah - s * dv) / 2.0,
+        y0: ay + PAD + ah - spare_v,
     }
 }
 
@@ -388,24 +488,18 @@ pub(crate) fn contour_stroke(color: Rgb) -> Stroke {
     }
 }
 
-/// Draws `path` as runs of equal style; `style` picks the stroke of a
-/// segment (`None`: not drawn).
+/// Draws `path` as runs of equal style, clipped to the frame; `style`
+/// picks the stroke of a segment (`None`: not drawn). Moves that leave the
+/// frame go to `exits`.
 fn path_items(
     path: &Path,
-    fit: &Fit,
+    ctx: (&Fit, &Clip),
+    exits: &mut Exits,
     style: &dyn Fn(usize, &Vertex) -> Option<Stroke>,
     out: &mut Vec<Item>,
 ) {
-    let mut current: Option<(Stroke, [f64; 2], Vec<Seg>)> = None;
-    let flush = |c: &mut Option<(Stroke, [f64; 2], Vec<Seg>)>, out: &mut Vec<Item>| {
-        if let Some((stroke, start, segs)) = c.take() {
-            out.push(Item::Path {
-                stroke,
-                start,
-                segs,
-            });
-        }
-    };
+    let (fit, clip) = ctx;
+    let mut runs = Runs::new(out);
     let mut prev: Option<[f64; 2]> = None;
     for (i, v) in path.vertices.iter().enumerate() {
         let here = fit.xy(v.at);
@@ -415,24 +509,39 @@ fn path_items(
             style(i, v)
         };
         let (Some(stroke), Some(from)) = (stroke, prev) else {
-            flush(&mut current, out);
+            runs.flush();
             prev = Some(here);
             continue;
         };
-        let seg = match path.arc_of(i) {
-            Some(arc) => screen_arc(fit, &arc, here),
-            None => Seg::Line(here),
-        };
-        match &mut current {
-            Some((s, _, segs)) if *s == stroke => segs.push(seg),
-            _ => {
-                flush(&mut current, out);
-                current = Some((stroke, from, vec![seg]));
+        match path.arc_of(i) {
+            Some(arc) => {
+                let (lo, hi) = arc.bounds(3);
+                let inside = clip.contains(fit.xy([lo.get(0), lo.get(1), lo.get(2)]), 0.0)
+                    && clip.contains(fit.xy([hi.get(0), hi.get(1), hi.get(2)]), 0.0);
+                let seg = screen_arc(fit, &arc, here);
+                match seg {
+                    Seg::Arc {
+                        center,
+                        radius,
+                        start_angle,
+                        sweep,
+                        ..
+                    } if !inside => {
+                        // Partly outside: chords, each clipped.
+                        let mut a = from;
+                        for b in arc_points(center, radius, start_angle, sweep) {
+                            runs.line(clip, exits, stroke, a, b);
+                            a = b;
+                        }
+                    }
+                    _ => runs.push(stroke, from, seg, here),
+                }
             }
+            None => runs.line(clip, exits, stroke, from, here),
         }
         prev = Some(here);
     }
-    flush(&mut current, out);
+    runs.flush();
 }
 
 /// An arc of the view plane on the screen.
@@ -457,6 +566,18 @@ fn screen_arc(fit: &Fit, arc: &vcnc_core::geometry::ArcPath, to: [f64; 2]) -> Se
     }
 }
 
+/// What the picture says about itself in the plot area: nothing to draw,
+/// or rapids drawn although they were to be hidden.
+fn notes(plot: &Plot, look: &Look) -> Vec<&'static str> {
+    let mut notes = Vec::new();
+    if plot.moves == 0 {
+        notes.push("no motion: the program moves nothing");
+    } else if plot.cut_moves == 0 && !look.rapids {
+        notes.push("every move is a rapid: rapids are drawn although hidden");
+    }
+    notes
+}
+
 /// Lays out the picture of `plot` (and of `compare`, underneath).
 pub fn scene(
     plot: &Plot,
@@ -468,33 +589,76 @@ pub fn scene(
     let pal = palette(look.theme);
     let fit = fit(plot, compare, proj, look);
     let coloring = Coloring::new(plot, proj, look);
+    let area = area(f64::from(look.width_px), f64::from(look.height_px));
+    let (ax, ay, aw, ah) = area;
+    let clip = Clip {
+        x0: ax,
+        y0: ay,
+        x1: ax + aw,
+        y1: ay + ah,
+    };
     let mut items = Vec::new();
-    axes_items(&fit, &pal, look, &mut items);
+    let mut exits = Exits::default();
+    axes::grid(&fit, &pal, look.units, area, &mut items);
+    if let Some(box_) = plot.limits {
+        axes::limits(&fit, &pal, &clip, box_, &mut items);
+    }
+    // Rapids are hidden only when there is something else to show.
+    let rapids_shown = look.rapids || plot.cut_moves == 0;
     if let Some(c) = compare {
-        let style = |_: usize, v: &Vertex| {
-            Some(match v.kind {
-                Kind::Rapid => rapid_stroke(pal.compare),
-                _ => Stroke {
-                    color: pal.compare,
-                    width: 2.5,
-                    dash: None,
-                },
-            })
+        let style = |_: usize, v: &Vertex| match v.kind {
+            Kind::Rapid => rapids_shown.then(|| rapid_stroke(pal.compare)),
+            _ => Some(Stroke {
+                color: pal.compare,
+                width: 2.5,
+                dash: None,
+            }),
         };
-        path_items(&c.path, &fit, &style, &mut items);
+        path_items(&c.path, (&fit, &clip), &mut exits, &style, &mut items);
     }
     if proj.diameter_up {
-        centre_line(&fit, &pal, look, &mut items);
+        axes::lathe(&fit, &pal, area, &mut items);
     }
-    let rapids = |_: usize, v: &Vertex| (v.kind == Kind::Rapid).then(|| rapid_stroke(pal.rapid));
-    path_items(&plot.path, &fit, &rapids, &mut items);
+    let rapids = |_: usize, v: &Vertex| {
+        (v.kind == Kind::Rapid && rapids_shown).then(|| rapid_stroke(pal.rapid))
+    };
+    path_items(&plot.path, (&fit, &clip), &mut exits, &rapids, &mut items);
     let cuts =
         |i: usize, v: &Vertex| (v.kind == Kind::Cut).then(|| coloring.stroke(&plot.path, i, v));
-    path_items(&plot.path, &fit, &cuts, &mut items);
+    path_items(&plot.path, (&fit, &clip), &mut exits, &cuts, &mut items);
     let contour = |_: usize, _: &Vertex| Some(contour_stroke(pal.contour));
-    path_items(&plot.contour, &fit, &contour, &mut items);
-    marks(plot, &fit, &pal, &mut items);
-    crate::legend::panel(plot, &coloring, look, legend, &mut items);
+    path_items(
+        &plot.contour,
+        (&fit, &clip),
+        &mut exits,
+        &contour,
+        &mut items,
+    );
+    exits.items(&mut items);
+    marks(plot, (&fit, &clip), &pal, &mut items);
+    for (k, note) in notes(plot, look).iter().enumerate() {
+        let y = if plot.moves == 0 {
+            ay + ah / 2.0
+        } else {
+            ay + 18.0
+        };
+        items.push(text(
+            [
+                ax + aw / 2.0,
+                y + 17.0 * f64::from(u8::try_from(k).unwrap_or(0)),
+            ],
+            (*note).to_string(),
+            TextSize::Bold,
+            pal.muted,
+            Anchor::Middle,
+        ));
+    }
+    let framing = Framing {
+        on_cuts: look.fit == FitTo::Cuts && has_cuts(plot),
+        exits: exits.count,
+        rapids_hidden: !rapids_shown,
+    };
+    crate::legend::panel(plot, &coloring, look, legend, &framing, &mut items);
     Scene {
         width: look.width_px,
         height: look.height_px,
@@ -504,160 +668,14 @@ pub fn scene(
     }
 }
 
-/// A "nice" tick step (1, 2 or 5 × 10ⁿ) giving about `n` ticks over `range`.
-fn tick_step(range: f64, n: f64) -> f64 {
-    let raw = (range / n).max(1e-6);
-    let mag = 10f64.powf(raw.log10().floor());
-    let f = raw / mag;
-    let nice = if f < 1.5 {
-        1.0
-    } else if f < 3.5 {
-        2.0
-    } else if f < 7.5 {
-        5.0
-    } else {
-        10.0
-    };
-    nice * mag
-}
-
-/// A tick label: as many decimals as the step needs.
-fn tick_label(v: f64, step: f64) -> String {
-    let decimals = if step >= 1.0 {
-        0
-    } else {
-        // step < 1: a small positive count.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let d = (-step.log10()).ceil().clamp(0.0, 6.0) as usize;
-        d
-    };
-    let s = format!("{v:.decimals$}");
-    if s.trim_start_matches('-')
-        .chars()
-        .all(|c| c == '0' || c == '.')
-    {
-        format!("{:.decimals$}", 0.0)
-    } else {
-        s
-    }
-}
-
-/// Grid, ticks and axis names (a triad in the iso view).
-fn axes_items(fit: &Fit, pal: &Palette, look: &Look, out: &mut Vec<Item>) {
-    let (ax, ay, aw, ah) = area(f64::from(look.width_px), f64::from(look.height_px));
-    let thin = |color| Stroke {
-        color,
-        width: 1.0,
-        dash: None,
-    };
-    if fit.proj.view == View::Iso {
-        iso_triad(fit, pal, ax + 36.0, ay + ah - 36.0, out);
-        return;
-    }
-    let (u_lo, v_hi) = fit.uv_at(ax, ay);
-    let (u_hi, v_lo) = fit.uv_at(ax + aw, ay + ah);
-    let step = tick_step((u_hi - u_lo).max(v_hi - v_lo), 8.0);
-    let k0 = (u_lo / step).ceil();
-    let mut k = k0;
-    while k * step <= u_hi && k - k0 < 200.0 {
-        let u = k * step;
-        let x = fit.x0 + fit.s * (u - fit.u0);
-        out.push(line_item([x, ay], [x, ay + ah], thin(pal.grid)));
-        out.push(text(
-            [x, ay + ah + 14.0],
-            tick_label(u, step),
-            TextSize::Small,
-            pal.muted,
-            Anchor::Middle,
-        ));
-        k += 1.0;
-    }
-    let k0 = (v_lo / step).ceil();
-    let mut k = k0;
-    let scale = if fit.proj.diameter_up { 2.0 } else { 1.0 };
-    while k * step <= v_hi && k - k0 < 200.0 {
-        let v = k * step;
-        let y = fit.y0 - fit.s * (v - fit.v0);
-        out.push(line_item([ax, y], [ax + aw, y], thin(pal.grid)));
-        out.push(text(
-            [ax - 6.0, y + 4.0],
-            tick_label(v * scale, step * scale),
-            TextSize::Small,
-            pal.muted,
-            Anchor::End,
-        ));
-        k += 1.0;
-    }
-    out.push(Item::Shape {
-        pts: vec![[ax, ay], [ax, ay + ah], [ax + aw, ay + ah]],
-        closed: false,
-        stroke: Some(thin(pal.muted)),
-        fill: None,
-    });
-    let [hu, hv] = fit.proj.labels;
-    let up = if fit.proj.diameter_up {
-        format!("{hv} diameter, mm")
-    } else {
-        format!("{hv} mm")
-    };
-    out.push(text(
-        [ax + aw, ay + ah + 30.0],
-        format!("{hu} mm"),
-        TextSize::Normal,
-        pal.text,
-        Anchor::End,
-    ));
-    out.push(text(
-        [ax - 6.0, ay - 4.0],
-        up,
-        TextSize::Normal,
-        pal.text,
-        Anchor::Start,
-    ));
-}
-
-fn iso_triad(fit: &Fit, pal: &Palette, x: f64, y: f64, out: &mut Vec<Item>) {
-    for (axis, name) in [
-        ([1.0, 0.0, 0.0], "X"),
-        ([0.0, 1.0, 0.0], "Y"),
-        ([0.0, 0.0, 1.0], "Z"),
-    ] {
-        let (u, v) = fit.proj.uv(axis);
-        let end = [x + 26.0 * u, y - 26.0 * v];
-        out.push(line_item(
-            [x, y],
-            end,
-            Stroke {
-                color: pal.muted,
-                width: 1.5,
-                dash: None,
-            },
-        ));
-        out.push(text(
-            [x + 36.0 * u, y - 36.0 * v + 4.0],
-            name.into(),
-            TextSize::Small,
-            pal.text,
-            Anchor::Middle,
-        ));
-    }
-}
-
-/// The spindle axis of a lathe half-section (X = 0), dash-dot.
-fn centre_line(fit: &Fit, pal: &Palette, look: &Look, out: &mut Vec<Item>) {
-    let (ax, ay, aw, ah) = area(f64::from(look.width_px), f64::from(look.height_px));
-    let y = fit.y0 - fit.s * (0.0 - fit.v0);
-    if y >= ay && y <= ay + ah {
-        out.push(line_item(
-            [ax, y],
-            [ax + aw, y],
-            Stroke {
-                color: pal.muted,
-                width: 1.0,
-                dash: Some([12.0, 3.0]),
-            },
-        ));
-    }
+/// How the picture was framed, for the legend.
+pub(crate) struct Framing {
+    /// Framed on the cuts (else on everything).
+    pub(crate) on_cuts: bool,
+    /// Moves that leave the frame.
+    pub(crate) exits: u64,
+    /// Rapids are not drawn.
+    pub(crate) rapids_hidden: bool,
 }
 
 pub(crate) fn line_item(a: [f64; 2], b: [f64; 2], stroke: Stroke) -> Item {
@@ -784,13 +802,21 @@ pub(crate) mod shapes {
     }
 }
 
-/// Holes, work origins, tool changes, start and alarm.
-fn marks(plot: &Plot, fit: &Fit, pal: &Palette, out: &mut Vec<Item>) {
+/// Holes, work origins, tool changes, start and alarm: those in the frame
+/// (the alarm is pinned to the frame's edge when it stopped outside).
+fn marks(plot: &Plot, (fit, clip): (&Fit, &Clip), pal: &Palette, out: &mut Vec<Item>) {
+    let seen = |c: [f64; 2]| clip.contains(c, 2.0);
     for h in &plot.holes {
-        shapes::hole(fit.xy(h.at), pal, out);
+        let c = fit.xy(h.at);
+        if seen(c) {
+            shapes::hole(c, pal, out);
+        }
     }
     for o in &plot.origins {
         let c = fit.xy(o.at);
+        if !seen(c) {
+            continue;
+        }
         shapes::origin(c, pal, out);
         for (dir, name) in [(o.x_dir, "X"), (o.y_dir, "Y")] {
             let tip = fit.xy([0, 1, 2].map(|k| o.at[k] + dir[k]));
@@ -819,10 +845,15 @@ fn marks(plot: &Plot, fit: &Fit, pal: &Palette, out: &mut Vec<Item>) {
             }
         }
     }
-    for (n, t) in plot.tool_changes.iter().enumerate() {
+    let mut labels = 0usize;
+    for t in &plot.tool_changes {
         let c = fit.xy(t.at);
+        if !seen(c) {
+            continue;
+        }
         shapes::tool_change(c, pal, out);
-        if n < MAX_TOOL_LABELS {
+        if labels < MAX_TOOL_LABELS {
+            labels += 1;
             out.push(text(
                 [c[0] + 8.0, c[1] - 8.0],
                 format!("T{}", t.tool),
@@ -833,31 +864,21 @@ fn marks(plot: &Plot, fit: &Fit, pal: &Palette, out: &mut Vec<Item>) {
         }
     }
     if let Some(v) = plot.path.vertices.first() {
-        shapes::start(fit.xy(v.at), pal, out);
+        let c = fit.xy(v.at);
+        if seen(c) {
+            shapes::start(c, pal, out);
+        }
     }
     if let Some(a) = &plot.alarm {
-        let c = fit.xy(a.at);
+        let c = clip.pin(fit.xy(a.at));
         shapes::alarm(c, pal, out);
+        let right = c[0] < clip.x1 - 120.0;
         out.push(text(
-            [c[0] + 14.0, c[1] - 10.0],
+            [c[0] + if right { 14.0 } else { -14.0 }, c[1] - 10.0],
             format!("{} line {}", a.code, a.line),
             TextSize::Normal,
             pal.alarm,
-            Anchor::Start,
+            if right { Anchor::Start } else { Anchor::End },
         ));
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ticks_are_round_numbers() {
-        assert_eq!(tick_step(100.0, 8.0), 10.0);
-        assert_eq!(tick_step(0.7, 8.0), 0.1);
-        assert_eq!(tick_step(30.0, 8.0), 5.0);
-        assert_eq!(tick_label(-0.0001, 0.1), "0.0");
-        assert_eq!(tick_label(12.5, 0.5), "12.5");
     }
 }

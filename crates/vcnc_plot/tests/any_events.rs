@@ -1,15 +1,20 @@
 //! Property test: any sequence of motion events — lines, arcs of every
-//! plane and direction (helices included), holes, tool changes, frames,
-//! contours, an alarm — collects into a plot whose vertex count stays
+//! plane and direction (helices included), NURBS curves valid or not,
+//! holes, tool changes, frames, contours, an alarm — collects into a plot whose vertex count stays
 //! within its budget, and lays out and draws as SVG, PNG and HTML without
 //! a panic, in every view.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
 use proptest::prelude::*;
-use vcnc_core::{ArcDir, Cycle, Event, Feed, FrameInfo, Loc, Machine, Plane, Pos, Sink};
+use vcnc_core::display::DisplayUnits;
+use vcnc_core::{
+    ArcDir, Cycle, Event, Feed, FrameInfo, Loc, Machine, Nurbs, Plane, Pos, Sink, ToolLibrary,
+    ToolShape,
+};
 use vcnc_plot::{
-    ColorBy, Legend, Look, Page, PlotOptions, PlotSink, Projection, Space, Theme, View,
+    ColorBy, FitTo, Legend, Look, Mesh, Page, PlotOptions, PlotSink, Projection, Source, Space,
+    Theme, View,
 };
 
 fn pos() -> impl Strategy<Value = Pos> {
@@ -56,6 +61,24 @@ fn event() -> impl Strategy<Value = Event> {
                 tool_offset: Pos::default()
             },
         }),
+        // Any NURBS, valid or not (knots out of order, weights ≤ 0).
+        (
+            loc.clone(),
+            2u8..5,
+            prop::collection::vec(pos(), 0..6),
+            prop::collection::vec(-1.0..10.0f64, 0..12),
+            prop::collection::vec(-0.5..3.0f64, 0..6),
+        )
+            .prop_map(|(loc, order, points, knots, weights)| Event::Nurbs {
+                loc,
+                curve: std::sync::Arc::new(Nurbs {
+                    order,
+                    knots,
+                    points,
+                    weights,
+                }),
+                feed: Feed::PerMin(300.0),
+            }),
         (loc, pos(), pos()).prop_map(|(loc, from, to)| Event::Contour {
             loc,
             from,
@@ -73,13 +96,23 @@ proptest! {
         let machine = Machine::default_mill();
         let view = [View::Xy, View::Xz, View::Yz, View::Iso][usize::from(view)];
         let projection = Projection::new(view, false);
-        let look = Look { theme: Theme::Dark, color: ColorBy::Feed, width_px: 400, height_px: 300 };
+        let fit = if view == View::Xz { FitTo::All } else { FitTo::Cuts };
+        let look = Look {
+            theme: Theme::Dark,
+            color: ColorBy::Feed,
+            width_px: 400,
+            height_px: 300,
+            fit,
+            rapids: view != View::Yz,
+            units: if view == View::Iso { DisplayUnits::In } else { DisplayUnits::Mm },
+        };
         let (width_px, height_px) = vcnc_plot::plot_area(400, 300);
         let flat = PlotOptions {
             space: Space::Flat { projection, width_px, height_px },
             color: ColorBy::Feed,
             max_vertices: 64,
             max_marks: 16,
+            fit,
         };
         let volume = PlotOptions { space: Space::Volume { resolution: 2048.0 }, ..flat };
         for options in [flat, volume] {
@@ -94,13 +127,29 @@ proptest! {
             let mut out = Vec::new();
             vcnc_plot::write_svg(&scene, &mut out).unwrap();
             vcnc_plot::write_png(&scene, &mut out).unwrap();
+            let mut tools = ToolLibrary::default();
+            tools.insert(ToolShape::assumed(3));
+            let mesh = Mesh {
+                name: "stock".into(),
+                color: vcnc_plot::Rgb(200, 200, 200),
+                visible: true,
+                positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                // One good triangle and one whose indices are out of range.
+                triangles: vec![[0, 1, 2], [0, 7, 9]],
+            };
             let page = Page {
                 theme: Theme::Light,
                 color: ColorBy::Tool,
                 lathe: false,
+                view,
+                fit,
+                rapids: false,
+                units: DisplayUnits::Mm,
                 legend: &Legend::default(),
                 time_label: "none",
-                sources: &[],
+                sources: &[Source::new("prog".into(), b"G1 X1\n".to_vec())],
+                tools: Some(&tools),
+                meshes: std::slice::from_ref(&mesh),
             };
             vcnc_plot::write_html(&plot, Some((&plot, "same")), &page, &mut out).unwrap();
         }

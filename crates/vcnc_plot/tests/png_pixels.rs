@@ -12,10 +12,11 @@
 #![allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // pixel indices near the picture
 
 use tiny_skia::Pixmap;
+use vcnc_core::display::DisplayUnits;
 use vcnc_core::{Event, Feed, Loc, Machine, Pos, Sink};
 use vcnc_plot::scene::PANEL_W;
 use vcnc_plot::theme::{DEPTH_STEPS, Theme, palette, ramp};
-use vcnc_plot::{ColorBy, Legend, Look, PlotOptions, PlotSink, Projection, Space, View};
+use vcnc_plot::{ColorBy, FitTo, Legend, Look, PlotOptions, PlotSink, Projection, Space, View};
 
 const W: u32 = 600;
 const H: u32 = 400;
@@ -74,6 +75,10 @@ fn rapid_and_cut_colours_appear_where_the_path_goes_and_nowhere_else() {
         color: ColorBy::Depth,
         width_px: W,
         height_px: H,
+        // The rapid is part of what this test checks: frame everything.
+        fit: FitTo::All,
+        rapids: true,
+        units: DisplayUnits::Mm,
     };
     let (width_px, height_px) = vcnc_plot::plot_area(W, H);
     let mut sink = PlotSink::new(
@@ -87,6 +92,7 @@ fn rapid_and_cut_colours_appear_where_the_path_goes_and_nowhere_else() {
             color: ColorBy::Depth,
             max_vertices: 1000,
             max_marks: 1000,
+            fit: FitTo::All,
         },
     );
     // The machine starts at 0,0,0: a rapid to (0, 0, -2) is invisible from

@@ -102,6 +102,8 @@ impl Browser {
         }
         let caps = json!({"capabilities": {"alwaysMatch": {
             "browserName": "chrome",
+            // The page's console, for `console_errors`.
+            "goog:loggingPrefs": {"browser": "ALL"},
             "goog:chromeOptions": {
                 "binary": chromium.to_str().unwrap(),
                 "args": [
@@ -150,6 +152,63 @@ impl Browser {
     /// Runs `script` (a function body) in the page; its return value.
     pub fn js(&self, script: &str) -> Value {
         self.post("/execute/sync", &json!({"script": script, "args": []}))["value"].clone()
+    }
+
+    /// The browser console's errors since the last call (chromedriver's
+    /// log endpoint; warnings such as the software-WebGL notice are left
+    /// out).
+    pub fn console_errors(&self) -> Vec<String> {
+        let v = self.post("/se/log", &json!({"type": "browser"}));
+        v["value"]
+            .as_array()
+            .map(|entries| {
+                entries
+                    .iter()
+                    .filter(|e| e["level"] == "SEVERE")
+                    .map(|e| e["message"].as_str().unwrap_or("").to_string())
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    /// Opens `page` and waits until the viewer has drawn its first frame.
+    pub fn open(&self, page: &Path) {
+        self.post(
+            "/url",
+            &json!({"url": format!("file://{}", page.display())}),
+        );
+        let t0 = Instant::now();
+        while self.js("return !!(window.vcnc && window.vcnc.stats.frames > 0);") != json!(true) {
+            assert!(
+                t0.elapsed() < Duration::from_secs(30),
+                "the page never drew a frame: {:?}",
+                self.console_errors()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    /// W3C pointer actions with the mouse, as a list of action objects.
+    pub fn mouse(&self, actions: Value) {
+        self.post(
+            "/actions",
+            &json!({"actions": [{"type": "pointer", "id": "mouse",
+                "parameters": {"pointerType": "mouse"}, "actions": actions}]}),
+        );
+    }
+
+    /// Saves a screenshot of the window as a PNG at `path`.
+    pub fn screenshot(&self, path: &Path) {
+        use base64::Engine;
+        let shot = self.get("/screenshot")["value"]
+            .as_str()
+            .unwrap()
+            .to_string();
+        let png = base64::engine::general_purpose::STANDARD
+            .decode(shot)
+            .unwrap();
+        assert_eq!(&png[1..4], b"PNG");
+        std::fs::write(path, png).unwrap();
     }
 
     pub fn element(&self, css: &str) -> String {
