@@ -415,6 +415,14 @@ impl Frame {
         (!self.identity).then_some(self.affine.m)
     }
 
+    /// Machine point `m` seen from program zero as Fanuc's position
+    /// variables read it (#5041…, #5061…): less the origin and the
+    /// transforms' shift, the tool offset left in and a rotation or
+    /// scaling not undone.
+    pub fn work_of(&self, m: Pos) -> Pos {
+        m.minus(self.origin_with_transforms())
+    }
+
     /// Machine coordinates of program zero without the tool offset.
     pub fn origin_with_transforms(&self) -> Pos {
         let mut o = self.origin;
@@ -462,6 +470,21 @@ mod tests {
         assert_eq!(f.program_of(p(0.0, 0.0, 100.0)).get(2), 20.0);
         // No tool offset on X: the origin is what is left.
         assert_eq!(f.origin_for(0, -30.0, 12.5), -42.5);
+    }
+
+    #[test]
+    fn work_of_keeps_the_tool_and_the_rotation_in() {
+        // G68 90° about (10, 0): its shift is (10, −10), so program zero
+        // sits at origin (10, 0, 0) + (10, −10, 0) = (20, −10, 0).
+        let t = Transforms::default().with(Transform::Rotate {
+            plane: Plane::Xy,
+            degrees: 90.0,
+            centre: [10.0, 0.0, 0.0],
+        });
+        let mut f = frame(&t);
+        f.origin = p(10.0, 0.0, 0.0);
+        f.tool = p(0.0, 0.0, 5.0);
+        assert!(close(f.work_of(p(25.0, 0.0, 7.0)), p(5.0, 10.0, 7.0)));
     }
 
     #[test]
