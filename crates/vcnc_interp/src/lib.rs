@@ -28,6 +28,7 @@ mod flow;
 mod interpreter;
 mod macros;
 mod motion;
+mod plane;
 pub mod state;
 
 pub use dialect::Dialect;

@@ -24,11 +24,9 @@ use crate::block::words::Words;
 use crate::events::{Feed, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{Move, MoveKind, Target};
+use crate::plane::{P2, ZERO_MM};
 use crate::state::lathe::{CornerKind, PendingCorner};
 use vcnc_syntax::{Addr, Diagnostic, Span};
-
-/// A point or direction of the plane (first, second axis).
-pub(crate) type P2 = (f64, f64);
 
 /// Where a corner's chamfer or round starts and ends.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,8 +39,13 @@ pub(crate) struct CornerCut {
     pub arc: Option<(P2, bool)>,
 }
 
-/// Below this a length or a turn is nothing.
-const EPS: f64 = 1e-9;
+/// Below this two lines run in one direction, or straight back, radians.
+const STRAIGHT_RAD: f64 = 1e-7;
+/// How much further than a line's length a chamfer or round may cut it
+/// back, mm: the cut-back of a `,R` comes from `tan` (and an inch `,C`
+/// from a unit conversion), whose rounding must not turn a corner that
+/// exactly uses up a line into an alarm.
+const OVERRUN_MM: f64 = 1e-6;
 
 /// The chamfer or round between `a → corner` and `corner → b`, or why it
 /// cannot be made.
@@ -52,19 +55,18 @@ pub(crate) fn corner_cut(
     b: P2,
     kind: CornerKind,
 ) -> Result<CornerCut, &'static str> {
-    let (d1, d2) = (sub(corner, a), sub(b, corner));
-    let (l1, l2) = (len(d1), len(d2));
-    if l1 < EPS || l2 < EPS {
+    let (d1, d2) = (corner - a, b - corner);
+    let (l1, l2) = (d1.hypot(), d2.hypot());
+    if l1 < ZERO_MM || l2 < ZERO_MM {
         return Err("one of the two moves has no length");
     }
-    let (u1, u2) = ((d1.0 / l1, d1.1 / l1), (d2.0 / l2, d2.1 / l2));
-    let cross = u1.0 * u2.1 - u1.1 * u2.0;
-    let dot = u1.0 * u2.0 + u1.1 * u2.1;
-    let turn = cross.atan2(dot);
-    if turn.abs() < 1e-7 {
+    let (u1, u2) = (d1 / l1, d2 / l2);
+    let cross = u1.cross(u2);
+    let turn = cross.atan2(u1.dot(u2));
+    if turn.abs() < STRAIGHT_RAD {
         return Err("the two moves run in one direction, there is no corner");
     }
-    if (turn.abs() - std::f64::consts::PI).abs() < 1e-7 {
+    if (turn.abs() - std::f64::consts::PI).abs() < STRAIGHT_RAD {
         return Err("the next move turns straight back");
     }
     let (t, arc) = match kind {
@@ -74,26 +76,18 @@ pub(crate) fn corner_cut(
     if t <= 0.0 {
         return Err("the chamfer or radius is not positive");
     }
-    if t > l1 + 1e-6 || t > l2 + 1e-6 {
+    if t > l1 + OVERRUN_MM || t > l2 + OVERRUN_MM {
         return Err("it is longer than one of the two moves");
     }
-    let p1 = (corner.0 - t * u1.0, corner.1 - t * u1.1);
-    let p2 = (corner.0 + t * u2.0, corner.1 + t * u2.1);
+    let p1 = corner - u1 * t;
+    let p2 = corner + u2 * t;
     let arc = arc.map(|r| {
         // The centre is r from P1 on the inside of the turn.
         let ccw = cross > 0.0;
-        let n = if ccw { (-u1.1, u1.0) } else { (u1.1, -u1.0) };
-        ((p1.0 + r * n.0, p1.1 + r * n.1), ccw)
+        let n = if ccw { u1.left() } else { u1.left() * -1.0 };
+        (p1 + n * r, ccw)
     });
     Ok(CornerCut { p1, p2, arc })
-}
-
-fn sub(a: P2, b: P2) -> P2 {
-    (a.0 - b.0, a.1 - b.1)
-}
-
-fn len(v: P2) -> f64 {
-    v.0.hypot(v.1)
 }
 
 impl Interpreter<'_> {
@@ -163,24 +157,20 @@ impl Interpreter<'_> {
             }
         };
         let axes = self.plane_axes(self.state.modal.plane, mv.cmd)?;
-        let p = |q: Pos| (q.get(axes.a), q.get(axes.b));
+        let ab = (axes.a, axes.b);
+        let p = |q: Pos| P2::of(&q, ab);
         let off_plane = (0..crate::events::MAX_AXES)
             .filter(|&i| i != axes.a && i != axes.b)
             .any(|i| {
-                (end.get(i) - corner.get(i)).abs() > EPS
-                    || (corner.get(i) - held.start.get(i)).abs() > EPS
+                (end.get(i) - corner.get(i)).abs() > ZERO_MM
+                    || (corner.get(i) - held.start.get(i)).abs() > ZERO_MM
             });
         if off_plane {
             return Err(alarms::corner_fault(mv.cmd, "the moves leave the plane"));
         }
         let cut = corner_cut(p(held.start), p(corner), p(end), held.kind)
             .map_err(|why| alarms::corner_fault(mv.cmd, why))?;
-        let at = |q: P2| {
-            let mut pos = corner;
-            pos.set(axes.a, q.0);
-            pos.set(axes.b, q.1);
-            pos
-        };
+        let at = |q: P2| q.placed(corner, ab);
         // The held block's moves carry its line (and its alarms its place).
         let line = std::mem::replace(&mut self.flow.loc.line, held.line);
         let cur_line = std::mem::replace(&mut self.stage.cur_line, held.source_line);
@@ -195,9 +185,7 @@ impl Interpreter<'_> {
         if out.is_ok() {
             let kind = match cut.arc {
                 Some((c, ccw)) => {
-                    let mut offset = Pos::default();
-                    offset.set(axes.a, c.0 - cut.p1.0);
-                    offset.set(axes.b, c.1 - cut.p1.1);
+                    let offset = (c - cut.p1).placed(Pos::default(), ab);
                     MoveKind::Arc {
                         offset,
                         plane: self.state.modal.plane,
@@ -245,5 +233,43 @@ impl Interpreter<'_> {
             ),
             _ => Ok(()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(p: P2, q: P2) -> bool {
+        p.dist(q) < 1e-12
+    }
+
+    #[test]
+    fn chamfers_and_rounds_cut_back_both_lines_at_a_left_turn() {
+        // +X to (10, 0), then +Y: a 90° turn to the left.
+        let (a, corner, b) = (P2(0.0, 0.0), P2(10.0, 0.0), P2(10.0, 10.0));
+        let cut = corner_cut(a, corner, b, CornerKind::Chamfer(2.0)).unwrap();
+        assert!(close(cut.p1, P2(8.0, 0.0)) && close(cut.p2, P2(10.0, 2.0)));
+        assert_eq!(cut.arc, None);
+        // ,R2 at 90°: cut back r·tan 45° = 2, centre 2 to the left of P1.
+        let cut = corner_cut(a, corner, b, CornerKind::Round(2.0)).unwrap();
+        assert!(close(cut.p1, P2(8.0, 0.0)) && close(cut.p2, P2(10.0, 2.0)));
+        let (c, ccw) = cut.arc.unwrap();
+        assert!(close(c, P2(8.0, 2.0)) && ccw);
+        // Turning right instead: the centre is to the right, clockwise.
+        let cut = corner_cut(a, corner, P2(10.0, -10.0), CornerKind::Round(2.0)).unwrap();
+        let (c, ccw) = cut.arc.unwrap();
+        assert!(close(c, P2(8.0, -2.0)) && !ccw);
+    }
+
+    #[test]
+    fn a_corner_that_is_not_one_is_refused() {
+        let (a, corner) = (P2(0.0, 0.0), P2(10.0, 0.0));
+        let chamfer = CornerKind::Chamfer(1.0);
+        assert!(corner_cut(a, corner, P2(20.0, 0.0), chamfer).is_err());
+        assert!(corner_cut(a, corner, P2(5.0, 0.0), chamfer).is_err());
+        assert!(corner_cut(a, a, P2(5.0, 5.0), chamfer).is_err());
+        let long = CornerKind::Chamfer(10.5);
+        assert!(corner_cut(a, corner, P2(10.0, 10.0), long).is_err());
     }
 }

@@ -33,14 +33,18 @@ use crate::block::words::Words;
 use crate::events::{Feed, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
+use crate::plane::{P2, Xz, ZERO_MM};
 use vcnc_syntax::{Diagnostic, Span};
 
 /// Most rough passes a G81 may make: a real depth of cut is never that
 /// small, and the block's events are held until it completes.
 const MAX_PASSES: f64 = 10_000.0;
 
-/// A point in the lathe plane: (X radius, Z), program coordinates.
-type Xz = (f64, f64);
+/// How far below a whole number a count of passes (a ratio of two depths)
+/// may be and still be that number: `ceil` of 3 + 1e-15 is 4, and a depth
+/// that is three steps up to rounding must cut three passes. A ratio, not
+/// a length, so not [`ZERO_MM`].
+const WHOLE_SLACK: f64 = 1e-9;
 
 /// How a cycle step moves.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,11 +69,8 @@ impl Interpreter<'_> {
         }
     }
 
-    fn at(&self, (ix, iz): (usize, usize), p: Xz) -> Pos {
-        let mut pos = self.state.prog;
-        pos.set(ix, p.0);
-        pos.set(iz, p.1);
-        pos
+    fn at(&self, axes: (usize, usize), p: Xz) -> Pos {
+        p.placed(self.state.prog, axes)
     }
 
     /// G81.
@@ -81,8 +82,8 @@ impl Interpreter<'_> {
             (Some(r), Some(i), Some(k)) => (r, i, k),
             _ => return Err(alarms::cycle_parameters(cmd, "G81 needs R, I and K")),
         };
-        let start: Xz = (self.state.prog.get(axes.0), self.state.prog.get(axes.1));
-        let end: Xz = (end.get(axes.0), end.get(axes.1));
+        let start: Xz = P2::of(&self.state.prog, axes);
+        let end: Xz = P2::of(&end, axes);
         let profile_x = self.x_length_mm(&r);
         let (step, allowance) = (self.x_length_mm(&i), self.x_length_mm(&k));
         let depth = profile_x - start.0;
@@ -106,7 +107,7 @@ impl Interpreter<'_> {
         }
         let taper = end.0 - profile_x;
         let rough = depth - allowance;
-        let passes = (rough.abs() / step.abs() - 1e-9).ceil().max(0.0);
+        let passes = (rough.abs() / step.abs() - WHOLE_SLACK).ceil().max(0.0);
         if passes > MAX_PASSES {
             return Err(alarms::cycle_parameters(
                 i.span,
@@ -118,13 +119,13 @@ impl Interpreter<'_> {
         let mut k_pass = 1.0;
         while k_pass <= passes {
             let x = start.0 + step.signum() * (k_pass * step.abs()).min(rough.abs());
-            moves.push((cut, (x, start.1)));
-            moves.push((cut, (x + taper, end.1)));
-            moves.push((cut, (x + taper - step, end.1)));
-            moves.push((Step::Rapid, (x - step, start.1)));
+            moves.push((cut, P2(x, start.1)));
+            moves.push((cut, P2(x + taper, end.1)));
+            moves.push((cut, P2(x + taper - step, end.1)));
+            moves.push((Step::Rapid, P2(x - step, start.1)));
             k_pass += 1.0;
         }
-        moves.push((cut, (profile_x, start.1)));
+        moves.push((cut, P2(profile_x, start.1)));
         moves.push((cut, end));
         self.run_moves(&moves, axes, w, cmd)
     }
@@ -159,7 +160,7 @@ impl Interpreter<'_> {
     /// G331.
     pub(crate) fn thread_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.xz_axes(cmd)?;
-        let start: Xz = (self.state.prog.get(axes.0), self.state.prog.get(axes.1));
+        let start: Xz = P2::of(&self.state.prog, axes);
         let end_z = self.thread_end_z(w, axes.1, cmd)?;
         let (k, r, p) = match (w.get(b'K'), w.get(b'R'), w.get(b'P')) {
             (Some(k), Some(r), Some(p)) => (k, r, p),
@@ -209,13 +210,13 @@ impl Interpreter<'_> {
             let x = start.0 - depth;
             let tail_x = x + taper + tail;
             let safe = start.0.max(start.0 + taper).max(tail_x);
-            moves.push((Step::Rapid, (x, start.1)));
-            moves.push((thread, (x + taper, end_z)));
+            moves.push((Step::Rapid, P2(x, start.1)));
+            moves.push((thread, P2(x + taper, end_z)));
             if tail != 0.0 {
-                moves.push((thread, (tail_x, end_z)));
+                moves.push((thread, P2(tail_x, end_z)));
             }
-            moves.push((Step::Rapid, (safe, end_z)));
-            moves.push((Step::Rapid, (safe, start.1)));
+            moves.push((Step::Rapid, P2(safe, end_z)));
+            moves.push((Step::Rapid, P2(safe, start.1)));
         }
         moves.push((Step::Rapid, start));
         self.run_moves(&moves, axes, w, cmd)
@@ -235,7 +236,7 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        if (z - here).abs() < 1e-9 {
+        if (z - here).abs() < ZERO_MM {
             return Err(alarms::cycle_parameters(cmd, "the thread has zero length"));
         }
         Ok(z)

@@ -36,13 +36,14 @@
 use crate::alarms;
 use crate::block::words::Words;
 use crate::codes::profile::{Elem, Profile};
-use crate::codes::rough::{self, Across, Frame, Rough, Seg, Step};
-use crate::codes::turning_cycles::{How, Xz};
+use crate::codes::rough::{self, Across, Frame, Rough, Step};
+use crate::codes::turning_cycles::How;
 use crate::dialect::GOp;
 use crate::dialect::TurnOp;
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
+use crate::plane::{P2, Seg, Xz, ZERO_MM};
 use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
 
 /// Most rough levels, passes or pecks one cycle block may make.
@@ -184,7 +185,7 @@ impl Interpreter<'_> {
 
     /// The finishing allowance of a second block: U (a diameter) and W.
     fn allowance(&self, w: &Words<'_>) -> Xz {
-        (
+        P2(
             w.get(b'U').map_or(0.0, |u| self.x_length_mm(&u)),
             w.get(b'W').map_or(0.0, |v| self.length_mm(&v)),
         )
@@ -227,10 +228,10 @@ impl Interpreter<'_> {
         }
         let feed = self.feed(cmd)?;
         let (frame, chain) = self.rough_chain(profile, a, across, self.allowance(w))?;
-        let (ua, _) = frame.uv(a);
+        let P2(ua, _) = frame.uv(a);
         let lowest = chain
             .iter()
-            .flat_map(|s| [frame.uv(s.from).0, frame.uv(s.to).0])
+            .flat_map(|s| [frame.uv(s.start()).0, frame.uv(s.end()).0])
             .fold(f64::INFINITY, f64::min);
         if ((ua - lowest) / depth).ceil() > MAX_PASSES {
             return Err(alarms::too_many_cycle_moves(cmd));
@@ -290,18 +291,14 @@ impl Interpreter<'_> {
         // both ways, type II along the cuts.
         rough::check_monotone(&segs, &frame, !names_along)
             .map_err(|u| self.profile_alarm(profile, u.elem + 1, u.why))?;
-        let start = (first.seg.to.0 + shift.0, first.seg.to.1 + shift.1);
-        let (ua, va) = frame.uv(a);
+        let start = first.seg.end() + shift;
+        let P2(ua, va) = frame.uv(a);
         let from = if frame.uv(start).1 >= va {
-            frame.xz((ua, frame.uv(start).1))
+            frame.xz(P2(ua, frame.uv(start).1))
         } else {
             a
         };
-        let mut chain = vec![Seg {
-            from,
-            to: start,
-            arc: None,
-        }];
+        let mut chain = vec![Seg::line(from, start)];
         chain.extend(segs);
         Ok((frame, chain))
     }
@@ -315,18 +312,18 @@ impl Interpreter<'_> {
         across: Across,
     ) -> Result<Frame, Diagnostic> {
         let pick = |p: Xz| match across {
-            Across::X => (p.0, p.1),
-            Across::Z => (p.1, p.0),
+            Across::X => p,
+            Across::Z => p.swapped(),
         };
-        let (aa, av) = pick(a);
-        let pts: Vec<(f64, f64)> = profile
+        let P2(aa, av) = pick(a);
+        let pts: Vec<P2> = profile
             .elems
             .iter()
             .skip(1)
-            .flat_map(|e| [pick(e.seg.from), pick(e.seg.to)])
+            .flat_map(|e| [pick(e.seg.start()), pick(e.seg.end())])
             .collect();
-        let below = pts.iter().all(|p| p.0 <= aa + 1e-9);
-        let above = pts.iter().all(|p| p.0 >= aa - 1e-9);
+        let below = pts.iter().all(|p| p.0 <= aa + ZERO_MM);
+        let above = pts.iter().all(|p| p.0 >= aa - ZERO_MM);
         let su = match (below, above) {
             (true, false) => 1.0,
             (false, true) => -1.0,
@@ -348,10 +345,10 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        let end = profile.elems.last().map_or(av, |e| pick(e.seg.to).1);
-        let sv = if end < av - 1e-9 {
+        let end = profile.elems.last().map_or(av, |e| pick(e.seg.end()).1);
+        let sv = if end < av - ZERO_MM {
             1.0
-        } else if end > av + 1e-9 {
+        } else if end > av + ZERO_MM {
             -1.0
         } else {
             let last = profile.elems.len().saturating_sub(1);
@@ -373,20 +370,17 @@ impl Interpreter<'_> {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        match seg.arc {
-            None => self.cycle_moves(&[(How::Cut(feed), seg.to)], axes, w, cmd),
-            Some((c, cw)) => {
-                let mut to: Pos = self.state.prog;
-                to.set(axes.0, seg.to.0);
-                to.set(axes.1, seg.to.1);
+        match seg.arc_of() {
+            None => self.cycle_moves(&[(How::Cut(feed), seg.end())], axes, w, cmd),
+            // Counter-clockwise in (X, Z) is clockwise in G18's (Z, X): a G02.
+            Some((c, ccw_xz)) => {
+                let to: Pos = seg.end().placed(self.state.prog, axes);
                 let here = self.here_xz(axes);
-                let mut offset = Pos::default();
-                offset.set(axes.0, c.0 - here.0);
-                offset.set(axes.1, c.1 - here.1);
+                let offset = (c - here).placed(Pos::default(), axes);
                 let kind = MoveKind::Arc {
                     offset,
                     plane: crate::events::Plane::Zx,
-                    cw,
+                    cw: ccw_xz,
                     feed,
                 };
                 self.straight(kind, Target::Program(to), w, cmd)
@@ -404,7 +398,7 @@ impl Interpreter<'_> {
         let axes = self.lathe_axes(cmd)?;
         let a = self.here_xz(axes);
         let feed = self.feed(cmd)?;
-        let (du, dw) = self.allowance(w);
+        let P2(du, dw) = self.allowance(w);
         let mrc = self.state.lathe.mrc;
         let d = mrc.divisions;
         if d == 0 {
@@ -423,13 +417,13 @@ impl Interpreter<'_> {
             } else {
                 0.0
             };
-            let shift = (mrc.relief_x_mm * k + du, mrc.relief_z_mm * k + dw);
+            let shift = P2(mrc.relief_x_mm * k + du, mrc.relief_z_mm * k + dw);
             for (n, e) in profile.elems.iter().enumerate() {
                 let seg = e.seg.shifted(shift);
                 if n == 0 {
-                    self.cycle_moves(&[(approach_how(e), seg.to)], axes, w, cmd)?;
+                    self.cycle_moves(&[(approach_how(e), seg.end())], axes, w, cmd)?;
                 } else if e.rapid {
-                    self.cycle_moves(&[(How::Rapid, seg.to)], axes, w, cmd)?;
+                    self.cycle_moves(&[(How::Rapid, seg.end())], axes, w, cmd)?;
                 } else {
                     self.along(&seg, axes, feed, w, cmd)?;
                 }
@@ -447,9 +441,7 @@ impl Interpreter<'_> {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let mut to: Pos = self.state.prog;
-        to.set(axes.0, a.0);
-        to.set(axes.1, a.1);
+        let to: Pos = a.placed(self.state.prog, axes);
         if to == self.state.prog {
             return Ok(());
         }
@@ -517,14 +509,13 @@ impl Interpreter<'_> {
             self.set_comp_side(side);
         }
         let here = self.here_xz(axes);
-        let still = (e.seg.to.0 - here.0).abs() < 1e-9 && (e.seg.to.1 - here.1).abs() < 1e-9;
-        if still && e.seg.arc.is_none() {
+        let to = e.seg.end();
+        let still = (to.0 - here.0).abs() < ZERO_MM && (to.1 - here.1).abs() < ZERO_MM;
+        if still && !e.seg.is_arc() {
             return Ok(());
         }
         if e.rapid {
-            let mut to: Pos = self.state.prog;
-            to.set(axes.0, e.seg.to.0);
-            to.set(axes.1, e.seg.to.1);
+            let to: Pos = to.placed(self.state.prog, axes);
             self.straight(MoveKind::Rapid, Target::Program(to), w, e.span)
         } else {
             let feed = self.feed(e.span)?;

@@ -88,12 +88,11 @@ impl Interpreter<'_> {
         let mut offset = self.tables.work[n];
         for (i, v) in values {
             let value = if from_position {
-                let s = &self.state;
-                s.nominal.get(i)
-                    - self.tables.local.get(i)
-                    - self.tables.shift.get(i)
-                    - s.frame.tool.get(i)
-                    - v
+                // The work offset: the origin at which the tool reads `v`,
+                // G52 and G92 kept as they are.
+                let m =
+                    self.state.nominal.get(i) - self.tables.local.get(i) - self.tables.shift.get(i);
+                self.state.frame.origin_for(i, m, v)
             } else if incremental && rules.l2_adds_under_g91 {
                 // Fanuc adds under G91; grbl and LinuxCNC set L2's values
                 // as they are.
@@ -256,11 +255,11 @@ impl Interpreter<'_> {
             .unwrap_or_default();
         let (mut local, mut shift) = (self.tables.local, self.tables.shift);
         for (i, v) in values {
+            // The shift: the origin at which the tool reads `v`, the work
+            // offset kept and G52 cancelled on the axis.
             local.set(i, 0.0);
-            shift.set(
-                i,
-                nominal.get(i) - work.get(i) - self.state.frame.tool.get(i) - v,
-            );
+            let m = nominal.get(i) - work.get(i);
+            shift.set(i, self.state.frame.origin_for(i, m, v));
         }
         self.tables.set_local(local);
         self.tables.set_shift(shift);

@@ -33,12 +33,11 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::codes::corner::corner_cut;
-use crate::codes::rough::Seg;
-use crate::codes::turning_cycles::Xz;
 use crate::dialect::{CompOp, ModeOp, MotionOp, PaceOp};
 use crate::dialect::{GOp, MGroup, bit};
 use crate::flow::first_value;
 use crate::interpreter::Interpreter;
+use crate::plane::{P2, RadiusFault, Seg, Xz, ZERO_MM, centre_from_radius};
 use crate::state::CompSide;
 use crate::state::lathe::CornerKind;
 use vcnc_syntax::{Addr, Block, Cursor, Diagnostic, Line, Span, Word, lex_block};
@@ -288,7 +287,7 @@ impl Interpreter<'_> {
                 }
                 None => r.profile.elems.push(elem),
             }
-            r.at = elem.seg.to;
+            r.at = elem.seg.end();
         }
         if let Some((kind, word)) = mv.corner {
             r.pending = Some((kind, word, line));
@@ -462,7 +461,7 @@ impl Interpreter<'_> {
         }
         Ok(Move {
             motion: Some(op),
-            to: (x, z),
+            to: P2(x, z),
             named: (nx, nz),
             arc: arc_words,
             aside,
@@ -481,7 +480,7 @@ impl Interpreter<'_> {
         line: Line,
         first: bool,
     ) -> Result<Option<Elem>, Diagnostic> {
-        let moved = (mv.to.0 - at.0).abs() > 1e-9 || (mv.to.1 - at.1).abs() > 1e-9;
+        let moved = (mv.to.0 - at.0).abs() > ZERO_MM || (mv.to.1 - at.1).abs() > ZERO_MM;
         if !moved && !first && mv.arc.is_none() {
             return Ok(None);
         }
@@ -491,16 +490,15 @@ impl Interpreter<'_> {
                 Some(words),
             ) => {
                 let cw = op == GOp::Motion(MotionOp::ArcCw);
-                Some((self.profile_center(at, mv.to, words, cw, mv.span)?, cw))
+                // A G02 turns clockwise in G18's (Z, X), which is
+                // counter-clockwise in the (X, Z) order the profile keeps.
+                let ccw_xz = cw;
+                Some((self.profile_center(at, mv.to, words, cw, mv.span)?, ccw_xz))
             }
             _ => None,
         };
         Ok(Some(Elem {
-            seg: Seg {
-                from: at,
-                to: mv.to,
-                arc,
-            },
+            seg: Seg::new(at, mv.to, arc),
             rapid: mv.motion == Some(GOp::Motion(MotionOp::Rapid)),
             asides: (0, 0),
             comp: None,
@@ -519,38 +517,27 @@ impl Interpreter<'_> {
         span: Span,
     ) -> Result<Xz, Diagnostic> {
         let tol = self.cfg.machine.params.arc_tolerance_mm;
-        // In the (Z, X) frame of the plane: first Z, second X.
-        let (sz, sx, ez, ex) = (s.1, s.0, e.1, e.0);
         let c = match words {
-            ArcWords::Offsets(i, k) => (sx + i, sz + k),
-            ArcWords::Radius(r, rspan) => {
-                let (dz, dx) = (ez - sz, ex - sx);
-                let chord = dz.hypot(dx);
-                if r.abs() < 1e-9 {
-                    return Err(alarms::zero_radius(span));
-                }
-                if chord < 1e-9 {
-                    return Err(alarms::r_full_circle(rspan));
-                }
-                let h2 = r * r - chord * chord / 4.0;
-                if h2 < 0.0 && chord - 2.0 * r.abs() > tol {
-                    return Err(alarms::radius_too_small(rspan, r.abs(), chord));
-                }
-                let h = h2.max(0.0).sqrt();
-                let (nz, nx) = (-dx / chord, dz / chord);
-                let side = if cw { -1.0 } else { 1.0 } * r.signum();
-                (sx + dx / 2.0 + side * h * nx, sz + dz / 2.0 + side * h * nz)
-            }
+            ArcWords::Offsets(i, k) => s + P2(i, k),
+            // In G18's (Z, X) order, where a G02 turns clockwise.
+            ArcWords::Radius(r, rspan) => centre_from_radius(s.swapped(), e.swapped(), r, !cw, tol)
+                .map_err(|f| match f {
+                    RadiusFault::Zero => alarms::zero_radius(span),
+                    RadiusFault::FullCircle => alarms::r_full_circle(rspan),
+                    RadiusFault::TooSmall { chord } => {
+                        alarms::radius_too_small(rspan, r.abs(), chord)
+                    }
+                })?
+                .swapped(),
         };
-        let r0 = (sx - c.0).hypot(sz - c.1);
-        let r1 = (ex - c.0).hypot(ez - c.1);
-        if r0 < 1e-9 {
+        let (r0, r1) = ((s - c).hypot(), (e - c).hypot());
+        if r0 < ZERO_MM {
             return Err(alarms::zero_radius(span));
         }
         if (r0 - r1).abs() > tol {
             return Err(alarms::end_off_circle(span, r0, r1));
         }
-        if (sx - ex).abs() < 1e-9 && (sz - ez).abs() < 1e-9 {
+        if (s.0 - e.0).abs() < ZERO_MM && (s.1 - e.1).abs() < ZERO_MM {
             return Err(alarms::profile_not_cut(span, "a full circle"));
         }
         Ok(c)
@@ -568,27 +555,26 @@ impl Interpreter<'_> {
         let Some(prev) = prev else {
             return Err("there is no move before the corner");
         };
-        if next.seg.arc.is_some() || next.rapid || prev.rapid {
+        if next.seg.is_arc() || next.rapid || prev.rapid {
             return Err("the block after a ,C or ,R must be a G01 move");
         }
-        // (Z, X) frame, like the plane.
-        let zx = |p: Xz| (p.1, p.0);
-        let cut = corner_cut(zx(prev.seg.from), zx(prev.seg.to), zx(next.seg.to), kind)?;
-        let xz = |p: (f64, f64)| (p.1, p.0);
+        // In G18's (Z, X) order, like a program's corner.
+        let cut = corner_cut(
+            prev.seg.start().swapped(),
+            prev.seg.end().swapped(),
+            next.seg.end().swapped(),
+            kind,
+        )?;
         let mut first = prev;
-        first.seg.to = xz(cut.p1);
+        first.seg = prev.seg.with_end(cut.p1.swapped());
         elems.push(first);
         elems.push(Elem {
-            seg: Seg {
-                from: xz(cut.p1),
-                to: xz(cut.p2),
-                arc: cut.arc.map(|(c, ccw)| (xz(c), !ccw)),
-            },
+            seg: Seg::new(cut.p1, cut.p2, cut.arc).swapped(),
             asides: (0, 0),
             ..prev
         });
         let mut second = next;
-        second.seg.from = xz(cut.p2);
+        second.seg = next.seg.with_start(cut.p2.swapped());
         elems.push(second);
         Ok(())
     }

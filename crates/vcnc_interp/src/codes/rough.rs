@@ -28,32 +28,19 @@
 //! After the levels one pass follows the chain, then the tool goes back to
 //! A: first across (u to u_A), then along (v to v_A).
 
-use crate::codes::turning_cycles::Xz;
+use crate::plane::{P2, Seg, Xz, ZERO_MM};
 
-/// Below this two lengths are equal, mm.
-const EPS: f64 = 1e-9;
-
-/// One element of a profile, program coordinates (X radius, Z).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Seg {
-    pub from: Xz,
-    pub to: Xz,
-    /// An arc: its centre and whether it runs clockwise in the (Z, X)
-    /// frame (G02).
-    pub arc: Option<(Xz, bool)>,
-}
-
-impl Seg {
-    /// The element moved by `d` (X, Z).
-    pub fn shifted(&self, d: Xz) -> Seg {
-        let m = |p: Xz| (p.0 + d.0, p.1 + d.1);
-        Seg {
-            from: m(self.from),
-            to: m(self.to),
-            arc: self.arc.map(|(c, cw)| (m(c), cw)),
-        }
-    }
-}
+/// Below this a cut is a sliver not worth a pass, mm: a level this close
+/// above the chain's lowest point, an interval this short, a point this
+/// close to the stock face. Looser than [`ZERO_MM`]: a level is u_A − k·Δd
+/// and an interval's ends come from an arc's crossings (acos, cos, sin),
+/// whose rounding is far above it, and a cut that exists only by that
+/// rounding must not be made.
+const SLIVER_MM: f64 = 1e-7;
+/// Below this two parameters along an element, or two angles, are one
+/// (fractions of an element or radians, not lengths): the ends of a sweep
+/// and the pieces between crossings.
+const PARAM_EPS: f64 = 1e-12;
 
 /// Which cycle: the axis the levels step along.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,29 +61,30 @@ pub(crate) struct Frame {
 
 impl Frame {
     /// (u, v) of a program point.
-    pub fn uv(&self, p: Xz) -> (f64, f64) {
+    pub fn uv(&self, p: Xz) -> P2 {
         match self.across {
-            Across::X => (self.su * p.0, self.sv * p.1),
-            Across::Z => (self.su * p.1, self.sv * p.0),
+            Across::X => P2(self.su * p.0, self.sv * p.1),
+            Across::Z => P2(self.su * p.1, self.sv * p.0),
         }
     }
 
     /// The program point of (u, v).
-    pub fn xz(&self, (u, v): (f64, f64)) -> Xz {
+    pub fn xz(&self, P2(u, v): P2) -> Xz {
         match self.across {
-            Across::X => (u / self.su, v / self.sv),
-            Across::Z => (v / self.sv, u / self.su),
+            Across::X => P2(u / self.su, v / self.sv),
+            Across::Z => P2(v / self.sv, u / self.su),
         }
     }
 
-    /// Whether an arc counter-clockwise in (Z, X) is counter-clockwise in
-    /// (u, v) too.
+    /// Whether an arc counter-clockwise in (X, Z) is counter-clockwise in
+    /// (u, v) too: whether the map from one to the other keeps turns.
     fn keeps_turn(&self) -> bool {
         let det = self.su * self.sv;
         match self.across {
-            // u from X and v from Z swap the (Z, X) frame's axes.
-            Across::X => det < 0.0,
-            Across::Z => det > 0.0,
+            // u from X and v from Z: the signs alone.
+            Across::X => det > 0.0,
+            // u from Z and v from X swap the axes, which reverses turns.
+            Across::Z => det < 0.0,
         }
     }
 }
@@ -104,28 +92,28 @@ impl Frame {
 /// An element in the normalised frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct USeg {
-    a: (f64, f64),
-    b: (f64, f64),
+    a: P2,
+    b: P2,
     /// Centre, radius, start angle, signed sweep (radians, from +u to +v).
-    arc: Option<((f64, f64), f64, f64, f64)>,
+    arc: Option<(P2, f64, f64, f64)>,
 }
 
 impl USeg {
     fn of(s: &Seg, f: &Frame) -> USeg {
-        let (a, b) = (f.uv(s.from), f.uv(s.to));
-        let arc = s.arc.map(|(c, cw)| {
+        let (a, b) = (f.uv(s.start()), f.uv(s.end()));
+        let arc = s.arc_of().map(|(c, ccw_xz)| {
             let c = f.uv(c);
-            let ccw = cw != f.keeps_turn();
-            let r = (a.0 - c.0).hypot(a.1 - c.1);
-            let t0 = (a.1 - c.1).atan2(a.0 - c.0);
-            let t1 = (b.1 - c.1).atan2(b.0 - c.0);
+            let ccw = ccw_xz == f.keeps_turn();
+            let r = (a - c).hypot();
+            let t0 = (a - c).angle();
+            let t1 = (b - c).angle();
             let tau = std::f64::consts::TAU;
             let mut sweep = if ccw {
                 (t1 - t0).rem_euclid(tau)
             } else {
                 -(t0 - t1).rem_euclid(tau)
             };
-            if sweep.abs() < 1e-12 {
+            if sweep.abs() < PARAM_EPS {
                 sweep = if ccw { tau } else { -tau };
             }
             (c, r, t0, sweep)
@@ -134,16 +122,13 @@ impl USeg {
     }
 
     /// The point at parameter t ∈ [0, 1].
-    fn at(&self, t: f64) -> (f64, f64) {
+    fn at(&self, t: f64) -> P2 {
         match self.arc {
             Some((c, r, t0, sweep)) => {
                 let th = t0 + sweep * t;
-                (c.0 + r * th.cos(), c.1 + r * th.sin())
+                P2(c.0 + r * th.cos(), c.1 + r * th.sin())
             }
-            None => (
-                self.a.0 + (self.b.0 - self.a.0) * t,
-                self.a.1 + (self.b.1 - self.a.1) * t,
-            ),
+            None => self.a + (self.b - self.a) * t,
         }
     }
 
@@ -168,7 +153,7 @@ impl USeg {
             }
             None => {
                 let du = self.b.0 - self.a.0;
-                if du.abs() > EPS {
+                if du.abs() > ZERO_MM {
                     let t = (level - self.a.0) / du;
                     if t > 0.0 && t < 1.0 {
                         ts.push(t);
@@ -200,7 +185,7 @@ fn sweeps_through(t0: f64, sweep: f64, th: f64) -> bool {
     } else {
         (t0 - th).rem_euclid(tau)
     };
-    d > 1e-12 && d < sweep.abs() - 1e-12
+    d > PARAM_EPS && d < sweep.abs() - PARAM_EPS
 }
 
 /// Why a profile cannot be cut, and which element (0 = the first).
@@ -242,7 +227,7 @@ pub(crate) fn check_monotone(segs: &[Seg], f: &Frame, type_one: bool) -> Result<
             turns.sort_by(f64::total_cmp);
             for d in turns {
                 let th = t0 + d * sweep.signum();
-                pts.push((c.0 + r * th.cos(), c.1 + r * th.sin()));
+                pts.push(P2(c.0 + r * th.cos(), c.1 + r * th.sin()));
             }
         }
         pts.push(u.b);
@@ -295,19 +280,19 @@ pub(crate) const MAX_MOVES: usize = 200_000;
 /// [`MAX_MOVES`].
 pub(crate) fn rough_passes(a: Xz, segs: &[Seg], r: &Rough) -> Option<Vec<(Step, Xz)>> {
     let useg: Vec<USeg> = segs.iter().map(|s| USeg::of(s, &r.frame)).collect();
-    let (ua, va) = r.frame.uv(a);
+    let P2(ua, va) = r.frame.uv(a);
     let u_min = useg.iter().map(USeg::min_u).fold(f64::INFINITY, f64::min);
     let mut p = Passes {
         r,
         ua,
         va,
-        pos: (ua, va),
+        pos: P2(ua, va),
         out: Vec::new(),
     };
     let mut prev_level = ua;
     for k in 1u32.. {
         let level = ua - f64::from(k) * r.depth;
-        if level <= u_min + 1e-7 {
+        if level <= u_min + SLIVER_MM {
             break;
         }
         let spans = below(&useg, level, va);
@@ -332,12 +317,12 @@ struct Passes<'r> {
     ua: f64,
     va: f64,
     /// Where the tool is, (u, v).
-    pos: (f64, f64),
+    pos: P2,
     out: Vec<(Step, Xz)>,
 }
 
 impl Passes<'_> {
-    fn push(&mut self, step: Step, uv: (f64, f64)) {
+    fn push(&mut self, step: Step, uv: P2) {
         self.out.push((step, self.r.frame.xz(uv)));
     }
 
@@ -345,32 +330,33 @@ impl Passes<'_> {
     fn level(&mut self, level: f64, prev_level: f64, spans: &[(f64, f64)]) {
         let (ua, va) = (self.ua, self.va);
         for (j, &(v_in, v_out)) in spans.iter().enumerate() {
-            if j == 0 && v_in >= va - 1e-7 {
+            if j == 0 && v_in >= va - SLIVER_MM {
                 // From the face, with the profile's first move.
-                self.push(Step::Approach, (level, va));
+                self.push(Step::Approach, P2(level, va));
             } else {
                 // A pocket: over the stock top to it, down to the level
                 // above (already cut there), feed in.
-                if (self.pos.0 - ua).abs() > EPS {
-                    self.push(Step::Rapid, (ua, self.pos.1));
+                if (self.pos.0 - ua).abs() > ZERO_MM {
+                    self.push(Step::Rapid, P2(ua, self.pos.1));
                 }
-                self.push(Step::Rapid, (ua, v_in));
-                self.push(Step::Rapid, (prev_level, v_in));
-                self.push(Step::Feed, (level, v_in));
+                self.push(Step::Rapid, P2(ua, v_in));
+                self.push(Step::Rapid, P2(prev_level, v_in));
+                self.push(Step::Feed, P2(level, v_in));
             }
-            self.push(Step::Feed, (level, v_out));
+            self.push(Step::Feed, P2(level, v_out));
             // The 45° retract by e (not past where the cut began).
             let e = self.r.retract;
-            self.pos = (level + e, (v_out + e).min(v_in));
+            self.pos = P2(level + e, (v_out + e).min(v_in));
             self.push(Step::Rapid, self.pos);
         }
-        let single_at_face = spans.len() == 1 && spans.first().is_some_and(|s| s.0 >= va - 1e-7);
+        let single_at_face =
+            spans.len() == 1 && spans.first().is_some_and(|s| s.0 >= va - SLIVER_MM);
         if single_at_face {
-            self.pos = (self.pos.0, va);
+            self.pos = P2(self.pos.0, va);
             self.push(Step::Rapid, self.pos);
         } else {
-            self.push(Step::Rapid, (ua, self.pos.1));
-            self.pos = (ua, va);
+            self.push(Step::Rapid, P2(ua, self.pos.1));
+            self.pos = P2(ua, va);
             self.push(Step::Rapid, self.pos);
         }
     }
@@ -381,16 +367,16 @@ impl Passes<'_> {
         let Some(first) = segs.first() else {
             return;
         };
-        if f.uv(first.to).1 < self.va - 1e-7 {
+        if f.uv(first.end()).1 < self.va - SLIVER_MM {
             // The chain starts inside the stock: in along its approach from A.
             self.out.push((Step::Rapid, a));
         }
-        self.out.push((Step::Approach, first.to));
+        self.out.push((Step::Approach, first.end()));
         for s in segs.iter().skip(1) {
-            self.out.push((Step::Along(*s), s.to));
+            self.out.push((Step::Along(*s), s.end()));
         }
-        let end = segs.last().map_or(self.va, |s| f.uv(s.to).1);
-        self.push(Step::Rapid, (self.ua, end));
+        let end = segs.last().map_or(self.va, |s| f.uv(s.end()).1);
+        self.push(Step::Rapid, P2(self.ua, end));
         self.out.push((Step::Rapid, a));
     }
 }
@@ -407,12 +393,12 @@ fn below(segs: &[USeg], level: f64, va: f64) -> Vec<(f64, f64)> {
         ts.push(1.0);
         for w in ts.windows(2) {
             let (t0, t1) = (w[0], w[1]);
-            if t1 - t0 < 1e-12 {
+            if t1 - t0 < PARAM_EPS {
                 continue;
             }
             let mid = s.at((t0 + t1) / 2.0);
             let (p0, p1) = (s.at(t0), s.at(t1));
-            let is_below = mid.0 < level - 1e-9;
+            let is_below = mid.0 < level - ZERO_MM;
             match (open, is_below) {
                 (None, true) => open = Some(p0.1.min(va)),
                 (Some(v_in), false) => {
@@ -431,7 +417,7 @@ fn below(segs: &[USeg], level: f64, va: f64) -> Vec<(f64, f64)> {
 }
 
 fn push_span(spans: &mut Vec<(f64, f64)>, v_in: f64, v_out: f64) {
-    if v_in - v_out > 1e-7 {
+    if v_in - v_out > SLIVER_MM {
         spans.push((v_in, v_out));
     }
 }
@@ -440,12 +426,8 @@ fn push_span(spans: &mut Vec<(f64, f64)>, v_in: f64, v_out: f64) {
 mod tests {
     use super::*;
 
-    fn line(from: Xz, to: Xz) -> Seg {
-        Seg {
-            from,
-            to,
-            arc: None,
-        }
+    fn line(from: (f64, f64), to: (f64, f64)) -> Seg {
+        Seg::line(P2(from.0, from.1), P2(to.0, to.1))
     }
 
     #[test]
@@ -469,7 +451,7 @@ mod tests {
             depth: 4.0,
             retract: 1.0,
         };
-        let moves = rough_passes((25.0, 2.0), &chain, &r).unwrap();
+        let moves = rough_passes(P2(25.0, 2.0), &chain, &r).unwrap();
         let cuts: Vec<Xz> = moves
             .iter()
             .filter(|(s, _)| *s == Step::Feed)
@@ -477,7 +459,10 @@ mod tests {
             .collect();
         // Levels 21 (to Z -40: the chain is below 21 all along), 17, 13
         // (both to Z -20); level 9 is below the chain's lowest point 10.
-        assert_eq!(cuts, vec![(21.0, -40.0), (17.0, -20.0), (13.0, -20.0)]);
+        assert_eq!(
+            cuts,
+            vec![P2(21.0, -40.0), P2(17.0, -20.0), P2(13.0, -20.0)]
+        );
     }
 
     #[test]

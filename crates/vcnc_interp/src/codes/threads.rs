@@ -29,8 +29,9 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::codes::turning_cycles::{How, Xz};
+use crate::codes::turning_cycles::How;
 use crate::interpreter::Interpreter;
+use crate::plane::{P2, Xz, ZERO_MM};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most pecks, positions or passes one block may make.
@@ -142,7 +143,7 @@ pub(crate) fn thread_depths(
 ) -> Option<Vec<f64>> {
     let rough_to = height - allowance;
     let mut out = Vec::new();
-    if rough_to <= 1e-9 {
+    if rough_to <= ZERO_MM {
         return Some(out);
     }
     let mut prev = 0.0;
@@ -153,7 +154,7 @@ pub(crate) fn thread_depths(
         if d - prev < min_step {
             d = prev + min_step;
         }
-        if d >= rough_to - 1e-9 {
+        if d >= rough_to - ZERO_MM {
             out.push(rough_to);
             return Some(out);
         }
@@ -186,10 +187,7 @@ impl Interpreter<'_> {
             return Ok(());
         }
         let a = self.here_xz(axes);
-        let end = {
-            let goal = self.target(w, false);
-            (goal.prog.get(axes.0), goal.prog.get(axes.1))
-        };
+        let end = P2::of(&self.target(w, false).prog, axes);
         // (peck axis, step axis): G74 pecks along Z, G75 along X.
         let (pa, sa, pe, se) = if face {
             (a.1, a.0, end.1, end.0)
@@ -206,7 +204,7 @@ impl Interpreter<'_> {
         } else {
             (x_amount, z_amount, x_word, z_word)
         };
-        if (pe - pa).abs() < 1e-9 {
+        if (pe - pa).abs() < ZERO_MM {
             return Err(alarms::cycle_parameters(
                 cmd,
                 "the cycle's end point is where it starts along the pecks",
@@ -219,7 +217,7 @@ impl Interpreter<'_> {
                 return Err(alarms::zero_amount(span, "the depth of each peck"));
             }
         };
-        let stepping = (se - sa).abs() > 1e-9;
+        let stepping = (se - sa).abs() > ZERO_MM;
         let step = match step {
             Some(s) if s > 0.0 => s,
             _ if !stepping => 1.0,
@@ -235,10 +233,10 @@ impl Interpreter<'_> {
             return Err(alarms::too_many_cycle_moves(cmd));
         }
         let feed = self.feed(cmd)?;
-        let moves = peck_moves((pa, sa), (pe, se), peck, step, retract, relief, feed);
+        let moves = peck_moves(P2(pa, sa), P2(pe, se), peck, step, retract, relief, feed);
         let xz: Vec<(How, Xz)> = moves
             .into_iter()
-            .map(|(how, (p, s))| (how, if face { (s, p) } else { (p, s) }))
+            .map(|(how, q)| (how, if face { q.swapped() } else { q }))
             .collect();
         let suspended = self.suspend_comp()?;
         self.cycle_moves(&xz, axes, w, cmd)?;
@@ -297,7 +295,7 @@ impl Interpreter<'_> {
         };
         let taper = taper_word.map_or(0.0, |r| self.length_mm(&r));
         let (dir_x, dir_z) = ((root - a.0).signum(), (z_end - a.1).signum());
-        if (root - a.0).abs() < 1e-9 || (z_end - a.1).abs() < 1e-9 {
+        if (root - a.0).abs() < ZERO_MM || (z_end - a.1).abs() < ZERO_MM {
             return Err(alarms::cycle_parameters(
                 cmd,
                 "the thread's end must differ from the start point in X and Z",
@@ -322,14 +320,14 @@ impl Interpreter<'_> {
             }
             let z_start = a.1 + dir_z * shift;
             let x_start = x_end + taper * (z_start - z_end) / (a.1 - z_end);
-            moves.push((How::Rapid, (x_start, z_start)));
+            moves.push((How::Rapid, P2(x_start, z_start)));
             moves.extend(self.thread_with_chamfer(
-                (x_start, z_start),
-                (x_end, z_end),
+                P2(x_start, z_start),
+                P2(x_end, z_end),
                 a.0,
                 lead_mm,
             ));
-            moves.push((How::Rapid, (a.0, z_end)));
+            moves.push((How::Rapid, P2(a.0, z_end)));
             moves.push((How::Rapid, a));
         }
         let suspended = self.suspend_comp()?;
@@ -398,14 +396,14 @@ impl Interpreter<'_> {
 
 /// The moves of G74/G75 in (peck axis, step axis) coordinates.
 fn peck_moves(
-    a: (f64, f64),
-    end: (f64, f64),
+    a: P2,
+    end: P2,
     peck: f64,
     step: f64,
     retract: f64,
     relief: f64,
     feed: crate::events::Feed,
-) -> Vec<(How, (f64, f64))> {
+) -> Vec<(How, P2)> {
     let (dp, ds) = (
         (end.0 - a.0).signum(),
         if end.1 == a.1 {
@@ -420,31 +418,31 @@ fn peck_moves(
         if moves.is_empty() {
             // The first position is A's.
         } else {
-            moves.push((How::Rapid, (a.0, s)));
+            moves.push((How::Rapid, P2(a.0, s)));
         }
         let mut cur = a.0;
         loop {
-            let next = if (end.0 - cur).abs() <= peck + 1e-9 {
+            let next = if (end.0 - cur).abs() <= peck + ZERO_MM {
                 end.0
             } else {
                 cur + dp * peck
             };
-            moves.push((How::Cut(feed), (next, s)));
+            moves.push((How::Cut(feed), P2(next, s)));
             if next == end.0 {
                 break;
             }
-            moves.push((How::Rapid, (next - dp * retract, s)));
+            moves.push((How::Rapid, P2(next - dp * retract, s)));
             cur = next;
         }
         let out_s = s - ds * relief;
         if relief > 0.0 {
-            moves.push((How::Cut(feed), (end.0, out_s)));
+            moves.push((How::Cut(feed), P2(end.0, out_s)));
         }
-        moves.push((How::Rapid, (a.0, out_s)));
-        if (end.1 - s).abs() <= 1e-9 {
+        moves.push((How::Rapid, P2(a.0, out_s)));
+        if (end.1 - s).abs() <= ZERO_MM {
             break;
         }
-        s = if (end.1 - s).abs() <= step + 1e-9 {
+        s = if (end.1 - s).abs() <= step + ZERO_MM {
             end.1
         } else {
             s + ds * step

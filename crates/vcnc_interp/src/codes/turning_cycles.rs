@@ -27,12 +27,10 @@ use crate::dialect::Group;
 use crate::events::{Feed, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
+use crate::plane::{P2, Xz, ZERO_MM};
 use crate::state::Motion;
 use crate::state::lathe::SingleCycle;
 use vcnc_syntax::{Diagnostic, Span};
-
-/// A point of the lathe plane, program coordinates: (X radius, Z).
-pub(crate) type Xz = (f64, f64);
 
 /// How a cycle step moves.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,9 +42,6 @@ pub(crate) enum How {
     /// A thread of this lead.
     Thread(f64),
 }
-
-/// Below this two cycle points are the same, mm.
-const SAME_MM: f64 = 1e-9;
 
 impl Interpreter<'_> {
     /// The machine (and program) indices of X and Z.
@@ -64,8 +59,8 @@ impl Interpreter<'_> {
     }
 
     /// The program position in the lathe plane.
-    pub(crate) fn here_xz(&self, (ix, iz): (usize, usize)) -> Xz {
-        (self.state.prog.get(ix), self.state.prog.get(iz))
+    pub(crate) fn here_xz(&self, axes: (usize, usize)) -> Xz {
+        P2::of(&self.state.prog, axes)
     }
 
     /// Commits the steps of a cycle through the motion stage; a step to
@@ -77,13 +72,11 @@ impl Interpreter<'_> {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        for &(how, (x, z)) in moves {
-            let mut to: Pos = self.state.prog;
-            to.set(axes.0, x);
-            to.set(axes.1, z);
+        for &(how, p) in moves {
+            let to: Pos = p.placed(self.state.prog, axes);
             let here = self.state.prog;
-            if (to.get(axes.0) - here.get(axes.0)).abs() < SAME_MM
-                && (to.get(axes.1) - here.get(axes.1)).abs() < SAME_MM
+            if (to.get(axes.0) - here.get(axes.0)).abs() < ZERO_MM
+                && (to.get(axes.1) - here.get(axes.1)).abs() < ZERO_MM
             {
                 continue;
             }
@@ -116,15 +109,15 @@ impl Interpreter<'_> {
         let a = self.here_xz(axes);
         let data = self.single_data(w, axes, a);
         let r = data.r;
-        let e = (data.x, data.z);
+        let e = P2(data.x, data.z);
         let moves = match motion {
             Motion::FaceCycle => {
                 check_taper(r, e.1, a.1, w, cmd, "Z")?;
                 let feed = self.feed(cmd)?;
                 vec![
-                    (How::Rapid, (a.0, e.1 + r)),
+                    (How::Rapid, P2(a.0, e.1 + r)),
                     (How::Cut(feed), e),
-                    (How::Cut(feed), (e.0, a.1)),
+                    (How::Cut(feed), P2(e.0, a.1)),
                     (How::Rapid, a),
                 ]
             }
@@ -135,9 +128,9 @@ impl Interpreter<'_> {
                     .thread_lead_mm
                     .filter(|l| *l > 0.0)
                     .ok_or_else(|| alarms::thread_without_lead(cmd))?;
-                let mut moves = vec![(How::Rapid, (e.0 + r, a.1))];
-                moves.extend(self.thread_with_chamfer((e.0 + r, a.1), e, a.0, lead_mm));
-                moves.push((How::Rapid, (a.0, e.1)));
+                let mut moves = vec![(How::Rapid, P2(e.0 + r, a.1))];
+                moves.extend(self.thread_with_chamfer(P2(e.0 + r, a.1), e, a.0, lead_mm));
+                moves.push((How::Rapid, P2(a.0, e.1)));
                 moves.push((How::Rapid, a));
                 moves
             }
@@ -145,9 +138,9 @@ impl Interpreter<'_> {
                 check_taper(r, e.0, a.0, w, cmd, "X")?;
                 let feed = self.feed(cmd)?;
                 vec![
-                    (How::Rapid, (e.0 + r, a.1)),
+                    (How::Rapid, P2(e.0 + r, a.1)),
                     (How::Cut(feed), e),
-                    (How::Cut(feed), (a.0, e.1)),
+                    (How::Cut(feed), P2(a.0, e.1)),
                     (How::Rapid, a),
                 ]
             }
@@ -198,12 +191,12 @@ impl Interpreter<'_> {
         let thread = How::Thread(lead_mm);
         let length = (end.1 - from.1).abs();
         let gamma = (f64::from(self.state.lathe.mrc.chamfer_tenths) / 10.0 * lead_mm).min(length);
-        if gamma <= SAME_MM || length <= SAME_MM {
+        if gamma <= ZERO_MM || length <= ZERO_MM {
             return vec![(thread, end)];
         }
         // Where the chamfer starts on the thread line (a taper included).
         let t = (length - gamma) / length;
-        let start = (from.0 + (end.0 - from.0) * t, from.1 + (end.1 - from.1) * t);
+        let start = from + (end - from) * t;
         let lift = gamma
             * self
                 .cfg
@@ -214,7 +207,7 @@ impl Interpreter<'_> {
                 .tan();
         let dir = (out_x - start.0).signum();
         let lifted = start.0 + dir * lift.min((out_x - start.0).abs());
-        vec![(thread, start), (thread, (lifted, end.1))]
+        vec![(thread, start), (thread, P2(lifted, end.1))]
     }
 }
 
@@ -229,7 +222,7 @@ fn check_taper(
     axis: &str,
 ) -> Result<(), Diagnostic> {
     let towards_a = (a - e).signum() == r.signum();
-    if r != 0.0 && towards_a && r.abs() > (a - e).abs() + SAME_MM {
+    if r != 0.0 && towards_a && r.abs() > (a - e).abs() + ZERO_MM {
         let span = w.get(b'R').map_or(cmd, |r| r.span);
         return Err(alarms::cycle_parameters(
             span,

@@ -194,12 +194,11 @@ impl Interpreter<'_> {
             return Err(alarms::system_variable_missing(span, n));
         }
         let s = &self.state;
-        let origin = s.frame.origin_with_transforms();
         let mm = match base {
             0 => s.prog.get(a),
             1 => s.pos.get(a),
-            2 => s.pos.get(a) - origin.get(a),
-            3 => s.skip_pos.unwrap_or(s.pos).get(a) - origin.get(a),
+            2 => s.frame.work_of(s.pos).get(a),
+            3 => s.frame.work_of(s.skip_pos.unwrap_or(s.pos)).get(a),
             _ => s.frame.tool.get(a),
         };
         Ok(Value::Double(self.to_input(a, mm)))

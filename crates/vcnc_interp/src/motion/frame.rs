@@ -349,6 +349,18 @@ impl Frame {
         q
     }
 
+    /// The origin on axis `i` at which machine coordinate `m` reads `v` in
+    /// program coordinates: `machine = p + origin + tool` solved for the
+    /// origin, on one axis. `m` and the result count from the same base, so
+    /// a caller that sets only part of the origin takes the other parts off
+    /// `m` first and gets its own (G10 L20: the work offset, from `m` less
+    /// G52 and G92; G92: the shift, from `m` less the work offset). The
+    /// transforms are left out: G92 refuses them, and G10 L20 sets the work
+    /// offset as if none were active.
+    pub fn origin_for(&self, i: usize, m: f64, v: f64) -> f64 {
+        m - self.tool.get(i) - v
+    }
+
     /// A program vector (an increment, an arc's centre offset) on the machine.
     pub fn vector_to_machine(&self, v: Pos) -> Pos {
         if self.identity {
@@ -403,6 +415,14 @@ impl Frame {
         (!self.identity).then_some(self.affine.m)
     }
 
+    /// Machine point `m` seen from program zero as Fanuc's position
+    /// variables read it (#5041…, #5061…): less the origin and the
+    /// transforms' shift, the tool offset left in and a rotation or
+    /// scaling not undone.
+    pub fn work_of(&self, m: Pos) -> Pos {
+        m.minus(self.origin_with_transforms())
+    }
+
     /// Machine coordinates of program zero without the tool offset.
     pub fn origin_with_transforms(&self) -> Pos {
         let mut o = self.origin;
@@ -436,6 +456,35 @@ mod tests {
         let mut f = Frame::new(XYZ);
         f.set_affine(t.compose().unwrap());
         f
+    }
+
+    #[test]
+    fn origin_for_puts_the_program_value_at_the_machine_point() {
+        // Tool 5 on Z, machine Z 100 to read 20: the origin is 75, and
+        // program Z 20 then goes to 20 + 75 + 5 = 100.
+        let mut f = Frame::new(XYZ);
+        f.tool = p(0.0, 0.0, 5.0);
+        assert_eq!(f.origin_for(2, 100.0, 20.0), 75.0);
+        f.origin = p(0.0, 0.0, 75.0);
+        assert_eq!(f.machine_of(p(0.0, 0.0, 20.0)).get(2), 100.0);
+        assert_eq!(f.program_of(p(0.0, 0.0, 100.0)).get(2), 20.0);
+        // No tool offset on X: the origin is what is left.
+        assert_eq!(f.origin_for(0, -30.0, 12.5), -42.5);
+    }
+
+    #[test]
+    fn work_of_keeps_the_tool_and_the_rotation_in() {
+        // G68 90° about (10, 0): its shift is (10, −10), so program zero
+        // sits at origin (10, 0, 0) + (10, −10, 0) = (20, −10, 0).
+        let t = Transforms::default().with(Transform::Rotate {
+            plane: Plane::Xy,
+            degrees: 90.0,
+            centre: [10.0, 0.0, 0.0],
+        });
+        let mut f = frame(&t);
+        f.origin = p(10.0, 0.0, 0.0);
+        f.tool = p(0.0, 0.0, 5.0);
+        assert!(close(f.work_of(p(25.0, 0.0, 7.0)), p(5.0, 10.0, 7.0)));
     }
 
     #[test]

@@ -6,16 +6,15 @@
 //! do (the box is convex), so its bounding box decides; an arc adds the
 //! circle's extreme points inside its sweep (`vcnc_core::geometry`). A G00
 //! dog-leg (parameter 411) stays inside the box of its end points too.
+//! A limit is passed only by more than `ZERO_MM`, the rounding noise of
+//! the frame's sums.
 
 use super::MachineMove;
 use crate::alarms;
 use crate::events::Pos;
 use crate::machine::Machine;
-use vcnc_core::geometry::ArcPath;
+use vcnc_core::geometry::{ArcPath, ZERO_MM};
 use vcnc_syntax::{Diagnostic, Span};
-
-/// Slack on travel limits for rounding noise, mm.
-const TRAVEL_EPS_MM: f64 = 1e-9;
 
 /// A move that leaves the travel limits: which axis, and how far it goes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,7 +51,7 @@ pub(crate) fn check(
     // A segment's box is the box of its ends.
     for (i, axis) in machine.axes.iter().enumerate() {
         let (a, b) = (m.from.0[i], m.to.0[i]);
-        if a.min(b) < axis.min_mm - TRAVEL_EPS_MM || a.max(b) > axis.max_mm + TRAVEL_EPS_MM {
+        if a.min(b) < axis.min_mm - ZERO_MM || a.max(b) > axis.max_mm + ZERO_MM {
             let (lo, hi) = span_box(m.from, m.to, machine.axes.len());
             return inside(machine, &lo, &hi);
         }
@@ -63,9 +62,9 @@ pub(crate) fn check(
 /// Whether the box `lo..hi` is inside the limits, else the first axis out.
 fn inside(machine: &Machine, lo: &Pos, hi: &Pos) -> Result<(), OverTravel> {
     for (i, axis) in machine.axes.iter().enumerate() {
-        let value = if lo.get(i) < axis.min_mm - TRAVEL_EPS_MM {
+        let value = if lo.get(i) < axis.min_mm - ZERO_MM {
             lo.get(i)
-        } else if hi.get(i) > axis.max_mm + TRAVEL_EPS_MM {
+        } else if hi.get(i) > axis.max_mm + ZERO_MM {
             hi.get(i)
         } else {
             continue;

@@ -16,14 +16,24 @@
 //!
 //! Lengths are mm in the compensation plane's (first, second) axes; `s`
 //! is the side (+1 left of the direction of travel, −1 right) and `r` the
-//! radius, never negative.
+//! radius, never negative. Points, elements and the meeting of lines and
+//! circles are the interpreter's one plane vocabulary (`crate::plane`);
+//! what compensation asks of an element (its offset, whether a
+//! compensated arc reverses, collapses or must be split) is here.
 
+use crate::plane::{Curve, P2, Seg, ZERO_MM, intersect};
 use std::f64::consts::PI;
 
-/// Below this two lengths are equal, mm.
-const EPS: f64 = 1e-9;
 /// Below this two angles are equal, degrees (α exactly 90° or 180°).
 const ANGLE_EPS_DEG: f64 = 1e-7;
+/// Below this a compensated arc's sweep has not reversed, radians: a sweep
+/// is an angle, not a length, so [`ZERO_MM`] does not apply, though it has
+/// the same value.
+const SWEEP_EPS_RAD: f64 = 1e-9;
+/// Below this a compensated arc's ends are one point (it collapses), mm,
+/// and its sweep reads as the one it has, radians: corners move an arc's
+/// ends by sums of offsets, which round to more than [`ZERO_MM`].
+const SAME_END: f64 = 1e-6;
 /// Offsets that miss each other by less than this touch, mm. Programs are
 /// rounded (to 0.001 mm by most CAM posts) and an arc's end may lie off its
 /// radius by up to the arc tolerance (0.01 mm by default), so a tangent
@@ -31,72 +41,6 @@ const ANGLE_EPS_DEG: f64 = 1e-7;
 /// its offsets then pass within a few micrometres without meeting, and the
 /// tangent point is the corner, not an over-cut.
 const TOUCH_MM: f64 = 0.01;
-
-/// A point or vector of the plane.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub(crate) struct V2 {
-    pub x: f64,
-    pub y: f64,
-}
-
-impl V2 {
-    pub fn new(x: f64, y: f64) -> V2 {
-        V2 { x, y }
-    }
-    fn add(self, o: V2) -> V2 {
-        V2::new(self.x + o.x, self.y + o.y)
-    }
-    fn sub(self, o: V2) -> V2 {
-        V2::new(self.x - o.x, self.y - o.y)
-    }
-    fn scale(self, k: f64) -> V2 {
-        V2::new(self.x * k, self.y * k)
-    }
-    fn dot(self, o: V2) -> f64 {
-        self.x * o.x + self.y * o.y
-    }
-    fn cross(self, o: V2) -> f64 {
-        self.x * o.y - self.y * o.x
-    }
-    fn len(self) -> f64 {
-        // Plane lengths never overflow: no need for `hypot`'s care (and cost).
-        (self.x * self.x + self.y * self.y).sqrt()
-    }
-    fn unit(self) -> V2 {
-        let l = self.len();
-        if l < EPS {
-            V2::default()
-        } else {
-            self.scale(1.0 / l)
-        }
-    }
-    /// Turned 90° counter-clockwise: the left normal of a direction.
-    fn left(self) -> V2 {
-        V2::new(-self.y, self.x)
-    }
-    pub fn dist(self, o: V2) -> f64 {
-        self.sub(o).len()
-    }
-}
-
-/// A programmed path element in the plane.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Seg {
-    pub a: V2,
-    pub b: V2,
-    /// `None` for a line; the centre and direction of an arc.
-    pub arc: Option<(V2, bool)>,
-    /// A line's unit direction, worked out once (every corner needs it
-    /// twice for each of its two blocks); zero for an arc.
-    dir: V2,
-}
-
-/// An offset path: a line through `p` along unit `d`, or a circle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Offset {
-    Line { p: V2, d: V2 },
-    Circle { c: V2, r: f64 },
-}
 
 /// Why compensation cannot go on.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -108,84 +52,48 @@ pub(crate) enum Fault {
     NoIntersection,
 }
 
+/// What compensation asks of a programmed element (`Seg` itself is the
+/// plane module's).
 impl Seg {
-    /// A line from `a` to `b`.
-    pub fn line(a: V2, b: V2) -> Seg {
-        Seg {
-            a,
-            b,
-            arc: None,
-            dir: b.sub(a).unit(),
-        }
-    }
-
-    /// An arc from `a` to `b` about `c`, counter-clockwise when `ccw`.
-    pub fn arc(a: V2, b: V2, c: V2, ccw: bool) -> Seg {
-        Seg {
-            a,
-            b,
-            arc: Some((c, ccw)),
-            dir: V2::default(),
-        }
-    }
-
-    /// The unit tangent at the start (`at_end` false) or end.
-    pub fn tangent(&self, at_end: bool) -> V2 {
-        match self.arc {
-            None => self.dir,
-            Some((c, ccw)) => {
-                let p = if at_end { self.b } else { self.a };
-                let radial = p.sub(c).unit().left();
-                if ccw { radial } else { radial.scale(-1.0) }
-            }
-        }
-    }
-
     /// The radius an arc's offset has with the tool on side `s` at `r`.
     pub fn offset_radius(&self, s: f64, r: f64) -> Option<f64> {
-        let (c, ccw) = self.arc?;
+        let (c, ccw) = self.arc_of()?;
         let sigma = if ccw { 1.0 } else { -1.0 };
-        Some(self.a.dist(c) - s * sigma * r)
+        Some(self.start().dist(c) - s * sigma * r)
     }
 
     /// Fault when an arc cannot be offset (radius ≤ 0).
     pub fn check(&self, s: f64, r: f64) -> Result<(), Fault> {
         match self.offset_radius(s, r) {
-            Some(rr) if rr <= EPS => Err(Fault::ArcTooSmall),
+            Some(rr) if rr <= ZERO_MM => Err(Fault::ArcTooSmall),
             _ => Ok(()),
         }
     }
 
     /// The offset path on side `s` at distance `r`.
-    pub fn offset(&self, s: f64, r: f64) -> Offset {
-        match self.arc {
+    pub fn offset(&self, s: f64, r: f64) -> Curve {
+        match self.arc_of() {
             None => {
                 let d = self.tangent(false);
-                Offset::Line {
-                    p: self.a.add(d.left().scale(s * r)),
+                Curve::Line {
+                    p: self.start() + d.left() * (s * r),
                     d,
                 }
             }
-            Some((c, _)) => Offset::Circle {
+            Some((c, _)) => Curve::Circle {
                 c,
                 r: self.offset_radius(s, r).unwrap_or(0.0),
             },
         }
     }
 
-    /// The point `r` from the start (or end) on side `s`, square to the path.
-    pub fn perpendicular(&self, at_end: bool, s: f64, r: f64) -> V2 {
-        let p = if at_end { self.b } else { self.a };
-        p.add(self.tangent(at_end).left().scale(s * r))
-    }
-
     /// Whether a compensated version from `s2` to `e2` runs the same way as
     /// the programmed path (a line not turned by more than 90°, an arc whose
     /// sweep does not reverse).
-    pub fn keeps_direction(&self, s2: V2, e2: V2) -> bool {
+    pub fn keeps_direction(&self, s2: P2, e2: P2) -> bool {
         match self.compensated_sweep(s2, e2) {
-            None => e2.sub(s2).dot(self.b.sub(self.a)) >= -EPS,
-            Some(sweep) => sweep >= -1e-9,
+            None => (e2 - s2).dot(self.end() - self.start()) >= -ZERO_MM,
+            Some(sweep) => sweep >= -SWEEP_EPS_RAD,
         }
     }
 
@@ -193,29 +101,26 @@ impl Seg {
     /// `e2`: the programmed sweep less what the start moved on, plus what
     /// the end did. It can pass a full turn (a circle entered and left at
     /// outside corners). `None` for a line.
-    fn compensated_sweep(&self, s2: V2, e2: V2) -> Option<f64> {
-        let (c, ccw) = self.arc?;
+    fn compensated_sweep(&self, s2: P2, e2: P2) -> Option<f64> {
+        let (c, ccw) = self.arc_of()?;
         let sigma = if ccw { 1.0 } else { -1.0 };
         // Angle from p to q about c, in the arc's direction, in (−π, π].
-        let ang = |p: V2, q: V2| {
-            let (u, v) = (p.sub(c), q.sub(c));
-            sigma * u.cross(v).atan2(u.dot(v))
-        };
-        let full = self.a.dist(self.b) < EPS;
+        let ang = |p: P2, q: P2| sigma * (p - c).angle_to(q - c);
+        let full = self.start().dist(self.end()) < ZERO_MM;
         let sweep = if full {
             2.0 * PI
         } else {
-            ang(self.a, self.b).rem_euclid(2.0 * PI)
+            ang(self.start(), self.end()).rem_euclid(2.0 * PI)
         };
-        Some(sweep - ang(self.a, s2) + ang(self.b, e2))
+        Some(sweep - ang(self.start(), s2) + ang(self.end(), e2))
     }
 
     /// Whether the compensated arc from `s2` to `e2` shrinks to a point
     /// (its corners take all of its sweep): it must not leave as an arc
     /// from a point to itself, which reads as a full circle.
-    pub fn collapses(&self, s2: V2, e2: V2) -> bool {
-        self.arc.is_some()
-            && s2.dist(e2) < 1e-6
+    pub fn collapses(&self, s2: P2, e2: P2) -> bool {
+        self.is_arc()
+            && s2.dist(e2) < SAME_END
             && self
                 .compensated_sweep(s2, e2)
                 .is_some_and(|sweep| sweep < PI)
@@ -226,24 +131,24 @@ impl Seg {
     /// reader takes the sweep from `s2` to `e2` in the arc's direction, a
     /// full turn when they coincide, never more. The split point is half
     /// way round.
-    pub fn split(&self, s2: V2, e2: V2) -> Option<V2> {
-        let (c, ccw) = self.arc?;
+    pub fn split(&self, s2: P2, e2: P2) -> Option<P2> {
+        let (c, ccw) = self.arc_of()?;
         let sweep = self.compensated_sweep(s2, e2)?;
         if self.collapses(s2, e2) {
             return None;
         }
         let sigma = if ccw { 1.0 } else { -1.0 };
-        let (u, v) = (s2.sub(c), e2.sub(c));
-        let read = if s2.dist(e2) < EPS {
+        let (u, v) = (s2 - c, e2 - c);
+        let read = if s2.dist(e2) < ZERO_MM {
             2.0 * PI
         } else {
-            (sigma * u.cross(v).atan2(u.dot(v))).rem_euclid(2.0 * PI)
+            (sigma * u.angle_to(v)).rem_euclid(2.0 * PI)
         };
-        if (read - sweep).abs() < 1e-6 {
+        if (read - sweep).abs() < SAME_END {
             return None;
         }
         let (sin, cos) = (sigma * sweep / 2.0).sin_cos();
-        Some(c.add(V2::new(u.x * cos - u.y * sin, u.x * sin + u.y * cos)))
+        Some(c + u.rotated(sin, cos))
     }
 }
 
@@ -262,7 +167,7 @@ pub(crate) enum Kind {
 }
 
 /// α's kind for directions `t1`, `t2` (unit) with the tool on side `s`.
-pub(crate) fn kind(t1: V2, t2: V2, s: f64) -> Kind {
+pub(crate) fn kind(t1: P2, t2: P2, s: f64) -> Kind {
     // sin and cos of the turn θ; α = 180° + s·θ.
     let (sin, cos) = (t1.cross(t2), t1.dot(t2));
     let tiny = ANGLE_EPS_DEG.to_radians();
@@ -282,62 +187,32 @@ pub(crate) fn kind(t1: V2, t2: V2, s: f64) -> Kind {
     }
 }
 
-/// Where two offset paths meet, the point nearest `near`.
-pub(crate) fn intersect(o1: Offset, o2: Offset, near: V2) -> Option<V2> {
-    let pick = |p: V2, q: V2| if p.dist(near) <= q.dist(near) { p } else { q };
-    match (o1, o2) {
-        (Offset::Line { p: p1, d: d1 }, Offset::Line { p: p2, d: d2 }) => {
-            let den = d1.cross(d2);
-            if den.abs() < 1e-12 {
-                return None;
-            }
-            let t = p2.sub(p1).cross(d2) / den;
-            Some(p1.add(d1.scale(t)))
-        }
-        (Offset::Line { p, d }, Offset::Circle { c, r })
-        | (Offset::Circle { c, r }, Offset::Line { p, d }) => {
-            let foot = p.add(d.scale(c.sub(p).dot(d)));
-            if foot.dist(c) > r + TOUCH_MM {
-                return None;
-            }
-            let h2 = r * r - foot.dist(c).powi(2);
-            let h = h2.max(0.0).sqrt();
-            Some(pick(foot.add(d.scale(h)), foot.sub(d.scale(h))))
-        }
-        (Offset::Circle { c: c1, r: r1 }, Offset::Circle { c: c2, r: r2 }) => {
-            let dd = c1.dist(c2);
-            if dd < EPS || dd > r1 + r2 + TOUCH_MM || dd < (r1 - r2).abs() - TOUCH_MM {
-                return None;
-            }
-            let a = (r1 * r1 - r2 * r2 + dd * dd) / (2.0 * dd);
-            let h = (r1 * r1 - a * a).max(0.0).sqrt();
-            let u = c2.sub(c1).unit();
-            let m = c1.add(u.scale(a));
-            Some(pick(m.add(u.left().scale(h)), m.sub(u.left().scale(h))))
-        }
-    }
+/// Where two offset paths meet, the point nearest `near` (offsets that
+/// miss by less than [`TOUCH_MM`] touch).
+fn meet(o1: Curve, o2: Curve, near: P2) -> Result<P2, Fault> {
+    intersect(o1, o2, near, TOUCH_MM).ok_or(Fault::NoIntersection)
 }
 
 /// What the tool centre does at the corner between two compensated blocks.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Corner {
     /// The first block ends, and the second starts, at this point.
-    At(V2),
+    At(P2),
     /// α < 90° outside: the first block ends at `p1` and goes on straight
     /// to `l1`; a line joins `l1` to `l2`, then `p2`, where the second
     /// block starts.
-    Around { p1: V2, l1: V2, l2: V2, p2: V2 },
+    Around { p1: P2, l1: P2, l2: P2, p2: P2 },
 }
 
 /// The corner between `a` (side `sa`) and `b` (side `sb`) at radius `r`.
 pub(crate) fn corner(a: &Seg, sa: f64, b: &Seg, sb: f64, r: f64) -> Result<Corner, Fault> {
     let (ta, tb) = (a.tangent(true), b.tangent(false));
-    let meet = || intersect(a.offset(sa, r), b.offset(sb, r), a.b).ok_or(Fault::NoIntersection);
+    let offsets_meet = || meet(a.offset(sa, r), b.offset(sb, r), a.end());
     if sa != sb {
         // A change of side: where the two offset paths cross; where they
         // do not (a straight line on), `a` ends square to its end and a line
         // joins the point square to `b`'s start (Fanuc).
-        return Ok(match meet() {
+        return Ok(match offsets_meet() {
             Ok(p) => Corner::At(p),
             Err(_) => {
                 let (p1, p2) = (a.perpendicular(true, sa, r), b.perpendicular(false, sb, r));
@@ -352,14 +227,14 @@ pub(crate) fn corner(a: &Seg, sa: f64, b: &Seg, sb: f64, r: f64) -> Result<Corne
     }
     match kind(ta, tb, sa) {
         Kind::Tangent => return Ok(Corner::At(a.perpendicular(true, sa, r))),
-        Kind::Inside | Kind::Obtuse => return meet().map(Corner::At),
+        Kind::Inside | Kind::Obtuse => return offsets_meet().map(Corner::At),
         Kind::Acute => {}
     }
     let (p1, p2) = (a.perpendicular(true, sa, r), b.perpendicular(false, sb, r));
     Ok(Corner::Around {
         p1,
-        l1: p1.add(ta.scale(r)),
-        l2: p2.sub(tb.scale(r)),
+        l1: p1 + ta * r,
+        l2: p2 - tb * r,
         p2,
     })
 }
@@ -368,33 +243,37 @@ pub(crate) fn corner(a: &Seg, sa: f64, b: &Seg, sb: f64, r: f64) -> Result<Corne
 /// before block `b`: square to `b` at its start when the corner is outside
 /// (type A), the intersection of the offsets when it is inside.
 #[inline(never)]
-pub(crate) fn startup(u: &Seg, b: &Seg, s: f64, r: f64) -> Result<V2, Fault> {
-    if kind(u.tangent(true), b.tangent(false), s) != Kind::Inside || u.a.dist(u.b) < EPS {
+pub(crate) fn startup(u: &Seg, b: &Seg, s: f64, r: f64) -> Result<P2, Fault> {
+    if kind(u.tangent(true), b.tangent(false), s) != Kind::Inside
+        || u.start().dist(u.end()) < ZERO_MM
+    {
         return Ok(b.perpendicular(false, s, r));
     }
-    intersect(u.offset(s, r), b.offset(s, r), u.b).ok_or(Fault::NoIntersection)
+    meet(u.offset(s, r), b.offset(s, r), u.end())
 }
 
 /// Where the last compensated block `a` ends before the cancel block `c`
 /// (a line to the uncompensated point): square to `a` at its end when the
 /// corner is outside, the intersection with `c`'s offset when inside.
 #[inline(never)]
-pub(crate) fn cancel(a: &Seg, c: &Seg, s: f64, r: f64) -> Result<V2, Fault> {
-    if kind(a.tangent(true), c.tangent(false), s) != Kind::Inside || c.a.dist(c.b) < EPS {
+pub(crate) fn cancel(a: &Seg, c: &Seg, s: f64, r: f64) -> Result<P2, Fault> {
+    if kind(a.tangent(true), c.tangent(false), s) != Kind::Inside
+        || c.start().dist(c.end()) < ZERO_MM
+    {
         return Ok(a.perpendicular(true, s, r));
     }
-    intersect(a.offset(s, r), c.offset(s, r), a.b).ok_or(Fault::NoIntersection)
+    meet(a.offset(s, r), c.offset(s, r), a.end())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn v(x: f64, y: f64) -> V2 {
-        V2::new(x, y)
+    fn v(x: f64, y: f64) -> P2 {
+        P2(x, y)
     }
 
-    fn close(p: V2, q: V2) -> bool {
+    fn close(p: P2, q: P2) -> bool {
         p.dist(q) < 1e-6
     }
 

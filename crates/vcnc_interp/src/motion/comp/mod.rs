@@ -26,12 +26,9 @@ mod pass;
 
 use super::MachineMove;
 use crate::events::{Event, Loc, Plane, Pos};
-use geom::{Seg, V2};
+use crate::plane::{P2, Seg};
 use vcnc_core::geometry::PlaneAxes;
 use vcnc_syntax::{Line, Span};
-
-/// Below this a plane displacement is no motion in the plane, mm.
-const PLANE_EPS: f64 = 1e-9;
 
 /// Where the stage is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,17 +58,17 @@ struct Held {
     mm: MachineMove,
     seg: Seg,
     /// Where its compensated path starts.
-    start: V2,
+    start: P2,
     /// A joining move before it (a corner with α < 90°): to `l2`, then to
     /// `start` along its tangent.
-    lead_in: Option<V2>,
+    lead_in: Option<P2>,
     side: f64,
     r: f64,
     /// The start-up move (from the uncompensated point).
     startup: bool,
     /// From the nose centre to the controlled point: a lathe's imaginary
     /// tool tip (`nose.rs`); zero on a mill.
-    shift: V2,
+    shift: P2,
     at: Origin,
 }
 
@@ -274,12 +271,10 @@ impl Comp {
     }
 }
 
-fn v2(p: Pos, axes: PlaneAxes) -> V2 {
-    V2::new(p.get(axes.a), p.get(axes.b))
+fn v2(p: Pos, axes: PlaneAxes) -> P2 {
+    P2::of(&p, (axes.a, axes.b))
 }
 
-fn with_plane(mut p: Pos, axes: PlaneAxes, q: V2) -> Pos {
-    p.set(axes.a, q.x);
-    p.set(axes.b, q.y);
-    p
+fn with_plane(p: Pos, axes: PlaneAxes, q: P2) -> Pos {
+    q.placed(p, (axes.a, axes.b))
 }

@@ -24,8 +24,8 @@
 //! cancel move between the tip and the shifted offset path, as on a Fanuc.
 //! On a mill the tip is 0 and nothing changes.
 
-use super::geom::V2;
 use crate::motion::MachineKind;
+use crate::plane::P2;
 
 /// The unit direction (Z, X) from the nose centre to the imaginary tip.
 pub(crate) fn tip_direction(tip: u8) -> (f64, f64) {
@@ -59,15 +59,10 @@ pub(crate) fn linuxcnc_tip(q: u8) -> u8 {
     }
 }
 
-/// `a + b`.
-pub(crate) fn plus(a: V2, b: V2) -> V2 {
-    V2::new(a.x + b.x, a.y + b.y)
-}
-
 /// A move's kind with an arc's centre moved by `shift` (the offset arc of
 /// the nose centre is concentric with the programmed one; the tip's is
 /// that arc moved).
-pub(crate) fn shifted_kind(kind: MachineKind, shift: V2) -> MachineKind {
+pub(crate) fn shifted_kind(kind: MachineKind, shift: P2) -> MachineKind {
     match kind {
         MachineKind::Arc {
             center,
@@ -75,7 +70,7 @@ pub(crate) fn shifted_kind(kind: MachineKind, shift: V2) -> MachineKind {
             dir,
             feed,
         } => MachineKind::Arc {
-            center: (center.0 + shift.x, center.1 + shift.y),
+            center: (center.0 + shift.0, center.1 + shift.1),
             plane,
             dir,
             feed,

@@ -4,14 +4,14 @@
 //! check and the events; a lathe's nose shifts the path (`nose.rs`). The
 //! stage's own data and its marks are `mod.rs`.
 
-use super::geom;
-use super::geom::{Corner, Fault, Seg, V2};
+use super::geom::{self, Corner, Fault};
 use super::nose::{self, tip_direction};
-use super::{Held, Mode, Origin, PLANE_EPS, Queued, v2, with_plane};
+use super::{Held, Mode, Origin, Queued, v2, with_plane};
 use crate::alarms;
 use crate::events::{Event, Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{MachineKind, MachineMove};
+use crate::plane::{P2, Seg, ZERO_MM};
 use vcnc_core::geometry::PlaneAxes;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -25,10 +25,10 @@ impl Interpreter<'_> {
             } if plane == self.stage.comp.plane => Some(Seg::arc(
                 a,
                 b,
-                V2::new(center.0, center.1),
+                P2(center.0, center.1),
                 dir == crate::events::ArcDir::Ccw,
             )),
-            _ if a.dist(b) > PLANE_EPS => Some(Seg::line(a, b)),
+            _ if a.dist(b) > ZERO_MM => Some(Seg::line(a, b)),
             _ => None,
         }
     }
@@ -89,7 +89,7 @@ impl Interpreter<'_> {
             return self.release(mm, &at, None);
         };
         self.stage.comp.moved_in_plane = true;
-        if seg.arc.is_some() && matches!(self.stage.comp.mode, Mode::Starting | Mode::Cancelling) {
+        if seg.is_arc() && matches!(self.stage.comp.mode, Mode::Starting | Mode::Cancelling) {
             return Err(alarms::comp_arc_startup(cmd));
         }
         let (side, r) = self.side_and_radius();
@@ -100,7 +100,7 @@ impl Interpreter<'_> {
                 self.stage.comp.held = Some(Box::new(Held {
                     mm,
                     seg,
-                    start: seg.a,
+                    start: seg.start(),
                     lead_in: None,
                     side,
                     r,
@@ -122,9 +122,9 @@ impl Interpreter<'_> {
             }
             _ => {
                 if let Some(h) = self.stage.comp.held.as_ref()
-                    && seg.arc.is_some()
+                    && seg.is_arc()
                     && !h.startup
-                    && (h.r - r).abs() > PLANE_EPS
+                    && (h.r - r).abs() > ZERO_MM
                 {
                     // The corner before it uses the old radius, its end the new.
                     return Err(alarms::comp_radius_change_on_arc(cmd, h.r, r));
@@ -208,7 +208,7 @@ impl Interpreter<'_> {
 
     /// Where the held move ends before the cancel move `c`.
     #[inline(never)]
-    fn settle_cancel(&mut self, held: &Held, c: &Seg, at: &Origin) -> Result<V2, Diagnostic> {
+    fn settle_cancel(&mut self, held: &Held, c: &Seg, at: &Origin) -> Result<P2, Diagnostic> {
         if held.startup {
             // Cancelled right after the start-up: square to the start-up.
             return Ok(held.seg.perpendicular(true, held.side, held.r));
@@ -257,7 +257,7 @@ impl Interpreter<'_> {
         let axes = self.plane_axes(self.stage.comp.plane, cmd)?;
         let mut plain = mm.to;
         for i in [axes.a, axes.b] {
-            if (mm.to.get(i) - self.state.pos.get(i)).abs() < PLANE_EPS {
+            if (mm.to.get(i) - self.state.pos.get(i)).abs() < ZERO_MM {
                 plain.set(i, mm.from.get(i));
             }
         }
@@ -287,8 +287,8 @@ impl Interpreter<'_> {
     fn release_held(
         &mut self,
         held: &Held,
-        end: V2,
-        extension: Option<V2>,
+        end: P2,
+        extension: Option<P2>,
     ) -> Result<(), Diagnostic> {
         // What leaves now goes out, not behind the move held in its place.
         self.stage.comp.releasing = true;
@@ -300,8 +300,8 @@ impl Interpreter<'_> {
     fn release_held_now(
         &mut self,
         held: &Held,
-        end: V2,
-        extension: Option<V2>,
+        end: P2,
+        extension: Option<P2>,
     ) -> Result<(), Diagnostic> {
         let axes = self.plane_axes(self.stage.comp.plane, held.at.cmd)?;
         if !held.startup && !held.seg.keeps_direction(held.start, end) {
@@ -309,13 +309,13 @@ impl Interpreter<'_> {
         }
         // The compensated points are the nose centre's; the controlled
         // point is `shift` from it (a lathe's imaginary tip).
-        let tip = |q: V2| nose::plus(q, held.shift);
+        let tip = |q: P2| q + held.shift;
         let start_pos = with_plane(held.mm.from, axes, tip(held.start));
         let arc = match held.mm.kind {
             MachineKind::Arc {
                 center, plane, dir, ..
             } => Some((
-                with_plane(held.mm.from, axes, V2::new(center.0, center.1)),
+                with_plane(held.mm.from, axes, P2(center.0, center.1)),
                 plane,
                 dir,
             )),
@@ -337,7 +337,7 @@ impl Interpreter<'_> {
                 exact_stop: false,
             };
             self.release(join, &held.at, None)?;
-            if held.seg.arc.is_some() && l2.dist(held.start) > PLANE_EPS {
+            if held.seg.is_arc() && l2.dist(held.start) > ZERO_MM {
                 let lead = MachineMove {
                     to: start_pos,
                     ..join
@@ -347,7 +347,7 @@ impl Interpreter<'_> {
         }
         // A line's extension (α < 90°) is the same straight line: one move.
         let (end, extension) = match extension {
-            Some(l1) if held.seg.arc.is_none() => (l1, None),
+            Some(l1) if !held.seg.is_arc() => (l1, None),
             other => (end, other),
         };
         let to = with_plane(held.mm.to, axes, tip(end));
@@ -379,7 +379,7 @@ impl Interpreter<'_> {
             ..held.mm
         };
         self.release(moved, &held.at, None)?;
-        if let Some(l1) = extension.filter(|l1| l1.dist(end) > PLANE_EPS) {
+        if let Some(l1) = extension.filter(|l1| l1.dist(end) > ZERO_MM) {
             let ext = MachineMove {
                 kind: straight_kind(&held.mm),
                 from: to,
@@ -426,11 +426,11 @@ impl Interpreter<'_> {
     /// of radius `r`, in the compensation plane's (first, second) axes:
     /// the tip direction of the offset in force, in the ZX plane (G18),
     /// whose first axis is Z.
-    pub(crate) fn nose_shift(&self, r: f64) -> V2 {
+    pub(crate) fn nose_shift(&self, r: f64) -> P2 {
         if self.stage.comp.plane != Plane::Zx {
-            return V2::default();
+            return P2::default();
         }
         let (z, x) = tip_direction(self.state.lathe.tip);
-        V2::new(z * r, x * r)
+        P2(z * r, x * r)
     }
 }
