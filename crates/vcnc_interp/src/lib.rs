@@ -22,6 +22,7 @@
 pub mod alarms;
 mod block;
 mod codes;
+pub mod detect;
 pub mod dialect;
 mod flow;
 mod interpreter;
