@@ -7,6 +7,7 @@
 //! invalid machine file).
 
 mod check;
+mod choose;
 mod cli;
 mod files;
 mod offload;
@@ -21,7 +22,7 @@ use cli::{Cli, Command, Format, Options, RunArgs};
 use files::Input;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Outcome, Sink};
+use vcnc_interp::{Event, Interpreter, Outcome, Sink};
 use vcnc_output::{CsvSink, GcodeSink, JsonlSink, Summary};
 
 fn main() -> ExitCode {
@@ -54,48 +55,7 @@ pub(crate) fn reported(r: std::io::Result<()>) -> Result<(), String> {
     }
 }
 
-/// The machine and dialect the options ask for.
-pub(crate) struct Setup {
-    pub machine: Machine,
-    pub dialect: Dialect,
-    pub options: vcnc_interp::Options,
-}
-
-/// The options' machine and dialect for the programs at `paths`. Without
-/// `--dialect`: syntec, or linuxcnc when every path is a `.ngc` file
-/// (LinuxCNC's own extension, which no Syntec or Fanuc program carries).
-pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, String> {
-    let ngc = |p: &&std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ngc"));
-    let name = match &c.dialect {
-        Some(name) => name.as_str(),
-        None if !paths.is_empty() && paths.iter().all(ngc) => "linuxcnc",
-        None => "syntec",
-    };
-    let dialect = Dialect::by_name(name).ok_or_else(|| {
-        format!(
-            "unknown dialect {name:?}: use one of {}",
-            Dialect::NAMES.join(", ")
-        )
-    })?;
-    let machine = match &c.machine {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-            Machine::from_toml(&text)
-                .map_err(|e| format!("machine file {}: {e}", path.display()))?
-        }
-        None => dialect.machine(),
-    };
-    let options = vcnc_interp::Options {
-        block_delete: c.block_delete,
-        optional_stop: c.optional_stop,
-    };
-    Ok(Setup {
-        machine,
-        dialect,
-        options,
-    })
-}
+pub(crate) use choose::Setup;
 
 /// Runs the program `input` into `sink`. Returns how the run ended and
 /// whether it ended in diameter programming.
@@ -108,7 +68,7 @@ pub(crate) fn execute<S: Sink>(
     let main = input.open()?;
     let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
-    let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
+    let mut interp = Interpreter::new(s.machine, s.dialect, s.options);
     if let Some(path) = &c.variables {
         let kept = variables::read(path)?;
         interp
@@ -123,11 +83,18 @@ pub(crate) fn execute<S: Sink>(
 }
 
 fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
-    let s = setup(&args.opts, &[args.file.as_path()])?;
+    let choice = choose::Choice::new(&args.opts)?;
     // Opened before any output is written, so that a missing file is a
     // usage error with nothing on stdout.
     let input = Input::from_arg(&args.file)?;
     drop(input.open()?);
+    let s = choice.setup(&input)?;
+    if s.doubtful() {
+        eprintln!(
+            "note: dialect {}; give --dialect to be sure",
+            s.dialect_text()
+        );
+    }
     // The sink formats and writes on the second core (`offload`); the
     // JSON-lines sink buffers itself, the others go through a BufWriter.
     let machine = &s.machine;
@@ -202,7 +169,7 @@ fn stream<S: Sink + Send + 'static>(
 ) -> Result<Streamed, String> {
     let mut tap = Tap {
         inner: offload::Offload::start(make),
-        warnings: Summary::new(&s.machine),
+        warnings: Summary::new(s.machine),
     };
     let ran = execute(&args.opts, s, input, &mut tap);
     // The sink is taken back also when the run failed (the variables file

@@ -230,21 +230,22 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     let started = Instant::now();
     let format = format_of(&args.output)?;
     let c = &args.opts;
-    let s = crate::setup(c, &[args.file.as_path()])?;
+    let choice = crate::choose::Choice::new(c)?;
     let input = Input::File(args.file.clone());
     // An unreadable program is a usage error before anything is written.
     drop(input.open()?);
+    let s = choice.setup(&input)?;
     let set = settings(args, format, s.dialect.diameter.axis.is_some());
     // Created before the run, so that an output that cannot be written is
     // known before a long program has run.
     let file = std::fs::File::create(&args.output)
         .map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
     let progress = Progress::start(&args.file, started);
-    let sink = PlotSink::with_clock(&s.machine, set.options, Estimate(Summary::new(&s.machine)));
+    let sink = PlotSink::with_clock(s.machine, set.options, Estimate(Summary::new(s.machine)));
     let mut counted = Counted::new(sink, progress.bar());
     // The legend's cycle time is the planned one, as `check` prints; the
     // vertices are dated by the distance/feed estimate as they stream.
-    let mut plan = timing::planner(&s.machine, None);
+    let mut plan = timing::planner(s.machine, None);
     let (outcome, diameter) = execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut plan))?;
     let planned = plan.into_timeline();
     let (plot, Estimate(summary)) = counted.inner.into_parts();
@@ -281,9 +282,9 @@ fn compare_name(args: &PlotArgs) -> &str {
 fn run_compare(other: &Path, s: &Setup, options: PlotOptions) -> Result<Plot, String> {
     let main = files::open_program(other)?;
     let mut store = files::DirStore::new(files::parent_dir(other));
-    let mut sink = PlotSink::new(&s.machine, options);
+    let mut sink = PlotSink::new(s.machine, options);
     let outcome =
-        Interpreter::new(&s.machine, &s.dialect, s.options).run(main, &mut store, &mut sink);
+        Interpreter::new(s.machine, s.dialect, s.options).run(main, &mut store, &mut sink);
     if let Outcome::Alarm(d) = &outcome {
         eprintln!(
             "warning: the compared program {} alarms ({} at line {}); it is shown up to there",

@@ -782,6 +782,9 @@ impl<'a> Interpreter<'a> {
         if let Some(e) = self.unset_report() {
             self.pending.push(e);
         }
+        if let Some(w) = self.whole_units_report() {
+            self.pending.push(w);
+        }
         for e in self.pending.drain(..) {
             sink.event(&e);
         }
