@@ -349,6 +349,7 @@ fn summary_json(s: &Summary, planned: &CycleTime, diameter: bool) -> Value {
         "rapid_mm": s.rapid_mm,
         "cut_mm": s.cut_mm,
         "extents": s.extents.map(|(lo, hi)| json!({"min": pos_json(s, &lo), "max": pos_json(s, &hi)})),
+        "work_extents": s.work_extents().map(|(lo, hi)| json!({"min": pos_json(s, &lo), "max": pos_json(s, &hi)})),
         "tools": s.tools,
         "holes": holes,
         "spindle_rpm": s.spindle_rpm.map(|(lo, hi)| json!([lo, hi])),

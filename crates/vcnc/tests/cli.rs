@@ -513,6 +513,9 @@ fn check_json_is_one_document_per_run() {
     assert_eq!(warns["warning_count"], 1);
     assert_eq!(warns["warnings"][0]["code"], "W104");
     assert_eq!(warns["summary"]["extents"]["max"]["x"], 2.0);
+    // Work extents leave the power-on position (X0) out: X1 to X2.
+    assert_eq!(warns["summary"]["work_extents"]["min"]["x"], 1.0);
+    assert_eq!(warns["summary"]["work_extents"]["max"]["x"], 2.0);
     assert!(
         warns["summary"]["extents"]["max"].get("a").is_none(),
         "rotary axes that never moved are left out"
