@@ -250,16 +250,8 @@ impl Interpreter<'_> {
         if longest.2 >= 1.0 {
             return None;
         }
-        let (lo, hi) = p
-            .reach
-            .map_or((self.state.prog, self.state.prog), |(lo, hi)| {
-                let (mut lo, mut hi) = (lo, hi);
-                for i in 0..crate::MAX_AXES {
-                    lo.0[i] = lo.0[i].min(self.state.prog.0[i]);
-                    hi.0[i] = hi.0[i].max(self.state.prog.0[i]);
-                }
-                (lo, hi)
-            });
+        // Where the last block ended counts too.
+        let (lo, hi) = PointStyle::grown(p.reach, self.state.prog);
         let span_mm = self
             .axis_words
             .iter()
@@ -421,12 +413,17 @@ impl PointStyle {
 
     /// The program reached `p`.
     fn reached(&mut self, p: Pos) {
-        let (mut lo, mut hi) = self.reach.unwrap_or((p, p));
+        self.reach = Some(PointStyle::grown(self.reach, p));
+    }
+
+    /// `reach` grown to hold `p`.
+    fn grown(reach: Option<(Pos, Pos)>, p: Pos) -> (Pos, Pos) {
+        let (mut lo, mut hi) = reach.unwrap_or((p, p));
         for i in 0..crate::MAX_AXES {
             lo.0[i] = lo.0[i].min(p.0[i]);
             hi.0[i] = hi.0[i].max(p.0[i]);
         }
-        self.reach = Some((lo, hi));
+        (lo, hi)
     }
 
     pub fn new(machine: &crate::machine::Machine, dialect: &crate::dialect::Dialect) -> PointStyle {
