@@ -10,10 +10,11 @@
 //! Programs are independent, so they are checked on all cores; each run
 //! streams its file as `run` does, so memory is one summary per program.
 
+use crate::choose::{Choice, Setup};
 use crate::cli::{CheckArgs, CheckFormat};
 use crate::files::{self, Input};
 use crate::offload::Offload;
-use crate::{Setup, execute, render, setup, timing};
+use crate::{execute, render, timing};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde_json::{Value, json};
@@ -33,7 +34,32 @@ struct Checked {
     run: Result<Ran, String>,
 }
 
+/// The dialect and machine a program ran on, and why.
+struct Chosen {
+    dialect: &'static str,
+    /// `haas (auto: G187, …)`.
+    text: String,
+    evidence: Vec<String>,
+    confidence: &'static str,
+    doubtful: bool,
+    machine: String,
+}
+
+impl Chosen {
+    fn of(s: &Setup) -> Chosen {
+        Chosen {
+            dialect: s.dialect.name,
+            text: s.dialect_text(),
+            evidence: s.evidence(),
+            confidence: s.confidence(),
+            doubtful: s.doubtful(),
+            machine: s.machine.name.clone(),
+        }
+    }
+}
+
 struct Ran {
+    chosen: Chosen,
     outcome: Outcome,
     summary: Summary,
     /// The cycle time planned on the machine model.
@@ -59,36 +85,25 @@ impl Checked {
 
 /// Runs the check and reports it.
 pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
-    let paths: Vec<&std::path::Path> = args.paths.iter().map(std::path::PathBuf::as_path).collect();
-    let s = setup(&args.opts, &paths)?;
-    let mut inputs = Vec::new();
-    let mut single_file = args.paths.len() == 1;
-    for path in &args.paths {
-        if path.as_os_str() == "-" {
-            inputs.push(Input::from_arg(path)?);
-            continue;
-        }
-        let found = files::programs_under(path)?;
-        if found.is_empty() {
-            return Err(format!("no programs found under {}", path.display()));
-        }
-        single_file &= !path.is_dir();
-        inputs.extend(found.into_iter().map(Input::File));
-    }
+    let choice = Choice::new(&args.opts)?;
+    let (inputs, single_file) = files::inputs(&args.paths)?;
     if args.opts.variables.is_some() && inputs.len() > 1 {
         return Err(
             "--variables keeps the variables of one program: check one program at a time".into(),
         );
     }
-    if single_file && args.format == CheckFormat::Text {
-        return detailed(args, &s, &inputs[0]);
+    if single_file
+        && args.format == CheckFormat::Text
+        && let Some(input) = inputs.first()
+    {
+        return detailed(args, &choice, input);
     }
-    let results = check_all(args, &s, inputs)?;
+    let results = check_all(args, &choice, inputs)?;
     let mut out = std::io::stdout().lock();
     let written = match args.format {
-        CheckFormat::Text => text_report(&mut out, &results),
+        CheckFormat::Text => text_report(&mut out, &results, !choice.is_forced()),
         CheckFormat::Json => {
-            let doc = json_report(args, &s, &results);
+            let doc = json_report(args, &choice, &results);
             writeln!(out, "{doc:#}")
         }
         CheckFormat::Sarif => {
@@ -110,10 +125,12 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
 }
 
 /// One program: the summary block, warnings and the alarm on stderr.
-fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, String> {
+fn detailed(args: &CheckArgs, choice: &Choice, input: &Input) -> Result<ExitCode, String> {
+    let s = &choice.setup(input)?;
     // One program: the summary and the planner on the second core.
+    let machine = s.machine;
     let mut beside =
-        Offload::start(|| timing::Tee(Summary::new(&s.machine), timing::planner(&s.machine, None)));
+        Offload::start(|| timing::Tee(Summary::new(machine), timing::planner(machine, None)));
     let (outcome, diameter) = execute(&args.opts, s, input, &mut beside)?;
     let timing::Tee(summary, plan) = beside.join()?;
     let planned = plan.into_timeline();
@@ -131,18 +148,22 @@ fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, Stri
     crate::reported(render::summary(
         &mut out,
         &input.name(),
-        &s.dialect,
-        &s.machine,
+        s,
         (&summary, &planned),
         &outcome,
-        diameter_axis,
+        (diameter_axis, args.units.into()),
     ))?;
     let denied = args.deny_warnings && summary.warning_total() > 0;
     Ok(crate::exit_code(&outcome, denied))
 }
 
-/// Checks every program on the thread pool, in input order.
-fn check_all(args: &CheckArgs, s: &Setup, inputs: Vec<Input>) -> Result<Vec<Checked>, String> {
+/// Checks every program on the thread pool, in input order; each gets
+/// its own dialect and machine.
+fn check_all(
+    args: &CheckArgs,
+    choice: &Choice,
+    inputs: Vec<Input>,
+) -> Result<Vec<Checked>, String> {
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = args.jobs {
         pool = pool.num_threads(n.max(1));
@@ -155,15 +176,9 @@ fn check_all(args: &CheckArgs, s: &Setup, inputs: Vec<Input>) -> Result<Vec<Chec
         inputs
             .into_par_iter()
             .map(|input| {
-                let mut summary = Summary::new(&s.machine);
-                let mut plan = timing::planner(&s.machine, None);
-                let sink = &mut timing::Tee(&mut summary, &mut plan);
-                let run = execute(&args.opts, s, &input, sink).map(|(outcome, diameter)| Ran {
-                    outcome,
-                    summary,
-                    planned: plan.into_timeline(),
-                    diameter,
-                });
+                let run = choice
+                    .setup(&input)
+                    .and_then(|s| check_one(args, &s, &input));
                 progress.tick();
                 Checked { input, run }
             })
@@ -171,6 +186,21 @@ fn check_all(args: &CheckArgs, s: &Setup, inputs: Vec<Input>) -> Result<Vec<Chec
     });
     progress.done();
     Ok(results)
+}
+
+/// One program of many.
+fn check_one(args: &CheckArgs, s: &Setup, input: &Input) -> Result<Ran, String> {
+    let mut summary = Summary::new(s.machine);
+    let mut plan = timing::planner(s.machine, None);
+    let sink = &mut timing::Tee(&mut summary, &mut plan);
+    let (outcome, diameter) = execute(&args.opts, s, input, sink)?;
+    Ok(Ran {
+        chosen: Chosen::of(s),
+        outcome,
+        summary,
+        planned: plan.into_timeline(),
+        diameter,
+    })
 }
 
 /// A progress bar on a terminal, shown once the check has taken a second.
@@ -223,18 +253,24 @@ impl Progress {
     }
 }
 
-/// One line per program, then the totals.
-fn text_report(out: &mut impl Write, results: &[Checked]) -> std::io::Result<()> {
+/// One line per program (with its dialect when each was detected: `[grbl]`,
+/// `[grbl?]` when unsure), then the totals.
+fn text_report(out: &mut impl Write, results: &[Checked], detected: bool) -> std::io::Result<()> {
     let (mut ended, mut alarms, mut warned, mut warnings, mut unreadable) = (0, 0, 0, 0u64, 0);
     for r in results {
-        let name = r.input.name();
         let ran = match &r.run {
             Ok(ran) => ran,
             Err(e) => {
                 unreadable += 1;
-                writeln!(out, "{name}: error: {e}")?;
+                writeln!(out, "{}: error: {e}", r.input.name())?;
                 continue;
             }
+        };
+        let name = if detected {
+            let doubt = if ran.chosen.doubtful { "?" } else { "" };
+            format!("{} [{}{doubt}]", r.input.name(), ran.chosen.dialect)
+        } else {
+            r.input.name()
         };
         let w = ran.summary.warning_total();
         warnings += w;
@@ -264,9 +300,9 @@ fn text_report(out: &mut impl Write, results: &[Checked]) -> std::io::Result<()>
                 ended += 1;
                 writeln!(
                     out,
-                    "{name}: ended by {}, {:.1} s{warn_text}",
+                    "{name}: ended by {}, {}{warn_text}",
                     code.as_str(),
-                    ran.planned.total_s
+                    render::duration(ran.planned.total_s)
                 )?;
             }
             Outcome::Stopped => writeln!(out, "{name}: stopped{warn_text}")?,
@@ -318,6 +354,7 @@ fn summary_json(s: &Summary, planned: &CycleTime, diameter: bool) -> Value {
         "rapid_mm": s.rapid_mm,
         "cut_mm": s.cut_mm,
         "extents": s.extents.map(|(lo, hi)| json!({"min": pos_json(s, &lo), "max": pos_json(s, &hi)})),
+        "work_extents": s.work_extents().map(|(lo, hi)| json!({"min": pos_json(s, &lo), "max": pos_json(s, &hi)})),
         "tools": s.tools,
         "holes": holes,
         "spindle_rpm": s.spindle_rpm.map(|(lo, hi)| json!([lo, hi])),
@@ -332,7 +369,7 @@ fn summary_json(s: &Summary, planned: &CycleTime, diameter: bool) -> Value {
 }
 
 /// The JSON report: one document (docs/cli.md).
-fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
+fn json_report(args: &CheckArgs, choice: &Choice, results: &[Checked]) -> Value {
     let files: Vec<Value> = results
         .iter()
         .map(|r| {
@@ -351,6 +388,10 @@ fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
                         Outcome::Alarm(_) => ("alarm", None),
                         Outcome::Stopped => ("stopped", None),
                     };
+                    obj.insert("dialect".into(), json!(ran.chosen.dialect));
+                    obj.insert("dialect_evidence".into(), json!(ran.chosen.evidence));
+                    obj.insert("dialect_confidence".into(), json!(ran.chosen.confidence));
+                    obj.insert("machine".into(), json!(ran.chosen.machine));
                     obj.insert("result".into(), json!(result));
                     obj.insert("end".into(), json!(end));
                     obj.insert("alarm".into(), json!(r.alarm().map(diagnostic_json)));
@@ -368,10 +409,18 @@ fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
         })
         .collect();
     let count = |f: &dyn Fn(&Checked) -> bool| results.iter().filter(|r| f(r)).count();
+    let dialect = match &args.opts.dialect {
+        Some(d) if choice.is_forced() => d.to_ascii_lowercase(),
+        _ => crate::choose::AUTO.to_string(),
+    };
+    let machine = match choice.machine_name() {
+        Some(m) => m.to_string(),
+        None => crate::choose::AUTO.to_string(),
+    };
     json!({
         "version": 1,
-        "dialect": s.dialect.name,
-        "machine": s.machine.name,
+        "dialect": dialect,
+        "machine": machine,
         "deny_warnings": args.deny_warnings,
         "files": files,
         "totals": {
@@ -420,11 +469,21 @@ fn sarif_result(d: &Diagnostic, main: &str) -> Value {
 fn sarif_report(results: &[Checked]) -> Value {
     let mut used: Vec<Code> = Vec::new();
     let mut out = Vec::new();
+    let mut artifacts = Vec::new();
     for r in results {
         let name = r.input.name();
         let Ok(ran) = &r.run else {
             continue;
         };
+        artifacts.push(json!({
+            "location": { "uri": uri(&name) },
+            "properties": {
+                "dialect": ran.chosen.dialect,
+                "dialectEvidence": ran.chosen.evidence,
+                "dialectConfidence": ran.chosen.confidence,
+                "dialectText": ran.chosen.text,
+            },
+        }));
         for d in ran.summary.warnings.iter().chain(r.alarm()) {
             used.push(d.code);
             out.push(sarif_result(d, &name));
@@ -454,6 +513,7 @@ fn sarif_report(results: &[Checked]) -> Value {
                     "rules": rules,
                 }
             },
+            "artifacts": artifacts,
             "results": out,
         }],
     })

@@ -60,6 +60,9 @@ pub struct CheckArgs {
     /// Programs checked at once (default: one per core).
     #[arg(long)]
     pub jobs: Option<usize>,
+    /// Lengths in the summary (distances, extents): mm or in.
+    #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
+    pub units: UnitsArg,
 }
 
 /// `vcnc run`.
@@ -84,10 +87,10 @@ pub struct RunArgs {
     pub profile: Option<ProfileArg>,
 }
 
-/// `vcnc time FILE…`.
+/// `vcnc time PATH…`.
 #[derive(Debug, Args)]
 pub struct TimeArgs {
-    /// The programs (`-`: standard input).
+    /// Programs, or directories searched recursively as `check` does; `-` reads a program from standard input.
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// Program and machine options.
@@ -99,6 +102,27 @@ pub struct TimeArgs {
     /// Speed profile (default: the machine file's).
     #[arg(long, value_enum)]
     pub profile: Option<ProfileArg>,
+    /// Lengths in the text report: mm or in.
+    #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
+    pub units: UnitsArg,
+}
+
+/// The length unit of a report people read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum UnitsArg {
+    /// Millimetres.
+    Mm,
+    /// Inches.
+    In,
+}
+
+impl From<UnitsArg> for vcnc_core::display::DisplayUnits {
+    fn from(u: UnitsArg) -> Self {
+        match u {
+            UnitsArg::Mm => vcnc_core::display::DisplayUnits::Mm,
+            UnitsArg::In => vcnc_core::display::DisplayUnits::In,
+        }
+    }
 }
 
 /// Output formats of `vcnc time`.
@@ -135,8 +159,8 @@ impl From<ProfileArg> for vcnc_planner::ProfileShape {
 /// Options every subcommand takes.
 #[derive(Debug, Clone, Args)]
 pub struct Options {
-    /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); default: syntec, or linuxcnc when every program named is a .ngc file.
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
+    /// Dialect: auto (the default: chosen per file from its own evidence, and said), syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); any case.
+    #[arg(long, ignore_case = true, value_parser = dialect_names())]
     pub dialect: Option<String>,
     /// Machine file (TOML); default: the built-in mill (X Y Z A B C, no travel limits), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.
     #[arg(long)]
@@ -156,6 +180,12 @@ pub struct Options {
     /// Keep the macro variables a controller keeps across power-off (Fanuc #500-#999; Syntec #401-#999, @656-@1999) in FILE: read before the run when it exists, written after it. One program at a time.
     #[arg(long, value_name = "FILE")]
     pub variables: Option<PathBuf>,
+}
+
+/// `auto` and every dialect name, matched in any case.
+fn dialect_names() -> clap::builder::PossibleValuesParser {
+    let names = std::iter::once(crate::choose::AUTO).chain(Dialect::NAMES.iter().copied());
+    clap::builder::PossibleValuesParser::new(names)
 }
 
 /// Output formats of `vcnc run`.

@@ -22,7 +22,12 @@ pub fn run(args: &ExplainArgs) -> Result<ExitCode, String> {
         format!("{text:?} is not a code or an address: write a G or M code (G87, G59.1, M98) or a letter (X, F, D)")
     })?;
     let dialects: Vec<Dialect> = match &args.dialect {
-        Some(name) => vec![crate::dialect_by_name(name)?],
+        Some(name) => vec![Dialect::by_name(&name.to_ascii_lowercase()).ok_or_else(|| {
+            format!(
+                "unknown dialect {name:?}: use one of {}",
+                Dialect::NAMES.join(", ")
+            )
+        })?],
         None => Dialect::NAMES
             .iter()
             .filter_map(|n| Dialect::by_name(n))

@@ -48,6 +48,32 @@ impl Input {
         }
     }
 
+    /// The program's first `limit` bytes (all of standard input's, within
+    /// the limit), for dialect detection.
+    pub fn head(&self, limit: usize) -> Result<Vec<u8>, String> {
+        match self {
+            Input::File(p) => {
+                let file =
+                    File::open(p).map_err(|e| format!("cannot open {}: {e}", p.display()))?;
+                let mut head = Vec::new();
+                file.take(u64::try_from(limit).unwrap_or(u64::MAX))
+                    .read_to_end(&mut head)
+                    .map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+                Ok(head)
+            }
+            Input::Stdin(text) => Ok(text.get(..limit.min(text.len())).unwrap_or(text).to_vec()),
+        }
+    }
+
+    /// The file's name, for the extension rule of detection (none for
+    /// standard input).
+    pub fn file_name(&self) -> Option<&str> {
+        match self {
+            Input::File(p) => p.file_name().and_then(|n| n.to_str()),
+            Input::Stdin(_) => None,
+        }
+    }
+
     /// Where its called programs are, unless `--program-dir` says.
     pub fn dir(&self) -> PathBuf {
         match self {
@@ -81,6 +107,27 @@ impl Input {
         buf.truncate(end);
         Some(buf)
     }
+}
+
+/// The programs the command line names: files, directories walked
+/// ([`programs_under`]), `-` for standard input. Also whether it named one
+/// file (not a directory), which `check` reports in detail.
+pub fn inputs(paths: &[PathBuf]) -> Result<(Vec<Input>, bool), String> {
+    let mut inputs = Vec::new();
+    let mut single_file = paths.len() == 1;
+    for path in paths {
+        if path.as_os_str() == "-" {
+            inputs.push(Input::from_arg(path)?);
+            continue;
+        }
+        let found = programs_under(path)?;
+        if found.is_empty() {
+            return Err(format!("no programs found under {}", path.display()));
+        }
+        single_file &= !path.is_dir();
+        inputs.extend(found.into_iter().map(Input::File));
+    }
+    Ok((inputs, single_file))
 }
 
 /// Program files under `root` (itself when it is a file): the usual

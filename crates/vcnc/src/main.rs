@@ -7,6 +7,7 @@
 //! invalid machine file).
 
 mod check;
+mod choose;
 mod cli;
 mod explain;
 mod files;
@@ -22,7 +23,7 @@ use cli::{Cli, Command, Format, Options, RunArgs};
 use files::Input;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Outcome, Sink};
+use vcnc_interp::{Event, Interpreter, Outcome, Sink};
 use vcnc_output::{CsvSink, GcodeSink, JsonlSink, Summary};
 
 fn main() -> ExitCode {
@@ -56,54 +57,7 @@ pub(crate) fn reported(r: std::io::Result<()>) -> Result<(), String> {
     }
 }
 
-/// The dialect named `name` (any case), or a usage error naming them all.
-pub(crate) fn dialect_by_name(name: &str) -> Result<Dialect, String> {
-    Dialect::by_name(&name.to_ascii_lowercase()).ok_or_else(|| {
-        format!(
-            "unknown dialect {name:?}: use one of {}",
-            Dialect::NAMES.join(", ")
-        )
-    })
-}
-
-/// The machine and dialect the options ask for.
-pub(crate) struct Setup {
-    pub machine: Machine,
-    pub dialect: Dialect,
-    pub options: vcnc_interp::Options,
-}
-
-/// The options' machine and dialect for the programs at `paths`. Without
-/// `--dialect`: syntec, or linuxcnc when every path is a `.ngc` file
-/// (LinuxCNC's own extension, which no Syntec or Fanuc program carries).
-pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, String> {
-    let ngc = |p: &&std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ngc"));
-    let name = match &c.dialect {
-        Some(name) => name.as_str(),
-        None if !paths.is_empty() && paths.iter().all(ngc) => "linuxcnc",
-        None => "syntec",
-    };
-    let dialect = dialect_by_name(name)?;
-    let machine = match &c.machine {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-            Machine::from_toml(&text)
-                .map_err(|e| format!("machine file {}: {e}", path.display()))?
-        }
-        None => dialect.machine(),
-    };
-    let options = vcnc_interp::Options {
-        block_delete: c.block_delete,
-        optional_stop: c.optional_stop,
-        keep_going: c.keep_going,
-    };
-    Ok(Setup {
-        machine,
-        dialect,
-        options,
-    })
-}
+pub(crate) use choose::Setup;
 
 /// Runs the program `input` into `sink`. Returns how the run ended and
 /// whether it ended in diameter programming.
@@ -116,7 +70,7 @@ pub(crate) fn execute<S: Sink>(
     let main = input.open()?;
     let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
-    let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
+    let mut interp = Interpreter::new(s.machine, s.dialect, s.options);
     if let Some(path) = &c.variables {
         let kept = variables::read(path)?;
         interp
@@ -131,11 +85,18 @@ pub(crate) fn execute<S: Sink>(
 }
 
 fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
-    let s = setup(&args.opts, &[args.file.as_path()])?;
+    let choice = choose::Choice::new(&args.opts)?;
     // Opened before any output is written, so that a missing file is a
     // usage error with nothing on stdout.
     let input = Input::from_arg(&args.file)?;
     drop(input.open()?);
+    let s = choice.setup(&input)?;
+    if s.doubtful() {
+        eprintln!(
+            "note: dialect {}; give --dialect to be sure",
+            s.dialect_text()
+        );
+    }
     // The sink formats and writes on the second core (`offload`); the
     // JSON-lines sink buffers itself, the others go through a BufWriter.
     let machine = &s.machine;
@@ -210,7 +171,7 @@ fn stream<S: Sink + Send + 'static>(
 ) -> Result<Streamed, String> {
     let mut tap = Tap {
         inner: offload::Offload::start(make),
-        warnings: Summary::new(&s.machine),
+        warnings: Summary::new(s.machine),
     };
     let ran = execute(&args.opts, s, input, &mut tap);
     // The sink is taken back also when the run failed (the variables file

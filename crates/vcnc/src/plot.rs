@@ -442,11 +442,12 @@ fn settings(args: &PlotArgs, machine: &Machine, lathe: bool) -> Result<Settings,
 pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     let started = Instant::now();
     let c = &args.opts;
-    let s = crate::setup(c, &[args.file.as_path()])?;
-    let set = settings(args, &s.machine, s.dialect.diameter.axis.is_some())?;
+    let choice = crate::choose::Choice::new(c)?;
     // An unreadable program is a usage error before anything is written.
     let input = Input::from_arg(&args.file)?;
     drop(input.open()?);
+    let s = choice.setup(&input)?;
+    let set = settings(args, s.machine, s.dialect.diameter.axis.is_some())?;
     // Created before the run, so that an output that cannot be written is
     // known before a long program has run.
     let file = std::fs::File::create(&set.output)
@@ -561,9 +562,9 @@ fn compare_name(args: &PlotArgs) -> &str {
 fn run_compare(other: &Path, s: &Setup, options: PlotOptions) -> Result<Plot, String> {
     let main = files::open_program(other)?;
     let mut store = files::DirStore::new(files::parent_dir(other));
-    let mut sink = PlotSink::new(&s.machine, options);
+    let mut sink = PlotSink::new(s.machine, options);
     let outcome =
-        Interpreter::new(&s.machine, &s.dialect, s.options).run(main, &mut store, &mut sink);
+        Interpreter::new(s.machine, s.dialect, s.options).run(main, &mut store, &mut sink);
     if let Outcome::Alarm(d) = &outcome {
         eprintln!(
             "warning: the compared program {} alarms ({} at line {}); it is shown up to there",

@@ -4,7 +4,8 @@
 use crate::files::Input;
 use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
 use std::io::{self, Write};
-use vcnc_interp::{Dialect, Machine, Outcome, Pos};
+use vcnc_core::display::DisplayUnits;
+use vcnc_interp::{Outcome, Pos};
 use vcnc_output::Summary;
 use vcnc_planner::CycleTime;
 use vcnc_syntax::Diagnostic;
@@ -107,21 +108,19 @@ fn io_is_terminal() -> bool {
 
 pub use vcnc_core::display::duration;
 
-/// The summary block of `vcnc check` for one program.
+/// The summary block of `vcnc check` for one program: lengths in `units`,
+/// a diameter axis shown as a diameter.
 pub fn summary(
     out: &mut impl Write,
     name: &str,
-    dialect: &Dialect,
-    machine: &Machine,
+    setup: &crate::Setup,
     (s, planned): (&Summary, &CycleTime),
     outcome: &Outcome,
-    diameter_axis: Option<u8>,
+    (diameter_axis, units): (Option<u8>, DisplayUnits),
 ) -> io::Result<()> {
-    writeln!(
-        out,
-        "program    {name} ({} dialect, {})",
-        dialect.name, machine.name
-    )?;
+    let machine = setup.machine;
+    writeln!(out, "program    {name} ({})", machine.name)?;
+    writeln!(out, "dialect    {}", setup.dialect_text())?;
     match outcome {
         Outcome::Ended(vcnc_interp::EndCode::M99) => writeln!(
             out,
@@ -162,26 +161,34 @@ pub fn summary(
         "dist/feed  {} (distance/feed estimate, no acceleration)",
         duration(s.cycle_time_s)
     )?;
-    writeln!(out, "rapid      {:.3} mm", s.rapid_mm)?;
-    writeln!(out, "cutting    {:.3} mm", s.cut_mm)?;
+    let unit = units.name();
+    writeln!(out, "rapid      {} {unit}", units.len(s.rapid_mm))?;
+    writeln!(out, "cutting    {} {unit}", units.len(s.cut_mm))?;
+    let centre = if s.contour_extents.is_some() {
+        ", tool centre"
+    } else {
+        ""
+    };
     match s.extents {
         Some(ext) => writeln!(
             out,
-            "extents    {} (machine mm{})",
-            extents_text(s, ext, diameter_axis),
-            if s.contour_extents.is_some() {
-                ", tool centre"
-            } else {
-                ""
-            }
+            "extents    {} (machine {unit}{centre})",
+            extents_in(s, ext, diameter_axis, units)
         )?,
         None => writeln!(out, "extents    no motion")?,
+    }
+    if let Some(ext) = s.work_extents() {
+        writeln!(
+            out,
+            "work       {} (work coordinates, {unit}{centre})",
+            extents_in(s, ext, diameter_axis, units)
+        )?;
     }
     if let Some(ext) = s.contour_extents {
         writeln!(
             out,
             "contour    {} (programmed, where cutter compensation ran)",
-            extents_text(s, ext, diameter_axis)
+            extents_in(s, ext, diameter_axis, units)
         )?;
     }
     let tools: Vec<String> = s.tools.iter().map(|t| format!("T{t}")).collect();
@@ -254,23 +261,42 @@ fn unset_text(s: &Summary) -> String {
     format!("{} read but never set: {}", parts.len(), parts.join(", "))
 }
 
-/// `X lo .. hi   Y lo .. hi …` (a diameter axis shown as a diameter).
-pub fn extents_text(s: &Summary, (lo, hi): (Pos, Pos), diameter_axis: Option<u8>) -> String {
+/// The extents of `ext`, one axis after the other, in `units` (rotary
+/// axes stay in degrees; a diameter axis shown as diameters).
+pub fn extents_in(
+    s: &Summary,
+    (lo, hi): (Pos, Pos),
+    diameter_axis: Option<u8>,
+    units: DisplayUnits,
+) -> String {
     let parts: Vec<String> = s
         .axis_letters()
         .iter()
         .enumerate()
         .filter(|(i, _)| s.reports_axis(*i))
         .map(|(i, l)| {
+            let linear = matches!(l, b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W');
+            let show = |mm: f64| {
+                if linear {
+                    units.len(mm)
+                } else {
+                    format!("{mm:.3}")
+                }
+            };
             if diameter_axis == Some(*l) {
                 format!(
-                    "{} diameter {:.3} .. {:.3}",
+                    "{} diameter {} .. {}",
                     char::from(*l),
-                    2.0 * lo.get(i),
-                    2.0 * hi.get(i)
+                    show(2.0 * lo.get(i)),
+                    show(2.0 * hi.get(i))
                 )
             } else {
-                format!("{} {:.3} .. {:.3}", char::from(*l), lo.get(i), hi.get(i))
+                format!(
+                    "{} {} .. {}",
+                    char::from(*l),
+                    show(lo.get(i)),
+                    show(hi.get(i))
+                )
             }
         })
         .collect();

@@ -1,13 +1,16 @@
-//! `vcnc time FILE…`: the cycle time of each program planned on the machine
-//! model (`vcnc_planner`) and its split — cutting, rapid, dwell, tool
-//! changes, spindle, settling into position, per tool and per program file
-//! — as text or JSON lines; and the planned time that `vcnc check` prints
-//! beside the distance/feed estimate.
+//! `vcnc time PATH…`: the cycle time of each program (directories walked as
+//! `check` walks them) planned on the machine model (`vcnc_planner`) and
+//! its split — cutting, rapid, dwell, tool changes, spindle, settling into
+//! position, per tool and per program file — as text or JSON lines; and
+//! the planned time that `vcnc check` prints beside the distance/feed
+//! estimate, in the same format (`vcnc_core::display::duration`).
 
+use crate::choose::{Choice, Setup};
 use crate::cli::{TimeArgs, TimeFormat};
-use crate::files::Input;
+use crate::files;
 use std::io::Write;
 use std::process::ExitCode;
+use vcnc_core::display::{DisplayUnits, duration};
 use vcnc_interp::{Event, Machine, Outcome, Sink};
 use vcnc_output::Summary;
 use vcnc_planner::{CycleTime, Planner, ProfileShape};
@@ -36,30 +39,43 @@ pub fn planner(machine: &Machine, profile: Option<ProfileShape>) -> Planner<Cycl
     Planner::with_profile(machine, shape, CycleTime::new())
 }
 
-/// `vcnc time`.
+/// `vcnc time`: each program (directories walked as `check` walks them)
+/// on its own dialect and machine.
 pub fn time(a: &TimeArgs) -> Result<ExitCode, String> {
     let mut worst = ExitCode::SUCCESS;
     let mut out = std::io::stdout().lock();
-    let paths: Vec<&std::path::Path> = a.files.iter().map(std::path::PathBuf::as_path).collect();
-    let s = crate::setup(&a.opts, &paths)?;
-    for file in &a.files {
-        let input = Input::from_arg(file)?;
+    let choice = Choice::new(&a.opts)?;
+    let (inputs, _) = files::inputs(&a.files)?;
+    for (n, input) in inputs.iter().enumerate() {
+        let s = choice.setup(input)?;
         let profile = a
             .profile
             .map(ProfileShape::from)
             .unwrap_or(s.machine.motion.profile);
-        let mut summary = Summary::new(&s.machine);
-        let mut plan = planner(&s.machine, Some(profile));
-        let (outcome, _) = crate::execute(&a.opts, &s, &input, &mut Tee(&mut summary, &mut plan))?;
+        let mut summary = Summary::new(s.machine);
+        let mut plan = planner(s.machine, Some(profile));
+        let (outcome, _) = crate::execute(&a.opts, &s, input, &mut Tee(&mut summary, &mut plan))?;
         let t = plan.into_timeline();
         if let Outcome::Alarm(d) = &outcome {
-            eprint!("{}", crate::render::diagnostic(d, &input));
+            eprint!("{}", crate::render::diagnostic(d, input));
             worst = ExitCode::from(1);
         }
         let name = input.name();
         let r = match a.format {
-            TimeFormat::Text => text(&mut out, &name, &s.machine, profile, &t, &summary, &outcome),
-            TimeFormat::Json => json(&mut out, &name, profile, &t, &summary, &outcome),
+            TimeFormat::Text => {
+                let gap = if n > 0 { "\n" } else { "" };
+                write!(out, "{gap}").and_then(|()| {
+                    let report = Report {
+                        name: &name,
+                        setup: &s,
+                        profile,
+                        t: &t,
+                        summary: &summary,
+                    };
+                    text(&mut out, &report, &outcome, a.units.into())
+                })
+            }
+            TimeFormat::Json => json(&mut out, &name, &s, profile, &t, &summary, &outcome),
         };
         match r {
             Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(worst),
@@ -77,60 +93,71 @@ fn result_text(o: &Outcome) -> String {
     }
 }
 
+/// What one program's text report shows.
+struct Report<'a> {
+    name: &'a str,
+    setup: &'a Setup<'a>,
+    profile: ProfileShape,
+    t: &'a CycleTime,
+    summary: &'a Summary,
+}
+
+/// The text report: the planned time first and the distance/feed estimate
+/// second, in `check`'s format, then the split.
 fn text(
     out: &mut impl Write,
-    name: &str,
-    machine: &Machine,
-    profile: ProfileShape,
-    t: &CycleTime,
-    s: &Summary,
+    r: &Report<'_>,
     outcome: &Outcome,
+    units: DisplayUnits,
 ) -> std::io::Result<()> {
+    let (t, s) = (r.t, r.summary);
     writeln!(
         out,
         "program     {} ({}, {} profile)",
-        name,
-        machine.name,
-        profile.as_str()
+        r.name,
+        r.setup.machine.name,
+        r.profile.as_str()
     )?;
+    writeln!(out, "dialect     {}", r.setup.dialect_text())?;
     writeln!(out, "result      {}", result_text(outcome))?;
-    writeln!(out, "total       {}", clock(t.total_s))?;
+    writeln!(out, "cycle time  {} (planned)", duration(t.total_s))?;
     writeln!(
         out,
-        "cutting     {} over {:.3} mm",
-        clock(t.cutting_s),
-        t.cutting_mm
+        "dist/feed   {} (distance/feed estimate, no acceleration)",
+        duration(s.cycle_time_s)
+    )?;
+    let unit = units.name();
+    writeln!(
+        out,
+        "cutting     {} over {} {unit}",
+        duration(t.cutting_s),
+        units.len(t.cutting_mm)
     )?;
     writeln!(
         out,
-        "rapid       {} over {:.3} mm",
-        clock(t.rapid_s),
-        t.rapid_mm
+        "rapid       {} over {} {unit}",
+        duration(t.rapid_s),
+        units.len(t.rapid_mm)
     )?;
-    writeln!(out, "dwell       {}", clock(t.dwell_s))?;
-    writeln!(out, "tool change {}", clock(t.tool_change_s))?;
-    writeln!(out, "spindle     {}", clock(t.spindle_s))?;
-    writeln!(out, "in position {}", clock(t.in_position_s))?;
+    writeln!(out, "dwell       {}", duration(t.dwell_s))?;
+    writeln!(out, "tool change {}", duration(t.tool_change_s))?;
+    writeln!(out, "spindle     {}", duration(t.spindle_s))?;
+    writeln!(out, "in position {}", duration(t.in_position_s))?;
     let tools: Vec<String> = t
         .per_tool
         .iter()
         .map(|(tool, sec)| match tool {
-            Some(n) => format!("T{n} {}", clock(*sec)),
-            None => format!("no tool {}", clock(*sec)),
+            Some(n) => format!("T{n} {}", duration(*sec)),
+            None => format!("no tool {}", duration(*sec)),
         })
         .collect();
     writeln!(out, "per tool    {}", tools.join(", "))?;
     let files: Vec<String> = t
         .per_file
         .iter()
-        .map(|(f, sec)| format!("{} {}", f.as_deref().unwrap_or("main"), clock(*sec)))
+        .map(|(f, sec)| format!("{} {}", f.as_deref().unwrap_or("main"), duration(*sec)))
         .collect();
     writeln!(out, "per file    {}", files.join(", "))?;
-    writeln!(
-        out,
-        "dist/feed   {} (no acceleration)",
-        clock(s.cycle_time_s)
-    )?;
     if t.untimed_moves > 0 {
         writeln!(
             out,
@@ -144,6 +171,7 @@ fn text(
 fn json(
     out: &mut impl Write,
     name: &str,
+    setup: &Setup,
     profile: ProfileShape,
     t: &CycleTime,
     s: &Summary,
@@ -171,9 +199,16 @@ fn json(
         Outcome::Alarm(d) => ("alarm".to_string(), Some(d.code.as_str())),
     };
     let alarm = alarm.map_or(String::new(), |a| format!(",\"alarm\":{}", json_str(a)));
+    let evidence: Vec<String> = setup.evidence().iter().map(|e| json_str(e)).collect();
+    let dialect = format!(
+        ",\"dialect\":{},\"dialect_evidence\":[{}],\"dialect_confidence\":\"{}\"",
+        json_str(setup.dialect.name),
+        evidence.join(","),
+        setup.confidence()
+    );
     writeln!(
         out,
-        "{{\"file\":{},\"result\":{}{alarm},\"profile\":\"{}\",\"total_s\":{},\"cutting_s\":{},\
+        "{{\"file\":{}{dialect},\"result\":{}{alarm},\"profile\":\"{}\",\"total_s\":{},\"cutting_s\":{},\
          \"rapid_s\":{},\"dwell_s\":{},\"tool_change_s\":{},\"spindle_s\":{},\
          \"in_position_s\":{},\"cutting_mm\":{},\"rapid_mm\":{},\"distance_feed_s\":{},\
          \"untimed_moves\":{},\"per_tool\":[{}],\"per_file\":[{}]}}",
@@ -219,31 +254,4 @@ fn json_str(s: &str) -> String {
     }
     out.push('"');
     out
-}
-
-/// `12.345 s` below a minute, `1:02:03.4 (3723.4 s)` above.
-pub fn clock(seconds: f64) -> String {
-    if seconds < 60.0 {
-        return format!("{seconds:.3} s");
-    }
-    // Tenths of a finite, positive time below 2^53, rounded as the
-    // figure in parentheses is (119.96 s is 2:00.0, never 1:59.9).
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let all = (seconds * 10.0).round().min(9.0e15) as u64;
-    let (h, m, s, tenths) = (all / 36_000, all / 600 % 60, all / 10 % 60, all % 10);
-    if h > 0 {
-        format!("{h}:{m:02}:{s:02}.{tenths} ({seconds:.1} s)")
-    } else {
-        format!("{m}:{s:02}.{tenths} ({seconds:.1} s)")
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn clock_rounds_like_its_seconds() {
-        assert_eq!(super::clock(119.96), "2:00.0 (120.0 s)");
-        assert_eq!(super::clock(3725.26), "1:02:05.3 (3725.3 s)");
-        assert_eq!(super::clock(12.3456), "12.346 s");
-    }
 }

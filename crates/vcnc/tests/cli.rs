@@ -106,6 +106,10 @@ impl Drop for TempDir {
 /// (7.854) = 54.854, in all 349.540 mm. The planned cycle time is the
 /// planner's figure (its closed forms are tested in
 /// `vcnc_planner/tests/analytic.rs`); it must stay above distance/feed.
+/// The dialect is detected: G71 is Syntec's metric code (Fanuc's is G21)
+/// and the header names the Syntec 900M. The work extents leave out the
+/// power-on position the machine extents start from (X0 Y0 Z0 here, inside
+/// the part's box, so they are the same).
 #[test]
 fn check_bracket_prints_the_summary() {
     let o = vcnc(&["check", "examples/bracket.nc"]);
@@ -113,13 +117,15 @@ fn check_bracket_prints_the_summary() {
     assert_eq!(
         stdout(&o),
         "\
-program    examples/bracket.nc (syntec dialect, generic mill)
+program    examples/bracket.nc (generic mill)
+dialect    syntec (auto: G71, \"…subprogram, Syntec 900M style)\" header)
 result     ended by M30
 cycle time 41.7s (planned: filter profile, look-ahead 200 blocks)
 dist/feed  33.7s (distance/feed estimate, no acceleration)
 rapid      167.928 mm
 cutting    349.540 mm
 extents    X -10.000 .. 60.000   Y -10.000 .. 40.000   Z -2.000 .. 50.000 (machine mm)
+work       X -10.000 .. 60.000   Y -10.000 .. 40.000   Z -2.000 .. 50.000 (work coordinates, mm)
 tools      T1
 spindle    2400 rpm
 travel     not checked: the machine has no travel limits (give --machine FILE)
@@ -128,14 +134,32 @@ travel     not checked: the machine has no travel limits (give --machine FILE)
     assert_eq!(stderr(&o), "");
 }
 
+/// The same summary in inches: 167.928 mm / 25.4 = 6.6113 in, 349.540 mm
+/// = 13.7614 in, X -10 .. 60 mm = -0.3937 .. 2.3622 in.
+#[test]
+fn check_units_in_shows_lengths_in_inches() {
+    let o = vcnc(&["check", "examples/bracket.nc", "--units", "in"]);
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("\nrapid      6.6113 in\n"), "{out}");
+    assert!(out.contains("\ncutting    13.7614 in\n"), "{out}");
+    assert!(
+        out.contains("\nextents    X -0.3937 .. 2.3622   Y -0.3937 .. 1.5748   Z -0.0787 .. 1.9685 (machine in)\n"),
+        "{out}"
+    );
+}
+
 #[test]
 fn check_names_the_dialect() {
-    let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "fanuc"]);
+    // Names in any case.
+    let o = vcnc(&["check", "examples/bracket.nc", "--dialect", "FaNuC"]);
     // G71 is Syntec's metric code; Fanuc does not know it.
     assert_eq!(code(&o), 1);
     let out = stdout(&o);
     assert!(
-        out.starts_with("program    examples/bracket.nc (fanuc dialect, generic mill)\n"),
+        out.starts_with(
+            "program    examples/bracket.nc (generic mill)\ndialect    fanuc (--dialect)\n"
+        ),
         "{out}"
     );
     assert!(
@@ -417,16 +441,30 @@ fn check_runs_every_program_of_a_directory_with_one_line_each() {
     let text = stdout(&o);
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), 5, "{text}");
+    // Each program with the dialect detected for it: `X1.` is the Fanuc
+    // posts' style, `.ngc` LinuxCNC's extension, and a program with
+    // neither (all its lengths with points) grbl's, the commonest.
     assert!(
-        lines[0].starts_with("./bad.nc: alarm E303 at line 2, column 1: "),
+        lines[0].starts_with("./bad.nc [fanuc]: alarm E303 at line 2, column 1: "),
         "{text}"
     );
-    assert!(lines[1].starts_with("./good.nc: ended by M30, "), "{text}");
-    assert!(lines[2].starts_with("./sub/O1234: ended by M30"), "{text}");
     assert!(
-        lines[3].starts_with("./warns.ngc: ended by M30, ") && lines[3].ends_with(", 1 warning"),
+        lines[1].starts_with("./good.nc [fanuc]: ended by M30, "),
         "{text}"
     );
+    assert!(
+        lines[2].starts_with("./sub/O1234 [grbl]: ended by M30"),
+        "{text}"
+    );
+    assert!(
+        lines[3].starts_with("./warns.ngc [linuxcnc]: ended by M30, ")
+            && lines[3].ends_with(", 1 warning"),
+        "{text}"
+    );
+    // Under --dialect, no tags.
+    let o = vcnc_in(dir.path(), &["check", ".", "--dialect", "fanuc"]);
+    let text = stdout(&o);
+    assert!(text.starts_with("./bad.nc: alarm E303"), "{text}");
     assert_eq!(
         lines[4],
         "4 programs: 3 ran to the end, 1 stopped by an alarm, 1 with warnings (1 in all)"
@@ -457,10 +495,27 @@ fn check_json_is_one_document_per_run() {
         ),
         (&json!("E303"), &json!(2), &json!(1))
     );
+    // Each file says its dialect and why; the run says it chose.
+    assert_eq!(doc["dialect"], "auto");
+    assert_eq!(bad["dialect"], "fanuc");
+    assert_eq!(bad["dialect_confidence"], "high");
+    assert_eq!(bad["machine"], "generic mill");
+    let ngc = &files[3];
+    assert_eq!(ngc["dialect"], "linuxcnc");
+    assert!(
+        ngc["dialect_evidence"]
+            .as_array()
+            .unwrap()
+            .contains(&json!(".ngc file")),
+        "{ngc}"
+    );
     let warns = &files[3];
     assert_eq!(warns["warning_count"], 1);
     assert_eq!(warns["warnings"][0]["code"], "W104");
     assert_eq!(warns["summary"]["extents"]["max"]["x"], 2.0);
+    // Work extents leave the power-on position (X0) out: X1 to X2.
+    assert_eq!(warns["summary"]["work_extents"]["min"]["x"], 1.0);
+    assert_eq!(warns["summary"]["work_extents"]["max"]["x"], 2.0);
     assert!(
         warns["summary"]["extents"]["max"].get("a").is_none(),
         "rotary axes that never moved are left out"
@@ -496,6 +551,21 @@ fn check_sarif_has_what_ci_annotations_need() {
         assert!(loc["artifactLocation"]["uri"].as_str().is_some());
         assert!(loc["region"]["startLine"].as_u64().unwrap() >= 1);
     }
+    // Each checked file is an artifact with its dialect and the evidence.
+    let artifacts = run["artifacts"].as_array().unwrap();
+    assert_eq!(artifacts.len(), 4);
+    let ngc = artifacts
+        .iter()
+        .find(|a| a["location"]["uri"] == "./warns.ngc")
+        .unwrap();
+    assert_eq!(ngc["properties"]["dialect"], "linuxcnc");
+    assert_eq!(ngc["properties"]["dialectConfidence"], "high");
+    assert!(
+        ngc["properties"]["dialectEvidence"]
+            .as_array()
+            .unwrap()
+            .contains(&json!(".ngc file"))
+    );
     let alarm = results.iter().find(|r| r["ruleId"] == "E303").unwrap();
     assert_eq!(alarm["level"], "error");
     assert_eq!(
@@ -527,8 +597,10 @@ fn check_reads_a_program_from_stdin() {
         .unwrap();
     let o = child.wait_with_output().unwrap();
     assert_eq!(code(&o), 1);
+    // Detected from the text alone (no file name): `X1.` is the Fanuc
+    // posts' style.
     assert!(
-        stdout(&o).starts_with("program    <stdin> (syntec dialect"),
+        stdout(&o).starts_with("program    <stdin> (generic mill)\ndialect    fanuc (auto: "),
         "{}",
         stdout(&o)
     );
@@ -736,7 +808,7 @@ fn unknown_dialect_is_a_usage_error() {
     assert_usage_error(&o, "invalid value 'heidenhain' for '--dialect");
     assert!(
         stderr(&o).contains(
-            "[possible values: syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe, linuxcnc, linuxcnc-lathe]"
+            "[possible values: auto, syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe, linuxcnc, linuxcnc-lathe]"
         ),
         "{}",
         stderr(&o)
@@ -820,7 +892,7 @@ fn a_valid_machine_file_is_used() {
     assert_eq!(code(&o), 1, "{}", stdout(&o));
     let out = stdout(&o);
     assert!(
-        out.starts_with("program    examples/bracket.nc (syntec dialect, small mill)\n"),
+        out.starts_with("program    examples/bracket.nc (small mill)\ndialect    syntec (auto"),
         "{out}"
     );
     // N90 G01 X50. is on the limit; N100's arc to X60. leaves it.
@@ -963,12 +1035,22 @@ fn check_reports_lathe_diameters() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{stdout}");
     assert!(
-        stdout.contains("(lathe dialect, generic 2-axis lathe)"),
+        stdout.contains("(generic 2-axis lathe)\ndialect    lathe (--dialect)\n"),
         "{stdout}"
     );
     // Power-on at diameter 200; the program goes down to diameter 40.
     assert!(stdout.contains("X diameter 40.000 .. 200.000"), "{stdout}");
     assert!(stdout.contains("Z -20.000 .. 250.000"), "{stdout}");
+    // Where the tool went, without the power-on position: diameters 40 to
+    // 60, Z -20 to 90 — the built-in lathe's G00 moves each axis at its own
+    // (equal) rapid rate, so X's 80 mm of radius (100 to 20) end when Z has
+    // gone 160 mm of its 245, at Z 90, and Z goes on alone to 5.
+    assert!(
+        stdout.contains(
+            "\nwork       X diameter 40.000 .. 60.000   Z -20.000 .. 90.000 (work coordinates, mm)\n"
+        ),
+        "{stdout}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -1080,8 +1162,9 @@ fn check_is_quiet_when_its_reader_goes_away() {
 }
 
 /// Without `--dialect`, a `.ngc` program (LinuxCNC's extension) is read as
-/// LinuxCNC: `G20`, integers in whole units, `;` comments; any other
-/// extension, or a mix, as Syntec; `--dialect` always wins.
+/// LinuxCNC: `G20`, integers in whole units, `;` comments; the same text
+/// in a `.nc` file is read by its text alone (grbl, which reads it the
+/// same); `--dialect` always wins.
 #[test]
 fn a_ngc_program_defaults_to_the_linuxcnc_dialect() {
     let dir = TempDir::new("ngc");
@@ -1093,10 +1176,22 @@ fn a_ngc_program_defaults_to_the_linuxcnc_dialect() {
     assert_eq!(code(&o), 0, "{}", stderr(&o));
     assert_eq!(jsonl(&o)[0]["to"]["x"], json!(5.0));
     let o = vcnc(&["check", ngc]);
-    assert!(stdout(&o).contains("(linuxcnc dialect"), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("\ndialect    linuxcnc (auto: .ngc file, "),
+        "{}",
+        stdout(&o)
+    );
+    let o = vcnc(&["check", nc]);
+    assert_eq!(code(&o), 0);
+    assert!(
+        stdout(&o).contains("\ndialect    grbl (auto: whole-unit integers (X5), \"; comments\", no lathe sign; linuxcnc read it alike)\n"),
+        "{}",
+        stdout(&o)
+    );
+    // Each file of a directory by itself: both run.
+    assert_eq!(code(&vcnc(&["check", ngc, nc])), 0);
     // Syntec: G21 is no code of its (G70/G71 units).
-    assert_eq!(code(&vcnc(&["check", nc])), 1);
-    assert_eq!(code(&vcnc(&["check", ngc, nc])), 1);
+    assert_eq!(code(&vcnc(&["check", nc, "--dialect", "syntec"])), 1);
     let o = vcnc(&["check", ngc, "--dialect", "fanuc"]);
     assert_eq!(
         code(&o),

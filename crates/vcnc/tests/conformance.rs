@@ -1,9 +1,15 @@
 //! The conformance snapshot: every main program of `corpus/` (real public
 //! part programs, see `corpus/README.md`) run through `vcnc check` with the
-//! dialect its manifest names, one line per program and a count per
-//! dialect. The snapshot (`tests/snapshots/conformance__corpus.snap`)
-//! changes whenever a change moves the numbers, so review shows it (the
-//! model is oxc's coverage snapshots).
+//! dialect its manifest names, and again with none (`--dialect auto`), one
+//! line per program and a count per dialect. The snapshot
+//! (`tests/snapshots/conformance__corpus.snap`) changes whenever a change
+//! moves the numbers, so review shows it (the model is oxc's coverage
+//! snapshots).
+//!
+//! Detection must agree with the manifest — the same dialect, or one whose
+//! event stream for the program is the same (alarms compared by code, line
+//! and column: their messages name the dialect) — for at least 95 % of the
+//! programs, and run at least as many of them to the end.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
@@ -18,10 +24,15 @@ fn corpus() -> PathBuf {
         .expect("corpus folder")
 }
 
-/// How one program ended, as `vcnc check` reports it.
-fn result_of(dir: &Path, path: &str, dialect: &str) -> String {
+/// How one program ended, as `vcnc check` reports it, under `dialect`
+/// (`None`: detected).
+fn result_of(dir: &Path, path: &str, dialect: Option<&str>) -> String {
+    let mut args = vec!["check", path];
+    if let Some(d) = dialect {
+        args.extend(["--dialect", d]);
+    }
     let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(["check", "--dialect", dialect, path])
+        .args(&args)
         .current_dir(dir)
         .env("NO_COLOR", "1")
         .output()
@@ -59,6 +70,44 @@ fn result_of(dir: &Path, path: &str, dialect: &str) -> String {
     }
 }
 
+/// The dialect `vcnc check` detected for a program (its `dialect` line).
+fn detected(dir: &Path, path: &str) -> String {
+    let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["check", "--format", "json", path])
+        .current_dir(dir)
+        .output()
+        .expect("vcnc runs");
+    let doc: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or(serde_json::Value::Null);
+    doc["files"][0]["dialect"]
+        .as_str()
+        .unwrap_or("(none)")
+        .to_string()
+}
+
+/// The program's events under `dialect`, alarms and warnings reduced to
+/// code, line and column.
+fn events(dir: &Path, path: &str, dialect: &str) -> Vec<String> {
+    let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(["run", "--format", "jsonl", "--dialect", dialect, path])
+        .current_dir(dir)
+        .output()
+        .expect("vcnc runs");
+    String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| match serde_json::from_str::<serde_json::Value>(l) {
+            Ok(mut v) if v["type"] == "alarm" || v["type"] == "warning" => {
+                if let Some(obj) = v.as_object_mut() {
+                    obj.remove("message");
+                    obj.remove("help");
+                }
+                v.to_string()
+            }
+            _ => l.to_string(),
+        })
+        .collect()
+}
+
 #[test]
 fn corpus_conformance() {
     let dir = corpus();
@@ -68,18 +117,33 @@ fn corpus_conformance() {
     let mut lines = Vec::new();
     // dialect → (programs, ran to the end)
     let mut counts: BTreeMap<String, (u32, u32)> = BTreeMap::new();
+    // Detection: ran to the end, the manifest's dialect, one that runs
+    // the program identically.
+    let (mut auto_ended, mut same, mut alike) = (0, 0, 0);
     for p in programs {
         if p.get("role").and_then(|r| r.as_str()) == Some("subprogram") {
             continue;
         }
         let path = p["path"].as_str().unwrap();
         let dialect = p["dialect"].as_str().unwrap();
-        let result = result_of(&dir, path, dialect);
+        let result = result_of(&dir, path, Some(dialect));
         let ended = result.starts_with("ended");
         let c = counts.entry(dialect.to_string()).or_default();
         c.0 += 1;
         c.1 += u32::from(ended);
-        lines.push(format!("{path} [{dialect}]: {result}"));
+        let auto = detected(&dir, path);
+        let auto_result = result_of(&dir, path, None);
+        auto_ended += u32::from(auto_result.starts_with("ended"));
+        let detection = if auto == dialect {
+            same += 1;
+            format!("auto {auto}")
+        } else if events(&dir, path, &auto) == events(&dir, path, dialect) {
+            alike += 1;
+            format!("auto {auto}, the same events")
+        } else {
+            format!("auto {auto}: {auto_result}")
+        };
+        lines.push(format!("{path} [{dialect}]: {result} | {detection}"));
     }
     let (total, ended) = counts
         .values()
@@ -88,6 +152,19 @@ fn corpus_conformance() {
     for (d, (t, e)) in &counts {
         text.push_str(&format!("  {d}: {e} of {t}\n"));
     }
+    text.push_str(&format!(
+        "with --dialect auto: {auto_ended} of {total} run to the end; the dialect agrees for {} ({same} the manifest's, {alike} one that runs the program identically)\n",
+        same + alike
+    ));
+    assert!(
+        auto_ended >= ended,
+        "detection runs fewer programs to the end: {auto_ended} < {ended}"
+    );
+    assert!(
+        f64::from(same + alike) >= 0.95 * f64::from(total),
+        "detection agrees with the manifest for {} of {total}",
+        same + alike
+    );
     text.push('\n');
     text.push_str(&lines.join("\n"));
     text.push('\n');

@@ -71,9 +71,16 @@ fn alarm_scale_factor_zero() {
     ));
 }
 
+/// Under Syntec, G21 is no code: the hint names the dialects that know it
+/// and how each reads an integer. (Without `--dialect` the program runs:
+/// detection reads G21 as a Fanuc-family program's.)
 #[test]
 fn alarm_unknown_code_names_the_dialect_that_has_it() {
-    insta::assert_snapshot!(vcnc_on("g21", "G21 G00 X1.\nM30\n", &["check"]));
+    insta::assert_snapshot!(vcnc_on(
+        "g21",
+        "G21 G00 X1.\nM30\n",
+        &["check", "--dialect", "syntec"]
+    ));
 }
 
 #[test]
@@ -96,11 +103,22 @@ fn check_summary_of_a_lathe_program() {
 
 #[test]
 fn warnings_are_rendered_and_counted() {
-    // A point-less length among pointed ones, a cut with the spindle
-    // stopped, an unknown M code and no program end.
+    // A point-less length among pointed ones (under Syntec's least
+    // increments: detection would read it in whole units), a cut with the
+    // spindle stopped, an unknown M code and no program end.
     insta::assert_snapshot!(vcnc_on(
         "warn",
         "G90 G00 X10. Y10.\nG01 X20 F500.\nM31\n",
-        &["check"]
+        &["check", "--dialect", "syntec"]
     ));
+}
+
+/// The trap: a grbl program (no decimal points) forced through
+/// Fanuc is a 0.020 mm half circle; W109 says so and names the readings
+/// in whole units. Without `--dialect` it is read as grbl, 20 mm.
+#[test]
+fn whole_units_under_least_increments_warn() {
+    let program = "G21 G90\nM3 S1000\nG0 X0 Y0\nG2 X20 Y0 I10 J0 F100\nM30\n";
+    insta::assert_snapshot!(vcnc_on("trap", program, &["check", "--dialect", "fanuc"]));
+    insta::assert_snapshot!(vcnc_on("trap", program, &["check"]));
 }

@@ -195,3 +195,61 @@ fn a_trace_period_too_short_for_the_filter_is_refused() {
     assert_eq!((last[1], last[2], last[3]), (10.0, 0.0, 0.0));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `time DIR` walks the directory as `check` does, each program on the
+/// dialect detected for it, and the text report puts the planned time
+/// first and the distance/feed estimate second, in `check`'s format.
+#[test]
+fn time_takes_a_directory_and_reads_like_check() {
+    let o = vcnc(&["time", "examples/fanuc-lathe"]);
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let reports: Vec<&str> = text.split("\n\n").collect();
+    assert_eq!(reports.len(), 12, "{text}");
+    for r in &reports {
+        let lines: Vec<&str> = r.lines().collect();
+        assert!(
+            lines[0].starts_with("program     examples/fanuc-lathe/"),
+            "{r}"
+        );
+        assert!(
+            lines[1].starts_with("dialect     fanuc-lathe (auto: "),
+            "{r}"
+        );
+        assert!(lines[3].starts_with("cycle time  "), "{r}");
+        assert!(lines[4].starts_with("dist/feed   "), "{r}");
+    }
+    // The same figures as `check` prints for the first program.
+    let o = vcnc(&["check", "examples/fanuc-lathe/01_od_rough_finish.nc"]);
+    let check = String::from_utf8(o.stdout).unwrap();
+    let planned = |t: &str, label: &str| {
+        t.lines()
+            .find_map(|l| l.strip_prefix(label))
+            .map(|v| v.trim().split(' ').next().unwrap().to_string())
+            .unwrap()
+    };
+    assert_eq!(
+        planned(reports[0], "cycle time"),
+        planned(&check, "cycle time")
+    );
+    assert_eq!(
+        planned(reports[0], "dist/feed"),
+        planned(&check, "dist/feed")
+    );
+}
+
+/// `--units in`: distances in inches, 4 decimals (349.540 mm of cutting
+/// in the bracket is 13.7614 in); JSON stays in mm and says the dialect.
+#[test]
+fn time_shows_inches_and_json_says_the_dialect() {
+    let o = vcnc(&["time", "examples/bracket.nc", "--units", "in"]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains(" over 13.7614 in\n"), "{text}");
+    let o = vcnc(&["time", "examples/bracket.nc", "--format", "json"]);
+    let v: Value = serde_json::from_str(String::from_utf8(o.stdout).unwrap().trim()).unwrap();
+    assert_eq!(v["dialect"], "syntec");
+    assert_eq!(v["dialect_confidence"], "high");
+    assert_eq!(v["dialect_evidence"][0], "G71");
+    // 239.832 + 2 × 54.854 (see cli.rs's bracket summary), to the µm.
+    assert!((f(&v, "cutting_mm") - 349.540).abs() < 1e-3, "{v}");
+}

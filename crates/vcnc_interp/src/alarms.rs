@@ -61,15 +61,10 @@ pub fn feed_steps_out_of_range(span: Span, pct: i32) -> Diagnostic {
     )
 }
 
-/// E201: unknown G code.
+/// E201: unknown G code; `help` names the dialects that know it and how
+/// each reads an integer (`crate::detect::g_hint`).
 #[cold]
-pub fn unknown_g(span: Span, value: f64, dialect: &str, elsewhere: Option<&str>) -> Diagnostic {
-    let help = match elsewhere {
-        Some(other) => {
-            format!("G{value} exists in the {other} dialect: run with --dialect {other}")
-        }
-        None => "check the code against the controller's G-code list".to_string(),
-    };
+pub fn unknown_g(span: Span, value: f64, dialect: &str, help: String) -> Diagnostic {
     let mut diag = d(
         Code::E201,
         span,
@@ -1019,6 +1014,41 @@ pub fn no_program_end(span: Span) -> Diagnostic {
         "the program ends without M02 or M30".to_string(),
         "end the program with M30 (or M02); a controller would otherwise wait at the last block",
     )
+}
+
+/// W109: no length of the program has a decimal point, and read in least
+/// increments its longest length and its moves are under 1 mm: it was
+/// probably written in whole units. Located at its first such word
+/// (`first`, W101's diagnostic of it); `longest` is the longest one's
+/// letter, value and length as read (mm), `whole` the dialects of the
+/// program's kind that read it in whole units.
+#[cold]
+pub fn whole_units_likely(
+    first: &Diagnostic,
+    (letter_of, value, read_mm): (u8, f64, f64),
+    whole: &[&str],
+) -> Diagnostic {
+    let word = format!("{}{value}", letter(letter_of));
+    let dialects = whole
+        .iter()
+        .map(|n| format!("--dialect {n}"))
+        .collect::<Vec<_>>()
+        .join(" or ");
+    let mut w = d(
+        Code::W109,
+        first.span,
+        format!(
+            "no length in this program has a decimal point: read in least input increments the longest, {word}, is {read_mm:.4} mm and the whole program moves within a millimetre, so it was probably written in whole units"
+        ),
+        &format!(
+            "if {word} means {value} mm (or inches under G20), run it with {dialects}, or set parameters.decimal_input = \"calculator\" in the machine file"
+        ),
+    );
+    w.line = first.line;
+    w.column = first.column;
+    w.line_offset = first.line_offset;
+    w.file = first.file.clone();
+    w
 }
 
 /// W107: M99 in the main program repeats it for ever on a machine.

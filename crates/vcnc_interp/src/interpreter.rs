@@ -794,6 +794,9 @@ impl<'a> Interpreter<'a> {
         if let Some(e) = self.unset_report() {
             self.stage.pending.push(e);
         }
+        if let Some(w) = self.whole_units_report() {
+            self.stage.pending.push(w);
+        }
         for e in self.stage.pending.drain(..) {
             sink.event(&e);
         }

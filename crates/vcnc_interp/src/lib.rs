@@ -22,6 +22,7 @@
 pub mod alarms;
 mod block;
 mod codes;
+pub mod detect;
 pub mod dialect;
 pub mod explain;
 mod flow;

@@ -1,4 +1,4 @@
-//! One test per warning code (W101–W107, `docs/alarms.md`): the code, its
+//! One test per warning code (W101–W107, W109, `docs/alarms.md`): the code, its
 //! line and column, that the run goes on, and where a warning must stay
 //! silent. Columns are counted by hand from the program text.
 
@@ -151,4 +151,84 @@ fn a_block_that_alarms_drops_its_warnings() {
     let (ev, out) = run("G00 X1.\nG02 X10. Y0 I-3. J-1. F20000.\nM30\n");
     assert!(matches!(out, Outcome::Alarm(_)));
     assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+}
+
+/// The trap: a grbl program (no decimal points, whole millimetres)
+/// under fanuc draws a half circle from X0 to X20 read as 0.020 mm. The
+/// end points lie within 0.020 mm: W109 at X20 (line 3, column 5), before
+/// `end`, naming the whole-unit readings.
+#[test]
+fn w109_no_points_and_a_part_under_a_millimetre() {
+    let program = "S1000 M03\nG00 X0 Y0\nG02 X20 Y0 I10 J0 F100\nM30\n";
+    let (ev, out) = run_in(&Machine::default_mill(), Dialect::fanuc(), program);
+    assert!(matches!(out, Outcome::Ended(EndCode::M30)));
+    assert_eq!(places(&ev), vec![(Code::W109, 3, 5)]);
+    let w = warnings(&ev)[0];
+    // The longest length is X20 (I10 is half of it), read as 0.020 mm.
+    assert!(
+        w.message.contains("the longest, X20, is 0.0200 mm"),
+        "{}",
+        w.message
+    );
+    for reading in [
+        "--dialect grbl",
+        "--dialect linuxcnc",
+        "decimal_input = \"calculator\"",
+    ] {
+        assert!(w.help.contains(reading), "{}", w.help);
+    }
+    let n = ev.len();
+    assert!(matches!(ev[n - 2], Event::Warning(_)) && matches!(ev[n - 1], Event::End { .. }));
+    // The same at the end of the file (no M30): W106 and W109.
+    let (ev, _) = run_in(
+        &Machine::default_mill(),
+        Dialect::fanuc(),
+        "S1000 M03\nG00 X0 Y0\nG01 X20 F100\n",
+    );
+    assert_eq!(places(&ev), vec![(Code::W106, 3, 1), (Code::W109, 3, 5)]);
+}
+
+#[test]
+fn w109_stays_silent_where_the_reading_is_whole_units_or_the_part_is_large() {
+    let program = "S1000 M03\nG00 X0 Y0\nG02 X20 Y0 I10 J0 F100\nM30\n";
+    // Whole units: grbl, and Fanuc with calculator-type input.
+    let (ev, _) = run_in(&Machine::default_mill(), Dialect::grbl(), program);
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+    let mut calculator = Machine::default_mill();
+    calculator.params.decimal_input = vcnc_interp::machine::DecimalInput::Calculator;
+    let (ev, _) = run_in(&calculator, Dialect::fanuc(), program);
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+    // Tape format whose part spans 20 mm (X20000 is 20 mm).
+    let (ev, _) = run_in(
+        &Machine::default_mill(),
+        Dialect::fanuc(),
+        "S1000 M03\nG00 X0 Y0\nG01 X20000 F100\nM30\n",
+    );
+    assert!(places(&ev).is_empty(), "{:?}", places(&ev));
+    // A point anywhere: W101's business, not W109's.
+    let (ev, _) = run_in(
+        &Machine::default_mill(),
+        Dialect::fanuc(),
+        "S1000 M03\nG00 X0 Y0\nG01 X20 F100\nY1.\nM30\n",
+    );
+    assert_eq!(places(&ev), vec![(Code::W101, 3, 5)]);
+}
+
+/// On a lathe the power-on position (far from the part) is left out, and
+/// the help names the lathes that read whole units.
+#[test]
+fn w109_on_a_lathe_leaves_the_power_on_position_out() {
+    let (ev, _) = run_in(
+        &Machine::from_toml(vcnc_interp::machine::DEFAULT_FANUC_LATHE_TOML).unwrap(),
+        Dialect::fanuc_lathe(),
+        "G21 G18\nM03 S1200\nG0 X21 Z92\nG1 X16 Z92 F280\nG1 X26 Z86\nM30\n",
+    );
+    assert_eq!(places(&ev), vec![(Code::W109, 3, 4)]);
+    let w = warnings(&ev)[0];
+    assert!(
+        w.help
+            .contains("--dialect lathe or --dialect linuxcnc-lathe"),
+        "{}",
+        w.help
+    );
 }

@@ -1,6 +1,14 @@
 //! The numbers `vcnc check` prints: cycle time, rapid and cutting distance,
 //! extents, tools, holes per tool, operator waits and spindle speeds.
 //!
+//! Extents are kept twice: in machine coordinates, and in work
+//! coordinates — each move seen from the frame in force (`frame` events:
+//! `machine = linear · work + origin + tool_offset`), so that a part
+//! programmed from 0 to 50 on a G54 of X-300 reads 0 .. 50 there. Moves are
+//! boxed in machine coordinates while one frame lasts, and that box is
+//! carried into the work box when the frame changes (exactly under a plain
+//! offset; under a rotation, the box of its rotated corners).
+//!
 //! Cycle time here is kinematic-free: a rapid takes as long as its slowest
 //! axis at that axis's rapid rate, a cut takes its path length over the feed
 //! (capped by the axes' maximum feed; per-revolution feeds and threads use
@@ -52,6 +60,13 @@ pub struct Summary {
     /// The same for the programmed path of the blocks cutter compensation
     /// offset (`contour` events; `None` without compensation).
     pub contour_extents: Option<(Pos, Pos)>,
+    /// Work-coordinate extents of the frames that ended (see
+    /// [`Summary::work_extents`]).
+    work_done: Option<(Pos, Pos)>,
+    /// Machine box of the moves made in the frame in force.
+    in_frame: Option<(Pos, Pos)>,
+    /// The frame in force.
+    frame: vcnc_core::FrameInfo,
     /// Tools changed to, in order of first use.
     pub tools: Vec<u32>,
     /// Slowest and fastest spindle speed commanded, rpm.
@@ -96,6 +111,13 @@ impl Summary {
             cut_mm: 0.0,
             extents: None,
             contour_extents: None,
+            work_done: None,
+            in_frame: None,
+            frame: vcnc_core::FrameInfo {
+                origin: Pos::default(),
+                linear: None,
+                tool_offset: Pos::default(),
+            },
             tools: Vec::new(),
             spindle_rpm: None,
             untimed_moves: 0,
@@ -131,7 +153,27 @@ impl Summary {
                 .is_some_and(|(lo, hi)| lo.get(i) != 0.0 || hi.get(i) != 0.0)
     }
 
+    /// Smallest and largest work coordinate per axis: where the moves'
+    /// end points and arcs went, seen from the frame each ran in (`None`
+    /// if no motion). The power-on position is not in it.
+    pub fn work_extents(&self) -> Option<(Pos, Pos)> {
+        let now = self
+            .in_frame
+            .map(|b| work_box(&self.frame, &self.letters, b));
+        union(self.work_done, now)
+    }
+
+    /// A new frame: the moves of the last one go into the work box.
+    fn frame_changed(&mut self, frame: &vcnc_core::FrameInfo) {
+        if let Some(b) = self.in_frame.take() {
+            let done = work_box(&self.frame, &self.letters, b);
+            self.work_done = union(self.work_done, Some(done));
+        }
+        self.frame = *frame;
+    }
+
     fn extend(&mut self, lo: Pos, hi: Pos) {
+        self.in_frame = union(self.in_frame, Some((lo, hi)));
         let (mut a, mut b) = self.extents.unwrap_or((lo, hi));
         // Every slot: the unused ones stay 0 on both sides.
         for i in 0..vcnc_core::MAX_AXES {
@@ -146,7 +188,8 @@ impl Summary {
     }
 
     /// A straight move to `to`: the box of a segment is the box of its ends,
-    /// and its start is already inside the extents (but for the first move).
+    /// and its start is already inside the extents (but for the first move,
+    /// whose start — the power-on position — the machine box keeps).
     fn line_box(&mut self, to: &Pos) {
         if self.extents.is_none() {
             self.extents = Some((self.pos, self.pos));
@@ -353,6 +396,7 @@ impl Sink for Summary {
                 }
                 self.contour_extents = Some((a, b));
             }
+            Event::Frame { frame, .. } => self.frame_changed(frame),
             Event::Dwell { seconds, .. } => self.cycle_time_s += seconds,
             Event::ToolChange { tool, .. } => {
                 self.tool = Some(*tool);
@@ -393,6 +437,87 @@ impl Sink for Summary {
             _ => {}
         }
     }
+}
+
+/// The smallest box holding both.
+fn union(a: Option<(Pos, Pos)>, b: Option<(Pos, Pos)>) -> Option<(Pos, Pos)> {
+    match (a, b) {
+        (None, x) | (x, None) => x,
+        (Some((mut lo, mut hi)), Some((l, h))) => {
+            for i in 0..vcnc_core::MAX_AXES {
+                lo.0[i] = lo.0[i].min(l.0[i]);
+                hi.0[i] = hi.0[i].max(h.0[i]);
+            }
+            Some((lo, hi))
+        }
+    }
+}
+
+/// A machine box in work coordinates under `frame`: the offset taken
+/// away, and under a rotation, scaling or mirror the box of the eight
+/// corners taken back through the inverse of its linear part.
+fn work_box(frame: &vcnc_core::FrameInfo, letters: &[u8], (lo, hi): (Pos, Pos)) -> (Pos, Pos) {
+    let shift = frame.origin.plus(frame.tool_offset);
+    let (lo, hi) = (lo.minus(shift), hi.minus(shift));
+    let Some(inverse) = frame.linear.as_ref().and_then(invert3) else {
+        return (lo, hi);
+    };
+    let xyz: Vec<Option<usize>> = [b'X', b'Y', b'Z']
+        .iter()
+        .map(|l| letters.iter().position(|x| x == l))
+        .collect();
+    let (mut out_lo, mut out_hi) = (lo, hi);
+    for i in xyz.iter().flatten() {
+        out_lo.set(*i, f64::INFINITY);
+        out_hi.set(*i, f64::NEG_INFINITY);
+    }
+    for corner in 0..8u8 {
+        let mut v = [0.0f64; 3];
+        for (k, i) in xyz.iter().enumerate() {
+            if let (Some(i), Some(slot)) = (i, v.get_mut(k)) {
+                *slot = if corner & (1 << k) == 0 {
+                    lo.get(*i)
+                } else {
+                    hi.get(*i)
+                };
+            }
+        }
+        for (row, i) in inverse.iter().zip(&xyz) {
+            if let Some(i) = i {
+                let w = row[0] * v[0] + row[1] * v[1] + row[2] * v[2];
+                out_lo.set(*i, out_lo.get(*i).min(w));
+                out_hi.set(*i, out_hi.get(*i).max(w));
+            }
+        }
+    }
+    (out_lo, out_hi)
+}
+
+/// The inverse of a 3 × 3 matrix (`None` when singular).
+fn invert3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let [[a, b, c], [d, e, f], [g, h, i]] = *m;
+    let det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+    if det.abs() < 1e-12 || !det.is_finite() {
+        return None;
+    }
+    let r = 1.0 / det;
+    Some([
+        [
+            (e * i - f * h) * r,
+            (c * h - b * i) * r,
+            (b * f - c * e) * r,
+        ],
+        [
+            (f * g - d * i) * r,
+            (a * i - c * g) * r,
+            (c * d - a * f) * r,
+        ],
+        [
+            (d * h - e * g) * r,
+            (b * g - a * h) * r,
+            (a * e - b * d) * r,
+        ],
+    ])
 }
 
 #[cfg(test)]
@@ -441,6 +566,83 @@ mod tests {
             }
         }
         assert!(skipped > 10_000 && kept > 10_000, "{skipped} {kept}");
+    }
+
+    fn feed_to(s: &mut Summary, x: f64, y: f64, z: f64) {
+        let mut to = Pos::default();
+        to.set(0, x);
+        to.set(1, y);
+        to.set(2, z);
+        s.event(&Event::Feed {
+            loc: Loc::default(),
+            to,
+            feed: Feed::PerMin(1000.0),
+            exact_stop: false,
+        });
+    }
+
+    fn frame(origin: [f64; 3], linear: Option<[[f64; 3]; 3]>, tool_z: f64) -> Event {
+        let mut o = Pos::default();
+        for (i, v) in origin.iter().enumerate() {
+            o.set(i, *v);
+        }
+        let mut tool = Pos::default();
+        tool.set(2, tool_z);
+        Event::Frame {
+            loc: Loc::default(),
+            frame: vcnc_core::FrameInfo {
+                origin: o,
+                linear,
+                tool_offset: tool,
+            },
+        }
+    }
+
+    /// Work extents under a work offset and a tool length: machine minus
+    /// origin minus tool offset, by hand: (110, 60, 15) - (100, 50, 0) -
+    /// (0, 0, 10) = (10, 10, 5), (130, 60, 5) → (30, 10, -5). The power-on
+    /// position (machine 0, 0, 0) is in the machine extents only.
+    #[test]
+    fn work_extents_take_the_frame_away() {
+        let m = Machine::default_mill();
+        let mut s = Summary::new(&m);
+        s.event(&frame([100.0, 50.0, 0.0], None, 10.0));
+        feed_to(&mut s, 110.0, 60.0, 15.0);
+        feed_to(&mut s, 130.0, 60.0, 5.0);
+        let (lo, hi) = s.work_extents().unwrap();
+        assert_eq!((lo.get(0), lo.get(1), lo.get(2)), (10.0, 10.0, -5.0));
+        assert_eq!((hi.get(0), hi.get(1), hi.get(2)), (30.0, 10.0, 5.0));
+        let (lo, _) = s.extents.unwrap();
+        assert_eq!(lo.get(0), 0.0);
+        // Back to the zero frame: the moves after it count as they are, the
+        // ones before keep their work coordinates.
+        s.event(&frame([0.0; 3], None, 0.0));
+        feed_to(&mut s, 40.0, 0.0, 0.0);
+        let (lo, hi) = s.work_extents().unwrap();
+        assert_eq!((lo.get(1), hi.get(0)), (0.0, 40.0));
+    }
+
+    /// Under G68 R90 (machine = R·work + origin, R turning X onto Y), the
+    /// machine point (0, 10) is the work point (10, 0); a box is taken back
+    /// through R's inverse corner by corner.
+    #[test]
+    fn work_extents_undo_a_rotation() {
+        let m = Machine::default_mill();
+        let mut s = Summary::new(&m);
+        let r90 = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        s.event(&frame([0.0; 3], Some(r90), 0.0));
+        feed_to(&mut s, 0.0, 10.0, 0.0);
+        feed_to(&mut s, -5.0, 10.0, 0.0);
+        let (lo, hi) = s.work_extents().unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert!(
+            close(lo.get(0), 10.0) && close(hi.get(0), 10.0),
+            "{lo:?} {hi:?}"
+        );
+        assert!(
+            close(lo.get(1), 0.0) && close(hi.get(1), 5.0),
+            "{lo:?} {hi:?}"
+        );
     }
 
     /// Regression: a cut was capped by the slowest maximum feed of all axes

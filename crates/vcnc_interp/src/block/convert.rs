@@ -115,6 +115,14 @@ impl Interpreter<'_> {
     /// [`note_points`](Self::note_points) past its common case.
     #[inline(never)]
     fn note_points_by_letter(&mut self, w: &Words<'_>) {
+        // W109: where the program has been since its first length without
+        // a point (the block before this one ended here), and before it
+        // once the tool has left its power-on position.
+        if !self.points.seen_point
+            && (self.points.first_plain.is_some() || self.state.pos != self.cfg.machine.start)
+        {
+            self.points.reached(self.state.prog);
+        }
         let extra = self.length_letters(w);
         let mask = self.cfg.axis_mask | extra;
         let plain = w.plain_values() & mask;
@@ -201,7 +209,19 @@ impl Interpreter<'_> {
                     self.emit(|_| crate::events::Event::Warning(d));
                 }
             }
-        } else if self.points.warned < PointStyle::MAX_WARNINGS {
+        } else if !self.points.seen_point {
+            // W109: the longest length written without a point, as read.
+            let read_mm = (if unit == " in" {
+                shown * MM_PER_INCH
+            } else {
+                shown
+            })
+            .abs();
+            if unit != "°" && self.points.longest.is_none_or(|(_, _, mm)| read_mm > mm) {
+                self.points.longest = Some((word.addr.0, word.value, read_mm));
+            }
+        }
+        if !word.point && self.points.warned < PointStyle::MAX_WARNINGS {
             // Built only when it is kept: in a program without points
             // every length word comes here, and the constructor formats.
             let d =
@@ -218,6 +238,43 @@ impl Interpreter<'_> {
                 self.points.first_plain = Some(d);
             }
         }
+    }
+
+    /// W109 at the program's end: no length had a decimal point, and read
+    /// in least increments the longest it wrote and the span of the linear
+    /// axes' program positions at the ends of its blocks (the power-on
+    /// position left out) are both under 1 mm — whole units, most likely.
+    pub(crate) fn whole_units_report(&mut self) -> Option<crate::events::Event> {
+        let p = &self.points;
+        if !p.active || p.seen_point {
+            return None;
+        }
+        let (first, longest) = (p.first_plain.as_ref()?, p.longest?);
+        if longest.2 >= 1.0 {
+            return None;
+        }
+        // Where the last block ended counts too.
+        let (lo, hi) = PointStyle::grown(p.reach, self.state.prog);
+        let span_mm = self
+            .cfg
+            .axis_words
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| !a.rotary)
+            .map(|(i, _)| hi.get(i) - lo.get(i))
+            .fold(0.0f64, f64::max);
+        if span_mm >= 1.0 {
+            return None;
+        }
+        let lathe = self.cfg.dialect.diameter.axis.is_some();
+        let whole: Vec<&str> = crate::detect::dialects()
+            .iter()
+            .filter(|d| d.integers == IntegerWords::WholeUnits)
+            .filter(|d| d.diameter.axis.is_some() == lathe)
+            .map(|d| d.name)
+            .collect();
+        let w = alarms::whole_units_likely(first, longest, &whole);
+        Some(crate::events::Event::Warning(w))
     }
 
     /// Target of the block's axis words in program coordinates, absolute

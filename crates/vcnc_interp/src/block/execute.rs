@@ -777,6 +777,9 @@ impl Interpreter<'_> {
         if let Some(e) = self.unset_report() {
             self.emit(|_| e);
         }
+        if let Some(w) = self.whole_units_report() {
+            self.emit(|_| w);
+        }
         self.emit(|loc| Event::End { loc, code });
         Ok(Step::End(code))
     }

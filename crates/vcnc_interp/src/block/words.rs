@@ -209,7 +209,7 @@ impl<'b> Words<'b> {
                         word.span,
                         word.value,
                         dialect.name,
-                        dialect.g_elsewhere(word.value),
+                        crate::detect::g_hint(dialect, word.value),
                     ),
                 })?;
         let at = At {

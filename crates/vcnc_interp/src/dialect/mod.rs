@@ -726,38 +726,6 @@ impl Dialect {
             .iter()
             .find(|a| (u32::from(a.first)..=u32::from(a.last)).contains(&code))
     }
-
-    /// Another dialect that knows G `value`, for a hint.
-    ///
-    /// A lathe program is pointed at lathe dialects only (a Fanuc lathe
-    /// program's G18 under the seed lathe must not be sent to a mill), a
-    /// mill program at mill dialects first; both at a dialect that reads
-    /// `;` as this one does first (the grbl/LinuxCNC family, where it
-    /// starts a comment, or the Fanuc/Syntec family, where it ends the
-    /// block), and a lathe program only there: a Fanuc lathe's G43 is not
-    /// LinuxCNC's.
-    pub fn g_elsewhere(&self, value: f64) -> Option<&'static str> {
-        let lathe = |d: &Dialect| d.diameter.axis.is_some();
-        let family = |d: &Dialect| d.lex.semicolon == self.lex.semicolon;
-        // Only a dialect that runs the code: one that lists it as not run
-        // would send the program on to the same alarm.
-        let has = |d: &Dialect| d.g(value).is_some();
-        let others: Vec<(&'static str, Dialect)> = Dialect::NAMES
-            .iter()
-            .copied()
-            .filter(|n| *n != self.name)
-            .filter_map(|n| Dialect::by_name(n).map(|d| (n, d)))
-            .filter(|(_, d)| has(d))
-            .collect();
-        let near =
-            |f: &dyn Fn(&Dialect) -> bool| others.iter().find(|(_, d)| f(d)).map(|(n, _)| *n);
-        if lathe(self) {
-            return near(&|d| lathe(d) && family(d));
-        }
-        near(&|d| !lathe(d) && family(d))
-            .or_else(|| near(&|d| !lathe(d)))
-            .or_else(|| others.first().map(|(n, _)| *n))
-    }
 }
 
 #[cfg(test)]
@@ -778,7 +746,6 @@ mod tests {
         );
         assert_eq!(s.g(59.15), None);
         assert_eq!(s.g(-1.0), None);
-        assert_eq!(s.g_elsewhere(20.0), Some("fanuc"));
     }
 
     #[test]
@@ -810,9 +777,6 @@ mod tests {
             Some(GOp::Move(MoveOp::MachineCoords))
         );
         assert_eq!(l.g(16.0), None);
-        // A lathe program is not sent to a mill dialect; a mill's is.
-        assert_eq!(l.g_elsewhere(16.0), None);
-        assert_eq!(s.g_elsewhere(21.0), Some("fanuc"));
         assert!(l.unsupported_reason(7.0).is_some());
     }
 
@@ -838,10 +802,7 @@ mod tests {
         );
         assert_eq!(f.g(32.0).map(|d| d.op), Some(GOp::Motion(MotionOp::Thread)));
         assert_eq!(f.m(6.0), None);
-        // The seed lathe's G18 now points at the Fanuc lathe, not a mill;
-        // a Fanuc lathe's G17 (live tooling) is listed as not run.
-        assert_eq!(Dialect::lathe().g_elsewhere(18.0), Some("fanuc-lathe"));
+        // A Fanuc lathe's G17 (live tooling) is listed as not run.
         assert!(f.unsupported_reason(17.0).is_some());
-        assert_eq!(f.g_elsewhere(43.0), None);
     }
 }
