@@ -200,18 +200,9 @@ impl<'b> Words<'b> {
         dialect: &Dialect,
         same_group: SameGroup,
     ) -> Result<(), Diagnostic> {
-        let def =
-            dialect
-                .g(word.value)
-                .ok_or_else(|| match dialect.unsupported_reason(word.value) {
-                    Some(why) => alarms::unsupported_g(word.span, why),
-                    None => alarms::unknown_g(
-                        word.span,
-                        word.value,
-                        dialect.name,
-                        crate::detect::g_hint(dialect, word.value),
-                    ),
-                })?;
+        let Some(def) = dialect.g(word.value) else {
+            return Err(unknown_g(word, dialect));
+        };
         let at = At {
             def,
             span: word.span,
@@ -449,5 +440,22 @@ fn whole_m(v: f64) -> i64 {
         n
     } else {
         -1
+    }
+}
+
+/// E201 (or the dialect's reason for a code it lists and does not run),
+/// with the hint naming the dialects that know the code; out of line, so
+/// that the hot path of a block's G codes stays small.
+#[cold]
+#[inline(never)]
+fn unknown_g(word: &Word, dialect: &Dialect) -> Diagnostic {
+    match dialect.unsupported_reason(word.value) {
+        Some(why) => alarms::unsupported_g(word.span, why),
+        None => alarms::unknown_g(
+            word.span,
+            word.value,
+            dialect.name,
+            crate::detect::g_hint(dialect, word.value),
+        ),
     }
 }
