@@ -279,7 +279,7 @@ fn run_gcode_flattens_cutter_compensation_and_transforms() {
     let dir = TempDir::new("flatten-comp");
     dir.write(
         "comp.nc",
-        "G21 G17 G90 G00 X0 Y-20. Z5.\nS1000 M03\nG68 X0 Y0 R30.\nG41 D1 G01 X0 Y0 F500.\nX40.\nG03 X40. Y20. R10.\nG01 X-5.\nG40 Y-20.\nG69\nM30\n",
+        "G10 L12 P1 R5.\nG21 G17 G90 G00 X0 Y-20. Z5.\nS1000 M03\nG68 X0 Y0 R30.\nG41 D1 G01 X0 Y0 F500.\nX40.\nG03 X40. Y20. R10.\nG01 X-5.\nG40 Y-20.\nG69\nM30\n",
     );
     let original = vcnc_in(dir.path(), &["run", "comp.nc", "--dialect", "fanuc"]);
     assert_eq!(code(&original), 0, "{}", stderr(&original));
@@ -699,6 +699,8 @@ fn the_fanuc_lathe_examples_run_to_the_end() {
         "check",
         "--dialect",
         "fanuc-lathe",
+        "--machine",
+        "examples/fanuc-lathe/turret.toml",
         "--deny-warnings",
         "examples/fanuc-lathe",
     ]);

@@ -137,6 +137,7 @@ codes! {
     W105 => "M code the controller does not know",
     W106 => "program ends without M02 or M30",
     W107 => "M99 repeats the main program",
+    W108 => "tool compensation with an empty offset register",
 }
 
 /// One alarm: what, where, and how to fix it.

@@ -156,6 +156,9 @@ pub struct Interpreter<'a> {
     /// W104 was given and the spindle has not turned since (or it turns:
     /// no check needed until it stops).
     pub(crate) spindle_warned: bool,
+    /// W108 was given for these registers (bit n: register n, 63 and up
+    /// share bit 63): radius registers, then length registers.
+    pub(crate) zero_offsets_warned: [u64; 2],
     /// The highest cutting feed, mm/min (the control's clamp).
     pub(crate) max_feed: f64,
     /// Variables, compiled macro statements, macro calls.
@@ -204,6 +207,7 @@ impl<'a> Interpreter<'a> {
             pending: Vec::new(),
             points: crate::block::convert::PointStyle::new(machine, dialect),
             spindle_warned: false,
+            zero_offsets_warned: [0; 2],
             max_feed: machine.max_feed_mm_per_min(),
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
             macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
