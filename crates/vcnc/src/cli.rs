@@ -25,6 +25,37 @@ pub enum Command {
     Time(TimeArgs),
     /// Draw the program's path: an SVG or PNG back-plot, or an HTML page with a 3D viewer.
     Plot(crate::plot::PlotArgs),
+    /// List the tools a program uses: their shapes and sizes, their offset registers, and where each figure came from.
+    Tools(ToolsArgs),
+    /// Print the machine a run uses as a machine file to start from (TOML).
+    Machine(MachineArgs),
+}
+
+/// `vcnc tools FILE`.
+#[derive(Debug, Args)]
+pub struct ToolsArgs {
+    /// The program (`-`: standard input).
+    pub file: PathBuf,
+    /// Program and machine options.
+    #[command(flatten)]
+    pub opts: Options,
+    /// Output: text for people, or one JSON document.
+    #[arg(long, value_enum, default_value_t = TimeFormat::Text)]
+    pub format: TimeFormat,
+}
+
+/// `vcnc machine --print`.
+#[derive(Debug, Args)]
+pub struct MachineArgs {
+    /// Print the machine file: the built-in machine of --dialect (default syntec), or the one --machine reads (a TOML file as it is, a grbl `$$` dump as the TOML it makes).
+    #[arg(long, required = true)]
+    pub print: bool,
+    /// Dialect whose built-in machine is printed (see `vcnc check --help`).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
+    pub dialect: Option<String>,
+    /// Machine file (TOML) or grbl `$$` dump to print instead.
+    #[arg(long)]
+    pub machine: Option<PathBuf>,
 }
 
 /// `vcnc check`.
@@ -61,6 +92,9 @@ pub struct RunArgs {
     /// Warnings fail the run (exit 1), as alarms do.
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Coordinates of --format gcode: work (the program's first work coordinate system, written out; a machine with the same work offsets moves as the original did) or machine (absolute machine coordinates under G53's frame, with the power-on position first, for comparisons).
+    #[arg(long, value_enum, default_value_t = Coords::Work)]
+    pub coords: Coords,
     /// Sampling period of --format trace, seconds.
     #[arg(long, default_value_t = 0.001)]
     pub period: f64,
@@ -123,9 +157,15 @@ pub struct Options {
     /// Dialect: syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); default: syntec, or linuxcnc when every program named is a .ngc file.
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
     pub dialect: Option<String>,
-    /// Machine file (TOML); default: the built-in mill (X Y Z A B C, no travel limits), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.
+    /// Machine file (TOML) or grbl's `$$` settings dump; default: the built-in mill (X Y Z A B C, no travel limits, empty offset memory), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.
     #[arg(long)]
     pub machine: Option<PathBuf>,
+    /// Tool table: LinuxCNC `.tbl` (T P D Z …, D a diameter, in mm) or CSV with the header `tool,diameter,corner_radius,length,flute_length,holder_diameter[,units]`. It fills the H (length) and D (radius) registers of its tools and gives their shapes; without it, shapes come from the program's CAM header comments, which never fill registers.
+    #[arg(long, value_name = "FILE")]
+    pub tools: Option<PathBuf>,
+    /// Units of lengths: `run --format gcode` writes them (default: the program's own), `vcnc tools` shows them (default mm).
+    #[arg(long, value_enum)]
+    pub units: Option<UnitsArg>,
     /// Where called programs (M98 P10 → O0010 or O0010.nc) are looked up; default: the program's directory.
     #[arg(long)]
     pub program_dir: Option<PathBuf>,
@@ -138,6 +178,33 @@ pub struct Options {
     /// Keep the macro variables a controller keeps across power-off (Fanuc #500-#999; Syntec #401-#999, @656-@1999) in FILE: read before the run when it exists, written after it. One program at a time.
     #[arg(long, value_name = "FILE")]
     pub variables: Option<PathBuf>,
+}
+
+/// Length units a person or a flattened program reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum UnitsArg {
+    /// Millimetres.
+    Mm,
+    /// Inches.
+    In,
+}
+
+impl From<UnitsArg> for vcnc_core::display::DisplayUnits {
+    fn from(u: UnitsArg) -> Self {
+        match u {
+            UnitsArg::Mm => vcnc_core::display::DisplayUnits::Mm,
+            UnitsArg::In => vcnc_core::display::DisplayUnits::In,
+        }
+    }
+}
+
+/// The coordinates `run --format gcode` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Coords {
+    /// The program's first work coordinate system (G54 if none), written out.
+    Work,
+    /// Absolute machine coordinates, from the power-on position.
+    Machine,
 }
 
 /// Output formats of `vcnc run`.

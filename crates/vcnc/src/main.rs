@@ -9,10 +9,12 @@
 mod check;
 mod cli;
 mod files;
+mod machine_print;
 mod offload;
 mod plot;
 mod render;
 mod timing;
+mod tools;
 mod trace;
 mod variables;
 
@@ -21,8 +23,10 @@ use cli::{Cli, Command, Format, Options, RunArgs};
 use files::Input;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
+use vcnc_core::grbl_settings;
+use vcnc_core::tooling::{self, TipNumbering, ToolLibrary};
 use vcnc_interp::{Dialect, Event, Interpreter, Machine, Outcome, Sink};
-use vcnc_output::{CsvSink, GcodeSink, JsonlSink, Summary};
+use vcnc_output::{CsvSink, GcodeOptions, GcodeSink, JsonlSink, Summary};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -41,6 +45,8 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Run(args) => run_events(&args),
         Command::Time(args) => timing::time(&args),
         Command::Plot(args) => plot::plot(&args),
+        Command::Tools(args) => tools::tools(&args),
+        Command::Machine(args) => machine_print::print(&args),
     }
 }
 
@@ -59,6 +65,25 @@ pub(crate) struct Setup {
     pub machine: Machine,
     pub dialect: Dialect,
     pub options: vcnc_interp::Options,
+    /// Where the machine came from.
+    pub machine_from: MachineFrom,
+    /// The tool table of `--tools` and its file name, already written
+    /// into `machine`'s registers.
+    pub table: Option<(ToolLibrary, String)>,
+    /// Runs emit the markers of program coordinates (for the flattened
+    /// program: `Interpreter::with_program_markers`).
+    pub markers: bool,
+}
+
+/// Where a run's machine came from (`vcnc tools` says where offsets come
+/// from).
+pub(crate) enum MachineFrom {
+    /// The dialect's built-in machine.
+    BuiltIn,
+    /// A machine file (TOML).
+    File(String),
+    /// A grbl `$$` dump.
+    GrblSettings(String),
 }
 
 /// The options' machine and dialect for the programs at `paths`. Without
@@ -77,14 +102,19 @@ pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, St
             Dialect::NAMES.join(", ")
         )
     })?;
-    let machine = match &c.machine {
+    let (mut machine, machine_from) = match &c.machine {
+        Some(path) => read_machine(path)?,
+        None => (dialect.machine(), MachineFrom::BuiltIn),
+    };
+    let table = match &c.tools {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-            Machine::from_toml(&text)
-                .map_err(|e| format!("machine file {}: {e}", path.display()))?
+            let file = path.display().to_string();
+            let text = read_text(path, "tool table")?;
+            let lib = tooling::read_table(&text, &file).map_err(|e| e.to_string())?;
+            lib.fill_registers(&mut machine, tip_numbering(&dialect));
+            Some((lib, file))
         }
-        None => dialect.machine(),
+        None => None,
     };
     let options = vcnc_interp::Options {
         block_delete: c.block_delete,
@@ -94,7 +124,41 @@ pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, St
         machine,
         dialect,
         options,
+        machine_from,
+        table,
+        markers: false,
     })
+}
+
+/// A text file the user names, read whole (lossily: a comment in another
+/// encoding must not refuse a table).
+pub(crate) fn read_text(path: &std::path::Path, what: &str) -> Result<String, String> {
+    let bytes =
+        std::fs::read(path).map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// `--machine FILE`: a machine file (TOML) or grbl's `$$` dump.
+pub(crate) fn read_machine(path: &std::path::Path) -> Result<(Machine, MachineFrom), String> {
+    let text = read_text(path, "machine file")?;
+    let file = path.display().to_string();
+    if grbl_settings::looks_like_settings(&text) {
+        let m = grbl_settings::machine(&text, &file).map_err(|e| e.to_string())?;
+        return Ok((m, MachineFrom::GrblSettings(file)));
+    }
+    let m = Machine::from_toml(&text).map_err(|e| format!("machine file {file}: {e}"))?;
+    Ok((m, MachineFrom::File(file)))
+}
+
+/// How the dialect numbers the lathe tip directions of the machine's
+/// registers: linuxcnc-lathe reads a `.tbl`'s Q as it is, the Fanuc-style
+/// lathes in Fanuc's numbering.
+fn tip_numbering(dialect: &Dialect) -> TipNumbering {
+    if dialect.name == "linuxcnc-lathe" {
+        TipNumbering::LinuxCnc
+    } else {
+        TipNumbering::Fanuc
+    }
 }
 
 /// Runs the program `input` into `sink`. Returns how the run ended and
@@ -109,6 +173,9 @@ pub(crate) fn execute<S: Sink>(
     let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
     let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
+    if s.markers {
+        interp = interp.with_program_markers();
+    }
     if let Some(path) = &c.variables {
         let kept = variables::read(path)?;
         interp
@@ -123,7 +190,8 @@ pub(crate) fn execute<S: Sink>(
 }
 
 fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
-    let s = setup(&args.opts, &[args.file.as_path()])?;
+    let mut s = setup(&args.opts, &[args.file.as_path()])?;
+    s.markers = matches!(args.format, Format::Gcode);
     // Opened before any output is written, so that a missing file is a
     // usage error with nothing on stdout.
     let input = Input::from_arg(&args.file)?;
@@ -141,12 +209,25 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
                 machine,
             )
         })?,
-        Format::Gcode => stream(args, &s, &input, || {
-            GcodeSink::new(
-                BufWriter::with_capacity(1 << 16, std::io::stdout()),
-                machine,
-            )
-        })?,
+        Format::Gcode => {
+            let opts = GcodeOptions {
+                coords: match args.coords {
+                    cli::Coords::Work => vcnc_output::Coords::Work,
+                    cli::Coords::Machine => vcnc_output::Coords::Machine,
+                },
+                units: args.opts.units.map(|u| match u {
+                    cli::UnitsArg::Mm => vcnc_output::Units::Mm,
+                    cli::UnitsArg::In => vcnc_output::Units::Inch,
+                }),
+            };
+            stream(args, &s, &input, || {
+                GcodeSink::with_options(
+                    BufWriter::with_capacity(1 << 16, std::io::stdout()),
+                    machine,
+                    opts,
+                )
+            })?
+        }
         Format::Trace => {
             let profile = args.profile.map(Into::into);
             trace::check_period(machine, args.period, profile)?;

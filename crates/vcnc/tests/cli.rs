@@ -1016,12 +1016,27 @@ fn feed_per_rev_flattens_at_the_spindle_speed_and_alarms_when_stopped() {
     let o = vcnc_in(dir.path(), &["run", "--format", "gcode", "turning.nc"]);
     assert_eq!(code(&o), 0, "{}", stderr(&o));
     let text = stdout(&o);
-    // Regression: the flattened program starts where the source machine does.
+    // 0.1 mm/rev at 1000 rpm is 100 mm/min; Y and Z, never moved, are not
+    // written (the program starts where the machine is).
+    assert!(text.contains("\nG1 X10. F100\n"), "{text}");
+    // `--coords machine`, for comparisons: the flattened program starts
+    // where the source machine does.
+    let o = vcnc_in(
+        dir.path(),
+        &[
+            "run",
+            "--format",
+            "gcode",
+            "--coords",
+            "machine",
+            "turning.nc",
+        ],
+    );
+    let text = stdout(&o);
     assert!(
         text.contains("G21 G90 G94 G17\nG0 X0. Y0. Z0. (power-on position)\n"),
         "{text}"
     );
-    // 0.1 mm/rev at 1000 rpm is 100 mm/min.
     assert!(text.contains("G1 X10. Y0. Z0. F100\n"), "{text}");
 }
 
@@ -1106,4 +1121,95 @@ fn a_ngc_program_defaults_to_the_linuxcnc_dialect() {
         "`;` ends the block under fanuc: {}",
         stdout(&o)
     );
+}
+
+// ---------------------------------------------------------------------------
+// Tools and machines: --tools, vcnc tools, machine --print, $$ dumps
+// ---------------------------------------------------------------------------
+
+/// `--tools` fills D: G41 D1 with tools.csv's tool 1 (6 mm across, radius
+/// 3) offsets the path; without a table the built-in mill's D1 is 0, the
+/// path is the programmed one and W108 says why.
+#[test]
+fn a_tool_table_fills_the_radius_compensation_reads() {
+    let dir = TempDir::new("tools-comp");
+    dir.write(
+        "comp.nc",
+        "S1000 M03\nG00 X-10. Y0. Z0.\nG41 D1 G01 X0. Y0. F300.\nX50.\nG40 X60. Y-10.\nM30\n",
+    );
+    let table = workspace().join("tests/fixtures/tools/tools.csv");
+    let table = table.to_str().unwrap();
+    // Start-up east along Y0 with the tool on the left: the offset path is
+    // Y = +3, so the first compensated move ends at X0 Y3.
+    let o = vcnc_in(
+        dir.path(),
+        &["run", "comp.nc", "--dialect", "fanuc", "--tools", table],
+    );
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let feeds: Vec<Value> = jsonl(&o)
+        .into_iter()
+        .filter(|e| e["type"] == "feed")
+        .collect();
+    assert_eq!(feeds[0]["to"], json!({"x": 0.0, "y": 3.0, "z": 0.0}));
+    assert!(!stderr(&o).contains("W108"), "{}", stderr(&o));
+    let o = vcnc_in(dir.path(), &["run", "comp.nc", "--dialect", "fanuc"]);
+    let feeds: Vec<Value> = jsonl(&o)
+        .into_iter()
+        .filter(|e| e["type"] == "feed")
+        .collect();
+    assert_eq!(feeds[0]["to"], json!({"x": 0.0, "y": 0.0, "z": 0.0}));
+    assert!(
+        stderr(&o).contains("warning[W108]: compensation with G41 D1 = 0"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// What `vcnc machine --print` prints reads back to the machine a run
+/// uses: every dialect's built-in machine, a machine file, a `$$` dump.
+#[test]
+fn machine_print_reads_back_to_the_same_machine() {
+    use vcnc_interp::{Dialect, Machine};
+    for name in Dialect::NAMES {
+        let o = vcnc(&["machine", "--print", "--dialect", name]);
+        assert_eq!(code(&o), 0, "{name}: {}", stderr(&o));
+        let printed = Machine::from_toml(&stdout(&o)).expect(name);
+        assert_eq!(printed, Dialect::by_name(name).unwrap().machine(), "{name}");
+    }
+    let file = "tests/fixtures/machines/mill_tools.toml";
+    let o = vcnc(&["machine", "--print", "--machine", file]);
+    let text = std::fs::read_to_string(workspace().join(file)).unwrap();
+    assert_eq!(stdout(&o), text);
+    let dump = "tests/fixtures/machines/grblhal_4axis.txt";
+    let o = vcnc(&["machine", "--print", "--machine", dump]);
+    let printed = Machine::from_toml(&stdout(&o)).unwrap();
+    let text = std::fs::read_to_string(workspace().join(dump)).unwrap();
+    assert_eq!(
+        printed,
+        vcnc_core::grbl_settings::machine(&text, dump).unwrap()
+    );
+    // A run on the dump is a run on that machine: 4 axes, soft limits.
+    let dir = TempDir::new("grbl-dump");
+    dir.write("over.nc", "G0 X-350.\nM30\n");
+    let dump_path = workspace().join(dump);
+    let o = vcnc_in(
+        dir.path(),
+        &[
+            "check",
+            "over.nc",
+            "--dialect",
+            "grbl",
+            "--machine",
+            dump_path.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(
+        code(&o),
+        1,
+        "X travel is 300 mm from 0 down: {}",
+        stdout(&o)
+    );
+    assert!(stderr(&o).contains("E501"), "{}", stderr(&o));
+    // `machine` without --print is a usage error.
+    assert_eq!(code(&vcnc(&["machine"])), 2);
 }

@@ -65,13 +65,19 @@ const MAX_VALUE: f64 = 1e7;
 const AXES: [&str; 6] = ["x", "y", "z", "a", "b", "c"];
 
 /// Whether `text` reads as a `$$` dump: its first line that holds anything
-/// is a setting (`$0=10`), or grbl's banner.
+/// but grbl's messages (`[MSG:…]`, `<Idle…>`, `ok`) is a setting (`$0=10`)
+/// or grbl's banner.
 pub fn looks_like_settings(text: &str) -> bool {
     text.lines()
         .map(str::trim)
-        .find(|l| !l.is_empty())
+        .find(|l| {
+            !(l.is_empty()
+                || l.starts_with('[')
+                || l.starts_with('<')
+                || l.eq_ignore_ascii_case("ok"))
+        })
         .is_some_and(|l| {
-            l.starts_with("Grbl ")
+            l.starts_with("Grbl")
                 || l.strip_prefix('$')
                     .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_digit()))
         })
@@ -243,5 +249,7 @@ mod tests {
         assert!(looks_like_settings("Grbl 1.1h ['$' for help]\n$0=10\n"));
         assert!(!looks_like_settings("name = \"mill\"\n"));
         assert!(!looks_like_settings("$HX\n"));
+        assert!(looks_like_settings("[MSG:settings]\nok\n$0=10\n"));
+        assert!(!looks_like_settings("[parameters]\ng00_mode = 0\n"));
     }
 }

@@ -156,6 +156,12 @@ pub struct Interpreter<'a> {
     /// W104 was given and the spindle has not turned since (or it turns:
     /// no check needed until it stops).
     pub(crate) spindle_warned: bool,
+    /// Whether the markers of program coordinates are emitted
+    /// ([`Interpreter::with_program_markers`]).
+    pub(crate) markers: bool,
+    /// Bit i: no program-coordinate move has named axis i since power-on
+    /// or since a move to a machine point (`placed` events).
+    pub(crate) unplaced: u8,
     /// W108 was given for these registers (bit n: register n, 63 and up
     /// share bit 63): radius registers, then length registers.
     pub(crate) zero_offsets_warned: [u64; 2],
@@ -208,6 +214,8 @@ impl<'a> Interpreter<'a> {
             points: crate::block::convert::PointStyle::new(machine, dialect),
             spindle_warned: false,
             zero_offsets_warned: [0; 2],
+            markers: false,
+            unplaced: u8::try_from((1u32 << machine.axes.len()) - 1).unwrap_or(u8::MAX),
             max_feed: machine.max_feed_mm_per_min(),
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
             macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
@@ -215,6 +223,18 @@ impl<'a> Interpreter<'a> {
             travel_limited: machine.has_travel_limits(),
             nurbs: None,
         }
+    }
+
+    /// Also emits the events a consumer that writes program coordinates
+    /// needs — the flattened program of `vcnc run --format gcode`:
+    /// `work_system` and `units` when the program changes them,
+    /// `machine_move` before a move to a machine point (G53, a reference
+    /// return) and `placed` when a block first places axes in program
+    /// coordinates (`docs/events.md`). Off by default: other consumers, and
+    /// the JSON-lines contract of `vcnc run`, do without them.
+    pub fn with_program_markers(mut self) -> Interpreter<'a> {
+        self.markers = true;
+        self
     }
 
     /// The state after the run (or at the alarm: as it was before the

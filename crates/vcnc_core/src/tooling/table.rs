@@ -192,7 +192,13 @@ impl Reader<'_> {
                 'D' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'C' | 'U' | 'V' | 'W' | 'I' | 'J' => {
                     let v = decimal::parse(value)
                         .filter(|v| v.abs() <= MAX_MM)
-                        .ok_or_else(|| bad("not a number (or beyond 10,000)"))?;
+                        .ok_or_else(|| {
+                            bad(if value.contains(',') {
+                                "not a number: write a decimal point, not a comma"
+                            } else {
+                                "not a number (or beyond 10,000)"
+                            })
+                        })?;
                     match letter {
                         'D' if v < 0.0 => return Err(bad("a diameter is not negative")),
                         'D' => row.diameter = Some(v),
