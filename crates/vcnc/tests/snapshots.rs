@@ -163,18 +163,28 @@ fn tools_json_of_carbide_create_output() {
     ]));
 }
 
+/// `vcnc check` with `option` naming a file that holds `content`, shown
+/// as `shown` (a malformed table or dump: the run never starts).
+fn check_with_file(option: &str, shown: &str, content: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("vcnc_snap_{}_{shown}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(shown);
+    std::fs::write(&file, content).unwrap();
+    let path = file.display().to_string();
+    let out = vcnc_on(shown, "T1 M6\nG0 X1.\nM30\n", &["check", option, &path]);
+    std::fs::remove_dir_all(&dir).ok();
+    out.replace(&path, shown)
+}
+
 /// A malformed tool table stops before anything runs: exit 2, the file,
 /// the line, what is wrong and how to fix it.
 #[test]
 fn a_malformed_tool_table_is_a_usage_error() {
-    let dir = std::env::temp_dir().join(format!("vcnc_snap_{}_badtbl", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let tbl = dir.join("bad.tbl");
-    std::fs::write(&tbl, "T1 P1 D6 Z10 ;ok\nT2 P2 D6,35 Z10\n").unwrap();
-    let shown = tbl.display().to_string();
-    let out = vcnc_on("badtbl", "T1 M6\nM30\n", &["check", "--tools", &shown]);
-    std::fs::remove_dir_all(&dir).ok();
-    insta::assert_snapshot!(out.replace(&shown, "bad.tbl"));
+    insta::assert_snapshot!(check_with_file(
+        "--tools",
+        "bad.tbl",
+        "T1 P1 D6 Z10 ;ok\nT2 P2 D6,35 Z10\n"
+    ));
 }
 
 /// `vcnc machine --print --machine` on grbl's `$$` with soft limits on.
@@ -197,15 +207,12 @@ fn machine_print_of_the_built_in_lathe() {
     insta::assert_snapshot!(head);
 }
 
-/// A `$$` dump with a line that is not a setting: exit 2, file and line.
+/// A `$$` dump with a value that is not a number: exit 2, file and line.
 #[test]
 fn a_malformed_grbl_dump_is_a_usage_error() {
-    let dir = std::env::temp_dir().join(format!("vcnc_snap_{}_baddump", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let dump = dir.join("dump.txt");
-    std::fs::write(&dump, "$100=250.000\n$110=500.000\n$120=ten\n").unwrap();
-    let shown = dump.display().to_string();
-    let out = vcnc_on("baddump", "G0 X1\nM30\n", &["check", "--machine", &shown]);
-    std::fs::remove_dir_all(&dir).ok();
-    insta::assert_snapshot!(out.replace(&shown, "dump.txt"));
+    insta::assert_snapshot!(check_with_file(
+        "--machine",
+        "dump.txt",
+        "$100=250.000\n$110=500.000\n$120=ten\n"
+    ));
 }

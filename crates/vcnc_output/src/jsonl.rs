@@ -325,20 +325,7 @@ pub fn write_event(out: &mut Vec<u8>, axes: &mut EventAxes, event: &Event) {
         Event::MachineMove { loc, to, axes } => {
             j.head("machine_move", loc);
             j.key("to");
-            j.out.push(b'{');
-            let mut first = true;
-            for (i, letter) in j.axes.letters.iter().enumerate() {
-                if axes & (1 << i) == 0 {
-                    continue;
-                }
-                if !first {
-                    j.out.push(b',');
-                }
-                first = false;
-                j.out.extend_from_slice(&[b'"', *letter, b'"', b':']);
-                push_f64(j.out, to.get(i));
-            }
-            j.out.push(b'}');
+            j.axes_of(to, u32::from(*axes));
         }
         Event::Placed { loc, axes } => {
             j.head("placed", loc);
@@ -438,11 +425,15 @@ impl Obj<'_> {
         self.point(p);
     }
     fn point(&mut self, p: &Pos) {
-        self.out.push(b'{');
         self.axes.note(p);
+        self.axes_of(p, self.axes.shown);
+    }
+    /// The axes of `mask` (bit i: axis i) of `p`.
+    fn axes_of(&mut self, p: &Pos, mask: u32) {
+        self.out.push(b'{');
         let mut first = true;
         for (i, letter) in self.axes.letters.iter().enumerate() {
-            if !self.axes.shows(i) {
+            if mask & (1 << i) == 0 {
                 continue;
             }
             if !first {
