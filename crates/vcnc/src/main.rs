@@ -130,11 +130,36 @@ pub(crate) fn setup(c: &Options, paths: &[&std::path::Path]) -> Result<Setup, St
     })
 }
 
-/// A text file the user names, read whole (lossily: a comment in another
-/// encoding must not refuse a table).
+/// Largest machine file, tool table or `$$` dump read: each is a page of
+/// text, so a larger file is the wrong one (and is not read into memory).
+const MAX_SETTINGS_FILE: u64 = 16 << 20;
+
+/// A text file the user names (a machine file, a tool table), read whole
+/// (lossily: a comment in another encoding must not refuse a table) up to
+/// [`MAX_SETTINGS_FILE`].
 pub(crate) fn read_text(path: &std::path::Path, what: &str) -> Result<String, String> {
-    let bytes =
-        std::fs::read(path).map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
+    let text = read_prefix(path, what, MAX_SETTINGS_FILE + 1)?;
+    if text.len() as u64 > MAX_SETTINGS_FILE {
+        return Err(format!(
+            "{what} {} is larger than {} MiB: is it the right file?",
+            path.display(),
+            MAX_SETTINGS_FILE >> 20
+        ));
+    }
+    Ok(text)
+}
+
+/// At most the first `limit` bytes of a file, as text (lossily).
+pub(crate) fn read_prefix(
+    path: &std::path::Path,
+    what: &str,
+    limit: u64,
+) -> Result<String, String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit).read_to_end(&mut bytes))
+        .map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 

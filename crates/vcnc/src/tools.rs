@@ -16,7 +16,7 @@
 
 use crate::cli::{TimeFormat, ToolsArgs};
 use crate::files::Input;
-use crate::{MachineFrom, Setup, execute, read_text, render, reported, setup};
+use crate::{MachineFrom, Setup, execute, read_prefix, render, reported, setup};
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -24,6 +24,9 @@ use std::process::ExitCode;
 use vcnc_core::display::DisplayUnits;
 use vcnc_core::tooling::{self, ToolKind, ToolLibrary, ToolShape, ToolSource};
 use vcnc_interp::{Event, Outcome, Sink};
+
+/// How much of a program `from_comments` reads.
+const COMMENTS_READ: u64 = 64 << 20;
 
 /// Where a tool is changed to: its first line and how many changes.
 #[derive(Default)]
@@ -44,9 +47,16 @@ impl Sink for Uses {
 pub fn tools(args: &ToolsArgs) -> Result<ExitCode, String> {
     let s = setup(&args.opts, &[args.file.as_path()])?;
     let input = Input::from_arg(&args.file)?;
+    // The comments are read from the program's first 64 MiB (the header
+    // lists are at the top; a program of hundreds of MiB is not held).
     let text = match &input {
-        Input::File(p) => read_text(p, "program")?,
-        Input::Stdin(bytes) => String::from_utf8_lossy(bytes).into_owned(),
+        Input::File(p) => read_prefix(p, "program", COMMENTS_READ)?,
+        Input::Stdin(bytes) => {
+            let end = bytes
+                .len()
+                .min(usize::try_from(COMMENTS_READ).unwrap_or(usize::MAX));
+            String::from_utf8_lossy(bytes.get(..end).unwrap_or_default()).into_owned()
+        }
     };
     let comments = tooling::from_comments(&text);
     let mut uses = Uses::default();

@@ -1213,3 +1213,36 @@ fn machine_print_reads_back_to_the_same_machine() {
     // `machine` without --print is a usage error.
     assert_eq!(code(&vcnc(&["machine"])), 2);
 }
+
+/// Files that are not tool tables or machines stop the run with exit 2 and
+/// nothing on stdout: an empty table, binary bytes, a file too large to be
+/// one (not read into memory), a directory.
+#[test]
+fn files_that_are_not_tables_or_machines_are_refused() {
+    let dir = TempDir::new("not-tables");
+    dir.write("p.nc", "G0 X1.\nM30\n");
+    dir.write("empty.tbl", "");
+    std::fs::write(
+        dir.path().join("binary.tbl"),
+        [0u8, 159, 146, 150, 255, 10, 84],
+    )
+    .unwrap();
+    let huge = std::fs::File::create(dir.path().join("huge.tbl")).unwrap();
+    huge.set_len(17 << 20).unwrap();
+    for (option, file, needle) in [
+        (
+            "--tools",
+            "empty.tbl",
+            "empty.tbl:0: the table lists no tool",
+        ),
+        ("--tools", "binary.tbl", "binary.tbl:1:"),
+        ("--tools", "huge.tbl", "larger than 16 MiB"),
+        ("--machine", "huge.tbl", "larger than 16 MiB"),
+        ("--tools", ".", "cannot read tool table"),
+    ] {
+        let o = vcnc_in(dir.path(), &["run", "p.nc", option, file]);
+        assert_eq!(code(&o), 2, "{file}: {}", stderr(&o));
+        assert_eq!(stdout(&o), "", "{file}");
+        assert!(stderr(&o).contains(needle), "{file}: {}", stderr(&o));
+    }
+}
