@@ -103,8 +103,7 @@ impl Report<'_> {
         n
     }
 
-    /// The shape of tool `n` and whether a comment also describes it when
-    /// the table does.
+    /// The shape of tool `n`: the table's, else the comments'.
     fn shape(&self, n: u32) -> Option<&ToolShape> {
         self.s
             .table

@@ -24,6 +24,14 @@
 //!   D holds only the wear, so a comment's diameter must not become a D
 //!   register.
 //!
+//! A reader of shapes (the plot, the simulation, `vcnc tools`) takes the
+//! table's word first and the comments' for the rest:
+//!
+//! ```text
+//!   let tools = table.unwrap_or_default().or_else(&from_comments(&program_text));
+//!   let shape = tools.shape(n);   // ToolShape::assumed(n) when nothing says
+//! ```
+//!
 //! Each tool remembers its [`ToolSource`], so that `vcnc tools` can say
 //! where every figure came from. Tool 0 stands for the tool in the spindle
 //! when the program never names one (a one-tool program whose header
@@ -86,7 +94,10 @@ pub enum ToolSource {
     },
     /// A comment in the program, and its 1-based line.
     Comment {
-        /// Which post wrote it (`"fusion"`, `"mastercam"`, …).
+        /// Whose format it is: `"fusion"` (Fusion 360/HSM), `"mastercam"`,
+        /// `"solidcam"`, `"vectric"`, `"estlcam"`, `"cutviewer"` (CutViewer's
+        /// `TOOL/MILL`, written by Carbide Create) or `"name"` (a T number
+        /// and a tool name in any comment).
         post: &'static str,
         /// Its line.
         line: u32,
@@ -221,6 +232,24 @@ impl ToolLibrary {
         self.tools.is_empty()
     }
 
+    /// Tool `number`'s shape, or the one assumed when nothing describes it
+    /// ([`ToolShape::assumed`]).
+    pub fn shape(&self, number: u32) -> ToolShape {
+        self.get(number)
+            .cloned()
+            .unwrap_or_else(|| ToolShape::assumed(number))
+    }
+
+    /// This library, with `other`'s tools where this one describes none
+    /// (a tool table, then the program's comments). Offsets are this
+    /// library's only.
+    pub fn or_else(mut self, other: &ToolLibrary) -> ToolLibrary {
+        for (n, t) in &other.tools {
+            self.tools.entry(*n).or_insert_with(|| t.clone());
+        }
+        self
+    }
+
     /// Writes the table's offsets into `machine`'s registers of the same
     /// numbers, over what the machine file says: the length into H and a
     /// lathe's Z geometry, the radius into D and the nose radius, X into a
@@ -248,5 +277,22 @@ impl ToolLibrary {
                 };
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_table_comes_first_and_comments_fill_in() {
+        let table = read_table("T1 D6\n", "t.tbl").unwrap_or_default();
+        let comments =
+            from_comments("(T1 D=3. CR=0. - flat end mill)\n(T2 D=4. CR=2. - ball end mill)\n");
+        let tools = table.or_else(&comments);
+        assert_eq!(tools.shape(1).diameter_mm, 6.0);
+        assert_eq!(tools.shape(2).kind, ToolKind::Ball);
+        assert_eq!(tools.shape(9).source, ToolSource::Assumed);
+        assert_eq!(tools.offsets.keys().copied().collect::<Vec<_>>(), vec![1]);
     }
 }
