@@ -239,7 +239,9 @@ impl Interpreter<'_> {
         if w.group(Group::Wcs).is_some() {
             self.state.refresh_origin(&self.tables);
         }
-        self.report_modes(wcs_before, inch_before);
+        if self.markers {
+            self.report_modes(wcs_before, inch_before);
+        }
         let (allowed, ext) = self.allowed_letters(w);
         w.check_used(allowed, ext)
             .map_err(|d| cancelled_cycle_hint(d, w))?;
@@ -864,11 +866,10 @@ impl Interpreter<'_> {
 
     /// `work_system` and `units` events when the block changed them (with
     /// [`Interpreter::with_program_markers`]).
+    #[cold]
+    #[inline(never)]
     fn report_modes(&mut self, wcs_before: usize, inch_before: bool) {
         let m = self.state.modal;
-        if !self.markers {
-            return;
-        }
         if m.wcs != wcs_before {
             let system = u8::try_from(m.wcs)
                 .ok()

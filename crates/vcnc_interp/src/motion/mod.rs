@@ -187,7 +187,9 @@ impl Interpreter<'_> {
         }
         self.accept_move(prog_to, mm.to, mv.to);
         // 4 events
-        self.mark_axes(&mv, mm.to, w);
+        if self.markers {
+            self.mark_axes(&mv, mm.to, w);
+        }
         let loc = self.flow.loc.clone();
         self.emit_released(&mm, loc);
         Ok(())
@@ -204,7 +206,9 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         self.accept_move(prog_to, mm.to, mv.to);
         if !matches!(mv.to, Target::Machine(_)) {
-            self.mark_axes(mv, mm.to, w);
+            if self.markers {
+                self.mark_axes(mv, mm.to, w);
+            }
             return self.compensate(mm, mv.cmd);
         }
         // A move to a machine point (G28's second leg, G53) is not
@@ -221,7 +225,9 @@ impl Interpreter<'_> {
             line: None,
             cmd: mv.cmd,
         };
-        self.mark_axes(mv, mm.to, w);
+        if self.markers {
+            self.mark_axes(mv, mm.to, w);
+        }
         self.release(mm, &at, Some(w))
     }
 
@@ -233,9 +239,11 @@ impl Interpreter<'_> {
     /// that no program-coordinate move has placed since power-on or since
     /// a machine move. Rare, so a plain move pays one test. Kept outside
     /// `State`: an alarm ends the run, so nothing needs undoing.
+    #[cold]
+    #[inline(never)]
     fn mark_axes(&mut self, mv: &Move, to: Pos, w: &Words<'_>) {
         let machine = matches!(mv.to, Target::Machine(_));
-        if !self.markers || (self.unplaced == 0 && !machine) {
+        if self.unplaced == 0 && !machine {
             return;
         }
         let bits = |named: bool| {
