@@ -184,9 +184,17 @@ class Converter:
     axis words; `optional_stop`: report M1 (vcnc's --optional-stop)."""
 
     def __init__(self, name, end_line, cycles=None, m5_lines=(), inch=False,
-                 end_code="M02", home_lines=(), optional_stop=False):
+                 end_code="M02", home_lines=(), optional_stop=False,
+                 start_offsets=False, exact_inch=True):
         self.name = name
         self.inch = inch
+        # `start_offsets`: the parameter file sets G54 (the flatten set):
+        # rs274's start-up SET_G5X_OFFSET is taken, not refused.
+        self.start_offsets = start_offsets
+        # `exact_inch`: refuse inch values whose 4-decimal print is not the
+        # exact mm value (off for programs whose points are computed, such
+        # as a compensated path; their tolerance is then rs274's print).
+        self.exact_inch = exact_inch
         self.end_code = end_code
         self.home_lines = set(home_lines)
         self.optional_stop = optional_stop
@@ -221,7 +229,7 @@ class Converter:
         """A printed length -> Decimal mm; `exact`: refuse an inch value
         whose 4-decimal print cannot be the exact length."""
         v = num(s) * self.unit
-        if exact and v != v.quantize(Q):
+        if exact and self.exact_inch and v != v.quantize(Q):
             self.err("%s in is not a multiple of 0.0005 in: its 4-decimal "
                      "print is not exact in mm" % s.strip())
         return v
@@ -446,6 +454,9 @@ class Converter:
                 continue
             if line is None:
                 # start-up calls: everything zero, nothing to report
+                if call == "SET_G5X_OFFSET" and self.start_offsets:
+                    self.g5x = dict(zip(AXES, map(self.mm, args[1:4])))
+                    continue
                 if call in ("SET_G5X_OFFSET", "SET_G92_OFFSET"):
                     if any(num(a) != 0 for a in args[1 if call == "SET_G5X_OFFSET" else 0:]):
                         self.err("non-zero offset at start-up")

@@ -151,7 +151,12 @@ fn detailed(args: &CheckArgs, choice: &Choice, input: &Input) -> Result<ExitCode
         s,
         (&summary, &planned),
         &outcome,
-        (diameter_axis, args.units.into()),
+        (
+            diameter_axis,
+            args.opts
+                .units
+                .map_or(vcnc_core::display::DisplayUnits::Mm, Into::into),
+        ),
     ))?;
     let denied = args.deny_warnings && summary.warning_total() > 0;
     Ok(crate::exit_code(&outcome, denied))

@@ -13,6 +13,7 @@
 use crate::cli::Options;
 use crate::files::Input;
 use std::sync::OnceLock;
+use vcnc_core::tooling::{self, ToolLibrary};
 use vcnc_interp::detect::{self, Confidence, Detection, PREFIX_BYTES};
 use vcnc_interp::{Dialect, Machine};
 
@@ -23,12 +24,33 @@ pub const AUTO: &str = "auto";
 pub(crate) struct Choice {
     /// `--dialect NAME`, when not auto.
     forced: Option<&'static Dialect>,
-    /// `--machine FILE`.
+    /// `--machine FILE` (a TOML file or a grbl `$$` dump), and where the
+    /// machine came from.
     machine: Option<Machine>,
-    /// The built-in machine of each dialect, in `Dialect::NAMES` order,
-    /// parsed the first time a program needs it.
-    defaults: Vec<OnceLock<Machine>>,
+    machine_from: MachineFrom,
+    /// `--tools FILE`: the table and its file name; its offsets are
+    /// written into each dialect's machine.
+    table: Option<(ToolLibrary, String)>,
+    /// The machine of each dialect (`--machine`'s or the dialect's
+    /// built-in one, with `--tools`' registers written in the dialect's
+    /// tip numbering), in `Dialect::NAMES` order, made the first time a
+    /// program needs it.
+    machines: Vec<OnceLock<Machine>>,
     options: vcnc_interp::Options,
+    /// Runs emit the markers of program coordinates (the flattened
+    /// program's: `Interpreter::with_program_markers`).
+    markers: bool,
+}
+
+/// Where a run's machine came from (`vcnc tools` says where offsets come
+/// from).
+pub(crate) enum MachineFrom {
+    /// The dialect's built-in machine.
+    BuiltIn,
+    /// A machine file (TOML).
+    File(String),
+    /// A grbl `$$` dump.
+    GrblSettings(String),
 }
 
 /// One program's dialect and machine, and why.
@@ -38,6 +60,13 @@ pub(crate) struct Setup<'a> {
     pub options: vcnc_interp::Options,
     /// What detection found; `None` under `--dialect NAME`.
     pub detection: Option<Detection>,
+    /// Where the machine came from.
+    pub machine_from: &'a MachineFrom,
+    /// The tool table of `--tools` and its file name, already written
+    /// into `machine`'s registers.
+    pub table: Option<&'a (ToolLibrary, String)>,
+    /// Runs emit the markers of program coordinates.
+    pub markers: bool,
 }
 
 impl Choice {
@@ -54,27 +83,42 @@ impl Choice {
                 )
             })?),
         };
-        let machine = match &c.machine {
+        let (machine, machine_from) = match &c.machine {
             Some(path) => {
-                let text = std::fs::read_to_string(path)
-                    .map_err(|e| format!("cannot read machine file {}: {e}", path.display()))?;
-                Some(
-                    Machine::from_toml(&text)
-                        .map_err(|e| format!("machine file {}: {e}", path.display()))?,
-                )
+                let (m, from) = crate::read_machine(path)?;
+                (Some(m), from)
+            }
+            None => (None, MachineFrom::BuiltIn),
+        };
+        let table = match &c.tools {
+            Some(path) => {
+                let file = path.display().to_string();
+                let text = crate::read_text(path, "tool table")?;
+                let lib = tooling::read_table(&text, &file).map_err(|e| e.to_string())?;
+                Some((lib, file))
             }
             None => None,
         };
         Ok(Choice {
             forced,
             machine,
-            defaults: Dialect::NAMES.iter().map(|_| OnceLock::new()).collect(),
+            machine_from,
+            table,
+            machines: Dialect::NAMES.iter().map(|_| OnceLock::new()).collect(),
             options: vcnc_interp::Options {
                 block_delete: c.block_delete,
                 optional_stop: c.optional_stop,
                 keep_going: c.keep_going,
             },
+            markers: false,
         })
+    }
+
+    /// Runs emit the markers of program coordinates (for `run --format
+    /// gcode`).
+    pub fn with_markers(mut self, markers: bool) -> Choice {
+        self.markers = markers;
+        self
     }
 
     /// The dialect and machine of one program: detection reads its first
@@ -89,25 +133,32 @@ impl Choice {
                 (d, Some(found))
             }
         };
-        let machine = match &self.machine {
-            Some(m) => m,
-            None => self.default_machine(dialect)?,
-        };
         Ok(Setup {
-            machine,
+            machine: self.machine_of(dialect)?,
             dialect,
             options: self.options,
             detection,
+            machine_from: &self.machine_from,
+            table: self.table.as_ref(),
+            markers: self.markers,
         })
     }
 
-    fn default_machine(&self, dialect: &'static Dialect) -> Result<&Machine, String> {
+    /// The machine a program of `dialect` runs on: `--machine`'s or the
+    /// dialect's built-in one, with `--tools`' offsets in its registers.
+    fn machine_of(&self, dialect: &'static Dialect) -> Result<&Machine, String> {
         let cell = Dialect::NAMES
             .iter()
             .position(|n| *n == dialect.name)
-            .and_then(|i| self.defaults.get(i))
+            .and_then(|i| self.machines.get(i))
             .ok_or_else(|| format!("no built-in machine for dialect {}", dialect.name))?;
-        Ok(cell.get_or_init(|| dialect.machine()))
+        Ok(cell.get_or_init(|| {
+            let mut m = self.machine.clone().unwrap_or_else(|| dialect.machine());
+            if let Some((lib, _)) = &self.table {
+                lib.fill_registers(&mut m, crate::tip_numbering(dialect));
+            }
+            m
+        }))
     }
 
     /// The name of `--machine`'s machine, if one was given.

@@ -27,6 +27,10 @@ pub enum Command {
     Plot(crate::plot::PlotArgs),
     /// What a G or M code, or an address, means in each dialect (from the interpreter's own tables).
     Explain(ExplainArgs),
+    /// List the tools a program uses: their shapes and sizes, their offset registers, and where each figure came from.
+    Tools(ToolsArgs),
+    /// Print the machine a run uses as a machine file to start from (TOML).
+    Machine(MachineArgs),
 }
 
 /// `vcnc explain`.
@@ -40,6 +44,33 @@ pub struct ExplainArgs {
     /// Print the dialect matrix: every code of every table (Markdown).
     #[arg(long, conflicts_with = "code")]
     pub matrix: bool,
+}
+
+/// `vcnc tools FILE`.
+#[derive(Debug, Args)]
+pub struct ToolsArgs {
+    /// The program (`-`: standard input).
+    pub file: PathBuf,
+    /// Program and machine options.
+    #[command(flatten)]
+    pub opts: Options,
+    /// Output: text for people, or one JSON document.
+    #[arg(long, value_enum, default_value_t = TimeFormat::Text)]
+    pub format: TimeFormat,
+}
+
+/// `vcnc machine --print`.
+#[derive(Debug, Args)]
+pub struct MachineArgs {
+    /// Print the machine file: the built-in machine of --dialect (default syntec), or the one --machine reads (a TOML file as it is, a grbl `$$` dump as the TOML it makes).
+    #[arg(long, required = true)]
+    pub print: bool,
+    /// Dialect whose built-in machine is printed (see `vcnc check --help`).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Dialect::NAMES.iter().copied()))]
+    pub dialect: Option<String>,
+    /// Machine file (TOML) or grbl `$$` dump to print instead.
+    #[arg(long)]
+    pub machine: Option<PathBuf>,
 }
 
 /// `vcnc check`.
@@ -60,9 +91,6 @@ pub struct CheckArgs {
     /// Programs checked at once (default: one per core).
     #[arg(long)]
     pub jobs: Option<usize>,
-    /// Lengths in the summary (distances, extents): mm or in.
-    #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
-    pub units: UnitsArg,
 }
 
 /// `vcnc run`.
@@ -79,6 +107,9 @@ pub struct RunArgs {
     /// Warnings fail the run (exit 1), as alarms do.
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Coordinates of --format gcode: work (the program's first work coordinate system, written out; a machine with the same work offsets moves as the original did) or machine (absolute machine coordinates under G53's frame, with the power-on position first, for comparisons).
+    #[arg(long, value_enum, default_value_t = Coords::Work)]
+    pub coords: Coords,
     /// Sampling period of --format trace, seconds.
     #[arg(long, default_value_t = 0.001)]
     pub period: f64,
@@ -102,12 +133,9 @@ pub struct TimeArgs {
     /// Speed profile (default: the machine file's).
     #[arg(long, value_enum)]
     pub profile: Option<ProfileArg>,
-    /// Lengths in the text report: mm or in.
-    #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
-    pub units: UnitsArg,
 }
 
-/// The length unit of a report people read.
+/// Length units a person or a flattened program reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum UnitsArg {
     /// Millimetres.
@@ -162,9 +190,15 @@ pub struct Options {
     /// Dialect: auto (the default: chosen per file from its own evidence, and said), syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); any case.
     #[arg(long, ignore_case = true, value_parser = dialect_names())]
     pub dialect: Option<String>,
-    /// Machine file (TOML); default: the built-in mill (X Y Z A B C, no travel limits), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.
+    /// Machine file (TOML) or grbl's `$$` settings dump; default: the built-in mill (X Y Z A B C, no travel limits, empty offset memory), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.
     #[arg(long)]
     pub machine: Option<PathBuf>,
+    /// Tool table: LinuxCNC `.tbl` (T P D Z …, D a diameter, in mm) or CSV with the header `tool,diameter,corner_radius,length,flute_length,holder_diameter[,units]`. It fills the H (length) and D (radius) registers of its tools and gives their shapes; without it, shapes come from the program's CAM header comments, which never fill registers.
+    #[arg(long, value_name = "FILE")]
+    pub tools: Option<PathBuf>,
+    /// Units of lengths: those people read (the summaries of check and time, vcnc tools, plot legends and the page; default mm) and those `run --format gcode` writes (default: the program's own).
+    #[arg(long, value_enum)]
+    pub units: Option<UnitsArg>,
     /// Where called programs (M98 P10 → O0010 or O0010.nc) are looked up; default: the program's directory.
     #[arg(long)]
     pub program_dir: Option<PathBuf>,
@@ -186,6 +220,15 @@ pub struct Options {
 fn dialect_names() -> clap::builder::PossibleValuesParser {
     let names = std::iter::once(crate::choose::AUTO).chain(Dialect::NAMES.iter().copied());
     clap::builder::PossibleValuesParser::new(names)
+}
+
+/// The coordinates `run --format gcode` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Coords {
+    /// The program's first work coordinate system (G54 if none), written out.
+    Work,
+    /// Absolute machine coordinates, from the power-on position.
+    Machine,
 }
 
 /// Output formats of `vcnc run`.

@@ -11,10 +11,12 @@ mod choose;
 mod cli;
 mod explain;
 mod files;
+mod machine_print;
 mod offload;
 mod plot;
 mod render;
 mod timing;
+mod tools;
 mod trace;
 mod variables;
 
@@ -23,8 +25,10 @@ use cli::{Cli, Command, Format, Options, RunArgs};
 use files::Input;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
-use vcnc_interp::{Event, Interpreter, Outcome, Sink};
-use vcnc_output::{CsvSink, GcodeSink, JsonlSink, Summary};
+use vcnc_core::grbl_settings;
+use vcnc_core::tooling::TipNumbering;
+use vcnc_interp::{Dialect, Event, Interpreter, Machine, Outcome, Sink};
+use vcnc_output::{CsvSink, GcodeOptions, GcodeSink, JsonlSink, Summary};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -44,6 +48,8 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Time(args) => timing::time(&args),
         Command::Plot(args) => plot::plot(&args),
         Command::Explain(args) => explain::run(&args),
+        Command::Tools(args) => tools::tools(&args),
+        Command::Machine(args) => machine_print::print(&args),
     }
 }
 
@@ -57,7 +63,63 @@ pub(crate) fn reported(r: std::io::Result<()>) -> Result<(), String> {
     }
 }
 
-pub(crate) use choose::Setup;
+pub(crate) use choose::{MachineFrom, Setup};
+
+/// Largest machine file, tool table or `$$` dump read: each is a page of
+/// text, so a larger file is the wrong one (and is not read into memory).
+const MAX_SETTINGS_FILE: u64 = 16 << 20;
+
+/// A text file the user names (a machine file, a tool table), read whole
+/// (lossily: a comment in another encoding must not refuse a table) up to
+/// [`MAX_SETTINGS_FILE`].
+pub(crate) fn read_text(path: &std::path::Path, what: &str) -> Result<String, String> {
+    let text = read_prefix(path, what, MAX_SETTINGS_FILE + 1)?;
+    if text.len() as u64 > MAX_SETTINGS_FILE {
+        return Err(format!(
+            "{what} {} is larger than {} MiB: is it the right file?",
+            path.display(),
+            MAX_SETTINGS_FILE >> 20
+        ));
+    }
+    Ok(text)
+}
+
+/// At most the first `limit` bytes of a file, as text (lossily).
+pub(crate) fn read_prefix(
+    path: &std::path::Path,
+    what: &str,
+    limit: u64,
+) -> Result<String, String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit).read_to_end(&mut bytes))
+        .map_err(|e| format!("cannot read {what} {}: {e}", path.display()))?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// `--machine FILE`: a machine file (TOML) or grbl's `$$` dump.
+pub(crate) fn read_machine(path: &std::path::Path) -> Result<(Machine, MachineFrom), String> {
+    let text = read_text(path, "machine file")?;
+    let file = path.display().to_string();
+    if grbl_settings::looks_like_settings(&text) {
+        let m = grbl_settings::machine(&text, &file).map_err(|e| e.to_string())?;
+        return Ok((m, MachineFrom::GrblSettings(file)));
+    }
+    let m = Machine::from_toml(&text).map_err(|e| format!("machine file {file}: {e}"))?;
+    Ok((m, MachineFrom::File(file)))
+}
+
+/// How the dialect numbers the lathe tip directions of the machine's
+/// registers: linuxcnc-lathe reads a `.tbl`'s Q as it is, the Fanuc-style
+/// lathes in Fanuc's numbering.
+pub(crate) fn tip_numbering(dialect: &Dialect) -> TipNumbering {
+    if dialect.name == "linuxcnc-lathe" {
+        TipNumbering::LinuxCnc
+    } else {
+        TipNumbering::Fanuc
+    }
+}
 
 /// Runs the program `input` into `sink`. Returns how the run ended and
 /// whether it ended in diameter programming.
@@ -71,6 +133,9 @@ pub(crate) fn execute<S: Sink>(
     let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
     let mut interp = Interpreter::new(s.machine, s.dialect, s.options);
+    if s.markers {
+        interp = interp.with_program_markers();
+    }
     if let Some(path) = &c.variables {
         let kept = variables::read(path)?;
         interp
@@ -85,7 +150,8 @@ pub(crate) fn execute<S: Sink>(
 }
 
 fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
-    let choice = choose::Choice::new(&args.opts)?;
+    let choice =
+        choose::Choice::new(&args.opts)?.with_markers(matches!(args.format, Format::Gcode));
     // Opened before any output is written, so that a missing file is a
     // usage error with nothing on stdout.
     let input = Input::from_arg(&args.file)?;
@@ -110,12 +176,25 @@ fn run_events(args: &RunArgs) -> Result<ExitCode, String> {
                 machine,
             )
         })?,
-        Format::Gcode => stream(args, &s, &input, || {
-            GcodeSink::new(
-                BufWriter::with_capacity(1 << 16, std::io::stdout()),
-                machine,
-            )
-        })?,
+        Format::Gcode => {
+            let opts = GcodeOptions {
+                coords: match args.coords {
+                    cli::Coords::Work => vcnc_output::Coords::Work,
+                    cli::Coords::Machine => vcnc_output::Coords::Machine,
+                },
+                units: args.opts.units.map(|u| match u {
+                    cli::UnitsArg::Mm => vcnc_output::Units::Mm,
+                    cli::UnitsArg::In => vcnc_output::Units::Inch,
+                }),
+            };
+            stream(args, &s, &input, || {
+                GcodeSink::with_options(
+                    BufWriter::with_capacity(1 << 16, std::io::stdout()),
+                    machine,
+                    opts,
+                )
+            })?
+        }
         Format::Trace => {
             let profile = args.profile.map(Into::into);
             trace::check_period(machine, args.period, profile)?;

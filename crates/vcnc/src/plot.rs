@@ -56,9 +56,6 @@ pub struct PlotArgs {
     /// Do not draw rapids (a program of rapids alone still shows them).
     #[arg(long)]
     pub no_rapids: bool,
-    /// Unit of the ticks, legend and page readouts.
-    #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
-    pub units: UnitsArg,
     /// What colours the cuts (default: depth; in the page, tool when the program uses two tools or more).
     #[arg(long, value_enum)]
     pub color: Option<ColorArg>,
@@ -80,15 +77,6 @@ pub enum FitArg {
     Cuts,
     /// Every move and mark (and the travel limits).
     All,
-}
-
-/// `--units`.
-#[derive(Debug, Clone, Copy, ValueEnum)]
-pub enum UnitsArg {
-    /// Millimetres.
-    Mm,
-    /// Inches.
-    In,
 }
 
 /// `--view`.
@@ -398,10 +386,7 @@ fn settings(args: &PlotArgs, machine: &Machine, lathe: bool) -> Result<Settings,
         height_px,
         fit,
         rapids: !args.no_rapids,
-        units: match args.units {
-            UnitsArg::Mm => DisplayUnits::Mm,
-            UnitsArg::In => DisplayUnits::In,
-        },
+        units: args.opts.units.map_or(DisplayUnits::Mm, Into::into),
     };
     let (space, max_vertices) = match format {
         Format::Html => (

@@ -72,7 +72,14 @@ pub fn time(a: &TimeArgs) -> Result<ExitCode, String> {
                         t: &t,
                         summary: &summary,
                     };
-                    text(&mut out, &report, &outcome, a.units.into())
+                    text(
+                        &mut out,
+                        &report,
+                        &outcome,
+                        a.opts
+                            .units
+                            .map_or(vcnc_core::display::DisplayUnits::Mm, Into::into),
+                    )
                 })
             }
             TimeFormat::Json => json(&mut out, &name, &s, profile, &t, &summary, &outcome),

@@ -303,7 +303,7 @@ fn run_gcode_flattens_cutter_compensation_and_transforms() {
     let dir = TempDir::new("flatten-comp");
     dir.write(
         "comp.nc",
-        "G21 G17 G90 G00 X0 Y-20. Z5.\nS1000 M03\nG68 X0 Y0 R30.\nG41 D1 G01 X0 Y0 F500.\nX40.\nG03 X40. Y20. R10.\nG01 X-5.\nG40 Y-20.\nG69\nM30\n",
+        "G10 L12 P1 R5.\nG21 G17 G90 G00 X0 Y-20. Z5.\nS1000 M03\nG68 X0 Y0 R30.\nG41 D1 G01 X0 Y0 F500.\nX40.\nG03 X40. Y20. R10.\nG01 X-5.\nG40 Y-20.\nG69\nM30\n",
     );
     let original = vcnc_in(dir.path(), &["run", "comp.nc", "--dialect", "fanuc"]);
     assert_eq!(code(&original), 0, "{}", stderr(&original));
@@ -771,6 +771,8 @@ fn the_fanuc_lathe_examples_run_to_the_end() {
         "check",
         "--dialect",
         "fanuc-lathe",
+        "--machine",
+        "examples/fanuc-lathe/turret.toml",
         "--deny-warnings",
         "examples/fanuc-lathe",
     ]);
@@ -1096,12 +1098,27 @@ fn feed_per_rev_flattens_at_the_spindle_speed_and_alarms_when_stopped() {
     let o = vcnc_in(dir.path(), &["run", "--format", "gcode", "turning.nc"]);
     assert_eq!(code(&o), 0, "{}", stderr(&o));
     let text = stdout(&o);
-    // Regression: the flattened program starts where the source machine does.
+    // 0.1 mm/rev at 1000 rpm is 100 mm/min; Y and Z, never moved, are not
+    // written (the program starts where the machine is).
+    assert!(text.contains("\nG1 X10. F100\n"), "{text}");
+    // `--coords machine`, for comparisons: the flattened program starts
+    // where the source machine does.
+    let o = vcnc_in(
+        dir.path(),
+        &[
+            "run",
+            "--format",
+            "gcode",
+            "--coords",
+            "machine",
+            "turning.nc",
+        ],
+    );
+    let text = stdout(&o);
     assert!(
         text.contains("G21 G90 G94 G17\nG0 X0. Y0. Z0. (power-on position)\n"),
         "{text}"
     );
-    // 0.1 mm/rev at 1000 rpm is 100 mm/min.
     assert!(text.contains("G1 X10. Y0. Z0. F100\n"), "{text}");
 }
 
@@ -1243,4 +1260,128 @@ fn the_dialect_matrix_in_the_docs_is_the_tables() {
         doc[start..end] == stdout(&o),
         "docs/dialects.md's matrix is stale: regenerate it with `vcnc explain --matrix`"
     );
+}
+
+// ---------------------------------------------------------------------------
+// Tools and machines: --tools, vcnc tools, machine --print, $$ dumps
+// ---------------------------------------------------------------------------
+
+/// `--tools` fills D: G41 D1 with tools.csv's tool 1 (6 mm across, radius
+/// 3) offsets the path; without a table the built-in mill's D1 is 0, the
+/// path is the programmed one and W108 says why.
+#[test]
+fn a_tool_table_fills_the_radius_compensation_reads() {
+    let dir = TempDir::new("tools-comp");
+    dir.write(
+        "comp.nc",
+        "S1000 M03\nG00 X-10. Y0. Z0.\nG41 D1 G01 X0. Y0. F300.\nX50.\nG40 X60. Y-10.\nM30\n",
+    );
+    let table = workspace().join("tests/fixtures/tools/tools.csv");
+    let table = table.to_str().unwrap();
+    // Start-up east along Y0 with the tool on the left: the offset path is
+    // Y = +3, so the first compensated move ends at X0 Y3.
+    let o = vcnc_in(
+        dir.path(),
+        &["run", "comp.nc", "--dialect", "fanuc", "--tools", table],
+    );
+    assert_eq!(code(&o), 0, "{}", stderr(&o));
+    let feeds: Vec<Value> = jsonl(&o)
+        .into_iter()
+        .filter(|e| e["type"] == "feed")
+        .collect();
+    assert_eq!(feeds[0]["to"], json!({"x": 0.0, "y": 3.0, "z": 0.0}));
+    assert!(!stderr(&o).contains("W108"), "{}", stderr(&o));
+    let o = vcnc_in(dir.path(), &["run", "comp.nc", "--dialect", "fanuc"]);
+    let feeds: Vec<Value> = jsonl(&o)
+        .into_iter()
+        .filter(|e| e["type"] == "feed")
+        .collect();
+    assert_eq!(feeds[0]["to"], json!({"x": 0.0, "y": 0.0, "z": 0.0}));
+    assert!(
+        stderr(&o).contains("warning[W108]: compensation with G41 D1 = 0"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// What `vcnc machine --print` prints reads back to the machine a run
+/// uses: every dialect's built-in machine, a machine file, a `$$` dump.
+#[test]
+fn machine_print_reads_back_to_the_same_machine() {
+    use vcnc_interp::{Dialect, Machine};
+    for name in Dialect::NAMES {
+        let o = vcnc(&["machine", "--print", "--dialect", name]);
+        assert_eq!(code(&o), 0, "{name}: {}", stderr(&o));
+        let printed = Machine::from_toml(&stdout(&o)).expect(name);
+        assert_eq!(printed, Dialect::by_name(name).unwrap().machine(), "{name}");
+    }
+    let file = "tests/fixtures/machines/mill_tools.toml";
+    let o = vcnc(&["machine", "--print", "--machine", file]);
+    let text = std::fs::read_to_string(workspace().join(file)).unwrap();
+    assert_eq!(stdout(&o), text);
+    let dump = "tests/fixtures/machines/grblhal_4axis.txt";
+    let o = vcnc(&["machine", "--print", "--machine", dump]);
+    let printed = Machine::from_toml(&stdout(&o)).unwrap();
+    let text = std::fs::read_to_string(workspace().join(dump)).unwrap();
+    assert_eq!(
+        printed,
+        vcnc_core::grbl_settings::machine(&text, dump).unwrap()
+    );
+    // A run on the dump is a run on that machine: 4 axes, soft limits.
+    let dir = TempDir::new("grbl-dump");
+    dir.write("over.nc", "G0 X-350.\nM30\n");
+    let dump_path = workspace().join(dump);
+    let o = vcnc_in(
+        dir.path(),
+        &[
+            "check",
+            "over.nc",
+            "--dialect",
+            "grbl",
+            "--machine",
+            dump_path.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(
+        code(&o),
+        1,
+        "X travel is 300 mm from 0 down: {}",
+        stdout(&o)
+    );
+    assert!(stderr(&o).contains("E501"), "{}", stderr(&o));
+    // `machine` without --print is a usage error.
+    assert_eq!(code(&vcnc(&["machine"])), 2);
+}
+
+/// Files that are not tool tables or machines stop the run with exit 2 and
+/// nothing on stdout: an empty table, binary bytes, a file too large to be
+/// one (not read into memory), a directory.
+#[test]
+fn files_that_are_not_tables_or_machines_are_refused() {
+    let dir = TempDir::new("not-tables");
+    dir.write("p.nc", "G0 X1.\nM30\n");
+    dir.write("empty.tbl", "");
+    std::fs::write(
+        dir.path().join("binary.tbl"),
+        [0u8, 159, 146, 150, 255, 10, 84],
+    )
+    .unwrap();
+    let huge = std::fs::File::create(dir.path().join("huge.tbl")).unwrap();
+    huge.set_len(17 << 20).unwrap();
+    for (option, file, needle) in [
+        (
+            "--tools",
+            "empty.tbl",
+            "empty.tbl:0: the table lists no tool",
+        ),
+        ("--tools", "binary.tbl", "binary.tbl:1:"),
+        ("--tools", "huge.tbl", "larger than 16 MiB"),
+        ("--machine", "huge.tbl", "larger than 16 MiB"),
+        ("--tools", ".", "cannot read tool table"),
+    ] {
+        let o = vcnc_in(dir.path(), &["run", "p.nc", option, file]);
+        assert_eq!(code(&o), 2, "{file}: {}", stderr(&o));
+        assert_eq!(stdout(&o), "", "{file}");
+        assert!(stderr(&o).contains(needle), "{file}: {}", stderr(&o));
+    }
 }

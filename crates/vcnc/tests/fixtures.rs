@@ -8,8 +8,9 @@
 //! `tools/linuxcnc/make_fixtures.py` and `make_ext_fixtures.py` (through
 //! the shared converter `rs274_events.py`). Numbers compare within a tolerance
 //! (rs274 prints 4 decimals); alarm and warning messages are not compared,
-//! their code, line and column are. A first line `(vcnc-args: …)` passes options:
-//! `--dialect D`, `--machine FILE`, `--optional-stop`, `--block-delete`.
+//! their code, line and column are. A first line that starts `(vcnc-args: …)`
+//! passes options: `--dialect D`, `--machine FILE`, `--optional-stop`,
+//! `--block-delete`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
@@ -39,7 +40,9 @@ fn args_of(program: &str, dir: &Path, default_dialect: &str) -> Args {
     let Some(rest) = first.strip_prefix("(vcnc-args:") else {
         return a;
     };
-    let mut words = rest.trim_end_matches(')').split_whitespace();
+    // The arguments end at the comment's `)`; the fixture's description
+    // may follow on the same line, so that adding arguments moves no line.
+    let mut words = rest.split(')').next().unwrap_or("").split_whitespace();
     while let Some(w) = words.next() {
         match w {
             "--dialect" => a.dialect = words.next().expect("dialect name").into(),
@@ -478,7 +481,7 @@ fn linuxcnc_lathe_compensation_follows_the_tool_orientation() {
     let dialect = Dialect::linuxcnc_lathe();
     for q in 1u8..=9 {
         let mut machine = dialect.machine();
-        let tool = machine.tools.get_mut(&2).expect("tool 2");
+        let tool = machine.tools.entry(2).or_default();
         tool.nose_radius_mm = table["nose_radius_mm"].as_f64().expect("radius");
         tool.tip = q;
         let mut sink = VecSink::default();

@@ -189,7 +189,12 @@ fn svg_of_manual_1_2_2_g01_profile() {
 /// with the same alternation.
 #[test]
 fn svg_of_manual_1_2_18_cutter_compensation() {
-    let svg = svg_of("tests/fixtures/manual/1.2.18_example.nc", &[]);
+    // D01 = 5 mm, as the manual's example says: the built-in mill's offset
+    // memory is empty.
+    let svg = svg_of(
+        "tests/fixtures/manual/1.2.18_example.nc",
+        &["--machine", "tests/fixtures/machines/mill_tools.toml"],
+    );
     let contour = paths(&svg, "1", true)
         .into_iter()
         .filter(|p| p.len() > 2)

@@ -122,3 +122,115 @@ fn whole_units_under_least_increments_warn() {
     insta::assert_snapshot!(vcnc_on("trap", program, &["check", "--dialect", "fanuc"]));
     insta::assert_snapshot!(vcnc_on("trap", program, &["check"]));
 }
+
+/// Runs `vcnc args…` in the repository root on its own files.
+fn vcnc_args(args: &[&str]) -> String {
+    let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
+        .args(args)
+        .current_dir(workspace())
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("vcnc runs");
+    format!(
+        "exit {}\n--- stdout\n{}--- stderr\n{}",
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// `vcnc tools` on a Fusion program of the corpus: the shape from its
+/// header comment, the registers of the built-in machine (empty).
+#[test]
+fn tools_of_a_fusion_program() {
+    insta::assert_snapshot!(vcnc_args(&[
+        "tools",
+        "--dialect",
+        "fanuc",
+        "corpus/mill-fanuc/jobline-issue-3-fusion-g18.nc",
+    ]));
+}
+
+/// `vcnc tools --tools mill.tbl`: T1 and T2 from the table (shape and
+/// registers), T5 described by nothing, T7 and T12 listed but not used.
+#[test]
+fn tools_with_a_linuxcnc_table() {
+    insta::assert_snapshot!(vcnc_on(
+        "tbl",
+        "G21 G90 G17\nT1 M6\nG43 H1 Z50.\nT5 M6\nG0 X10.\nT2 M6\nT1 M6\nM30\n",
+        &[
+            "tools",
+            "--dialect",
+            "fanuc",
+            "--tools",
+            "tests/fixtures/tools/mill.tbl"
+        ]
+    ));
+}
+
+/// `vcnc tools --format json` on Carbide Create output (CutViewer lines).
+#[test]
+fn tools_json_of_carbide_create_output() {
+    insta::assert_snapshot!(vcnc_args(&[
+        "tools",
+        "--dialect",
+        "grbl",
+        "--format",
+        "json",
+        "tests/fixtures/tools/carbide_create.nc",
+    ]));
+}
+
+/// `vcnc check` with `option` naming a file that holds `content`, shown
+/// as `shown` (a malformed table or dump: the run never starts).
+fn check_with_file(option: &str, shown: &str, content: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("vcnc_snap_{}_{shown}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(shown);
+    std::fs::write(&file, content).unwrap();
+    let path = file.display().to_string();
+    let out = vcnc_on(shown, "T1 M6\nG0 X1.\nM30\n", &["check", option, &path]);
+    std::fs::remove_dir_all(&dir).ok();
+    out.replace(&path, shown)
+}
+
+/// A malformed tool table stops before anything runs: exit 2, the file,
+/// the line, what is wrong and how to fix it.
+#[test]
+fn a_malformed_tool_table_is_a_usage_error() {
+    insta::assert_snapshot!(check_with_file(
+        "--tools",
+        "bad.tbl",
+        "T1 P1 D6 Z10 ;ok\nT2 P2 D6,35 Z10\n"
+    ));
+}
+
+/// `vcnc machine --print --machine` on grbl's `$$` with soft limits on.
+#[test]
+fn machine_print_of_a_grbl_settings_dump() {
+    insta::assert_snapshot!(vcnc_args(&[
+        "machine",
+        "--print",
+        "--machine",
+        "tests/fixtures/machines/grbl_soft_limits.txt",
+    ]));
+}
+
+/// The head of `vcnc machine --print --dialect fanuc-lathe`: the embedded
+/// file under two lines that say how to use it.
+#[test]
+fn machine_print_of_the_built_in_lathe() {
+    let out = vcnc_args(&["machine", "--print", "--dialect", "fanuc-lathe"]);
+    let head: String = out.lines().take(24).map(|l| format!("{l}\n")).collect();
+    insta::assert_snapshot!(head);
+}
+
+/// A `$$` dump with a value that is not a number: exit 2, file and line.
+#[test]
+fn a_malformed_grbl_dump_is_a_usage_error() {
+    insta::assert_snapshot!(check_with_file(
+        "--machine",
+        "dump.txt",
+        "$100=250.000\n$110=500.000\n$120=ten\n"
+    ));
+}

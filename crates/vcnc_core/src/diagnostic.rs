@@ -137,6 +137,7 @@ codes! {
     W105 => "M code the controller does not know",
     W106 => "program ends without M02 or M30",
     W107 => "M99 repeats the main program",
+    W108 => "tool compensation with an empty offset register",
     W109 => "no decimal points and a part under 1 mm: probably whole units",
 }
 

@@ -481,8 +481,59 @@ pub enum Event {
         /// Each variable and where it was first read.
         variables: Arc<[UnsetVariable]>,
     },
+    /// The program selected another work coordinate system (not sent for
+    /// the power-on G54), so that a consumer that writes program
+    /// coordinates (the flattened program) can write them in it. The
+    /// `frame` event carries the offsets.
+    WorkSystem {
+        /// Source.
+        loc: Loc,
+        /// Index into the machine's work offsets (0 = G54 … 5 = G59, 6 =
+        /// G59.1 … 14 = G59.9); `None`: no work system (a lathe's G53/G500).
+        system: Option<u8>,
+    },
+    /// The program's length units changed (G20/G21, Syntec G70/G71; not
+    /// sent for the power-on mm). Events stay in mm.
+    Units {
+        /// Source.
+        loc: Loc,
+        /// Inches from here on.
+        inch: bool,
+    },
+    /// The next motion events of this block, up to the one that ends at
+    /// `to`, go to a point given in machine coordinates (G53, the
+    /// reference leg of G28/G30, a lathe's return to the reference point),
+    /// which no work offset moves.
+    MachineMove {
+        /// Source.
+        loc: Loc,
+        /// The machine point the move ends at.
+        to: Pos,
+        /// The axes the block commands (bit i: machine axis i); the others
+        /// stay where they are.
+        axes: u8,
+    },
+    /// The next move of this block places these axes (bit i: machine axis
+    /// i) in program coordinates for the first time since power-on or since
+    /// a `machine_move` moved them: until then a consumer that writes
+    /// program coordinates does not know them (the flattened program leaves
+    /// them out).
+    Placed {
+        /// Source.
+        loc: Loc,
+        /// The axes the block names among those.
+        axes: u8,
+    },
     /// An alarm; always the last event.
     Alarm(Diagnostic),
+}
+
+/// The G code of work system `index` (0 = G54 … 14 = G59.9).
+pub fn work_system_name(index: u8) -> String {
+    match index {
+        0..=5 => format!("G{}", 54 + u16::from(index)),
+        _ => format!("G59.{}", index.saturating_sub(5)),
+    }
 }
 
 /// A NURBS curve in machine coordinates.
@@ -526,7 +577,11 @@ macro_rules! with_loc {
             | Event::Smoothing { $loc, .. }
             | Event::Nurbs { $loc, .. }
             | Event::Message { $loc, .. }
-            | Event::UnsetVariables { $loc, .. } => Some($body),
+            | Event::UnsetVariables { $loc, .. }
+            | Event::WorkSystem { $loc, .. }
+            | Event::Units { $loc, .. }
+            | Event::MachineMove { $loc, .. }
+            | Event::Placed { $loc, .. } => Some($body),
             Event::Warning(_) | Event::Alarm(_) => None,
         }
     };
@@ -560,6 +615,10 @@ impl Event {
             Event::Nurbs { .. } => "nurbs",
             Event::Message { .. } => "message",
             Event::UnsetVariables { .. } => "unset_variables",
+            Event::WorkSystem { .. } => "work_system",
+            Event::Units { .. } => "units",
+            Event::MachineMove { .. } => "machine_move",
+            Event::Placed { .. } => "placed",
             Event::Alarm(_) => "alarm",
         }
     }

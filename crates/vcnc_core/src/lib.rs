@@ -8,10 +8,12 @@
 //! formats and summary, the planner, the plotter — read events and the
 //! machine model without knowing anything of the interpreter.
 
+mod decimal;
 pub mod diagnostic;
 pub mod display;
 pub mod events;
 pub mod geometry;
+pub mod grbl_settings;
 pub mod machine;
 pub mod motion;
 pub mod nurbs;
@@ -27,4 +29,4 @@ pub use events::{
 pub use machine::Machine;
 pub use sink::{NullSink, Sink, VecSink};
 pub use span::{Span, clamp_u32, column_of};
-pub use tooling::{ToolKind, ToolLibrary, ToolShape, ToolSource};
+pub use tooling::{ToolKind, ToolLibrary, ToolShape, ToolSource, ToolTableError};

@@ -658,9 +658,32 @@ mod tests {
         assert!(Machine::from_toml(DEFAULT_LATHE_TOML).is_ok());
         let fl = Machine::from_toml(DEFAULT_FANUC_LATHE_TOML).unwrap();
         assert!(!fl.has_travel_limits());
-        assert_eq!(fl.tools.get(&1).map(|t| t.tip), Some(3));
-        let bad = DEFAULT_FANUC_LATHE_TOML.replacen("tip = 3", "tip = 10", 1);
+        let tipped = format!("{DEFAULT_FANUC_LATHE_TOML}\n[tools.1]\ntip = 3\n");
+        assert_eq!(
+            Machine::from_toml(&tipped)
+                .unwrap()
+                .tools
+                .get(&1)
+                .map(|t| t.tip),
+            Some(3)
+        );
+        let bad = tipped.replacen("[tools.1]\ntip = 3", "[tools.1]\ntip = 10", 1);
         assert!(Machine::from_toml(&bad).unwrap_err().0.contains("tip"));
+    }
+
+    /// The built-in machines invent no tools: their offset memory is empty,
+    /// like a control whose offset page was never filled (issue 22).
+    #[test]
+    fn the_embedded_machines_have_empty_offset_memory() {
+        for text in [
+            DEFAULT_MILL_TOML,
+            DEFAULT_HAAS_TOML,
+            DEFAULT_LATHE_TOML,
+            DEFAULT_FANUC_LATHE_TOML,
+        ] {
+            let m = Machine::from_toml(text).unwrap();
+            assert!(m.tools.is_empty(), "{}: {:?}", m.name, m.tools);
+        }
     }
 
     #[test]

@@ -1062,6 +1062,18 @@ pub fn main_program_repeats(span: Span) -> Diagnostic {
     )
 }
 
+/// W108: G41/G42 or G43/G44 reads an offset register that holds 0 (the
+/// built-in machines' offset memory is empty): the path is not offset.
+#[cold]
+pub fn zero_offset(span: Span, what: &str) -> Diagnostic {
+    d(
+        Code::W108,
+        span,
+        format!("compensation with {what} changes nothing"),
+        "give the tools' sizes with --tools FILE (a LinuxCNC .tbl or a CSV) or in the machine file's [tools]; a program written for wear compensation may leave this register near 0",
+    )
+}
+
 /// E327: G05.1 Q1 under G61 or G63 (Syntec 1.2.7, condition 1).
 #[cold]
 pub fn smoothing_in_exact_stop(span: Span) -> Diagnostic {

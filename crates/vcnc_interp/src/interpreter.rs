@@ -101,6 +101,9 @@ pub(crate) struct Config<'a> {
     pub max_feed: f64,
     /// The dialect reads `%@MACRO` files (checked for every block).
     pub macro_files: bool,
+    /// Whether the markers of program coordinates are emitted
+    /// ([`Interpreter::with_program_markers`]).
+    pub markers: bool,
 }
 
 /// What the run loop keeps between blocks: the runaway budget, and whether
@@ -163,6 +166,7 @@ impl<'a> Interpreter<'a> {
                 travel_limited: machine.has_travel_limits(),
                 max_feed: machine.max_feed_mm_per_min(),
                 macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
+                markers: false,
             },
             state: State::power_on(machine, dialect),
             tables: Tables::new(machine),
@@ -176,11 +180,23 @@ impl<'a> Interpreter<'a> {
                 alarms: 0,
                 first_alarm: None,
             },
-            stage: crate::motion::stage::Stage::new(),
+            stage: crate::motion::stage::Stage::new(machine.axes.len()),
             points: crate::state::PointStyle::new(machine, dialect),
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
             nurbs: None,
         }
+    }
+
+    /// Also emits the events a consumer that writes program coordinates
+    /// needs — the flattened program of `vcnc run --format gcode`:
+    /// `work_system` and `units` when the program changes them,
+    /// `machine_move` before a move to a machine point (G53, a reference
+    /// return) and `placed` when a block first places axes in program
+    /// coordinates (`docs/events.md`). Off by default: other consumers, and
+    /// the JSON-lines contract of `vcnc run`, do without them.
+    pub fn with_program_markers(mut self) -> Interpreter<'a> {
+        self.cfg.markers = true;
+        self
     }
 
     /// The state after the run (or at the alarm: as it was before the

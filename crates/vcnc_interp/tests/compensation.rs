@@ -22,8 +22,9 @@ use vcnc_syntax::Code;
 
 mod common;
 
+/// Runs under the fanuc dialect on a mill whose D1 is 5 mm.
 fn run(program: &str) -> (Vec<Event>, Outcome) {
-    common::run_str(&Dialect::fanuc(), program)
+    common::run_str_on(&common::mill_with_tools(), &Dialect::fanuc(), program)
 }
 
 type P = (f64, f64);

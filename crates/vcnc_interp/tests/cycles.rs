@@ -154,7 +154,8 @@ fn rotated_scaled_and_offset_holes_land_where_the_frame_puts_them() {
 
 #[test]
 fn compensation_is_suspended_for_holes_and_starts_again_afterwards() {
-    let program = "G0 X-20. Y0 Z10.\nG41 D1 G1 X0 Y0 F500\nY20.\n\
+    // D1 = 5 mm, written by the program: the built-in mill has no tools.
+    let program = "G10 L12 P1 R5.\nG0 X-20. Y0 Z10.\nG41 D1 G1 X0 Y0 F500\nY20.\n\
                    G81 X30. Y30. Z-5. R2. F100\nG80\nG1 X50. Y20. F500\nG40 X60. Y0\nM30\n";
     let (events, out) = run(program);
     assert!(matches!(out, Outcome::Ended(_)), "{out:?}");

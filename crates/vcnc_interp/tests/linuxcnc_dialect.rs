@@ -58,11 +58,11 @@ const CONTOUR: &str = "G0 X-10 Y-10 Z5\nG1 Z-1 F300\nG41{D} G1 X0 Y0\nG1 X40\nG1
                        G1 X0\nG1 Y0\nG40 G1 X-10 Y-10\nG0 Z5\nM5\nM2\n";
 
 /// LinuxCNC: "If D is not given, the diameter of the currently loaded
-/// tool is used": after `T3 M6`, `G41` is `G41 D3` (radius 3 mm on the
-/// built-in mill, against tool 1's 5 mm).
+/// tool is used": after `T3 M6`, `G41` is `G41 D3` (radius 3 mm, against
+/// tool 1's 5 mm, both written by G10 L1: the built-in mill has no tools).
 #[test]
 fn g41_without_d_uses_the_tool_in_the_spindle() {
-    let head = "G21 G17 G90 G94\nT3 M6\nS2000 M3\n";
+    let head = "G21 G17 G90 G94\nG10 L1 P1 R5\nG10 L1 P3 R3\nT3 M6\nS2000 M3\n";
     let bare = ended(&format!("{head}{}", CONTOUR.replace("{D}", "")));
     let d3 = ended(&format!("{head}{}", CONTOUR.replace("{D}", " D3")));
     let d1 = ended(&format!("{head}{}", CONTOUR.replace("{D}", " D1")));

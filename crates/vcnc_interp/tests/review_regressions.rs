@@ -136,12 +136,16 @@ fn g33_with_a_zero_lead_alarms() {
 
 #[test]
 fn g97_alone_keeps_the_speed_g96_gave() {
-    // T2 has d_mm 5: 1000·130/(π·10) = 4138.03 rpm, kept by G97 without S.
+    // T2's D is 5 mm (G10 L12): 1000·130/(π·10) = 4138.03 rpm, kept by
+    // G97 without S.
     let d = Dialect::syntec();
     let m = d.machine();
     let mut sink = VecSink::default();
     let mut i = Interpreter::new(&m, &d, Options::default());
-    i.run_str("T2 M06\nG96 S130 M03\nG97\nM30\n", &mut sink);
+    i.run_str(
+        "G10 L12 P2 R5.\nT2 M06\nG96 S130 M03\nG97\nM30\n",
+        &mut sink,
+    );
     assert!(
         (i.state().s_value - 4138.0285).abs() < 1e-3,
         "{}",
@@ -160,10 +164,11 @@ fn g97_alone_keeps_the_speed_g96_gave() {
 
 #[test]
 fn g96_speed_follows_a_tool_change() {
-    // T3 has d_mm 3: 1000·130/(π·6) = 6897 rpm, clamped by G92 S5000.
+    // T2's D is 5 mm, T3's 3 mm (G10 L12): 1000·130/(π·6) = 6897 rpm,
+    // clamped by G92 S5000.
     let (ev, _) = run(
         &Dialect::syntec(),
-        "T2 M06\nG92 S5000\nG96 S130 M03\nT3 M06\nM30\n",
+        "G10 L12 P2 R5.\nG10 L12 P3 R3.\nT2 M06\nG92 S5000\nG96 S130 M03\nT3 M06\nM30\n",
     );
     let rpms: Vec<f64> = ev
         .iter()

@@ -1,4 +1,4 @@
-//! One test per warning code (W101–W107, W109, `docs/alarms.md`): the code, its
+//! One test per warning code (W101–W109, `docs/alarms.md`): the code, its
 //! line and column, that the run goes on, and where a warning must stay
 //! silent. Columns are counted by hand from the program text.
 
@@ -230,5 +230,76 @@ fn w109_on_a_lathe_leaves_the_power_on_position_out() {
             .contains("--dialect lathe or --dialect linuxcnc-lathe"),
         "{}",
         w.help
+    );
+}
+
+/// W108: the built-in mill's offset memory is empty, so G41 D1 offsets by 0
+/// (warned once per register, at the G41/G42 word) and the cut is the
+/// programmed path; D0 is the zero register by definition and stays silent.
+#[test]
+fn w108_compensation_with_an_empty_register() {
+    let program = "S1000 M03\nG00 X-10. Y-10.\nG01 G41 D1 X0 Y0 F500.\nX20.\nG40 X30. Y-10.\n\
+                   G42 D1 G01 X0 Y0\nG40 X-10.\nG41 D2 X0\nG40 X-10.\nG41 D0 X0\nG40 X-10.\nM30\n";
+    let (ev, out) = run(program);
+    assert!(matches!(out, Outcome::Ended(EndCode::M30)), "{out:?}");
+    assert_eq!(
+        places(&ev),
+        vec![(Code::W108, 3, 5), (Code::W108, 8, 1)],
+        "{:?}",
+        warnings(&ev)
+    );
+    assert!(warnings(&ev)[0].message.contains("G41 D1 = 0"));
+    // Nothing is offset: the cut ends where the program says.
+    let feeds: Vec<(f64, f64)> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } => Some((to.get(0), to.get(1))),
+            _ => None,
+        })
+        .take(3)
+        .collect();
+    assert_eq!(feeds, vec![(0.0, 0.0), (20.0, 0.0), (30.0, -10.0)]);
+}
+
+/// W108 for G43/G44 with an H register that holds 0; a filled register
+/// (written by G10 L10) and G49 stay silent.
+#[test]
+fn w108_tool_length_with_an_empty_register() {
+    let (ev, _) =
+        run("G10 L10 P2 R50.\nG43 H1 Z10.\nG49\nG44 H3 Z10.\nG43 H2 Z10.\nG49 Z20.\nM30\n");
+    assert_eq!(
+        places(&ev),
+        vec![(Code::W108, 2, 1), (Code::W108, 4, 1)],
+        "{:?}",
+        warnings(&ev)
+    );
+    assert!(warnings(&ev)[1].message.contains("G44 H3 = 0"));
+}
+
+/// W108 stays silent when the register holds a radius, and names the tool
+/// nose on a lathe whose turret offset has none.
+#[test]
+fn w108_names_the_nose_radius_on_a_lathe_and_is_silent_with_tools() {
+    let mut mill = Machine::default_mill();
+    mill.tools.entry(1).or_default().d_mm = 5.0;
+    let (ev, _) = run_in(
+        &mill,
+        Dialect::syntec(),
+        "S1000 M03\nG00 X-10. Y-10.\nG01 G41 D1 X0 Y0 F500.\nX20.\nG40 X30.\nM30\n",
+    );
+    assert!(places(&ev).is_empty(), "{:?}", warnings(&ev));
+    let lathe = Dialect::fanuc_lathe();
+    let (ev, out) = run_in(
+        &lathe.machine(),
+        Dialect::fanuc_lathe(),
+        "T0101\nS500 M03\nG00 X40. Z2.\nG42 G01 X40. Z0 F0.2\nZ-20.\nG40 G00 X60.\nM30\n",
+    );
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(places(&ev), vec![(Code::W108, 4, 1)]);
+    let w = warnings(&ev)[0];
+    assert!(
+        w.message.contains("nose radius of 0 (offset 1)"),
+        "{}",
+        w.message
     );
 }

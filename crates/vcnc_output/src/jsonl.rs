@@ -308,6 +308,33 @@ pub fn write_event(out: &mut Vec<u8>, axes: &mut EventAxes, event: &Event) {
             }
             j.out.push(b']');
         }
+        Event::WorkSystem { loc, system } => {
+            j.head("work_system", loc);
+            match system {
+                Some(n) => j.str("system", &vcnc_core::events::work_system_name(*n)),
+                None => {
+                    j.key("system");
+                    j.out.extend_from_slice(b"null");
+                }
+            }
+        }
+        Event::Units { loc, inch } => {
+            j.head("units", loc);
+            j.str("units", if *inch { "in" } else { "mm" });
+        }
+        Event::MachineMove { loc, to, axes } => {
+            j.head("machine_move", loc);
+            j.key("to");
+            j.axes_of(to, u32::from(*axes));
+        }
+        Event::Placed { loc, axes } => {
+            j.head("placed", loc);
+            let letters: String = (j.axes.letters.iter().enumerate())
+                .filter(|(i, _)| axes & (1 << i) != 0)
+                .map(|(_, l)| char::from(*l))
+                .collect();
+            j.str("axes", &letters);
+        }
         Event::Warning(d) => j.diagnostic("warning", d),
         Event::Alarm(d) => j.diagnostic("alarm", d),
         // The contract is additive: an event type this writer does not know
@@ -398,11 +425,15 @@ impl Obj<'_> {
         self.point(p);
     }
     fn point(&mut self, p: &Pos) {
-        self.out.push(b'{');
         self.axes.note(p);
+        self.axes_of(p, self.axes.shown);
+    }
+    /// The axes of `mask` (bit i: axis i) of `p`.
+    fn axes_of(&mut self, p: &Pos, mask: u32) {
+        self.out.push(b'{');
         let mut first = true;
         for (i, letter) in self.axes.letters.iter().enumerate() {
-            if !self.axes.shows(i) {
+            if mask & (1 << i) == 0 {
                 continue;
             }
             if !first {

@@ -14,6 +14,6 @@ mod num;
 mod summary;
 
 pub use csv::CsvSink;
-pub use gcode::GcodeSink;
+pub use gcode::{Coords, GcodeOptions, GcodeSink, Units};
 pub use jsonl::{EventAxes, JsonlSink, write_event};
 pub use summary::{KEPT_WARNINGS, Summary};

@@ -157,12 +157,16 @@ impl Interpreter<'_> {
             self.check_high_speed(w)?;
         }
         let path_before = self.state.modal.path;
+        let (wcs_before, inch_before) = (self.state.modal.wcs, self.state.modal.inch);
         for at in w.modal_codes() {
             self.apply_modal(at.def.op);
         }
         self.cycle_modes(w)?;
         if w.group(Group::Wcs).is_some() {
             self.state.refresh_origin(&self.tables);
+        }
+        if self.cfg.markers {
+            self.report_modes(wcs_before, inch_before);
         }
         let (allowed, ext) = self.allowed_letters(w);
         w.check_used(allowed, ext)
@@ -844,6 +848,23 @@ impl Interpreter<'_> {
             None => d,
         };
         self.emit(|_| Event::Warning(d));
+    }
+
+    /// `work_system` and `units` events when the block changed them (with
+    /// [`Interpreter::with_program_markers`]).
+    #[cold]
+    #[inline(never)]
+    fn report_modes(&mut self, wcs_before: usize, inch_before: bool) {
+        let m = self.state.modal;
+        if m.wcs != wcs_before {
+            let system = u8::try_from(m.wcs)
+                .ok()
+                .filter(|n| *n < crate::dialect::WORK_NONE);
+            self.emit(|loc| Event::WorkSystem { loc, system });
+        }
+        if m.inch != inch_before {
+            self.emit(|loc| Event::Units { loc, inch: m.inch });
+        }
     }
 
     /// Adds an event of the current block; it reaches the sink when the

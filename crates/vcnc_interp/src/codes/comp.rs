@@ -62,7 +62,40 @@ impl Interpreter<'_> {
             _ => CompSide::Off,
         };
         self.set_comp_side(side);
+        if side != CompSide::Off && self.state.comp_d_mm == 0.0 {
+            self.warn_zero_radius(code.span, side);
+        }
         Ok(())
+    }
+
+    /// W108, once per register: G41/G42 with a radius of 0 (an offset
+    /// register nobody filled) leaves the path where it is.
+    #[cold]
+    fn warn_zero_radius(&mut self, span: vcnc_syntax::Span, side: CompSide) {
+        let n = self.state.d_number;
+        if n == 0 || !self.first_zero_offset(0, n) {
+            return;
+        }
+        let g = if side == CompSide::Left { "G41" } else { "G42" };
+        let what = if self.cfg.dialect.diameter.axis.is_some() {
+            format!("{g} and a tool nose radius of 0 (offset {n})")
+        } else {
+            format!("{g} D{n} = 0")
+        };
+        self.warn(alarms::zero_offset(span, &what));
+    }
+
+    /// Whether register `n` of `kind` (0: radius, 1: length) has not been
+    /// warned about yet (W108), marking it; registers from 63 up share one
+    /// mark.
+    pub(crate) fn first_zero_offset(&mut self, kind: usize, n: u32) -> bool {
+        let bit = 1u64 << n.min(63);
+        let Some(marks) = self.stage.zero_offsets_warned.get_mut(kind) else {
+            return false;
+        };
+        let first = *marks & bit == 0;
+        *marks |= bit;
+        first
     }
 
     /// G40/G41/G42: the mode the next move in the plane starts, keeps or

@@ -102,6 +102,16 @@ impl Interpreter<'_> {
         };
         let t = self.tables.tool(self.state.h_number);
         let offset = sign * (t.h_mm + t.h_wear_mm);
+        let n = self.state.h_number;
+        if mode != ToolLength::Off && offset == 0.0 && n != 0 && self.first_zero_offset(1, n) {
+            let g = if mode == ToolLength::Plus {
+                "G43"
+            } else {
+                "G44"
+            };
+            let at = code.map_or(w.first, |c| c.span);
+            self.warn(alarms::zero_offset(at, &format!("{g} H{n} = 0")));
+        }
         let before = self.state.frame.tool;
         let mut tool = before;
         match self.cfg.machine.axis_of(b'Z') {

@@ -182,6 +182,9 @@ impl Interpreter<'_> {
         }
         self.accept_move(prog_to, mm.to, mv.to);
         // 4 events
+        if self.cfg.markers {
+            self.mark_axes(&mv, mm.to, w);
+        }
         let loc = self.flow.loc.clone();
         self.emit_released(&mm, loc);
         Ok(())
@@ -198,6 +201,9 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         self.accept_move(prog_to, mm.to, mv.to);
         if !matches!(mv.to, Target::Machine(_)) {
+            if self.cfg.markers {
+                self.mark_axes(mv, mm.to, w);
+            }
             return self.compensate(mm, mv.cmd);
         }
         // A move to a machine point (G28's second leg, G53) is not
@@ -214,7 +220,45 @@ impl Interpreter<'_> {
             line: None,
             cmd: mv.cmd,
         };
+        if self.cfg.markers {
+            self.mark_axes(mv, mm.to, w);
+        }
         self.release(mm, &at, Some(w))
+    }
+
+    /// The markers a consumer that writes program coordinates needs (the
+    /// flattened program; with [`Interpreter::with_program_markers`]),
+    /// before the move's events: `machine_move` before
+    /// a move to a machine point, with the axes the block names (every axis
+    /// when it names none: a bare G28); `placed` when the block names axes
+    /// that no program-coordinate move has placed since power-on or since
+    /// a machine move. Rare, so a plain move pays one test. Kept outside
+    /// `State`: an alarm ends the run, so nothing needs undoing.
+    #[cold]
+    #[inline(never)]
+    fn mark_axes(&mut self, mv: &Move, to: Pos, w: &Words<'_>) {
+        let machine = matches!(mv.to, Target::Machine(_));
+        if self.stage.unplaced == 0 && !machine {
+            return;
+        }
+        let bits = |named: bool| {
+            self.cfg
+                .axis_words
+                .iter()
+                .enumerate()
+                .filter(|(_, a)| !named || w.any(a.mask))
+                .fold(0u8, |m, (i, _)| m | 1u8 << i)
+        };
+        let named = bits(true);
+        if machine {
+            let axes = if named == 0 { bits(false) } else { named };
+            self.stage.unplaced |= axes;
+            self.emit(|loc| Event::MachineMove { loc, to, axes });
+        } else if named & self.stage.unplaced != 0 {
+            let axes = named & self.stage.unplaced;
+            self.stage.unplaced &= !named;
+            self.emit(|loc| Event::Placed { loc, axes });
+        }
     }
 
     /// Stage 1's bookkeeping once a move is accepted: the programmed and

@@ -42,6 +42,13 @@ pub(crate) struct Stage {
     /// W104 was given and the spindle has not turned since (or it turns:
     /// no check needed until it stops).
     pub spindle_warned: bool,
+    /// W108 was given for these registers (bit n: register n, 63 and up
+    /// share bit 63): radius registers, then length registers.
+    pub zero_offsets_warned: [u64; 2],
+    /// Bit i: no program-coordinate move has named axis i since power-on
+    /// or since a move to a machine point (`placed` events, under
+    /// `Interpreter::with_program_markers`).
+    pub unplaced: u8,
 }
 
 /// Where a block started, to take it back.
@@ -89,8 +96,8 @@ pub(crate) struct CompensatedMoveMark {
 }
 
 impl Stage {
-    /// The stage at power-on.
-    pub fn new() -> Stage {
+    /// The stage at power-on, on a machine of `axes` axes.
+    pub fn new(axes: usize) -> Stage {
         Stage {
             moves: 0,
             comp: Comp::default(),
@@ -98,6 +105,8 @@ impl Stage {
             cur_line: None,
             pending: Vec::new(),
             spindle_warned: false,
+            zero_offsets_warned: [0; 2],
+            unplaced: u8::try_from((1u32 << axes.min(8)) - 1).unwrap_or(u8::MAX),
         }
     }
 

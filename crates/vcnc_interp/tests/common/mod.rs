@@ -96,10 +96,25 @@ pub fn ended(r: &Ran) {
 /// Runs `program` under `dialect` on the built-in mill: its events and how
 /// it ended.
 pub fn run_str(dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
-    let m = Machine::default_mill();
+    run_str_on(&Machine::default_mill(), dialect, program)
+}
+
+/// Runs `program` under `dialect` on `machine`: its events and how it
+/// ended.
+pub fn run_str_on(machine: &Machine, dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
     let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, dialect, Options::default()).run_str(program, &mut sink);
+    let out = Interpreter::new(machine, dialect, Options::default()).run_str(program, &mut sink);
     (sink.0, out)
+}
+
+/// The built-in mill with tools in its offset memory
+/// (`tests/fixtures/machines/mill_tools.toml`): D1 = D2 = 5 mm, D3 = 3 mm,
+/// every H 0. The built-in mill's own memory is empty.
+pub fn mill_with_tools() -> Machine {
+    Machine::from_toml(include_str!(
+        "../../../../tests/fixtures/machines/mill_tools.toml"
+    ))
+    .unwrap()
 }
 
 /// The alarm of a run, checked to be the last event (no motion after it).

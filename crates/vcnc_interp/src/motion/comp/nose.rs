@@ -43,20 +43,9 @@ pub(crate) fn tip_direction(tip: u8) -> (f64, f64) {
 }
 
 /// The Fanuc tip number of LinuxCNC's lathe tool orientation `q` (its tool
-/// table's Q): the same directions mirrored in X (1↔4, 2↔3, 6↔8; 5 and 7
-/// stay; 9, the nose centre, is Fanuc's 0), as rs274 offsets a G41/G42
-/// path for each orientation (`tests/fixtures/linuxcnc_dialect`).
+/// table's Q): `vcnc_core::tooling`'s mapping, which `--tools` uses too.
 pub(crate) fn linuxcnc_tip(q: u8) -> u8 {
-    match q {
-        1 => 4,
-        2 => 3,
-        3 => 2,
-        4 => 1,
-        6 => 8,
-        8 => 6,
-        5 | 7 => q,
-        _ => 0,
-    }
+    vcnc_core::tooling::fanuc_tip_of_linuxcnc(q)
 }
 
 /// A move's kind with an arc's centre moved by `shift` (the offset arc of
