@@ -89,6 +89,10 @@ pub struct ToolShape {
     pub shank_diameter_mm: Option<f64>,
     /// The holder's diameter, mm, where known.
     pub holder_diameter_mm: Option<f64>,
+    /// How far the tool sticks out of its holder (tip to holder face), mm,
+    /// where known: the shank runs from the flutes up to here, the holder
+    /// from here up (the material-removal simulation's holder check).
+    pub stickout_mm: Option<f64>,
     /// The gauge length (tip to spindle nose), mm, where known.
     pub length_mm: Option<f64>,
     /// Whether the tool may plunge straight down (`None`: not said).
@@ -110,6 +114,7 @@ impl ToolShape {
             flute_length_mm: None,
             shank_diameter_mm: None,
             holder_diameter_mm: None,
+            stickout_mm: None,
             length_mm: None,
             center_cutting: None,
             description: String::new(),

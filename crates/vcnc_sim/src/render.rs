@@ -1,0 +1,1 @@
+//! A shaded picture of the finished part (PNG).
