@@ -89,7 +89,7 @@ impl Tools {
             return u8::MAX;
         };
         let number = tool.unwrap_or(0);
-        let shape = match tool.and_then(|t| self.library.get(t)) {
+        let shape = match self.library.get(number) {
             Some(s) => s.clone(),
             None => ToolShape::assumed(number),
         };

@@ -192,19 +192,37 @@ pub struct ZMap {
 
 /// Cells whose centres lie in [a, b] on an axis of `n` cells from `origin`
 /// with pitch `step`: an index range, possibly empty (lo > hi).
+#[inline]
 fn cells(a: f64, b: f64, origin: f64, step: f64, n: usize) -> (isize, isize) {
-    let lo = ((a - origin) / step - 0.5).ceil();
-    let hi = ((b - origin) / step - 0.5).floor();
-    (index(lo, n), index(hi, n).min(isize_of(n) - 1))
+    let inv = 1.0 / step;
+    let lo = ceil_index((a - origin) * inv - 0.5, n);
+    let hi = floor_index((b - origin) * inv - 0.5, n);
+    (lo, hi.min(isize_of(n) - 1))
 }
 
-/// A float index clamped to −1 ..= n (NaN: −1).
+/// ⌊v⌋ clamped to −1 ..= n (NaN: −1), without a libm call (the hot path
+/// converts a few numbers per row).
+#[inline]
 #[allow(clippy::cast_possible_truncation)] // clamped to a small range first
-fn index(v: f64, n: usize) -> isize {
-    if v.is_nan() {
+fn floor_index(v: f64, n: usize) -> isize {
+    if v.is_nan() || v < -1.0 {
         return -1;
     }
-    v.clamp(-1.0, n as f64) as isize
+    let v = v.min(n as f64);
+    let t = v as isize;
+    if (t as f64) > v { t - 1 } else { t }
+}
+
+/// ⌈v⌉ clamped to −1 ..= n (NaN: −1).
+#[inline]
+#[allow(clippy::cast_possible_truncation)] // clamped to a small range first
+fn ceil_index(v: f64, n: usize) -> isize {
+    if v.is_nan() || v < -1.0 {
+        return -1;
+    }
+    let v = v.min(n as f64);
+    let t = v as isize;
+    if (t as f64) < v { t + 1 } else { t }
 }
 
 fn isize_of(n: usize) -> isize {
@@ -228,47 +246,140 @@ fn disc_span(y: f64, c: [f64; 3], r: f64) -> Option<(f64, f64)> {
     })
 }
 
-/// Solves lo ≤ k·x + q ≤ hi for x.
-fn slab(k: f64, q: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
-    if k.abs() < 1e-15 {
-        return (lo <= q && q <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY));
+/// A capsule's row spans, its per-move constants computed once.
+#[derive(Debug, Clone, Copy)]
+struct CapsuleRows {
+    a: [f64; 3],
+    b: [f64; 3],
+    r: f64,
+    ux: f64,
+    uy: f64,
+    len: f64,
+    /// 1/ux and 1/uy, or 0 along an axis.
+    inv_ux: f64,
+    inv_uy: f64,
+}
+
+impl CapsuleRows {
+    fn new(a: [f64; 3], b: [f64; 3], r: f64) -> CapsuleRows {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = dx.hypot(dy);
+        let (ux, uy) = if len > 1e-12 {
+            (dx / len, dy / len)
+        } else {
+            (0.0, 0.0)
+        };
+        let inv = |u: f64| if u.abs() > 1e-15 { 1.0 / u } else { 0.0 };
+        CapsuleRows {
+            a,
+            b,
+            r,
+            ux,
+            uy,
+            len,
+            inv_ux: inv(ux),
+            inv_uy: inv(uy),
+        }
     }
-    let (a, b) = ((lo - q) / k, (hi - q) / k);
-    Some((a.min(b), a.max(b)))
+
+    /// The x-interval the row at `y` meets.
+    #[inline]
+    fn span(&self, y: f64) -> Option<(f64, f64)> {
+        let mut out = disc_span(y, self.a, self.r);
+        let mut join = |s: Option<(f64, f64)>| {
+            if let Some((lo, hi)) = s {
+                out = Some(out.map_or((lo, hi), |(l, h)| (l.min(lo), h.max(hi))));
+            }
+        };
+        join(disc_span(y, self.b, self.r));
+        if self.len > 1e-12 {
+            let ry = y - self.a[1];
+            // |(p − a)·n| ≤ r with n = (−uy, ux), and 0 ≤ (p − a)·u ≤ len,
+            // as ranges of x − ax.
+            let across = if self.inv_uy != 0.0 {
+                let (p, q) = ((ry * self.ux - self.r) * self.inv_uy, (ry * self.ux + self.r) * self.inv_uy);
+                Some((p.min(q), p.max(q)))
+            } else {
+                ((ry * self.ux).abs() <= self.r).then_some((f64::NEG_INFINITY, f64::INFINITY))
+            };
+            let along = if self.inv_ux != 0.0 {
+                let (p, q) = (-ry * self.uy * self.inv_ux, (self.len - ry * self.uy) * self.inv_ux);
+                Some((p.min(q), p.max(q)))
+            } else {
+                let t = ry * self.uy;
+                (0.0 <= t && t <= self.len).then_some((f64::NEG_INFINITY, f64::INFINITY))
+            };
+            if let (Some((a0, a1)), Some((b0, b1))) = (across, along) {
+                let (lo, hi) = (a0.max(b0), a1.min(b1));
+                if lo <= hi {
+                    join(Some((lo + self.a[0], hi + self.a[0])));
+                }
+            }
+        }
+        out
+    }
 }
 
 /// The x-interval a row at `y` meets the capsule of radius `r` around the
 /// segment a→b (in XY).
+#[cfg(test)]
 fn capsule_span(y: f64, a: [f64; 3], b: [f64; 3], r: f64) -> Option<(f64, f64)> {
-    let mut out = disc_span(y, a, r);
-    let mut join = |s: Option<(f64, f64)>| {
-        if let Some((lo, hi)) = s {
-            out = Some(out.map_or((lo, hi), |(l, h)| (l.min(lo), h.max(hi))));
-        }
-    };
-    join(disc_span(y, b, r));
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len = dx.hypot(dy);
-    if len > 1e-12 {
-        let (ux, uy) = (dx / len, dy / len);
-        let ry = y - a[1];
-        // |(p − a)·n| ≤ r and 0 ≤ (p − a)·u ≤ len, n = (−uy, ux).
-        let across = slab(-uy, ux * ry, -r, r);
-        let along = slab(ux, uy * ry, 0.0, len);
-        if let (Some((a0, a1)), Some((b0, b1))) = (across, along) {
-            let (lo, hi) = (a0.max(b0), a1.min(b1));
-            if lo <= hi {
-                join(Some((lo + a[0], hi + a[0])));
-            }
-        }
+    CapsuleRows::new(a, b, r).span(y)
+}
+
+/// A flat end mill along a straight move with some XY travel: the
+/// envelope's constants (`kernel::line_envelope`, flat case) computed
+/// once per move.
+#[derive(Debug, Clone, Copy)]
+struct FlatLine {
+    ax: f64,
+    ay: f64,
+    az: f64,
+    dx: f64,
+    dy: f64,
+    dz: f64,
+    l2: f64,
+    inv_l2: f64,
+    r2: f64,
+}
+
+impl FlatLine {
+    fn new(l: &Line, r: f64) -> Option<FlatLine> {
+        let (dx, dy) = (l.b[0] - l.a[0], l.b[1] - l.a[1]);
+        let l2 = dx * dx + dy * dy;
+        (l2 > 1e-18).then(|| FlatLine {
+            ax: l.a[0],
+            ay: l.a[1],
+            az: l.a[2],
+            dx,
+            dy,
+            dz: l.b[2] - l.a[2],
+            l2,
+            inv_l2: 1.0 / l2,
+            r2: r * r,
+        })
     }
-    out
+
+    /// The envelope over (x, y), `wy = y − ay`.
+    #[inline]
+    fn at(&self, x: f64, wy: f64) -> Option<f64> {
+        let wx = x - self.ax;
+        let tc = (wx * self.dx + wy * self.dy) * self.inv_l2;
+        let d2 = wx * wx + wy * wy - tc * tc * self.l2;
+        if d2 > self.r2 {
+            return None;
+        }
+        let s = ((self.r2 - d2.max(0.0)) * self.inv_l2).sqrt();
+        let (t0, t1) = ((tc - s).max(0.0), (tc + s).min(1.0));
+        if t0 > t1 {
+            return None;
+        }
+        Some(self.az + self.dz * if self.dz > 0.0 { t0 } else { t1 })
+    }
 }
 
 /// What a worker needs to apply one move to one row.
-struct RowCtx<'a> {
-    cut: &'a Cut,
-    cutter: &'a Cutter,
+struct RowCtx {
     /// The stock's bottom.
     bottom: f64,
     /// Index stored in the tool map.
@@ -487,38 +598,55 @@ impl Geometry {
             return;
         }
         let ctx = RowCtx {
-            cut,
-            cutter,
             bottom: self.bottom,
             id: cut.cutter.saturating_add(1),
         };
         let r = cutter.radius;
         let (bx0, by0, bx1, by1) = cut.shape.bounds_xy();
+        let (rows, flat) = match &cut.shape {
+            Shape::Line(l) => (
+                CapsuleRows::new(l.a, l.b, r),
+                if is_flat(cutter) { FlatLine::new(l, r) } else { None },
+            ),
+            Shape::Arc(_) => (CapsuleRows::new([0.0; 3], [0.0; 3], r), None),
+        };
         for j in self.rows(w, by0 - r, by1 + r) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let base = (j / self.n) * self.nx;
-            for (lo, hi) in self.spans(&cut.shape, cut, y, r, (bx0 - r, bx1 + r)) {
+            for (lo, hi) in self.spans(&cut.shape, cut, &rows, y, (bx0 - r, bx1 + r)) {
                 let (Some(h), Some(t)) = (
                     band.h.get_mut(base + lo..=base + hi),
                     band.tool.get_mut(base + lo..=base + hi),
                 ) else {
                     continue;
                 };
-                self.cut_span(&ctx, y, lo, h, t, j, hit);
+                match (&cut.shape, &flat) {
+                    (_, Some(f)) => {
+                        let wy = y - f.ay;
+                        self.cut_span(&ctx, lo, h, t, j, hit, |x| f.at(x, wy));
+                    }
+                    (Shape::Line(l), None) => {
+                        self.cut_span(&ctx, lo, h, t, j, hit, |x| line_envelope(x, y, l, cutter));
+                    }
+                    (Shape::Arc(a), None) => {
+                        self.cut_span(&ctx, lo, h, t, j, hit, |x| arc_envelope(x, y, a, cutter));
+                    }
+                }
             }
         }
     }
 
     /// The cell spans (inclusive index ranges) of row `y` that a move with
-    /// tool radius `r` may lower.
+    /// tool radius `r` may lower (`rows`: the move's capsule, for lines).
     fn spans(
         &self,
         shape: &Shape,
         cut: &Cut,
+        rows: &CapsuleRows,
         y: f64,
-        r: f64,
         (xa, xb): (f64, f64),
     ) -> impl Iterator<Item = (usize, usize)> + use<> {
+        let r = rows.r;
         let (outer, hole) = match shape {
             Shape::Line(l) => {
                 let hole = if cut.skip_end {
@@ -528,7 +656,7 @@ impl Geometry {
                 } else {
                     None
                 };
-                (capsule_span(y, l.a, l.b, r), hole)
+                (rows.span(y), hole)
             }
             Shape::Arc(a) => {
                 let c = [a.center[0], a.center[1], 0.0];
@@ -571,34 +699,35 @@ impl Geometry {
         out.into_iter().filter(|(a, b)| a <= b)
     }
 
-    /// Lowers the cells `h` (starting at column `i0` of row `j` at `y`).
+    /// Lowers the cells `h` (starting at column `i0` of row `j`) to the
+    /// envelope `env` gives at each cell's x.
+    #[inline]
     #[allow(clippy::too_many_arguments)]
     fn cut_span(
         &self,
-        ctx: &RowCtx<'_>,
-        y: f64,
+        ctx: &RowCtx,
         i0: usize,
         h: &mut [f32],
         tools: &mut [u8],
         j: usize,
         hit: &mut Hit,
+        env: impl Fn(f64) -> Option<f64>,
     ) {
-        let cutter = ctx.cutter;
+        let mut x = self.x0 + (i0 as f64 + 0.5) * self.dx;
         for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
-            let i = i0 + k;
-            let x = self.x0 + (i as f64 + 0.5) * self.dx;
-            let e = match &ctx.cut.shape {
-                Shape::Line(l) => line_envelope(x, y, l, cutter),
-                Shape::Arc(a) => arc_envelope(x, y, a, cutter),
-            };
-            let Some(e) = e else { continue };
+            let here = x;
+            x += self.dx;
+            let Some(e) = env(here) else { continue };
             let before = f64::from(*cell);
             if e < before {
                 let new = e.max(ctx.bottom);
                 let depth = before - new;
                 if depth > f64::from(hit.depth_mm) {
                     hit.depth_mm = to_f32(depth);
-                    hit.at = (u32::try_from(i).unwrap_or(0), u32::try_from(j).unwrap_or(0));
+                    hit.at = (
+                        u32::try_from(i0 + k).unwrap_or(0),
+                        u32::try_from(j).unwrap_or(0),
+                    );
                 }
                 if e < ctx.bottom - CUT_EPS_MM && before > ctx.bottom {
                     hit.below = true;
@@ -631,11 +760,15 @@ impl Geometry {
             ..*cut
         };
         let (bx0, by0, bx1, by1) = lifted.bounds_xy();
+        let rows = match &lifted {
+            Shape::Line(l) => CapsuleRows::new(l.a, l.b, r),
+            Shape::Arc(_) => CapsuleRows::new([0.0; 3], [0.0; 3], r),
+        };
         let mut worst = 0.0f64;
         for j in self.rows(w, by0 - r, by1 + r) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let base = (j / self.n) * self.nx;
-            for (lo, hi) in self.spans(&lifted, &whole, y, r, (bx0 - r, bx1 + r)) {
+            for (lo, hi) in self.spans(&lifted, &whole, &rows, y, (bx0 - r, bx1 + r)) {
                 for i in lo..=hi {
                     let Some(h) = band.h.get(base + i) else {
                         continue;
