@@ -73,7 +73,10 @@ fn events(blocks: usize) -> Vec<Event> {
 fn simulate(bencher: Bencher, blocks: usize, library: &ToolLibrary) {
     let evs = events(blocks);
     let m = Dialect::fanuc().machine();
-    let workers = std::thread::available_parallelism().map_or(1, usize::from);
+    let workers = std::env::var("SIM_WORKERS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, usize::from));
     // The automatic stock of the program: the raster's extents grown by
     // the tool's 3 mm radius, Z0 down to 1 mm under the deepest cut.
     let stock = StockSpec::Box {
@@ -112,4 +115,9 @@ fn surfacing_100k_ball_0_1mm(bencher: Bencher) {
         ..ToolShape::assumed(0)
     });
     simulate(bencher, 100_000, &lib);
+}
+
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn surfacing_100k_flat_0_1mm(bencher: Bencher) {
+    simulate(bencher, 100_000, &ToolLibrary::default());
 }

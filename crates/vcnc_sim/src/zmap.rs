@@ -194,7 +194,12 @@ pub struct ZMap {
 /// with pitch `step`: an index range, possibly empty (lo > hi).
 #[inline]
 fn cells(a: f64, b: f64, origin: f64, step: f64, n: usize) -> (isize, isize) {
-    let inv = 1.0 / step;
+    cells_inv(a, b, origin, 1.0 / step, n)
+}
+
+/// [`cells`] with the pitch's inverse given.
+#[inline]
+fn cells_inv(a: f64, b: f64, origin: f64, inv: f64, n: usize) -> (isize, isize) {
     let lo = ceil_index((a - origin) * inv - 0.5, n);
     let hi = floor_index((b - origin) * inv - 0.5, n);
     (lo, hi.min(isize_of(n) - 1))
@@ -227,6 +232,19 @@ fn ceil_index(v: f64, n: usize) -> isize {
 
 fn isize_of(n: usize) -> isize {
     isize::try_from(n).unwrap_or(isize::MAX)
+}
+
+/// The larger of two numbers that are never NaN here (one instruction,
+/// where `f64::max` also handles NaN).
+#[inline]
+fn fmax(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of two numbers that are never NaN here.
+#[inline]
+fn fmin(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
 }
 
 /// `v` as a stored height (heights are bounded by the stock, so this only
@@ -282,6 +300,42 @@ impl CapsuleRows {
         }
     }
 
+    /// The x-interval the row at `y` meets the band between the discs.
+    #[inline]
+    fn band_span(&self, y: f64) -> Option<(f64, f64)> {
+        if self.len <= 1e-12 {
+            return None;
+        }
+        let ry = y - self.a[1];
+        let across = if self.inv_uy != 0.0 {
+            let (p, q) = (
+                (ry * self.ux - self.r) * self.inv_uy,
+                (ry * self.ux + self.r) * self.inv_uy,
+            );
+            (p.min(q), p.max(q))
+        } else if (ry * self.ux).abs() <= self.r {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else {
+            return None;
+        };
+        let along = if self.inv_ux != 0.0 {
+            let (p, q) = (
+                -ry * self.uy * self.inv_ux,
+                (self.len - ry * self.uy) * self.inv_ux,
+            );
+            (p.min(q), p.max(q))
+        } else {
+            let t = ry * self.uy;
+            if (0.0..=self.len).contains(&t) {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            } else {
+                return None;
+            }
+        };
+        let (lo, hi) = (across.0.max(along.0), across.1.min(along.1));
+        (lo <= hi).then_some((lo + self.a[0], hi + self.a[0]))
+    }
+
     /// The x-interval the row at `y` meets.
     #[inline]
     fn span(&self, y: f64) -> Option<(f64, f64)> {
@@ -297,13 +351,19 @@ impl CapsuleRows {
             // |(p − a)·n| ≤ r with n = (−uy, ux), and 0 ≤ (p − a)·u ≤ len,
             // as ranges of x − ax.
             let across = if self.inv_uy != 0.0 {
-                let (p, q) = ((ry * self.ux - self.r) * self.inv_uy, (ry * self.ux + self.r) * self.inv_uy);
+                let (p, q) = (
+                    (ry * self.ux - self.r) * self.inv_uy,
+                    (ry * self.ux + self.r) * self.inv_uy,
+                );
                 Some((p.min(q), p.max(q)))
             } else {
                 ((ry * self.ux).abs() <= self.r).then_some((f64::NEG_INFINITY, f64::INFINITY))
             };
             let along = if self.inv_ux != 0.0 {
-                let (p, q) = (-ry * self.uy * self.inv_ux, (self.len - ry * self.uy) * self.inv_ux);
+                let (p, q) = (
+                    -ry * self.uy * self.inv_ux,
+                    (self.len - ry * self.uy) * self.inv_ux,
+                );
                 Some((p.min(q), p.max(q)))
             } else {
                 let t = ry * self.uy;
@@ -358,23 +418,6 @@ impl FlatLine {
             inv_l2: 1.0 / l2,
             r2: r * r,
         })
-    }
-
-    /// The envelope over (x, y), `wy = y − ay`.
-    #[inline]
-    fn at(&self, x: f64, wy: f64) -> Option<f64> {
-        let wx = x - self.ax;
-        let tc = (wx * self.dx + wy * self.dy) * self.inv_l2;
-        let d2 = wx * wx + wy * wy - tc * tc * self.l2;
-        if d2 > self.r2 {
-            return None;
-        }
-        let s = ((self.r2 - d2.max(0.0)) * self.inv_l2).sqrt();
-        let (t0, t1) = ((tc - s).max(0.0), (tc + s).min(1.0));
-        if t0 > t1 {
-            return None;
-        }
-        Some(self.az + self.dz * if self.dz > 0.0 { t0 } else { t1 })
     }
 }
 
@@ -500,6 +543,7 @@ impl ZMap {
             top: self.top,
             bottom: self.bottom,
             n,
+            inv_dx: 1.0 / self.dx,
         };
         let work = |(w, band): (usize, &mut Band)| {
             band.hits.clear();
@@ -549,6 +593,8 @@ struct Geometry {
     top: f64,
     bottom: f64,
     n: usize,
+    /// 1 / dx.
+    inv_dx: f64,
 }
 
 impl Geometry {
@@ -606,10 +652,18 @@ impl Geometry {
         let (rows, flat) = match &cut.shape {
             Shape::Line(l) => (
                 CapsuleRows::new(l.a, l.b, r),
-                if is_flat(cutter) { FlatLine::new(l, r) } else { None },
+                if is_flat(cutter) {
+                    FlatLine::new(l, r)
+                } else {
+                    None
+                },
             ),
             Shape::Arc(_) => (CapsuleRows::new([0.0; 3], [0.0; 3], r), None),
         };
+        if let Some(f) = &flat {
+            self.flat_line(w, band, &ctx, cut, f, &rows, hit);
+            return;
+        }
         for j in self.rows(w, by0 - r, by1 + r) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let base = (j / self.n) * self.nx;
@@ -620,18 +674,141 @@ impl Geometry {
                 ) else {
                     continue;
                 };
-                match (&cut.shape, &flat) {
-                    (_, Some(f)) => {
-                        let wy = y - f.ay;
-                        self.cut_span(&ctx, lo, h, t, j, hit, |x| f.at(x, wy));
-                    }
-                    (Shape::Line(l), None) => {
+                match &cut.shape {
+                    Shape::Line(l) => {
                         self.cut_span(&ctx, lo, h, t, j, hit, |x| line_envelope(x, y, l, cutter));
                     }
-                    (Shape::Arc(a), None) => {
+                    Shape::Arc(a) => {
                         self.cut_span(&ctx, lo, h, t, j, hit, |x| arc_envelope(x, y, a, cutter));
                     }
                 }
+            }
+        }
+    }
+
+    /// The hot path: a flat end mill along a straight move, row by row
+    /// with everything but a square root per row and per cell hoisted.
+    #[allow(clippy::too_many_arguments)]
+    fn flat_line(
+        &self,
+        w: usize,
+        band: &mut Band,
+        ctx: &RowCtx,
+        cut: &Cut,
+        f: &FlatLine,
+        rows: &CapsuleRows,
+        hit: &mut Hit,
+    ) {
+        let (a, b, r2) = (rows.a, rows.b, f.r2);
+        let r = rows.r;
+        let (y_lo, y_hi) = (a[1].min(b[1]) - r, a[1].max(b[1]) + r);
+        let margin = 1e-9 * (1.0 + r);
+        for j in self.rows(w, y_lo, y_hi) {
+            let y = self.y0 + (j as f64 + 0.5) * self.dy;
+            let (wy, wyb) = (y - a[1], y - b[1]);
+            let (wa2, wb2) = (r2 - wy * wy, r2 - wyb * wyb);
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            let (mut h_lo, mut h_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            if wa2 >= 0.0 {
+                let wa = wa2.sqrt();
+                (lo, hi) = (a[0] - wa, a[0] + wa);
+                if cut.skip_start {
+                    (h_lo, h_hi) = (lo + margin, hi - margin);
+                }
+            }
+            if wb2 >= 0.0 {
+                let wb = wb2.sqrt();
+                lo = lo.min(b[0] - wb);
+                hi = hi.max(b[0] + wb);
+                if cut.skip_end {
+                    (h_lo, h_hi) = (b[0] - wb + margin, b[0] + wb - margin);
+                }
+            }
+            if let Some((s_lo, s_hi)) = rows.band_span(y) {
+                lo = lo.min(s_lo);
+                hi = hi.max(s_hi);
+            }
+            if lo > hi {
+                continue;
+            }
+            let (i0, i1) = cells_inv(lo, hi, self.x0, self.inv_dx, self.nx);
+            let (e0, e1) = cells_inv(h_lo, h_hi, self.x0, self.inv_dx, self.nx);
+            let base = (j / self.n) * self.nx;
+            let pieces = if e0 <= e1 {
+                [(i0.max(0), i1.min(e0 - 1)), (i0.max(e1 + 1).max(0), i1)]
+            } else {
+                [(i0.max(0), i1), (1, 0)]
+            };
+            for (p0, p1) in pieces {
+                if p0 > p1 {
+                    continue;
+                }
+                let (Ok(p0), Ok(p1)) = (usize::try_from(p0), usize::try_from(p1)) else {
+                    continue;
+                };
+                let (Some(h), Some(t)) = (
+                    band.h.get_mut(base + p0..=base + p1),
+                    band.tool.get_mut(base + p0..=base + p1),
+                ) else {
+                    continue;
+                };
+                self.flat_span(ctx, p0, h, t, j, hit, f, y);
+            }
+        }
+    }
+
+    /// [`Geometry::cut_span`] for a flat line. Along a row the
+    /// projection t_c and the signed distance d⊥ from the line are linear
+    /// in x, so each cell costs two additions before its square root.
+    #[allow(clippy::too_many_arguments)]
+    fn flat_span(
+        &self,
+        ctx: &RowCtx,
+        i0: usize,
+        h: &mut [f32],
+        tools: &mut [u8],
+        j: usize,
+        hit: &mut Hit,
+        f: &FlatLine,
+        y: f64,
+    ) {
+        let x = self.x0 + (i0 as f64 + 0.5) * self.dx;
+        let (wx, wy) = (x - f.ax, y - f.ay);
+        let len = f.l2.sqrt();
+        let mut tc = (wx * f.dx + wy * f.dy) * f.inv_l2;
+        let mut dp = (wx * f.dy - wy * f.dx) / len;
+        let (g, q) = (self.dx * f.dx * f.inv_l2, self.dx * f.dy / len);
+        let up = f.dz > 0.0;
+        let bottom = ctx.bottom;
+        let (r2, inv_l2, az, dz) = (f.r2, f.inv_l2, f.az, f.dz);
+        for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
+            let d2 = dp * dp;
+            let s = (fmax(r2 - d2, 0.0) * inv_l2).sqrt();
+            let (t0, t1) = (fmax(tc - s, 0.0), fmin(tc + s, 1.0));
+            tc += g;
+            dp += q;
+            if d2 > r2 || t0 > t1 {
+                continue;
+            }
+            let e = az + dz * if up { t0 } else { t1 };
+            let before = f64::from(*cell);
+            if e < before - 1e-4 {
+                let new = fmax(e, bottom);
+                let depth = before - new;
+                *cell = to_f32(new);
+                *tool = ctx.id;
+                if depth > f64::from(hit.depth_mm) {
+                    hit.depth_mm = to_f32(depth);
+                    hit.at = (
+                        u32::try_from(i0 + k).unwrap_or(0),
+                        u32::try_from(j).unwrap_or(0),
+                    );
+                }
+                if e < bottom - CUT_EPS_MM && before > bottom {
+                    hit.below = true;
+                }
+            } else if e < before {
+                *cell = to_f32(fmax(e, bottom));
             }
         }
     }
@@ -672,14 +849,14 @@ impl Geometry {
         let mut out = [(1usize, 0usize); 2];
         if let Some((lo, hi)) = outer {
             let (lo, hi) = (lo.max(xa), hi.min(xb));
-            let (i0, i1) = cells(lo, hi, self.x0, self.dx, self.nx);
+            let (i0, i1) = cells_inv(lo, hi, self.x0, self.inv_dx, self.nx);
             let (i0, i1) = (i0.max(0), i1);
             // Cells strictly inside the hole are skipped; a margin keeps
             // the boundary's cells (computing them is always right).
             let (h0, h1) = match hole {
                 Some((a, b)) => {
                     let m = 1e-9 * (1.0 + r);
-                    cells(a + m, b - m, self.x0, self.dx, self.nx)
+                    cells_inv(a + m, b - m, self.x0, self.inv_dx, self.nx)
                 }
                 None => (1, 0),
             };
