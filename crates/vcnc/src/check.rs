@@ -39,6 +39,8 @@ struct Ran {
     /// The cycle time planned on the machine model.
     planned: CycleTime,
     diameter: bool,
+    /// The material-removal simulation (`--stock`).
+    sim: Option<crate::sim::CheckSim>,
 }
 
 impl Checked {
@@ -54,6 +56,12 @@ impl Checked {
 
     fn warnings(&self) -> u64 {
         self.run.as_ref().map_or(0, |r| r.summary.warning_total())
+    }
+
+    fn crashed(&self) -> bool {
+        self.run
+            .as_ref()
+            .is_ok_and(|r| r.sim.as_ref().is_some_and(crate::sim::CheckSim::crashed))
     }
 }
 
@@ -100,7 +108,7 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
     if results.iter().any(|r| r.run.is_err()) {
         return Ok(ExitCode::from(2));
     }
-    let alarms = results.iter().any(|r| r.alarm().is_some());
+    let alarms = results.iter().any(|r| r.alarm().is_some() || r.crashed());
     let warned = results.iter().any(|r| r.warnings() > 0);
     Ok(if alarms || (args.deny_warnings && warned) {
         ExitCode::from(1)
@@ -132,8 +140,14 @@ fn detailed(args: &CheckArgs, s: &Setup, input: &Input) -> Result<ExitCode, Stri
         &outcome,
         diameter_axis,
     ))?;
+    let mut crashed = false;
+    if let Some(stock) = &args.stock {
+        let sim = crate::sim::for_check(&args.opts, s, input, stock)?;
+        crate::reported(sim.write(&mut out, input))?;
+        crashed = sim.crashed();
+    }
     let denied = args.deny_warnings && summary.warning_total() > 0;
-    Ok(crate::exit_code(&outcome, denied))
+    Ok(crate::exit_code(&outcome, denied || crashed))
 }
 
 /// Checks every program on the thread pool, in input order.
@@ -153,11 +167,18 @@ fn check_all(args: &CheckArgs, s: &Setup, inputs: Vec<Input>) -> Result<Vec<Chec
                 let mut summary = Summary::new(&s.machine);
                 let mut plan = timing::planner(&s.machine, None);
                 let sink = &mut timing::Tee(&mut summary, &mut plan);
-                let run = execute(&args.opts, s, &input, sink).map(|(outcome, diameter)| Ran {
-                    outcome,
-                    summary,
-                    planned: plan.into_timeline(),
-                    diameter,
+                let run = execute(&args.opts, s, &input, sink).and_then(|(outcome, diameter)| {
+                    let sim = match &args.stock {
+                        Some(stock) => Some(crate::sim::for_check(&args.opts, s, &input, stock)?),
+                        None => None,
+                    };
+                    Ok(Ran {
+                        outcome,
+                        summary,
+                        planned: plan.into_timeline(),
+                        diameter,
+                        sim,
+                    })
                 });
                 progress.tick();
                 Checked { input, run }
@@ -357,6 +378,9 @@ fn json_report(args: &CheckArgs, s: &Setup, results: &[Checked]) -> Value {
                         "summary".into(),
                         summary_json(&ran.summary, &ran.planned, ran.diameter),
                     );
+                    if let Some(sim) = &ran.sim {
+                        obj.insert("sim".into(), sim.json());
+                    }
                 }
             }
             v

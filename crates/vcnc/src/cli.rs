@@ -25,6 +25,8 @@ pub enum Command {
     Time(TimeArgs),
     /// Draw the program's path: an SVG or PNG back-plot, or an HTML page with a 3D viewer.
     Plot(crate::plot::PlotArgs),
+    /// Simulate material removal: the volume removed, collisions (rapid into stock, holder, table), the finished part as STL, PNG or a replay page.
+    Sim(crate::sim::SimArgs),
 }
 
 /// `vcnc check`.
@@ -45,6 +47,9 @@ pub struct CheckArgs {
     /// Programs checked at once (default: one per core).
     #[arg(long)]
     pub jobs: Option<usize>,
+    /// Also simulate material removal from this stock (as `vcnc sim --stock`): the volume removed and the collisions join the report.
+    #[arg(long)]
+    pub stock: Option<String>,
 }
 
 /// `vcnc run`.

@@ -12,6 +12,7 @@ mod files;
 mod offload;
 mod plot;
 mod render;
+mod sim;
 mod timing;
 mod trace;
 mod variables;
@@ -41,6 +42,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Run(args) => run_events(&args),
         Command::Time(args) => timing::time(&args),
         Command::Plot(args) => plot::plot(&args),
+        Command::Sim(args) => sim::sim(&args),
     }
 }
 

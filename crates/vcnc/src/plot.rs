@@ -430,15 +430,15 @@ fn report(input: &Input, plot: &Plot, outcome: &Outcome) {
 }
 
 /// A sink that tells the progress bar how far the run is, every 4096 events.
-struct Counted<S> {
-    inner: S,
+pub(crate) struct Counted<S> {
+    pub(crate) inner: S,
     bar: Option<ProgressBar>,
     events: u64,
     line: u64,
 }
 
 impl<S> Counted<S> {
-    fn new(inner: S, bar: Option<ProgressBar>) -> Counted<S> {
+    pub(crate) fn new(inner: S, bar: Option<ProgressBar>) -> Counted<S> {
         Counted {
             inner,
             bar,
@@ -472,13 +472,13 @@ impl<S: Sink> Sink for Counted<S> {
 /// The progress bar: hidden until the plot has run for a second, and only
 /// on a terminal (stderr). Its length is the main program's line count,
 /// counted by the thread that shows it, so a short plot never pays for it.
-struct Progress {
+pub(crate) struct Progress {
     bar: Option<ProgressBar>,
     done: Arc<AtomicBool>,
 }
 
 impl Progress {
-    fn start(file: &Path, started: Instant) -> Progress {
+    pub(crate) fn start(file: &Path, started: Instant) -> Progress {
         let done = Arc::new(AtomicBool::new(false));
         if !std::io::stderr().is_terminal() {
             return Progress { bar: None, done };
@@ -514,11 +514,11 @@ impl Progress {
         }
     }
 
-    fn bar(&self) -> Option<ProgressBar> {
+    pub(crate) fn bar(&self) -> Option<ProgressBar> {
         self.bar.clone()
     }
 
-    fn phase(&self, msg: &str) {
+    pub(crate) fn phase(&self, msg: &str) {
         if let Some(bar) = &self.bar {
             bar.set_message(msg.to_string());
             if let Some(n) = bar.length() {
@@ -527,7 +527,7 @@ impl Progress {
         }
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         self.done.store(true, Ordering::Relaxed);
         if let Some(bar) = &self.bar {
             bar.finish_and_clear();

@@ -275,6 +275,12 @@ impl Simulation {
     }
 
     fn simulate(&mut self, m: &Motion) {
+        // Rapids before any tool is in the spindle (G28, the approach to the
+        // tool change) cut nothing; a cut without a tool is made by the
+        // assumed one.
+        if m.tool.is_none() && m.rapid {
+            return;
+        }
         let tool = self.tools.index(m.tool);
         match &mut self.engine {
             Engine::Mill(mill) => mill.add(m, tool, &self.tools.cutters, &mut self.report),
