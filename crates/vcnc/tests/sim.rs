@@ -58,6 +58,22 @@ const MACHINE: &str = "name = \"test mill\"\n\
 
 const SLOT: &str = "G21 G90 G17\nT1 M06\nG00 X0. Y0. Z5.\nG01 Z-2. F300\nG01 X50.\nG00 Z5.\nM30\n";
 
+/// `vcnc CMD FILE --dialect fanuc --machine M --stock STOCK EXTRA…`.
+fn on_mill(cmd: &str, file: &str, m: &str, stock: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        cmd,
+        file,
+        "--dialect",
+        "fanuc",
+        "--machine",
+        m,
+        "--stock",
+        stock,
+    ];
+    args.extend_from_slice(extra);
+    vcnc(&args)
+}
+
 fn machine(dir: &Path) -> String {
     let p = dir.join("machine.toml");
     std::fs::write(&p, MACHINE).unwrap();
@@ -68,18 +84,13 @@ fn machine(dir: &Path) -> String {
 fn sim_reports_the_slot_as_json() {
     let (dir, file) = program("slot.nc", SLOT);
     let m = machine(&dir);
-    let o = vcnc(&[
+    let o = on_mill(
         "sim",
         &file,
-        "--dialect",
-        "fanuc",
-        "--machine",
         &m,
-        "--stock",
         "box:-20,-20,-10,70,20,0",
-        "--format",
-        "json",
-    ]);
+        &["--format", "json"],
+    );
     assert_eq!(o.status.code(), Some(0), "{}", err(&o));
     let v: Value = serde_json::from_str(&out(&o)).unwrap();
     let want = 50.0 * 10.0 * 2.0 + std::f64::consts::PI * 25.0 * 2.0;
@@ -134,16 +145,7 @@ fn a_rapid_into_the_stock_is_reported_at_its_line_and_column() {
 fn check_with_a_stock_adds_the_simulation_line() {
     let (dir, file) = program("slot.nc", SLOT);
     let m = machine(&dir);
-    let o = vcnc(&[
-        "check",
-        &file,
-        "--dialect",
-        "fanuc",
-        "--machine",
-        &m,
-        "--stock",
-        "box:-20,-20,-10,70,20,0",
-    ]);
+    let o = on_mill("check", &file, &m, "box:-20,-20,-10,70,20,0", &[]);
     assert_eq!(o.status.code(), Some(0), "{}", err(&o));
     let text = out(&o);
     let line = text
@@ -157,16 +159,7 @@ fn check_with_a_stock_adds_the_simulation_line() {
     // Through the bottom: the collision fails the check.
     let deep = SLOT.replace("Z-2.", "Z-12.");
     let (_, file) = program("deep.nc", &deep);
-    let o = vcnc(&[
-        "check",
-        &file,
-        "--dialect",
-        "fanuc",
-        "--machine",
-        &m,
-        "--stock",
-        "box:-20,-20,-10,70,20,0",
-    ]);
+    let o = on_mill("check", &file, &m, "box:-20,-20,-10,70,20,0", &[]);
     assert_eq!(o.status.code(), Some(1));
     assert!(out(&o).contains(":4:1: below_stock"), "{}", out(&o));
 }
@@ -176,16 +169,7 @@ fn the_table_in_the_machine_file_is_a_fixture() {
     let text = "G21 G90 G17\nT1 M06\nG00 X100. Y100. Z5.\nG01 Z-55. F300\nG00 Z5.\nM30\n";
     let (dir, file) = program("table.nc", text);
     let m = machine(&dir);
-    let o = vcnc(&[
-        "sim",
-        &file,
-        "--dialect",
-        "fanuc",
-        "--machine",
-        &m,
-        "--stock",
-        "box:0,0,-10,50,50,0",
-    ]);
+    let o = on_mill("sim", &file, &m, "box:0,0,-10,50,50,0", &[]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
         out(&o).contains(":4:1: fixture: the tool reaches the machine table"),
@@ -206,17 +190,7 @@ fn bad_stocks_and_resolutions_are_usage_errors() {
         ("box:0,0,-1,10,10,0", "-1", "more than 0"),
     ] {
         let res = format!("--resolution={res}");
-        let o = vcnc(&[
-            "sim",
-            &file,
-            "--dialect",
-            "fanuc",
-            "--machine",
-            &m,
-            "--stock",
-            stock,
-            &res,
-        ]);
+        let o = on_mill("sim", &file, &m, stock, &[&res]);
         assert_eq!(o.status.code(), Some(2), "{stock}: {}", err(&o));
         assert!(err(&o).contains(says), "{stock}: {}", err(&o));
         assert!(out(&o).is_empty());
@@ -242,22 +216,20 @@ fn outputs_are_written_in_their_formats() {
     let (dir, file) = program("slot.nc", SLOT);
     let m = machine(&dir);
     let (stl, png, html) = (dir.join("p.stl"), dir.join("p.png"), dir.join("p.html"));
-    let o = vcnc(&[
+    let o = on_mill(
         "sim",
         &file,
-        "--dialect",
-        "fanuc",
-        "--machine",
         &m,
-        "--stock",
         "box:-20,-20,-10,70,20,0",
-        "-o",
-        stl.to_str().unwrap(),
-        "-o",
-        png.to_str().unwrap(),
-        "-o",
-        html.to_str().unwrap(),
-    ]);
+        &[
+            "-o",
+            stl.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+            "-o",
+            html.to_str().unwrap(),
+        ],
+    );
     assert_eq!(o.status.code(), Some(0), "{}", err(&o));
     let stl = std::fs::read(&stl).unwrap();
     let n = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;

@@ -128,6 +128,26 @@ impl ToolShape {
     }
 }
 
+/// A lathe insert's imaginary tip direction as a vector from the nose
+/// centre to the tip, (Z, X), each component −1, 0 or 1 (Fanuc numbering,
+/// X up and Z right seen from +Y: 1 +Z+X, 2 −Z+X, 3 −Z−X, 4 +Z−X, 5 +Z,
+/// 6 +X, 7 −Z, 8 −X; 0 and 9 the centre itself). The tip is the corner of
+/// the square around the nose in that direction: nose centre + radius ×
+/// this vector.
+pub fn tip_direction(tip: u8) -> (f64, f64) {
+    match tip {
+        1 => (1.0, 1.0),
+        2 => (-1.0, 1.0),
+        3 => (-1.0, -1.0),
+        4 => (1.0, -1.0),
+        5 => (1.0, 0.0),
+        6 => (0.0, 1.0),
+        7 => (-1.0, 0.0),
+        8 => (0.0, -1.0),
+        _ => (0.0, 0.0),
+    }
+}
+
 /// The tools a run knows, by number.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ToolLibrary {

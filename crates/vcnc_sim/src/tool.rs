@@ -230,17 +230,7 @@ impl Insert {
     /// (Fanuc: 1 +Z+X, 2 −Z+X, 3 −Z−X, 4 +Z−X, 5 +Z, 6 +X, 7 −Z, 8 −X;
     /// 0 and 9 the centre itself).
     pub fn tip_to_centre(&self) -> (f64, f64) {
-        let (z, x) = match self.tip {
-            1 => (1.0, 1.0),
-            2 => (-1.0, 1.0),
-            3 => (-1.0, -1.0),
-            4 => (1.0, -1.0),
-            5 => (1.0, 0.0),
-            6 => (0.0, 1.0),
-            7 => (-1.0, 0.0),
-            8 => (0.0, -1.0),
-            _ => (0.0, 0.0),
-        };
+        let (z, x) = vcnc_core::tooling::tip_direction(self.tip);
         (-z * self.nose_mm, -x * self.nose_mm)
     }
 
