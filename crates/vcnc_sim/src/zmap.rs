@@ -398,8 +398,9 @@ struct FlatLine {
     dx: f64,
     dy: f64,
     dz: f64,
-    l2: f64,
     inv_l2: f64,
+    /// 1 / |AB| in XY.
+    inv_len: f64,
     r2: f64,
 }
 
@@ -414,8 +415,8 @@ impl FlatLine {
             dx,
             dy,
             dz: l.b[2] - l.a[2],
-            l2,
             inv_l2: 1.0 / l2,
+            inv_len: 1.0 / l2.sqrt(),
             r2: r * r,
         })
     }
@@ -774,10 +775,9 @@ impl Geometry {
     ) {
         let x = self.x0 + (i0 as f64 + 0.5) * self.dx;
         let (wx, wy) = (x - f.ax, y - f.ay);
-        let len = f.l2.sqrt();
         let mut tc = (wx * f.dx + wy * f.dy) * f.inv_l2;
-        let mut dp = (wx * f.dy - wy * f.dx) / len;
-        let (g, q) = (self.dx * f.dx * f.inv_l2, self.dx * f.dy / len);
+        let mut dp = (wx * f.dy - wy * f.dx) * f.inv_len;
+        let (g, q) = (self.dx * f.dx * f.inv_l2, self.dx * f.dy * f.inv_len);
         let up = f.dz > 0.0;
         let bottom = ctx.bottom;
         let (r2, inv_l2, az, dz) = (f.r2, f.inv_l2, f.az, f.dz);
