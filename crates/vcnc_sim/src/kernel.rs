@@ -311,6 +311,34 @@ mod tests {
     }
 
     #[test]
+    fn a_ball_on_a_helix_matches_brute_force() {
+        // One turn of radius 4 down 2 mm with a 3 mm ball: points on,
+        // inside and outside the path's circle.
+        let a = Arc {
+            center: [0.0, 0.0],
+            radius: 4.0,
+            start_angle: 0.3,
+            sweep: TAU,
+            z0: 0.0,
+            dz: -2.0,
+        };
+        let c = ball(3.0);
+        for (px, py) in [(4.0, 0.0), (1.2, 0.2), (1.5, 1.0), (-6.5, 0.5), (2.0, -5.5)] {
+            let exact = arc_envelope(px, py, &a, &c).unwrap();
+            let mut dense = f64::INFINITY;
+            for i in 0..=400_000 {
+                let p = a.point_at(f64::from(i) / 400_000.0);
+                let rho = (px - p[0]).hypot(py - p[1]);
+                if rho <= c.radius {
+                    dense = dense.min(p[2] + c.g(rho));
+                }
+            }
+            assert!(exact <= dense + 1e-9, "{px},{py}: {exact} > {dense}");
+            assert!(dense - exact < 1e-5, "{px},{py}: {exact} vs {dense}");
+        }
+    }
+
+    #[test]
     fn a_helix_with_a_flat_tool_goes_down_with_the_turns() {
         // A full turn from z 0 to −1 of radius 5 with a 2 mm tool: the
         // point (5, 0) is last covered at the end (θ = 2π), z = −1.

@@ -106,3 +106,14 @@ fn a_rapid_into_a_bar_is_found_on_a_lathe() {
     );
     assert_eq!(kinds(&f), vec![(CollisionKind::RapidIntoStock, 4)]);
 }
+
+#[test]
+fn moves_with_rotary_axes_are_counted_not_simulated() {
+    let p = "G21 G90 G17\nT1 M06\nG00 X10. Y10. Z5.\nG01 Z-1. F300\nG01 X20. A90.\nG01 X30.\nG00 Z5.\nM30\n";
+    let f = mill(p, &[tool(1, ToolKind::Flat, 6.0)], STOCK);
+    assert_eq!(f.report.not_simulated, 1);
+    assert_eq!(
+        f.report.first_not_simulated.as_ref().map(|(l, _)| *l),
+        Some(5)
+    );
+}
