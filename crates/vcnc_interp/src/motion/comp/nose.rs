@@ -34,7 +34,6 @@ use crate::motion::MachineKind;
 pub(crate) fn tip_direction(tip: u8) -> (f64, f64) {
     vcnc_core::tooling::tip_direction(tip)
 }
-}
 
 /// The Fanuc tip number of LinuxCNC's lathe tool orientation `q` (its tool
 /// table's Q): the same directions mirrored in X (1↔4, 2↔3, 6↔8; 5 and 7
