@@ -65,6 +65,8 @@ struct Ran {
     /// The cycle time planned on the machine model.
     planned: CycleTime,
     diameter: bool,
+    /// The material-removal simulation (`--stock`).
+    sim: Option<crate::sim::CheckSim>,
 }
 
 impl Checked {
@@ -80,6 +82,12 @@ impl Checked {
 
     fn warnings(&self) -> u64 {
         self.run.as_ref().map_or(0, |r| r.summary.warning_total())
+    }
+
+    fn crashed(&self) -> bool {
+        self.run
+            .as_ref()
+            .is_ok_and(|r| r.sim.as_ref().is_some_and(crate::sim::CheckSim::crashed))
     }
 }
 
@@ -115,7 +123,7 @@ pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
     if results.iter().any(|r| r.run.is_err()) {
         return Ok(ExitCode::from(2));
     }
-    let alarms = results.iter().any(|r| r.alarm().is_some());
+    let alarms = results.iter().any(|r| r.alarm().is_some() || r.crashed());
     let warned = results.iter().any(|r| r.warnings() > 0);
     Ok(if alarms || (args.deny_warnings && warned) {
         ExitCode::from(1)
@@ -158,8 +166,14 @@ fn detailed(args: &CheckArgs, choice: &Choice, input: &Input) -> Result<ExitCode
                 .map_or(vcnc_core::display::DisplayUnits::Mm, Into::into),
         ),
     ))?;
+    let mut crashed = false;
+    if let Some(stock) = &args.stock {
+        let sim = crate::sim::for_check(&args.opts, s, input, stock)?;
+        crate::reported(sim.write(&mut out, input))?;
+        crashed = sim.crashed();
+    }
     let denied = args.deny_warnings && summary.warning_total() > 0;
-    Ok(crate::exit_code(&outcome, denied))
+    Ok(crate::exit_code(&outcome, denied || crashed))
 }
 
 /// Checks every program on the thread pool, in input order; each gets
@@ -199,12 +213,17 @@ fn check_one(args: &CheckArgs, s: &Setup, input: &Input) -> Result<Ran, String> 
     let mut plan = timing::planner(s.machine, None);
     let sink = &mut timing::Tee(&mut summary, &mut plan);
     let (outcome, diameter) = execute(&args.opts, s, input, sink)?;
+    let sim = match &args.stock {
+        Some(stock) => Some(crate::sim::for_check(&args.opts, s, input, stock)?),
+        None => None,
+    };
     Ok(Ran {
         chosen: Chosen::of(s),
         outcome,
         summary,
         planned: plan.into_timeline(),
         diameter,
+        sim,
     })
 }
 
@@ -408,6 +427,9 @@ fn json_report(args: &CheckArgs, choice: &Choice, results: &[Checked]) -> Value 
                         "summary".into(),
                         summary_json(&ran.summary, &ran.planned, ran.diameter),
                     );
+                    if let Some(sim) = &ran.sim {
+                        obj.insert("sim".into(), sim.json());
+                    }
                 }
             }
             v

@@ -13,7 +13,7 @@
 use crate::cli::Options;
 use crate::files::Input;
 use std::sync::OnceLock;
-use vcnc_core::tooling::{self, ToolLibrary};
+use vcnc_core::tooling::{self, ToolKind, ToolLibrary, ToolShape, ToolSource};
 use vcnc_interp::detect::{self, Confidence, Detection, PREFIX_BYTES};
 use vcnc_interp::{Dialect, Machine};
 
@@ -204,4 +204,59 @@ impl Setup<'_> {
             .as_ref()
             .is_some_and(|d| d.confidence == Confidence::Low)
     }
+}
+
+/// How much of a program's text is read for the tool lists CAM posts write
+/// in their header comments.
+pub const TOOL_COMMENTS_BYTES: usize = 1 << 20;
+
+impl Setup<'_> {
+    /// The shapes of the run's tools, for plots and the simulation: the
+    /// `--tools` table's, else the tool lists of the program's header
+    /// comments (`head`: its first bytes), else what the offset registers
+    /// say (a mill's D radius as a flat end mill, a lathe's nose radius and
+    /// tip). Comments never fill registers; registers never override a
+    /// table or a comment.
+    pub fn tool_library(&self, head: &str) -> ToolLibrary {
+        let comments = tooling::from_comments(head);
+        let registers = registers_library(self.machine, self.dialect.diameter.axis.is_some());
+        let described = match self.table {
+            Some((table, _)) => table.clone().or_else(&comments),
+            None => comments,
+        };
+        described.or_else(&registers)
+    }
+}
+
+/// The tools the machine's offset registers describe: a lathe's inserts by
+/// their nose radius and tip, a mill's cutters as flat end mills of twice
+/// their D radius (geometry + wear; a register of 0 describes nothing).
+fn registers_library(machine: &Machine, lathe: bool) -> ToolLibrary {
+    let mut lib = ToolLibrary::default();
+    for (n, t) in &machine.tools {
+        let shape = if lathe {
+            let nose = t.nose_radius_mm + t.nose_radius_wear_mm;
+            ToolShape {
+                kind: ToolKind::Turning {
+                    nose_radius_mm: nose,
+                    tip: t.tip,
+                },
+                diameter_mm: 2.0 * nose,
+                source: ToolSource::Registers,
+                ..ToolShape::assumed(*n)
+            }
+        } else {
+            let radius = t.d_mm + t.d_wear_mm;
+            if radius <= 0.0 {
+                continue;
+            }
+            ToolShape {
+                diameter_mm: 2.0 * radius,
+                source: ToolSource::Registers,
+                ..ToolShape::assumed(*n)
+            }
+        };
+        lib.insert(shape);
+    }
+    lib
 }

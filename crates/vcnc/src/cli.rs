@@ -31,6 +31,8 @@ pub enum Command {
     Tools(ToolsArgs),
     /// Print the machine a run uses as a machine file to start from (TOML).
     Machine(MachineArgs),
+    /// Simulate material removal: the volume removed, collisions (rapid into stock, holder, table), the finished part as STL, PNG or a replay page.
+    Sim(crate::sim::SimArgs),
 }
 
 /// `vcnc explain`.
@@ -91,6 +93,9 @@ pub struct CheckArgs {
     /// Programs checked at once (default: one per core).
     #[arg(long)]
     pub jobs: Option<usize>,
+    /// Also simulate material removal from this stock (as `vcnc sim --stock`): the volume removed and the collisions join the report.
+    #[arg(long)]
+    pub stock: Option<String>,
 }
 
 /// `vcnc run`.

@@ -15,6 +15,7 @@ mod machine_print;
 mod offload;
 mod plot;
 mod render;
+mod sim;
 mod timing;
 mod tools;
 mod trace;
@@ -50,6 +51,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Explain(args) => explain::run(&args),
         Command::Tools(args) => tools::tools(&args),
         Command::Machine(args) => machine_print::print(&args),
+        Command::Sim(args) => sim::sim(&args),
     }
 }
 

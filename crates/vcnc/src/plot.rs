@@ -26,8 +26,8 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
+use vcnc_core::ToolLibrary;
 use vcnc_core::display::{DisplayUnits, duration};
-use vcnc_core::{ToolKind, ToolLibrary, ToolShape, ToolSource};
 use vcnc_interp::{Event, Interpreter, Machine, Outcome, Sink};
 use vcnc_output::Summary;
 use vcnc_planner::{AxesMove, CycleTime, Pause, Planner, Profile, Segment, Timeline};
@@ -473,7 +473,8 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     };
     progress.phase(&format!("writing {}", set.output.display()));
     let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
-    let tools = tool_library(&s.machine);
+    let head = input.head(crate::choose::TOOL_COMMENTS_BYTES)?;
+    let tools = s.tool_library(&String::from_utf8_lossy(&head));
     let facts = Facts {
         summary: &clock.summary,
         planned_s,
@@ -515,25 +516,6 @@ fn main_source(input: &Input) -> JoinHandle<Source> {
         };
         Source::deflated(input.name(), &bytes)
     })
-}
-
-/// The shapes of the tools, for the page's tool marker. Today: the
-/// machine's D registers (a flat end mill of diameter 2·D, D geometry plus
-/// wear), and nothing else; `--tools` tables and CAM comments come here.
-fn tool_library(machine: &Machine) -> ToolLibrary {
-    let mut lib = ToolLibrary::default();
-    for (n, t) in &machine.tools {
-        let d = t.d_mm + t.d_wear_mm;
-        if d > 0.0 {
-            lib.insert(ToolShape {
-                kind: ToolKind::Flat,
-                diameter_mm: 2.0 * d,
-                source: ToolSource::Registers,
-                ..ToolShape::assumed(*n)
-            });
-        }
-    }
-    lib
 }
 
 fn compare_name(args: &PlotArgs) -> &str {
@@ -745,15 +727,15 @@ fn report(input: &Input, plot: &Plot, outcome: &Outcome) {
 }
 
 /// A sink that tells the progress bar how far the run is, every 4096 events.
-struct Counted<S> {
-    inner: S,
+pub(crate) struct Counted<S> {
+    pub(crate) inner: S,
     bar: Option<ProgressBar>,
     events: u64,
     line: u64,
 }
 
 impl<S> Counted<S> {
-    fn new(inner: S, bar: Option<ProgressBar>) -> Counted<S> {
+    pub(crate) fn new(inner: S, bar: Option<ProgressBar>) -> Counted<S> {
         Counted {
             inner,
             bar,
@@ -787,13 +769,13 @@ impl<S: Sink> Sink for Counted<S> {
 /// The progress bar: hidden until the plot has run for a second, and only
 /// on a terminal (stderr). Its length is the main program's line count,
 /// counted by the thread that shows it, so a short plot never pays for it.
-struct Progress {
+pub(crate) struct Progress {
     bar: Option<ProgressBar>,
     done: Arc<AtomicBool>,
 }
 
 impl Progress {
-    fn start(input: &Input, started: Instant) -> Progress {
+    pub(crate) fn start(input: &Input, started: Instant) -> Progress {
         let done = Arc::new(AtomicBool::new(false));
         let Input::File(file) = input else {
             return Progress { bar: None, done };
@@ -832,11 +814,11 @@ impl Progress {
         }
     }
 
-    fn bar(&self) -> Option<ProgressBar> {
+    pub(crate) fn bar(&self) -> Option<ProgressBar> {
         self.bar.clone()
     }
 
-    fn phase(&self, msg: &str) {
+    pub(crate) fn phase(&self, msg: &str) {
         if let Some(bar) = &self.bar {
             bar.set_message(msg.to_string());
             if let Some(n) = bar.length() {
@@ -845,7 +827,7 @@ impl Progress {
         }
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         self.done.store(true, Ordering::Relaxed);
         if let Some(bar) = &self.bar {
             bar.finish_and_clear();

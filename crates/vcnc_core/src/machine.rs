@@ -231,6 +231,9 @@ pub struct Machine {
     /// M codes that call a macro program (Syntec's registered M codes,
     /// Fanuc parameters 6080–6089): the program's name (`M0123`, `O9020`).
     pub m_macros: BTreeMap<u32, std::sync::Arc<str>>,
+    /// Machine Z of the table's top, where a tool's tip would touch it
+    /// (`vcnc sim`'s fixture check); `None` when the file gives none.
+    pub table_z_mm: Option<f64>,
 }
 
 /// Why a machine file was rejected.
@@ -317,6 +320,8 @@ struct File {
     motion: Motion,
     #[serde(default)]
     m_macros: BTreeMap<String, String>,
+    #[serde(default)]
+    table_z_mm: Option<f64>,
 }
 
 /// Validates one `[m_macros]` entry: an M code the controller does not
@@ -407,7 +412,13 @@ impl Machine {
             m_codes: BTreeMap::new(),
             motion: f.motion,
             m_macros: BTreeMap::new(),
+            table_z_mm: f.table_z_mm,
         };
+        if f.table_z_mm.is_some_and(|z| !z.is_finite()) {
+            return Err(MachineError(
+                "table_z_mm: the table's height is a finite number of mm".into(),
+            ));
+        }
         for (i, a) in f.axes.into_iter().enumerate() {
             m.add_axis(i, a)?;
         }

@@ -165,6 +165,7 @@ impl Scan {
             flute_length_mm: f.flute_length_mm,
             shank_diameter_mm: None,
             holder_diameter_mm: None,
+            stickout_mm: None,
             length_mm: None,
             center_cutting: None,
             description: f.description,

@@ -124,6 +124,10 @@ pub struct ToolShape {
     pub shank_diameter_mm: Option<f64>,
     /// The holder's diameter, mm, where known.
     pub holder_diameter_mm: Option<f64>,
+    /// How far the tool sticks out of its holder (tip to holder face), mm,
+    /// where known: the shank runs from the flutes up to here, the holder
+    /// from here up (the material-removal simulation's holder check).
+    pub stickout_mm: Option<f64>,
     /// The gauge length (tip to spindle nose), mm, where known.
     pub length_mm: Option<f64>,
     /// Whether the tool may plunge straight down (`None`: not said).
@@ -145,6 +149,7 @@ impl ToolShape {
             flute_length_mm: None,
             shank_diameter_mm: None,
             holder_diameter_mm: None,
+            stickout_mm: None,
             length_mm: None,
             center_cutting: None,
             description: String::new(),
@@ -186,6 +191,26 @@ pub enum TipNumbering {
     Fanuc,
     /// LinuxCNC's lathe orientation (linuxcnc-lathe): the table's Q as is.
     LinuxCnc,
+}
+
+/// A lathe insert's imaginary tip direction as a vector from the nose
+/// centre to the tip, (Z, X), each component −1, 0 or 1 (Fanuc numbering,
+/// X up and Z right seen from +Y: 1 +Z+X, 2 −Z+X, 3 −Z−X, 4 +Z−X, 5 +Z,
+/// 6 +X, 7 −Z, 8 −X; 0 and 9 the centre itself). The tip is the corner of
+/// the square around the nose in that direction: nose centre + radius ×
+/// this vector.
+pub fn tip_direction(tip: u8) -> (f64, f64) {
+    match tip {
+        1 => (1.0, 1.0),
+        2 => (-1.0, 1.0),
+        3 => (-1.0, -1.0),
+        4 => (1.0, -1.0),
+        5 => (1.0, 0.0),
+        6 => (0.0, 1.0),
+        7 => (-1.0, 0.0),
+        8 => (0.0, -1.0),
+        _ => (0.0, 0.0),
+    }
 }
 
 /// The Fanuc tip direction of LinuxCNC's lathe tool orientation `q` (a

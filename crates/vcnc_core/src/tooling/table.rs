@@ -261,6 +261,7 @@ impl Reader<'_> {
             flute_length_mm: sizes.flute_length_mm,
             shank_diameter_mm: None,
             holder_diameter_mm: sizes.holder_diameter_mm,
+            stickout_mm: None,
             length_mm: sizes.length_mm,
             center_cutting: None,
             description: description.chars().take(200).collect(),

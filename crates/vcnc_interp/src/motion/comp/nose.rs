@@ -27,19 +27,10 @@
 use crate::motion::MachineKind;
 use crate::plane::P2;
 
-/// The unit direction (Z, X) from the nose centre to the imaginary tip.
+/// The unit direction (Z, X) from the nose centre to the imaginary tip
+/// (the table lives in `vcnc_core::tooling`, shared with the simulation).
 pub(crate) fn tip_direction(tip: u8) -> (f64, f64) {
-    match tip {
-        1 => (1.0, 1.0),
-        2 => (-1.0, 1.0),
-        3 => (-1.0, -1.0),
-        4 => (1.0, -1.0),
-        5 => (1.0, 0.0),
-        6 => (0.0, 1.0),
-        7 => (-1.0, 0.0),
-        8 => (0.0, -1.0),
-        _ => (0.0, 0.0),
-    }
+    vcnc_core::tooling::tip_direction(tip)
 }
 
 /// The Fanuc tip number of LinuxCNC's lathe tool orientation `q` (its tool
