@@ -442,13 +442,13 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     let main_text = (set.format == Format::Html).then(|| main_source(&input));
     let progress = Progress::start(&input, started);
     let clock = BlockClock {
-        summary: Summary::new(&s.machine),
+        summary: Summary::new(s.machine),
         blocks: Blocks::default(),
     };
-    let sink = PlotSink::with_clock(&s.machine, set.options, clock);
+    let sink = PlotSink::with_clock(s.machine, set.options, clock);
     let mut counted = Counted::new(sink, progress.bar());
     let (outcome, diameter, planned_s, stamps) = if set.format == Format::Html {
-        let plan = Planner::with_profile(&s.machine, s.machine.motion.profile, Stamps::default());
+        let plan = Planner::with_profile(s.machine, s.machine.motion.profile, Stamps::default());
         let mut numbered = Numbered {
             inner: plan,
             blocks: Blocks::default(),
@@ -458,7 +458,7 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
         let stamps = numbered.inner.into_timeline();
         (outcome, diameter, stamps.sum.total_s, Some(stamps))
     } else {
-        let mut plan = timing::planner(&s.machine, None);
+        let mut plan = timing::planner(s.machine, None);
         let (outcome, diameter) =
             execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut plan))?;
         (outcome, diameter, plan.into_timeline().total_s, None)

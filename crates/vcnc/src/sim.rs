@@ -112,7 +112,7 @@ fn pass<S: Sink>(c: &Options, s: &Setup, input: &Input, sink: &mut S) -> Result<
     let main = input.open()?;
     let dir = c.program_dir.clone().unwrap_or_else(|| input.dir());
     let mut store = files::DirStore::new(dir);
-    let mut interp = Interpreter::new(&s.machine, &s.dialect, s.options);
+    let mut interp = Interpreter::new(s.machine, s.dialect, s.options);
     if let Some(path) = &c.variables {
         let kept = crate::variables::read(path)?;
         interp
@@ -156,7 +156,7 @@ fn plan(
     })?;
     let mut frames = None;
     if spec == StockSpec::Auto || replay {
-        let mut survey = Survey::new(&s.machine, &library, lathe);
+        let mut survey = Survey::new(s.machine, &library, lathe);
         pass(c, s, input, &mut survey)?;
         if spec == StockSpec::Auto
             && let Some(found) = survey.stock()
@@ -230,7 +230,7 @@ pub fn sim(args: &SimArgs) -> Result<ExitCode, String> {
         replay,
     )?;
     let table = s.machine.table_z_mm;
-    let sim = Simulation::new(&s.machine, &p.library, table, p.options.clone())?;
+    let sim = Simulation::new(s.machine, &p.library, table, p.options.clone())?;
     let mut counted = Counted::new(sim, progress.bar());
     let (outcome, _) = crate::execute(c, &s, &input, &mut counted)?;
     progress.phase("measuring the part");
@@ -543,7 +543,7 @@ pub(crate) fn for_check(
     stock: &str,
 ) -> Result<CheckSim, String> {
     let p = plan(c, s, input, (Some(stock), None), false)?;
-    let mut sim = Simulation::new(&s.machine, &p.library, s.machine.table_z_mm, p.options)?;
+    let mut sim = Simulation::new(s.machine, &p.library, s.machine.table_z_mm, p.options)?;
     pass(c, s, input, &mut sim)?;
     let finished = sim.finish_run()?;
     let columns = columns(input, &finished);
