@@ -27,6 +27,8 @@ pub enum Command {
     Plot(crate::plot::PlotArgs),
     /// What a G or M code, or an address, means in each dialect (from the interpreter's own tables).
     Explain(ExplainArgs),
+    /// A language server for editors over standard input and output (docs/editor.md).
+    Lsp,
 }
 
 /// `vcnc explain`.

@@ -43,6 +43,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Time(args) => timing::time(&args),
         Command::Plot(args) => plot::plot(&args),
         Command::Explain(args) => explain::run(&args),
+        Command::Lsp => vcnc_lsp::serve_stdio().map(|()| ExitCode::SUCCESS),
     }
 }
 
