@@ -167,7 +167,7 @@ fn junk_and_huge_lines_are_reported_and_the_server_goes_on() {
     let mut c = Client::start(json!({"vcnc": {"inlayHints": true}}));
     // Bytes of every value, as an editor shows a binary file.
     let bytes: Vec<u8> = (0..4096u32)
-        .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 13).to_le_bytes()[0])
         .collect();
     let junk = String::from_utf8_lossy(&bytes).into_owned();
     c.open("file:///tmp/junk.nc", 1, &junk);
