@@ -109,9 +109,12 @@ pub fn program_files(dir: &Path, number: u32) -> Vec<PathBuf> {
     .collect()
 }
 
-/// Called programs from the program directory, read whole.
-struct Files {
-    dir: Option<PathBuf>,
+/// Called programs from the program directory, read whole (the language
+/// server's runs and the Python module's).
+#[derive(Debug, Clone, Default)]
+pub struct Files {
+    /// The directory (none: no called programs but the document's own).
+    pub dir: Option<PathBuf>,
 }
 
 impl Files {
