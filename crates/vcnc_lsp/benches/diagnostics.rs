@@ -20,7 +20,6 @@ use lsp_server::{Connection, Message, Notification, Request, RequestId};
 use serde_json::json;
 use std::fmt::Write as _;
 use std::str::FromStr;
-use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 use vcnc_lsp::analysis::{Job, diagnose};
 use vcnc_lsp::dialect::Choice;
@@ -77,18 +76,13 @@ fn program() -> String {
 }
 
 fn job(text: &str) -> Job {
-    Job {
-        text: Arc::new(Text::new(text.to_string())),
-        path: None,
-        choice: Choice {
+    Job::for_text(
+        text,
+        Choice {
             name: "fanuc",
             why: String::new(),
         },
-        machine: None,
-        program_dir: None,
-        options: vcnc_interp::Options::default(),
-        setup_errors: Vec::new(),
-    }
+    )
 }
 
 #[divan::bench(sample_count = 30)]

@@ -52,6 +52,21 @@ pub struct Job {
 }
 
 impl Job {
+    /// A job for `text` alone in the dialect `choice`: no file, the
+    /// dialect's built-in machine, the switches off (tests, benchmarks,
+    /// embedding).
+    pub fn for_text(text: &str, choice: Choice) -> Job {
+        Job {
+            text: Arc::new(Text::new(text.to_string())),
+            path: None,
+            choice,
+            machine: None,
+            program_dir: None,
+            options: Options::default(),
+            setup_errors: Vec::new(),
+        }
+    }
+
     /// The directory of called programs.
     pub fn dir(&self) -> Option<PathBuf> {
         self.program_dir.clone().or_else(|| {
@@ -412,18 +427,13 @@ mod tests {
     use std::str::FromStr;
 
     fn job(text: &str, dialect: &'static str) -> Job {
-        Job {
-            text: Arc::new(Text::new(text.to_string())),
-            path: None,
-            choice: Choice {
+        Job::for_text(
+            text,
+            Choice {
                 name: dialect,
                 why: String::new(),
             },
-            machine: None,
-            program_dir: None,
-            options: Options::default(),
-            setup_errors: Vec::new(),
-        }
+        )
     }
 
     fn uri() -> lsp_types::Uri {

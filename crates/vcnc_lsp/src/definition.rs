@@ -226,22 +226,16 @@ fn in_directory(dir: &Path, lex: &LexRules, target: &Target) -> Option<Location>
 mod tests {
     use super::*;
     use crate::dialect::Choice;
-    use crate::text::Text;
     use std::str::FromStr;
-    use std::sync::Arc;
 
     fn job(text: &str, dialect: &'static str, dir: Option<&Path>) -> Job {
+        let choice = Choice {
+            name: dialect,
+            why: String::new(),
+        };
         Job {
-            text: Arc::new(Text::new(text.to_string())),
-            path: None,
-            choice: Choice {
-                name: dialect,
-                why: String::new(),
-            },
-            machine: None,
             program_dir: dir.map(Path::to_path_buf),
-            options: vcnc_interp::Options::default(),
-            setup_errors: Vec::new(),
+            ..Job::for_text(text, choice)
         }
     }
 

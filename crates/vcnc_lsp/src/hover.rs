@@ -217,22 +217,15 @@ fn write_state(md: &mut String, s: &State, d: &Dialect, machine: &Machine, line:
 mod tests {
     use super::*;
     use crate::dialect::Choice;
-    use crate::text::Text;
-    use std::sync::Arc;
 
     fn job(text: &str, dialect: &'static str) -> Job {
-        Job {
-            text: Arc::new(Text::new(text.to_string())),
-            path: None,
-            choice: Choice {
+        Job::for_text(
+            text,
+            Choice {
                 name: dialect,
                 why: "test".into(),
             },
-            machine: None,
-            program_dir: None,
-            options: vcnc_interp::Options::default(),
-            setup_errors: Vec::new(),
-        }
+        )
     }
 
     fn markdown(h: Hover) -> String {

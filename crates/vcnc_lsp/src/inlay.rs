@@ -74,26 +74,17 @@ fn clock(s: f64) -> String {
 mod tests {
     use super::*;
     use crate::dialect::Choice;
-    use crate::text::Text;
-    use std::sync::Arc;
 
     #[test]
     fn each_operation_gets_the_time_of_its_lines() {
         // The built-in Fanuc mill plans; a dwell is planned as exactly its
         // length, so two operations of one dwell each read 2.0 s and 3.0 s.
         let text = "G90 G54\n(OP ONE)\nG04 X2.\n(OP TWO)\nG04 X3.\nM30\n";
-        let job = Job {
-            text: Arc::new(Text::new(text.to_string())),
-            path: None,
-            choice: Choice {
-                name: "fanuc",
-                why: String::new(),
-            },
-            machine: None,
-            program_dir: None,
-            options: vcnc_interp::Options::default(),
-            setup_errors: Vec::new(),
+        let choice = Choice {
+            name: "fanuc",
+            why: String::new(),
         };
+        let job = Job::for_text(text, choice);
         let hints = operation_times(&job, &AtomicBool::new(false)).unwrap();
         let labels: Vec<String> = hints
             .iter()
