@@ -49,6 +49,9 @@ pub struct Job {
     pub options: Options,
     /// What is wrong with the settings, shown on the first line.
     pub setup_errors: Vec<String>,
+    /// The dialect named in the first line or the settings that does not
+    /// exist: shown on the first line, and the program is not run.
+    pub dialect_error: Option<String>,
 }
 
 impl Job {
@@ -64,6 +67,7 @@ impl Job {
             program_dir: None,
             options: Options::default(),
             setup_errors: Vec::new(),
+            dialect_error: None,
         }
     }
 
@@ -216,18 +220,14 @@ impl Sink for Collect<'_> {
 /// each with the state as before it) and warning, each after the first
 /// alarm marked so. `None` when the job was cancelled.
 pub fn diagnose(job: &Job, uri: &lsp_types::Uri, cancel: &AtomicBool) -> Option<Vec<Diagnostic>> {
+    if let Some(e) = &job.dialect_error {
+        return Some(vec![setup_diagnostic(e)]);
+    }
     let mut out: Vec<Diagnostic> = job
         .setup_errors
         .iter()
         .map(|e| setup_diagnostic(e))
         .collect();
-    if job
-        .setup_errors
-        .iter()
-        .any(|e| e.starts_with("unknown dialect"))
-    {
-        return Some(out);
-    }
     let mut sink = Collect {
         cancel,
         found: Vec::new(),

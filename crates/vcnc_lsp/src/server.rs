@@ -309,18 +309,20 @@ impl Server {
     fn job(&self, doc: &Doc) -> Job {
         let path = uri::to_path(&doc.uri);
         let mut setup_errors = Vec::new();
-        let choice = dialect::choose(
+        let (choice, dialect_error) = match dialect::choose(
             doc.text.as_str(),
             path.as_deref(),
             self.settings.dialect.as_deref(),
-        )
-        .unwrap_or_else(|e| {
-            setup_errors.push(e);
-            Choice {
-                name: "fanuc",
-                why: "the fallback after an unknown dialect name".into(),
-            }
-        });
+        ) {
+            Ok(c) => (c, None),
+            Err(e) => (
+                Choice {
+                    name: "fanuc",
+                    why: "the fallback after an unknown dialect name".into(),
+                },
+                Some(e),
+            ),
+        };
         let machine = match &self.machine {
             Ok(m) => m.clone(),
             Err(e) => {
@@ -340,6 +342,7 @@ impl Server {
                 keep_going: true,
             },
             setup_errors,
+            dialect_error,
         }
     }
 
