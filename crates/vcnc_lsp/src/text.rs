@@ -63,9 +63,13 @@ impl Text {
         end
     }
 
-    /// The position of byte `offset` (clamped into the text).
+    /// The position of byte `offset` (clamped into the text, and back to
+    /// the start of the character it falls in).
     pub fn position(&self, offset: usize) -> Position {
-        let offset = offset.min(self.text.len());
+        let mut offset = offset.min(self.text.len());
+        while !self.text.is_char_boundary(offset) {
+            offset -= 1;
+        }
         let line = self
             .starts
             .partition_point(|s| *s <= offset)
@@ -170,6 +174,8 @@ mod tests {
         // After "(é𝑥)": 1 + 1 + 2 + 1 = 5 units, 1 + 2 + 4 + 1 = 8 bytes.
         assert_eq!(t.offset(pos(1, 5)), 16);
         assert_eq!(t.position(16), pos(1, 5));
+        // Inside "𝑥" (bytes 11..15): its start.
+        assert_eq!(t.position(13), pos(1, 2));
         // The lone \r ends line 1: M30 is line 2.
         assert_eq!(t.position(21), pos(2, 0));
         // Past the end of a line: its end; past the last line: the text's end.
