@@ -155,7 +155,7 @@ impl Choice {
         Ok(cell.get_or_init(|| {
             let mut m = self.machine.clone().unwrap_or_else(|| dialect.machine());
             if let Some((lib, _)) = &self.table {
-                lib.fill_registers(&mut m, crate::tip_numbering(dialect));
+                lib.fill_registers(&mut m, dialect.tip_numbering);
             }
             m
         }))

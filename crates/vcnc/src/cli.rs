@@ -33,6 +33,8 @@ pub enum Command {
     Machine(MachineArgs),
     /// Simulate material removal: the volume removed, collisions (rapid into stock, holder, table), the finished part as STL, PNG or a replay page.
     Sim(crate::sim::SimArgs),
+    /// A language server for editors over standard input and output (docs/editor.md).
+    Lsp,
 }
 
 /// `vcnc explain`.

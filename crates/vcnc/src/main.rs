@@ -27,8 +27,7 @@ use files::Input;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
 use vcnc_core::grbl_settings;
-use vcnc_core::tooling::TipNumbering;
-use vcnc_interp::{Dialect, Event, Interpreter, Machine, Outcome, Sink};
+use vcnc_interp::{Event, Interpreter, Machine, Outcome, Sink};
 use vcnc_output::{CsvSink, GcodeOptions, GcodeSink, JsonlSink, Summary};
 
 fn main() -> ExitCode {
@@ -52,6 +51,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Tools(args) => tools::tools(&args),
         Command::Machine(args) => machine_print::print(&args),
         Command::Sim(args) => sim::sim(&args),
+        Command::Lsp => vcnc_lsp::serve_stdio().map(|()| ExitCode::SUCCESS),
     }
 }
 
@@ -110,17 +110,6 @@ pub(crate) fn read_machine(path: &std::path::Path) -> Result<(Machine, MachineFr
     }
     let m = Machine::from_toml(&text).map_err(|e| format!("machine file {file}: {e}"))?;
     Ok((m, MachineFrom::File(file)))
-}
-
-/// How the dialect numbers the lathe tip directions of the machine's
-/// registers: linuxcnc-lathe reads a `.tbl`'s Q as it is, the Fanuc-style
-/// lathes in Fanuc's numbering.
-pub(crate) fn tip_numbering(dialect: &Dialect) -> TipNumbering {
-    if dialect.name == "linuxcnc-lathe" {
-        TipNumbering::LinuxCnc
-    } else {
-        TipNumbering::Fanuc
-    }
 }
 
 /// Runs the program `input` into `sink`. Returns how the run ended and

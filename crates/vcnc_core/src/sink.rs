@@ -9,7 +9,9 @@
 //! (its reader went away: `vcnc run | head`) says so through
 //! [`Sink::is_done`], which the interpreter asks after every block, and
 //! the run stops at the first block after the batch that made it done (a
-//! sink on another thread may say so a few batches late).
+//! sink on another thread may say so a few batches late);
+//! [`Sink::stop_after_line`] stops it after a given line of the main
+//! program, so that a caller can read the state there.
 //! [`Sink::finish`] is called once after the last event, so buffered
 //! writers flush and report their errors.
 //! Output formats live in `vcnc_output`; the CLI wires them up.
@@ -36,6 +38,16 @@ pub trait Sink {
     /// Whether the sink wants no further events; the interpreter stops the
     /// run after the current block when it does.
     fn is_done(&self) -> bool {
+        false
+    }
+
+    /// Whether the run should stop right after the block that just ran on
+    /// `line` (1-based) of the main program's text, to read the
+    /// interpreter's state there (the language server's hover shows the
+    /// modal state and the work position at the end of a block). Asked
+    /// after every block of the main program's text; by default never,
+    /// which the compiler folds away from the run loop of every other sink.
+    fn stop_after_line(&mut self, _line: u64) -> bool {
         false
     }
 
@@ -72,6 +84,9 @@ impl<S: Sink + ?Sized> Sink for &mut S {
     }
     fn is_done(&self) -> bool {
         (**self).is_done()
+    }
+    fn stop_after_line(&mut self, line: u64) -> bool {
+        (**self).stop_after_line(line)
     }
     fn finish(&mut self) -> std::io::Result<()> {
         (**self).finish()

@@ -412,6 +412,11 @@ impl<'a> Interpreter<'a> {
             // not a return's callee), for alarms at its end.
             if let Some(f) = self.flow.frames.get_mut(depth.wrapping_sub(1)) {
                 f.last = Some((line, first));
+                // A sink that reads the state after a line of the main
+                // text (`Sink::stop_after_line`; false, and gone, for others).
+                if f.source == 0 && sink.stop_after_line(line.number) {
+                    return Ok(After::Return(None));
+                }
             }
         }
         match step {

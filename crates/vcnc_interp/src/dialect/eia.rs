@@ -143,5 +143,6 @@ pub(super) fn eia() -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
     }
 }

@@ -197,6 +197,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -212,6 +213,7 @@ pub(super) fn haas_lathe() -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

@@ -156,5 +156,6 @@ pub(super) fn grbl() -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
     }
 }

@@ -139,5 +139,6 @@ pub(super) fn lathe() -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
     }
 }

@@ -277,6 +277,7 @@ pub(super) fn linuxcnc_lathe() -> Dialect {
         plane: Plane::Zx,
         default_machine: DEFAULT_FANUC_LATHE_TOML,
         surface_speed: SurfaceSpeedOn::WorkDiameter,
+        tip_numbering: vcnc_core::tooling::TipNumbering::LinuxCnc,
         ..linuxcnc()
     }
 }

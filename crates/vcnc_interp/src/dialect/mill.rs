@@ -342,6 +342,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
     }
 }
 
@@ -393,6 +394,7 @@ pub(super) fn haas() -> Dialect {
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
+        tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         macros: super::MacroRules::HAAS,
         ..fanuc()
     }

@@ -483,6 +483,9 @@ pub struct Dialect {
     pub tool_change: ToolChangeSpindle,
     /// The lead of G33.
     pub thread_lead: ThreadLead,
+    /// How the tip directions of the offset registers (and of a `.tbl`'s
+    /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
+    pub tip_numbering: vcnc_core::tooling::TipNumbering,
     /// M codes the controller itself passes on as auxiliary functions
     /// (`aux` events), with the letters they read (LinuxCNC's M62–M68).
     pub aux_m: &'static [AuxM],
