@@ -234,3 +234,12 @@ fn a_malformed_grbl_dump_is_a_usage_error() {
         "$100=250.000\n$110=500.000\n$120=ten\n"
     ));
 }
+
+/// `vcnc explain`: a code in every dialect (dialects that agree share a
+/// line), a code in one dialect, and an address.
+#[test]
+fn explain_a_code_and_an_address() {
+    insta::assert_snapshot!(vcnc_args(&["explain", "G87"]));
+    insta::assert_snapshot!(vcnc_args(&["explain", "G43", "--dialect", "linuxcnc"]));
+    insta::assert_snapshot!(vcnc_args(&["explain", "H"]));
+}

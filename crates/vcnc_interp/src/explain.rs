@@ -13,7 +13,8 @@
 //! interpreter runs cannot drift apart.
 
 use crate::dialect::{
-    AxisWords, Dialect, Group, IntegerWords, MDef, OffsetDefault, ThreadLead, ToolWords, bit,
+    AxisWords, Dialect, FrameOp, GOp, Group, IntegerWords, MDef, OffsetDefault, ThreadLead,
+    ToolWords, bit,
 };
 
 /// What the user asked about.
@@ -275,6 +276,13 @@ fn address_meaning(letter: u8, d: &Dialect) -> String {
             }
         },
         b'H' => match d.offset_default {
+            _ if !d
+                .g(43.0)
+                .is_some_and(|g| g.op == GOp::Frame(FrameOp::ToolLengthPlus)) =>
+            {
+                "not a tool length offset here (no G43): a code's own data where a code reads it"
+                    .into()
+            }
             OffsetDefault::Modal => "the tool length offset register G43/G44 read".into(),
             OffsetDefault::ToolInSpindle => {
                 "a tool number whose length G43 reads (none: the tool in the spindle)".into()
