@@ -3,7 +3,7 @@
 three compensated feed end points rs274 gives for orientation.ngc (G42 on
 a lathe, tool 2 with a 0.4 mm nose radius) for each tool orientation Q1-Q9,
 so that `--dialect linuxcnc-lathe` can be checked against LinuxCNC's own
-lathe compensation (crates/vcnc_interp/tests/linuxcnc_dialect.rs).
+lathe compensation (crates/vcnc_interp/tests/behaviour/linuxcnc_dialect.rs).
 
 rs274 reads the tool table in inches, D the nose DIAMETER.
 

@@ -192,7 +192,7 @@ fn lathe_g92_takes_absolute_words_only() {
 #[test]
 fn over_travel_points_at_an_incremental_word() {
     let m = Machine::from_toml(include_str!(
-        "../../../tests/fixtures/machines/lathe_travel_limits.toml"
+        "../../../../tests/fixtures/machines/lathe_travel_limits.toml"
     ))
     .unwrap();
     let (_, out) = run_with(&Dialect::lathe(), &m, "N1 G01 F100 U1000\n", &[]);

@@ -6,7 +6,7 @@
 
 use vcnc_interp::{Dialect, Event, Interpreter, Options, Outcome, VecSink};
 
-mod common;
+use crate::common;
 
 use common::{ends, near, run_str as run};
 

@@ -20,7 +20,7 @@ use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_interp::{ArcDir, Dialect, Event, Outcome, Pos};
 use vcnc_syntax::Code;
 
-mod common;
+use crate::common;
 
 /// Runs under the fanuc dialect on a mill whose D1 is 5 mm.
 fn run(program: &str) -> (Vec<Event>, Outcome) {

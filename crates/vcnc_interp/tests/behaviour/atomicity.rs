@@ -75,7 +75,7 @@ proptest! {
     fn an_alarming_block_changes_nothing(picks in proptest::collection::vec(0..BLOCKS.len(), 1..25)) {
         // Travel limits, so that over-travel is among the alarms.
         let machine = Machine::from_toml(include_str!(
-            "../../../tests/fixtures/machines/mill_travel_limits.toml"
+            "../../../../tests/fixtures/machines/mill_travel_limits.toml"
         ))
         .unwrap();
         let lines: Vec<&str> = picks.iter().map(|&i| BLOCKS[i]).collect();
@@ -175,7 +175,7 @@ proptest! {
         picks in proptest::collection::vec(0..COMP_BLOCKS.len(), 1..25),
     ) {
         let machine = Machine::from_toml(include_str!(
-            "../../../tests/fixtures/machines/mill_travel_limits.toml"
+            "../../../../tests/fixtures/machines/mill_travel_limits.toml"
         ))
         .unwrap();
         let mut lines = vec!["G10 L12 P1 R2.", "G00 X-10. Y-10.", "G41 D1 G01 X0. Y0. F300."];
@@ -215,7 +215,7 @@ const NOSE_BLOCKS: &[&str] = &[
 
 /// The built-in fanuc-lathe with travel limits: X radius -5..150, Z -300..250.
 fn lathe_with_limits() -> Machine {
-    let text = include_str!("../../vcnc_core/src/default_fanuc_lathe.toml")
+    let text = include_str!("../../../vcnc_core/src/default_fanuc_lathe.toml")
         .replace(
             "letter = \"x\"\n",
             "letter = \"x\"\nmin_mm = -5.0\nmax_mm = 150.0\n",

@@ -9,7 +9,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-mod common;
+use crate::common;
 
 use common::{Ran, Store, alarm, at, ended, xs};
 use vcnc_syntax::Code;

@@ -120,7 +120,7 @@ fn bad_cycle_words_alarm_where_they_are_and_the_block_moves_nothing() {
 fn a_k_block_that_fails_at_a_later_hole_emits_none_of_its_holes() {
     // Hole 3 of 4 is beyond X +1000 (the travel): the whole block alarms.
     let m = Machine::from_toml(include_str!(
-        "../../../tests/fixtures/machines/mill_travel_limits.toml"
+        "../../../../tests/fixtures/machines/mill_travel_limits.toml"
     ))
     .unwrap();
     let mut sink = VecSink::default();

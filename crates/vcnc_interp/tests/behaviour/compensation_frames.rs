@@ -8,7 +8,7 @@ use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_interp::{Dialect, Event, Interpreter, Options, Outcome, Pos, VecSink};
 use vcnc_syntax::Code;
 
-mod common;
+use crate::common;
 
 use common::{ends, near};
 

@@ -5,17 +5,14 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-use vcnc_interp::{Dialect, EndCode, Event, Interpreter, Options, Outcome, VecSink};
+use crate::common;
+use vcnc_interp::{Dialect, EndCode, Event, Outcome};
 
 const X: usize = 0;
 const Z: usize = 1;
 
 fn run(program: &str) -> (Vec<Event>, Outcome) {
-    let d = Dialect::fanuc_lathe();
-    let m = d.machine();
-    let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, &d, Options::default()).run_str(program, &mut sink);
-    (sink.0, out)
+    common::run_on_its_machine(&Dialect::fanuc_lathe(), program)
 }
 
 /// The feed moves' end points (X radius, Z) of the given source line.

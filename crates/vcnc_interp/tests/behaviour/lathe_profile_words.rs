@@ -12,20 +12,15 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
+use crate::common;
 use std::f64::consts::PI;
-use vcnc_interp::{
-    Dialect, EndCode, Event, Feed, Interpreter, Options, Outcome, SpindleDir, VecSink,
-};
+use vcnc_interp::{Dialect, EndCode, Event, Feed, Outcome, SpindleDir};
 
 const X: usize = 0;
 const Z: usize = 1;
 
 fn run(program: &str) -> (Vec<Event>, Outcome) {
-    let d = Dialect::fanuc_lathe();
-    let m = d.machine();
-    let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, &d, Options::default()).run_str(program, &mut sink);
-    (sink.0, out)
+    common::run_on_its_machine(&Dialect::fanuc_lathe(), program)
 }
 
 fn feed_text(f: &Feed) -> String {

@@ -11,7 +11,7 @@
 use vcnc_interp::{Dialect, Event, Outcome};
 use vcnc_syntax::Code;
 
-mod common;
+use crate::common;
 
 use common::run_str;
 

@@ -5,7 +5,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-mod common;
+use crate::common;
 
 use common::{Store, ended, run, run_on};
 use std::collections::BTreeMap;

@@ -7,7 +7,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
-mod common;
+use crate::common;
 
 use common::{Store, alarm_of, ended, run, xs};
 use vcnc_interp::{Dialect, Event, Interpreter, Machine, Options, Outcome, VecSink};

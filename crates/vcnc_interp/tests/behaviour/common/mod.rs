@@ -107,12 +107,18 @@ pub fn run_str_on(machine: &Machine, dialect: &Dialect, program: &str) -> (Vec<E
     (sink.0, out)
 }
 
+/// Runs `program` under `dialect` on the dialect's own built-in machine
+/// (a lathe dialect's lathe): its events and how it ended.
+pub fn run_on_its_machine(dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
+    run_str_on(&dialect.machine(), dialect, program)
+}
+
 /// The built-in mill with tools in its offset memory
 /// (`tests/fixtures/machines/mill_tools.toml`): D1 = D2 = 5 mm, D3 = 3 mm,
 /// every H 0. The built-in mill's own memory is empty.
 pub fn mill_with_tools() -> Machine {
     Machine::from_toml(include_str!(
-        "../../../../tests/fixtures/machines/mill_tools.toml"
+        "../../../../../tests/fixtures/machines/mill_tools.toml"
     ))
     .unwrap()
 }

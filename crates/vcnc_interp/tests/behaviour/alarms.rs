@@ -70,7 +70,8 @@ fn run(program: &str) -> Run {
 
 /// The 3-axis mill with travel limits these tests were written for (the
 /// built-in machines have none).
-const LIMITED_MILL: &str = include_str!("../../../tests/fixtures/machines/mill_travel_limits.toml");
+const LIMITED_MILL: &str =
+    include_str!("../../../../tests/fixtures/machines/mill_travel_limits.toml");
 
 fn limited_mill() -> Machine {
     Machine::from_toml(LIMITED_MILL).expect("valid test machine")

@@ -6,7 +6,7 @@
 
 use vcnc_interp::{Dialect, Event, Outcome};
 
-mod common;
+use crate::common;
 
 use common::{run_str as run, xs};
 

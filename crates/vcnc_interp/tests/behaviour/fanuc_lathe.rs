@@ -12,6 +12,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
+use crate::common;
 use proptest::prelude::*;
 use std::sync::mpsc;
 use std::time::Duration;
@@ -21,11 +22,7 @@ const X: usize = 0;
 const Z: usize = 1;
 
 fn run(program: &str) -> (Vec<Event>, Outcome) {
-    let d = Dialect::fanuc_lathe();
-    let m = d.machine();
-    let mut sink = VecSink::default();
-    let out = Interpreter::new(&m, &d, Options::default()).run_str(program, &mut sink);
-    (sink.0, out)
+    common::run_on_its_machine(&Dialect::fanuc_lathe(), program)
 }
 
 /// One move of the tool's path, (X radius, Z).
