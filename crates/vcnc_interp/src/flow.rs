@@ -18,7 +18,6 @@
 //! are opened only through the [`ProgramStore`] trait the caller provides.
 
 use crate::events::Loc;
-pub(crate) use crate::macros::CallKind;
 use std::collections::HashMap;
 use std::io;
 use std::sync::Arc;
@@ -26,6 +25,17 @@ use vcnc_syntax::{
     Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block,
     next_block_start,
 };
+
+/// How a call level was entered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CallKind {
+    /// The main program, M98 or a lathe G20: the caller's locals.
+    Sub,
+    /// G65, an extended G code or an M-code macro: own locals.
+    Macro,
+    /// A G66 call after a move: own locals; moves in it do not call again.
+    Modal,
+}
 
 /// Finds called programs outside the main file.
 pub trait ProgramStore {

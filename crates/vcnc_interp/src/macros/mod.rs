@@ -47,17 +47,6 @@ use std::rc::Rc;
 use vcnc_syntax::macros::Value;
 use vcnc_syntax::{Cursor, Line};
 
-/// How a call level was entered.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CallKind {
-    /// The main program, M98 or a lathe G20: the caller's locals.
-    Sub,
-    /// G65, an extended G code or an M-code macro: own locals.
-    Macro,
-    /// A G66 call after a move: own locals; moves in it do not call again.
-    Modal,
-}
-
 /// A multiplicative hasher for the small integer keys of the caches (the
 /// standard SipHash would cost more than the statement it finds).
 #[derive(Default)]
