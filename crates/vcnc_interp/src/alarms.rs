@@ -829,6 +829,22 @@ pub fn pocket_too_small(span: Span, what: &str, tool_mm: f64) -> Diagnostic {
     )
 }
 
+/// E325: a pocket cycle with no tool to size it by: none in the spindle
+/// (`tool` is `None`), or one whose radius register holds no radius.
+#[cold]
+pub fn pocket_without_tool(span: Span, tool: Option<u32>) -> Diagnostic {
+    let message = match tool {
+        None => "no tool is loaded: a pocket cycle steps over and leaves its wall by the diameter of the tool in the spindle".to_string(),
+        Some(t) => format!("tool T{t} in the spindle has no radius (its d_mm + d_wear_mm is 0): a pocket cycle steps over and leaves its wall by the tool's diameter"),
+    };
+    d(
+        Code::E325,
+        span,
+        message,
+        "load the tool before the cycle (T… M06) and give it a radius in the tool table (--tools or the machine file's d_mm)",
+    )
+}
+
 /// E326: one block asks for more holes than the bound.
 #[cold]
 pub fn too_many_holes(span: Span, max: u64) -> Diagnostic {
