@@ -829,6 +829,19 @@ pub fn pocket_too_small(span: Span, what: &str, tool_mm: f64) -> Diagnostic {
     )
 }
 
+/// E109: a Syntec G33 lead without a decimal point under inch: the manual
+/// gives that form's unit in mm only (1.2.17, "F: the thread of a screw
+/// (0.01mm)").
+#[cold]
+pub fn lead_without_point_in_inch(span: Span) -> Diagnostic {
+    d(
+        Code::E109,
+        span,
+        "a thread lead F without a decimal point is in 0.01 mm (\"F: the thread of a screw (0.01mm)\"), and the manual gives no unit for it in inch".to_string(),
+        "write the lead with a decimal point in inches (F0.0625), or program the thread in metric (G71)",
+    )
+}
+
 /// E325: a pocket cycle with no tool to size it by: none in the spindle
 /// (`tool` is `None`), or one whose radius register holds no radius.
 #[cold]

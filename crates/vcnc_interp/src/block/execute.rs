@@ -391,9 +391,9 @@ impl Interpreter<'_> {
         not_negative_feed(&f)?;
         match self.state.modal.motion {
             Motion::Thread | Motion::ThreadingCycle
-                if w.axis_user.is_none() && self.cfg.dialect.thread_lead == ThreadLead::F =>
+                if w.axis_user.is_none() && self.cfg.dialect.thread_lead != ThreadLead::K =>
             {
-                self.state.thread_lead_mm = Some(f.value * self.unit_mm())
+                self.state.thread_lead_mm = Some(self.lead_mm(&f)?)
             }
             Motion::ThreadInch if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * crate::block::convert::MM_PER_INCH);
@@ -401,6 +401,21 @@ impl Interpreter<'_> {
             _ => self.set_feed(f),
         }
         Ok(())
+    }
+
+    /// F as a thread's lead in mm: in program units, or under
+    /// [`ThreadLead::FHundredths`] 0.01 mm when written without a point.
+    fn lead_mm(&self, f: &vcnc_syntax::Word) -> Result<f64, Diagnostic> {
+        let plain = !f.point
+            && self.cfg.dialect.thread_lead == ThreadLead::FHundredths
+            && self.cfg.machine.params.decimal_input != crate::machine::DecimalInput::Calculator;
+        if !plain {
+            return Ok(f.value * self.unit_mm());
+        }
+        if self.state.modal.inch {
+            return Err(alarms::lead_without_point_in_inch(f.span));
+        }
+        Ok(f.value * 0.01)
     }
 
     /// F as the feed of the cutting moves that follow.

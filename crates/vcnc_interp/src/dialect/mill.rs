@@ -358,6 +358,7 @@ pub(super) fn syntec() -> Dialect {
         g,
         m,
         macros: super::MacroRules::SYNTEC,
+        thread_lead: ThreadLead::FHundredths,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }

@@ -393,8 +393,14 @@ pub enum OffsetDefault {
 /// Which word gives the lead of G33 (spindle-synchronized motion).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ThreadLead {
-    /// F, in the G33/G32 block or before it (Fanuc, Syntec, the lathes).
+    /// F, in the G33/G32 block or before it (Fanuc, the lathes); a value
+    /// without a decimal point is read as the feed's plain number.
     F,
+    /// F as above, but a value without a decimal point counts 0.01 mm
+    /// (Syntec 900M 1.2.17, "F: the thread of a screw (0.01mm)": `F150` is
+    /// a 1.5 mm lead, `F1.5` too). The manual gives no inch unit, so under
+    /// inch a lead without a point is an alarm.
+    FHundredths,
     /// K, the distance per revolution; F stays the feed (LinuxCNC).
     K,
 }
