@@ -393,6 +393,17 @@ pub fn g53_incremental(span: Span) -> Diagnostic {
     )
 }
 
+/// W110: G53 under G91 where the control ignores it (Fanuc, Haas).
+#[cold]
+pub fn g53_ignored_incremental(span: Span) -> Diagnostic {
+    d(
+        Code::W110,
+        span,
+        "G53 in incremental mode (G91) is ignored: the block does not move (Fanuc: \"when an incremental command is specified, the G53 command is ignored\")".into(),
+        "write G90 before G53 to move to the machine position (e.g. G90 G53 Z0. for Z home)",
+    )
+}
+
 /// E309: M06 without T.
 #[cold]
 pub fn m06_without_tool(span: Span) -> Diagnostic {

@@ -326,6 +326,12 @@ impl Interpreter<'_> {
         if self.state.modal.tool_length != crate::state::ToolLength::Off {
             // Under G43/G44 an H word alone changes the offset.
             allowed |= bit(b'H');
+        } else if w.get(b'H').is_some_and(|h| h.value == 0.0)
+            && self.cfg.dialect.h_is_length_offset()
+        {
+            // H0 is "no tool length offset" (its register is always 0):
+            // posts write it beside G49 or G53 (`G49 H0`, `G53 G00 H0 Z0`).
+            allowed |= bit(b'H');
         }
         if self.comp_on_reads_d() || self.d_alone_is_radius() {
             // Under G41/G42 a D word alone changes the radius; outside them

@@ -343,6 +343,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
+        g53_incremental: super::G53Incremental::Ignored,
     }
 }
 
@@ -359,6 +360,7 @@ pub(super) fn syntec() -> Dialect {
         m,
         macros: super::MacroRules::SYNTEC,
         thread_lead: ThreadLead::FHundredths,
+        g53_incremental: super::G53Incremental::Alarm,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }

@@ -405,6 +405,20 @@ pub enum ThreadLead {
     K,
 }
 
+/// G53 (a move in machine coordinates) under G91.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum G53Incremental {
+    /// An alarm (E308): Syntec 1.2.23 says G53 "is not effective in
+    /// increment mode", and an ignored move is worse than an alarm; rs274
+    /// refuses it too ("Cannot use g53 incremental").
+    Alarm,
+    /// The G53 block does not move, with a warning (W110): Fanuc 0i's
+    /// operator's manual (machine coordinate system, restrictions): "When
+    /// an incremental command is specified, the G53 command is ignored";
+    /// Haas follows Fanuc.
+    Ignored,
+}
+
 /// The feed mode at power-on (group 05).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FeedAtPowerOn {
@@ -489,6 +503,8 @@ pub struct Dialect {
     pub tool_change: ToolChangeSpindle,
     /// The lead of G33.
     pub thread_lead: ThreadLead,
+    /// G53 under G91.
+    pub g53_incremental: G53Incremental,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,
@@ -706,6 +722,13 @@ impl Dialect {
             && self
                 .g(41.0)
                 .is_some_and(|g| g.op == GOp::Comp(CompOp::Left) && g.letters & bit(b'D') != 0)
+    }
+
+    /// Whether H is a tool length offset register in this dialect (it has
+    /// G43): then `H0` ("no offset") may stand in any block.
+    pub(crate) fn h_is_length_offset(&self) -> bool {
+        self.g(43.0)
+            .is_some_and(|g| g.op == GOp::Frame(FrameOp::ToolLengthPlus))
     }
 
     /// The G code that does `op` in this dialect (the first in the table),
