@@ -659,6 +659,7 @@ impl Interpreter<'_> {
                     self.state.refresh_origin(&self.tables);
                 }
                 GOp::Pace(PaceOp::Smoothing) => self.haas_smoothing(w),
+                GOp::Pace(PaceOp::LookAhead) => self.look_ahead(w, at.span)?,
                 // A G4 that leaves the axis words to the motion (LinuxCNC:
                 // the dwell, then the block's move).
                 GOp::Pace(PaceOp::DwellP) if !at.def.takes_axes() => {
@@ -709,6 +710,40 @@ impl Interpreter<'_> {
         }
         self.state.smoothing.reported_mm = tolerance_mm;
         let on = tolerance_mm > 0.0;
+        self.emit(|loc| Event::Smoothing {
+            loc,
+            on,
+            tolerance_mm,
+        });
+        Ok(())
+    }
+
+    /// Fanuc G08 P1 / P0: AI look-ahead control. It reads blocks ahead and
+    /// lowers the feed before corners by the allowed acceleration, keeping
+    /// to the path: one `smoothing` event for the planner, on with the
+    /// machine's own corner tolerance (`motion.corner_tolerance_mm`, no
+    /// path error of its own, unlike G05.1's E), or off.
+    fn look_ahead(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G08", "P (1 on, 0 off)"))?;
+        let on = match p.value {
+            1.0 => true,
+            0.0 => false,
+            _ => {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    b'P',
+                    p.value,
+                    "G08 P is 1 (look-ahead on) or 0 (off)",
+                ));
+            }
+        };
+        let tolerance_mm = if on {
+            self.cfg.machine.motion.corner_tolerance_mm
+        } else {
+            0.0
+        };
         self.emit(|loc| Event::Smoothing {
             loc,
             on,

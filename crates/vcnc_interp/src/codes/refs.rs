@@ -99,7 +99,9 @@ impl Interpreter<'_> {
                 Ok(())
             }
             PaceOp::OverrideSet => self.magnification(w, cmd),
-            PaceOp::ExactStopOnce | PaceOp::Smoothing | PaceOp::Junction => Ok(()),
+            PaceOp::ExactStopOnce | PaceOp::Smoothing | PaceOp::LookAhead | PaceOp::Junction => {
+                Ok(())
+            }
         }
     }
 
