@@ -139,6 +139,7 @@ codes! {
     W107 => "M99 repeats the main program",
     W108 => "tool compensation with an empty offset register",
     W109 => "no decimal points and a part under 1 mm: probably whole units",
+    W110 => "G53 ignored in incremental mode",
 }
 
 /// One alarm: what, where, and how to fix it.

@@ -393,6 +393,17 @@ pub fn g53_incremental(span: Span) -> Diagnostic {
     )
 }
 
+/// W110: G53 under G91 where the control ignores it (Fanuc, Haas).
+#[cold]
+pub fn g53_ignored_incremental(span: Span) -> Diagnostic {
+    d(
+        Code::W110,
+        span,
+        "G53 in incremental mode (G91) is ignored: the block does not move (Fanuc: \"when an incremental command is specified, the G53 command is ignored\")".into(),
+        "write G90 before G53 to move to the machine position (e.g. G90 G53 Z0. for Z home)",
+    )
+}
+
 /// E309: M06 without T.
 #[cold]
 pub fn m06_without_tool(span: Span) -> Diagnostic {
@@ -826,6 +837,35 @@ pub fn pocket_too_small(span: Span, what: &str, tool_mm: f64) -> Diagnostic {
         span,
         format!("the pocket's {what} is not larger than the tool's diameter {tool_mm:.4} mm"),
         "make the pocket larger, or change to a smaller tool (its radius is d_mm + d_wear_mm of the tool in the spindle)",
+    )
+}
+
+/// E109: a Syntec G33 lead without a decimal point under inch: the manual
+/// gives that form's unit in mm only (1.2.17, "F: the thread of a screw
+/// (0.01mm)").
+#[cold]
+pub fn lead_without_point_in_inch(span: Span) -> Diagnostic {
+    d(
+        Code::E109,
+        span,
+        "a thread lead F without a decimal point is in 0.01 mm (\"F: the thread of a screw (0.01mm)\"), and the manual gives no unit for it in inch".to_string(),
+        "write the lead with a decimal point in inches (F0.0625), or program the thread in metric (G71)",
+    )
+}
+
+/// E325: a pocket cycle with no tool to size it by: none in the spindle
+/// (`tool` is `None`), or one whose radius register holds no radius.
+#[cold]
+pub fn pocket_without_tool(span: Span, tool: Option<u32>) -> Diagnostic {
+    let message = match tool {
+        None => "no tool is loaded: a pocket cycle steps over and leaves its wall by the diameter of the tool in the spindle".to_string(),
+        Some(t) => format!("tool T{t} in the spindle has no radius (its d_mm + d_wear_mm is 0): a pocket cycle steps over and leaves its wall by the tool's diameter"),
+    };
+    d(
+        Code::E325,
+        span,
+        message,
+        "load the tool before the cycle (T… M06) and give it a radius in the tool table (--tools or the machine file's d_mm)",
     )
 }
 

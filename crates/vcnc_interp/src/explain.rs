@@ -265,6 +265,9 @@ fn address_meaning(letter: u8, d: &Dialect) -> String {
             ThreadLead::F => {
                 "the feed rate (per minute or per revolution), and a thread's lead".into()
             }
+            ThreadLead::FHundredths => {
+                "the feed rate (per minute or per revolution), and a thread's lead (0.01 mm without a decimal point)".into()
+            }
             ThreadLead::K => "the feed rate (per minute or per revolution)".into(),
         },
         b'S' => "the spindle speed (rpm, or the cutting speed under constant surface speed)".into(),

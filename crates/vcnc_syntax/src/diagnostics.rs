@@ -73,6 +73,17 @@ pub fn stray_close_paren(span: Span) -> Diagnostic {
     )
 }
 
+/// E101: a comment that holds a parenthesis, `(A (B) C)`: the first `)`
+/// closed it, and a later `)` shows the programmer meant it to nest.
+pub fn nested_comment(inner_open: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E101,
+        inner_open,
+        "`(` inside a comment: comments do not nest, so the first `)` ends the comment and the text after it is read as G-code".to_string(),
+        "write the inner parentheses of a comment as [ ], or remove them",
+    )
+}
+
 /// E101: a block that starts with a digit.
 pub fn digit_first(span: Span, text: &str) -> Diagnostic {
     Diagnostic::new(

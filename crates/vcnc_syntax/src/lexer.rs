@@ -213,8 +213,30 @@ fn finish(out: &mut Block, start: usize, end: usize, next: usize) -> Result<usiz
 
 fn skip_comment(line: &[u8], open: usize) -> Result<usize, Diagnostic> {
     match memchr::memchr(b')', &line[open + 1..]) {
-        Some(k) => Ok(open + 1 + k + 1),
+        Some(k) => {
+            let close = open + 1 + k;
+            if let Some(inner) = memchr::memchr(b'(', &line[open + 1..close]) {
+                nested_comment(line, open + 1 + inner, close)?;
+            }
+            Ok(close + 1)
+        }
         None => Err(diag::unterminated_comment(Span::new(open, open + 1))),
+    }
+}
+
+/// E101 when a comment holds an `(` at `inner` and a `)` follows the one at
+/// `close` with no `(` between (`(A (B) C)`): comments do not nest, so the
+/// first `)` ended the comment and the rest would be read as words. Said
+/// here, at the inner `(`, rather than as whatever the rest fails on.
+#[cold]
+fn nested_comment(line: &[u8], inner: usize, close: usize) -> Result<(), Diagnostic> {
+    let rest = &line[close + 1..];
+    let next_close = memchr::memchr(b')', rest);
+    let next_open = memchr::memchr(b'(', rest);
+    match (next_close, next_open) {
+        (Some(c), Some(o)) if o < c => Ok(()),
+        (Some(_), _) => Err(diag::nested_comment(Span::new(inner, inner + 1))),
+        (None, _) => Ok(()),
     }
 }
 
@@ -497,6 +519,20 @@ mod tests {
         );
         assert_eq!(blocks("X 1 0 . 5").unwrap(), vec!["X10.5."]);
         assert_eq!(blocks("\u{FEFF}G0 X1").unwrap(), vec!["G0 X1"]);
+    }
+
+    #[test]
+    fn a_comment_holding_a_parenthesis_says_comments_do_not_nest() {
+        // Regression: `(A (B) C)` used to alarm E104 "address C has no value".
+        let mut out = Block::default();
+        let err = lex_block(b"G0 X0 (A (B) C)", 0, &SYNTEC, &mut out).unwrap_err();
+        assert_eq!(err.code, Code::E101);
+        assert_eq!((err.span.start, err.span.end), (9, 10));
+        assert!(err.message.contains("do not nest"), "{}", err.message);
+        // An `(` inside a comment alone is text, and so is one whose
+        // follower opens a second comment.
+        assert_eq!(blocks("G0 X1 (A ( B)").unwrap(), vec!["G0 X1"]);
+        assert_eq!(blocks("G0 X1 (A ( B) (C)").unwrap(), vec!["G0 X1"]);
     }
 
     #[test]

@@ -326,6 +326,12 @@ impl Interpreter<'_> {
         if self.state.modal.tool_length != crate::state::ToolLength::Off {
             // Under G43/G44 an H word alone changes the offset.
             allowed |= bit(b'H');
+        } else if w.get(b'H').is_some_and(|h| h.value == 0.0)
+            && self.cfg.dialect.h_is_length_offset()
+        {
+            // H0 is "no tool length offset" (its register is always 0):
+            // posts write it beside G49 or G53 (`G49 H0`, `G53 G00 H0 Z0`).
+            allowed |= bit(b'H');
         }
         if self.comp_on_reads_d() || self.d_alone_is_radius() {
             // Under G41/G42 a D word alone changes the radius; outside them
@@ -391,9 +397,9 @@ impl Interpreter<'_> {
         not_negative_feed(&f)?;
         match self.state.modal.motion {
             Motion::Thread | Motion::ThreadingCycle
-                if w.axis_user.is_none() && self.cfg.dialect.thread_lead == ThreadLead::F =>
+                if w.axis_user.is_none() && self.cfg.dialect.thread_lead != ThreadLead::K =>
             {
-                self.state.thread_lead_mm = Some(f.value * self.unit_mm())
+                self.state.thread_lead_mm = Some(self.lead_mm(&f)?)
             }
             Motion::ThreadInch if w.axis_user.is_none() => {
                 self.state.thread_lead_mm = Some(f.value * crate::block::convert::MM_PER_INCH);
@@ -401,6 +407,21 @@ impl Interpreter<'_> {
             _ => self.set_feed(f),
         }
         Ok(())
+    }
+
+    /// F as a thread's lead in mm: in program units, or under
+    /// [`ThreadLead::FHundredths`] 0.01 mm when written without a point.
+    fn lead_mm(&self, f: &vcnc_syntax::Word) -> Result<f64, Diagnostic> {
+        let plain = !f.point
+            && self.cfg.dialect.thread_lead == ThreadLead::FHundredths
+            && self.cfg.machine.params.decimal_input != crate::machine::DecimalInput::Calculator;
+        if !plain {
+            return Ok(f.value * self.unit_mm());
+        }
+        if self.state.modal.inch {
+            return Err(alarms::lead_without_point_in_inch(f.span));
+        }
+        Ok(f.value * 0.01)
     }
 
     /// F as the feed of the cutting moves that follow.
@@ -638,6 +659,7 @@ impl Interpreter<'_> {
                     self.state.refresh_origin(&self.tables);
                 }
                 GOp::Pace(PaceOp::Smoothing) => self.haas_smoothing(w),
+                GOp::Pace(PaceOp::LookAhead) => self.look_ahead(w, at.span)?,
                 // A G4 that leaves the axis words to the motion (LinuxCNC:
                 // the dwell, then the block's move).
                 GOp::Pace(PaceOp::DwellP) if !at.def.takes_axes() => {
@@ -688,6 +710,40 @@ impl Interpreter<'_> {
         }
         self.state.smoothing.reported_mm = tolerance_mm;
         let on = tolerance_mm > 0.0;
+        self.emit(|loc| Event::Smoothing {
+            loc,
+            on,
+            tolerance_mm,
+        });
+        Ok(())
+    }
+
+    /// Fanuc G08 P1 / P0: AI look-ahead control. It reads blocks ahead and
+    /// lowers the feed before corners by the allowed acceleration, keeping
+    /// to the path: one `smoothing` event for the planner, on with the
+    /// machine's own corner tolerance (`motion.corner_tolerance_mm`, no
+    /// path error of its own, unlike G05.1's E), or off.
+    fn look_ahead(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G08", "P (1 on, 0 off)"))?;
+        let on = match p.value {
+            1.0 => true,
+            0.0 => false,
+            _ => {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    b'P',
+                    p.value,
+                    "G08 P is 1 (look-ahead on) or 0 (off)",
+                ));
+            }
+        };
+        let tolerance_mm = if on {
+            self.cfg.machine.motion.corner_tolerance_mm
+        } else {
+            0.0
+        };
         self.emit(|loc| Event::Smoothing {
             loc,
             on,

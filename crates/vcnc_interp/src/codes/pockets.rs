@@ -185,13 +185,12 @@ impl Interpreter<'_> {
             None => None,
         };
         // The tool in the spindle and the stepover.
-        let r = self
-            .state
-            .tool_active
+        let tool = self.state.tool_active;
+        let r = tool
             .map(|t| self.tables.tool(t))
             .map(|t| t.d_mm + t.d_wear_mm)
             .filter(|r| *r > 0.0)
-            .ok_or_else(|| alarms::pocket_too_small(cmd, "tool", 0.0))?;
+            .ok_or_else(|| alarms::pocket_without_tool(cmd, tool))?;
         let stepover = self.cfg.machine.params.pocket_stepover_pct / 100.0 * 2.0 * r;
         let too_small = |what: &str| alarms::pocket_too_small(cmd, what, 2.0 * r);
         let wall = if circle {

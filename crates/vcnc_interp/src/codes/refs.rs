@@ -16,7 +16,7 @@
 use crate::alarms;
 use crate::block::convert::{dwell_not_negative, whole};
 use crate::block::words::Words;
-use crate::dialect::{BareReturn, DwellP, GOp};
+use crate::dialect::{BareReturn, DwellP, G53Incremental, GOp};
 use crate::dialect::{CycleOp, FrameOp, MoveOp, PaceOp, SetOp, TurnOp};
 use crate::events::Event;
 use crate::interpreter::Interpreter;
@@ -99,7 +99,9 @@ impl Interpreter<'_> {
                 Ok(())
             }
             PaceOp::OverrideSet => self.magnification(w, cmd),
-            PaceOp::ExactStopOnce | PaceOp::Smoothing | PaceOp::Junction => Ok(()),
+            PaceOp::ExactStopOnce | PaceOp::Smoothing | PaceOp::LookAhead | PaceOp::Junction => {
+                Ok(())
+            }
         }
     }
 
@@ -360,10 +362,18 @@ impl Interpreter<'_> {
         self.straight(MoveKind::Rapid, Target::Program(target), w, cmd)
     }
 
-    /// G53: a rapid to machine coordinates (absolute only).
+    /// G53: a rapid to machine coordinates (absolute only). Without axis
+    /// words it moves nothing (Fanuc and Haas give it no alarm: `G53 G49
+    /// M05`); under G91 the dialect alarms or ignores the block.
     fn machine_move(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         if self.state.modal.incremental {
-            return Err(alarms::g53_incremental(cmd));
+            return match self.cfg.dialect.g53_incremental {
+                G53Incremental::Alarm => Err(alarms::g53_incremental(cmd)),
+                G53Incremental::Ignored => {
+                    self.warn(alarms::g53_ignored_incremental(cmd));
+                    Ok(())
+                }
+            };
         }
         let mut to = self.settled_tool_pos()?;
         let mut named = 0;
@@ -374,7 +384,7 @@ impl Interpreter<'_> {
             }
         }
         if named == 0 {
-            return Err(alarms::needs_axes(cmd, "G53"));
+            return Ok(());
         }
         self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)
     }

@@ -56,7 +56,8 @@ pub struct CycleRules {
     pub words: u32,
     /// The letter that repeats holes (EIA: none).
     pub repeat: Option<Repeat>,
-    /// R may be left out: the R level is then the initial level (EIA).
+    /// R may be left out: the R level is then the initial level (EIA,
+    /// Haas).
     pub r_optional: bool,
     /// A hole's bottom may be at the R level (LinuxCNC refuses only a
     /// bottom above R).
@@ -135,6 +136,9 @@ impl CycleRules {
             least: 0,
         }),
         reduced_pecks: true,
+        // The Haas mill operator's manual marks G81–G89's R optional ("*
+        // indicates optional"): the R plane is then the initial level.
+        r_optional: true,
         ..CycleRules::FANUC
     };
 

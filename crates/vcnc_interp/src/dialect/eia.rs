@@ -144,5 +144,6 @@ pub(super) fn eia() -> Dialect {
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
+        g53_incremental: super::G53Incremental::Alarm,
     }
 }

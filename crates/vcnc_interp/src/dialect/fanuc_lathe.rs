@@ -198,6 +198,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
+        g53_incremental: super::G53Incremental::Ignored,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -214,6 +215,7 @@ pub(super) fn haas_lathe() -> Dialect {
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
+        g53_incremental: super::G53Incremental::Ignored,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

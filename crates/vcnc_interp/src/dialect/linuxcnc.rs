@@ -278,6 +278,7 @@ pub(super) fn linuxcnc_lathe() -> Dialect {
         default_machine: DEFAULT_FANUC_LATHE_TOML,
         surface_speed: SurfaceSpeedOn::WorkDiameter,
         tip_numbering: vcnc_core::tooling::TipNumbering::LinuxCnc,
+        g53_incremental: super::G53Incremental::Alarm,
         ..linuxcnc()
     }
 }

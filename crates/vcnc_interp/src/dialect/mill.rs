@@ -202,6 +202,15 @@ const SYNTEC_UNITS: &[GRow] = &[
     g(710, GOp::Mode(ModeOp::Metric), Group::Units),
 ];
 
+/// Fanuc's codes beyond the shared mill rows, which Haas also reads.
+const FANUC_G: &[GRow] = &[
+    // G08 P1/P0: AI look-ahead control (Fanuc 0i-MD/MF: "look-ahead
+    // acceleration/deceleration before interpolation"), a planner mode.
+    g(80, GOp::Pace(PaceOp::LookAhead), Group::NonModal)
+        .reads(bit(b'P'))
+        .refuses_axes(),
+];
+
 /// Fanuc 0i: inch/metric are G20/G21.
 const FANUC_UNITS: &[GRow] = &[
     g(200, GOp::Mode(ModeOp::Inch), Group::Units),
@@ -343,6 +352,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         tool_change: ToolChangeSpindle::Keeps,
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
+        g53_incremental: super::G53Incremental::Ignored,
     }
 }
 
@@ -358,6 +368,8 @@ pub(super) fn syntec() -> Dialect {
         g,
         m,
         macros: super::MacroRules::SYNTEC,
+        thread_lead: ThreadLead::FHundredths,
+        g53_incremental: super::G53Incremental::Alarm,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }
@@ -372,8 +384,11 @@ const FANUC_LEX: LexRules = LexRules {
 
 /// Fanuc 0i mill.
 pub(super) fn fanuc() -> Dialect {
+    let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, FANUC_G], m_codes::MILL);
     Dialect {
         lex: FANUC_LEX,
+        g,
+        m,
         ..mill("fanuc", FANUC_UNITS)
     }
 }
@@ -382,7 +397,7 @@ pub(super) fn fanuc() -> Dialect {
 /// axes homing every axis, and the Haas machine's M codes.
 pub(super) fn haas() -> Dialect {
     let rows: Vec<&[MRow]> = m_codes::MILL.iter().copied().chain([HAAS_M]).collect();
-    let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, HAAS_G], &rows);
+    let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, FANUC_G, HAAS_G], &rows);
     Dialect {
         name: "haas",
         g,

@@ -393,10 +393,30 @@ pub enum OffsetDefault {
 /// Which word gives the lead of G33 (spindle-synchronized motion).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ThreadLead {
-    /// F, in the G33/G32 block or before it (Fanuc, Syntec, the lathes).
+    /// F, in the G33/G32 block or before it (Fanuc, the lathes); a value
+    /// without a decimal point is read as the feed's plain number.
     F,
+    /// F as above, but a value without a decimal point counts 0.01 mm
+    /// (Syntec 900M 1.2.17, "F: the thread of a screw (0.01mm)": `F150` is
+    /// a 1.5 mm lead, `F1.5` too). The manual gives no inch unit, so under
+    /// inch a lead without a point is an alarm.
+    FHundredths,
     /// K, the distance per revolution; F stays the feed (LinuxCNC).
     K,
+}
+
+/// G53 (a move in machine coordinates) under G91.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum G53Incremental {
+    /// An alarm (E308): Syntec 1.2.23 says G53 "is not effective in
+    /// increment mode", and an ignored move is worse than an alarm; rs274
+    /// refuses it too ("Cannot use g53 incremental").
+    Alarm,
+    /// The G53 block does not move, with a warning (W110): Fanuc 0i's
+    /// operator's manual (machine coordinate system, restrictions): "When
+    /// an incremental command is specified, the G53 command is ignored";
+    /// Haas follows Fanuc.
+    Ignored,
 }
 
 /// The feed mode at power-on (group 05).
@@ -483,6 +503,8 @@ pub struct Dialect {
     pub tool_change: ToolChangeSpindle,
     /// The lead of G33.
     pub thread_lead: ThreadLead,
+    /// G53 under G91.
+    pub g53_incremental: G53Incremental,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,
@@ -700,6 +722,13 @@ impl Dialect {
             && self
                 .g(41.0)
                 .is_some_and(|g| g.op == GOp::Comp(CompOp::Left) && g.letters & bit(b'D') != 0)
+    }
+
+    /// Whether H is a tool length offset register in this dialect (it has
+    /// G43): then `H0` ("no offset") may stand in any block.
+    pub(crate) fn h_is_length_offset(&self) -> bool {
+        self.g(43.0)
+            .is_some_and(|g| g.op == GOp::Frame(FrameOp::ToolLengthPlus))
     }
 
     /// The G code that does `op` in this dialect (the first in the table),

@@ -211,6 +211,8 @@ pub enum PaceOp {
     PathSmoothing,
     /// Haas G187: the planner's smoothness setting.
     Smoothing,
+    /// Fanuc G08 P1/P0: AI look-ahead control on/off.
+    LookAhead,
     /// EIA G99: the junction after this block may blend.
     Junction,
     /// The seed lathe's G08/G09: feed ±10 %.
@@ -521,6 +523,9 @@ impl PaceOp {
             PaceOp::PathSmoothing => "path smoothing of G01 chains (Q1 on, Q0 off, E tolerance)",
             PaceOp::Smoothing => {
                 "the planner's smoothness setting (P1 rough to P3 finish, E tolerance)"
+            }
+            PaceOp::LookAhead => {
+                "AI look-ahead control: P1 on (feed planned ahead, corners slowed by acceleration), P0 off"
             }
             PaceOp::Junction => "the junction after this block's cut may blend",
             PaceOp::FeedUp => "feed +10 %",

@@ -519,18 +519,13 @@ fn e311_g33_without_lead() {
 
 #[test]
 fn e312_code_without_the_axis_words_it_needs() {
-    for code in [
-        "G28",
-        "G29",
-        "G30",
-        "G31 F100",
-        "G53",
-        "G92",
-        "G52",
-        "G10 L2 P1",
-    ] {
+    for code in ["G28", "G29", "G30", "G31 F100", "G92", "G52", "G10 L2 P1"] {
         check(&format!("G00 X1.\nN2 {code}\n"), Code::E312, 2, 4);
     }
+    // G53 is not among them: without axis words it moves nothing (Fanuc
+    // and Haas give `G53 G49 M05` no alarm).
+    let r = run("G00 X1.\nN2 G53\nM30\n");
+    assert!(matches!(r.outcome, Outcome::Ended(_)), "{:?}", r.outcome);
 }
 
 // ---------------------------------------------------------------------------

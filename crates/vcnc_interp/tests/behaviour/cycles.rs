@@ -187,6 +187,28 @@ fn the_eia_dialect_has_no_k_and_no_g98() {
 }
 
 #[test]
+fn a_pocket_with_no_tool_loaded_says_so() {
+    // Regression: the alarm spoke of "the pocket's tool … diameter 0.0000 mm".
+    let program = "S1000 M03\nG0 Z10.\nG79 X0 Y0 Z-5. I20. F300.\n";
+    let (_, out) = run_in(Dialect::eia(), program);
+    let Outcome::Alarm(d) = out else {
+        panic!("no alarm: {out:?}")
+    };
+    assert_eq!((d.code, d.line), (Code::E325, 3));
+    assert!(d.message.contains("no tool is loaded"), "{}", d.message);
+    // A tool whose radius register is empty is named.
+    let (_, out) = run_in(Dialect::eia(), &format!("T7 M06\n{program}"));
+    let Outcome::Alarm(d) = out else {
+        panic!("no alarm: {out:?}")
+    };
+    assert!(
+        d.message.contains("T7") && d.message.contains("no radius"),
+        "{}",
+        d.message
+    );
+}
+
+#[test]
 fn a_pocket_too_large_for_its_block_alarms_before_it_moves() {
     // 0.1 mm of tool over a 1,900 mm pocket in 0.001 mm passes.
     let program = "G0 Z10.\nG78 X0 Y0 Z-5. I1900. J1900. Q0.001 F300.\n";

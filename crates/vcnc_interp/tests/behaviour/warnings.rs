@@ -303,3 +303,25 @@ fn w108_names_the_nose_radius_on_a_lathe_and_is_silent_with_tools() {
         w.message
     );
 }
+
+#[test]
+fn w110_fanuc_and_haas_ignore_g53_in_incremental_mode() {
+    // Fanuc 0i: "when an incremental command is specified, the G53 command
+    // is ignored". The block does not move; Syntec keeps its alarm (E308).
+    for dialect in [Dialect::fanuc(), Dialect::haas()] {
+        let program = "G00 X5. Z10.\nG91 G00 X1.\nG53 G49 Z0.\nM30\n";
+        let (ev, out) = run_in(&Machine::default_mill(), dialect, program);
+        assert!(matches!(out, Outcome::Ended(EndCode::M30)), "{out:?}");
+        assert_eq!(places(&ev), vec![(Code::W110, 3, 1)]);
+        let moves_on_3 = ev
+            .iter()
+            .filter(|e| matches!(e, Event::Rapid { loc, .. } if loc.line == 3))
+            .count();
+        assert_eq!(moves_on_3, 0);
+    }
+    let (_, out) = run("G91\nG53 Z0.\nM30\n");
+    assert!(
+        matches!(out, Outcome::Alarm(ref d) if d.code == Code::E308),
+        "{out:?}"
+    );
+}
