@@ -73,7 +73,15 @@ impl Interpreter<'_> {
         self.refuse(w, b"XZ")?;
         match op {
             GOp::Turn(TurnOp::FinishCycle) => {
-                self.refuse(w, b"UWRD")?;
+                // G70 runs the profile as written: no allowance, no depth.
+                // A dialect whose G70 row reads some of these letters
+                // (Haas's U, W and D) takes them and ignores them.
+                let read = self.cfg.dialect.g(70.0).map_or(0, |d| d.letters);
+                for letter in b"UWRD" {
+                    if read & crate::dialect::bit(*letter) == 0 {
+                        self.refuse(w, &[*letter])?;
+                    }
+                }
                 let profile = self.read_profile(p, q, next)?;
                 self.finish(&profile, w, cmd)?;
                 Ok(Some(next))
