@@ -178,6 +178,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Zx,
         long_chord: LongChord::Alarm,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: 0,
         default_machine: DEFAULT_FANUC_LATHE_TOML,
         unsupported: NOT_RUN,

@@ -324,6 +324,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,
         long_chord: LongChord::Alarm,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: SYNTEC_LATER,
