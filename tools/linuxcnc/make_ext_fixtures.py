@@ -50,7 +50,11 @@ def machine_toml(tools, parameters=(), header=""):
     path = next((p for p in DEFAULT_MILLS if os.path.exists(p)), DEFAULT_MILLS[0])
     with open(path) as f:
         text = f.read()
-    start = text.index("# Tool table")
+    # The built-in mill once had a tool table; now it says its offsets are
+    # empty. Either comment block is replaced.
+    start = text.find("# Tool table")
+    if start < 0:
+        start = text.index("# Tool offsets")
     end = text.index("[parameters]")
     table = ["# Tool table: H is a length, D a radius (geometry + wear). The same",
              "# tools as the LinuxCNC tool table of the fixture generator (there in",

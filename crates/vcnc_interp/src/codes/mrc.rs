@@ -73,7 +73,15 @@ impl Interpreter<'_> {
         self.refuse(w, b"XZ")?;
         match op {
             GOp::Turn(TurnOp::FinishCycle) => {
-                self.refuse(w, b"UWRD")?;
+                // G70 runs the profile as written: no allowance, no depth.
+                // A dialect whose G70 row reads some of these letters
+                // (Haas's U, W and D) takes them and ignores them.
+                let read = self.cfg.dialect.g(70.0).map_or(0, |d| d.letters);
+                for letter in b"UWRD" {
+                    if read & crate::dialect::bit(*letter) == 0 {
+                        self.refuse(w, &[*letter])?;
+                    }
+                }
                 let profile = self.read_profile(p, q, next)?;
                 self.finish(&profile, w, cmd)?;
                 Ok(Some(next))
@@ -286,7 +294,12 @@ impl Interpreter<'_> {
             return Err(self.profile_alarm(profile, 0, why));
         }
         let frame = self.rough_frame(profile, a, across)?;
-        let segs: Vec<Seg> = rest.iter().map(|e| e.seg.shifted(shift)).collect();
+        let kept = rest.len() + 1 - boundary_tail(profile, a, across);
+        let segs: Vec<Seg> = rest
+            .iter()
+            .take(kept - 1)
+            .map(|e| e.seg.shifted(shift))
+            .collect();
         // Type I (the first block names only the level axis) is monotone
         // both ways, type II along the cuts.
         rough::check_monotone(&segs, &frame, !names_along)
@@ -345,13 +358,21 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        let end = profile.elems.last().map_or(av, |e| pick(e.seg.end()).1);
+        // A last move along the stock boundary (A's own level across the
+        // cuts, such as a retract back to A's Z) cuts nothing: the profile
+        // the levels are cut against ends before it.
+        let kept = profile.elems.len() - boundary_tail(profile, a, across);
+        let end = profile
+            .elems
+            .get(..kept)
+            .and_then(<[Elem]>::last)
+            .map_or(av, |e| pick(e.seg.end()).1);
         let sv = if end < av - ZERO_MM {
             1.0
         } else if end > av + ZERO_MM {
             -1.0
         } else {
-            let last = profile.elems.len().saturating_sub(1);
+            let last = kept.saturating_sub(1);
             return Err(self.profile_alarm(
                 profile,
                 last,
@@ -522,4 +543,24 @@ impl Interpreter<'_> {
             self.along(&e.seg, axes, feed, w, e.span)
         }
     }
+}
+
+/// How many of the profile's last elements are straight moves on the stock
+/// boundary, A's own level across the cuts (a retract along Z at A's X
+/// under G71): they cut nothing, so roughing ends before them (G70 still
+/// runs them). The approach and at least one element after it are kept, so
+/// a profile that is nothing but such moves still meets its alarm.
+fn boundary_tail(profile: &Profile, a: Xz, across: Across) -> usize {
+    let level = |p: Xz| match across {
+        Across::X => p.0,
+        Across::Z => p.1,
+    };
+    let on = |p: Xz| (level(p) - level(a)).abs() <= ZERO_MM;
+    let tail = profile
+        .elems
+        .iter()
+        .rev()
+        .take_while(|e| e.seg.arc_of().is_none() && on(e.seg.start()) && on(e.seg.end()))
+        .count();
+    tail.min(profile.elems.len().saturating_sub(2))
 }

@@ -125,6 +125,7 @@ pub(super) fn eia() -> Dialect {
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,
         long_chord: LongChord::Alarm,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: &[],

@@ -178,6 +178,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Zx,
         long_chord: LongChord::Alarm,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: 0,
         default_machine: DEFAULT_FANUC_LATHE_TOML,
         unsupported: NOT_RUN,
@@ -203,13 +204,25 @@ pub(super) fn fanuc_lathe() -> Dialect {
     }
 }
 
+/// Haas's own rows over the Fanuc lathe's: its G70 takes U, W and D beside
+/// P and Q and ignores them. Haas's G70 page lists P and Q only, but a
+/// shop's programs that ran on Haas lathes copy the G71 line's
+/// `U… W… D…` into G70 (`corpus/lathe-haas/cadekiely-*`); the finishing
+/// pass follows the profile as written.
+const HAAS_LATHE_G: &[GRow] = &[g(700, GOp::Turn(TurnOp::FinishCycle), Group::NonModal)
+    .reads(bit(b'P') | bit(b'Q') | bit(b'U') | bit(b'W') | bit(b'D'))
+    .claims_axes()];
+
 /// Haas lathes: the Fanuc 0i-TF reading (Haas's one-block G71/G72 and
 /// G74–G76 are read there too) with the Haas rules the mill has: `G04 P3.`
 /// is 3 s, and the tool-life variables #5401–#6000 exist (Haas lathe
 /// operator's manual, G04 and macro variables).
 pub(super) fn haas_lathe() -> Dialect {
+    let (g, m) = Dialect::tables(&[FANUC_LATHE_G, HAAS_LATHE_G], FANUC_LATHE_M);
     Dialect {
         name: "haas-lathe",
+        g,
+        m,
         dwell_p: DwellP::SecondsWithPoint,
         aux_m: &[],
         tool_change: ToolChangeSpindle::Keeps,

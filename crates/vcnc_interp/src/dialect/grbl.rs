@@ -138,6 +138,7 @@ pub(super) fn grbl() -> Dialect {
         integers: IntegerWords::WholeUnits,
         plane: Plane::Xy,
         long_chord: LongChord::Alarm,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: &[],

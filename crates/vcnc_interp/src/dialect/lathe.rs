@@ -121,6 +121,7 @@ pub(super) fn lathe() -> Dialect {
         integers: IntegerWords::WholeUnits,
         plane: Plane::Zx,
         long_chord: LongChord::Line,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: bit(b'D'),
         default_machine: DEFAULT_LATHE_TOML,
         unsupported: UNSPECIFIED,

@@ -250,6 +250,7 @@ pub(super) fn linuxcnc() -> Dialect {
         tool_change: ToolChangeSpindle::Stops,
         thread_lead: ThreadLead::K,
         macros: super::MacroRules::NGC,
+        arc_end: super::ArcEnd::Rs274,
         ..grbl()
     }
 }

@@ -14,7 +14,7 @@ use super::{
 };
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{LexRules, Semicolon};
+use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 /// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
 const MILL_G: &[GRow] = &[
@@ -333,6 +333,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,
         long_chord: LongChord::Alarm,
+        arc_end: super::ArcEnd::MachineTolerance,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: SYNTEC_LATER,
@@ -377,8 +378,12 @@ pub(super) fn syntec() -> Dialect {
 /// Fanuc's lexing: the mill's, and `:` for the program number's O (ISO
 /// code; Fanuc 0i operator's manual, program number: "In ISO code, a
 /// colon (:) can be used instead of O"). Haas's too.
+/// Fanuc 0i-MF and Haas mills: `:` is the ISO program number's O, and
+/// `,C`/`,R` chamfer or round the corner at a G01's end (0i-MF "optional
+/// chamfering and corner R", Haas mill "corner rounding and chamfering").
 const FANUC_LEX: LexRules = LexRules {
     colon_is_o: true,
+    extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     ..MILL_LEX
 };
 

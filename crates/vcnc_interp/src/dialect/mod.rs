@@ -266,6 +266,18 @@ pub enum LongChord {
     Line,
 }
 
+/// How far an I/J/K arc's end may lie off the circle through its start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcEnd {
+    /// The two radii may differ by the machine's `arc_tolerance_mm` (E303
+    /// beyond): Fanuc, Syntec, Haas and grbl-class controls.
+    MachineTolerance,
+    /// rs274's rule (LinuxCNC 2.9): the radii may differ by 0.02·√2 mm
+    /// (0.002·√2 in under G20), or by up to 0.1 % of the larger radius,
+    /// but never by more than 100 times that length.
+    Rs274,
+}
+
 /// Diameter programming: which axis, and whether it is on at power-on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Diameter {
@@ -467,6 +479,8 @@ pub struct Dialect {
     pub plane: Plane,
     /// What an R arc with a chord longer than 2R does.
     pub long_chord: LongChord,
+    /// How far an I/J/K arc's end may lie off its circle.
+    pub arc_end: ArcEnd,
     /// Letters an arc reads besides the plane's centre offsets and R (the
     /// lathe's D diameter).
     pub arc_letters: u32,

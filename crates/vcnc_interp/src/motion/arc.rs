@@ -22,7 +22,7 @@ use super::MoveKind;
 use crate::alarms;
 use crate::block::convert::Goal;
 use crate::block::words::Words;
-use crate::dialect::{LongChord, bit};
+use crate::dialect::{ArcEnd, LongChord, bit};
 use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::frame::plane_rows;
@@ -270,12 +270,38 @@ impl Interpreter<'_> {
         if r_start < ZERO_MM {
             return Err(alarms::zero_radius(cmd));
         }
-        if (r_start - r_end).abs() > self.cfg.machine.params.arc_tolerance_mm {
+        let off = (r_start - r_end).abs();
+        let beyond = match self.cfg.dialect.arc_end {
+            ArcEnd::MachineTolerance => off > self.cfg.machine.params.arc_tolerance_mm,
+            ArcEnd::Rs274 => {
+                let tol = if self.state.modal.inch {
+                    RS274_ARC_TOL_INCH * 25.4
+                } else {
+                    RS274_ARC_TOL_MM
+                };
+                off > RS274_ARC_CAP * tol
+                    || (off > tol && off / r_start.max(r_end) > RS274_ARC_RATIO)
+            }
+        };
+        if beyond {
             return Err(alarms::end_off_circle(cmd, r_start, r_end));
         }
         Ok(())
     }
 }
+
+/// rs274's length tolerance of an arc's two radii, mm under G21 and inches
+/// under G20 (LinuxCNC's `center_arc_radius_tolerance`: 2·√2 least steps of
+/// 0.01 mm or 0.001 in). Probed with rs274 2.9: under G21 a 1 mm arc runs
+/// with radii 0.0282 mm apart and stops at 0.0284.
+const RS274_ARC_TOL_MM: f64 = 0.01 * 2.0 * std::f64::consts::SQRT_2;
+const RS274_ARC_TOL_INCH: f64 = 0.001 * 2.0 * std::f64::consts::SQRT_2;
+/// Beyond that length, the part of the larger radius the two may differ by
+/// (0.1 %: a 100 mm arc runs with its end 0.1001 mm outside, not inside).
+const RS274_ARC_RATIO: f64 = 0.001;
+/// And never by more than this many times the length (a 10,000 mm arc
+/// stops at 2.84 mm).
+const RS274_ARC_CAP: f64 = 100.0;
 
 /// The centre-offset letters of a plane's first and second axis.
 fn center_letters(plane: Plane) -> [u8; 2] {

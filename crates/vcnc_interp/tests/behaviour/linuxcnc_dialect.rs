@@ -388,3 +388,49 @@ fn g64_p_is_a_blending_tolerance_for_the_planner() {
     assert!(!ev.iter().any(|e| matches!(e, Event::Smoothing { .. })));
     assert_eq!(alarm("G21\nG64 P-1\nM2\n"), (Code::E109, 2, 5));
 }
+
+/// rs274's end-point rule for I/J/K arcs: the ends rs274 2.9 refuses
+/// ("Radius to end of arc differs from radius to start"), each just past
+/// the edge the fixture `linuxcnc_dialect/arc_end_tolerance` runs on its
+/// near side (probed with rs274 -g: 0.0282 mm runs and 0.0284 mm stops on a
+/// 1 mm arc; 0.1001 mm inside a 100 mm arc stops, outside it runs, the
+/// ratio being of the larger radius; 2.82 mm runs and 2.84 mm stops on a
+/// 10,000 mm arc; 0.00284 in stops on a 1 in arc).
+#[test]
+fn arc_ends_off_the_circle_alarm_past_rs274s_absolute_and_relative_rule() {
+    let arc = |units: &str, r: &str, end: &str| {
+        format!("{units} G17 G90\nG0 X{r} Y0\nG2 X0 Y{end} I-{r} J0 F100\nM2\n")
+    };
+    for (units, r, end) in [
+        ("G21", "1", "1.0284"),
+        ("G21", "100", "99.8999"),
+        ("G21", "10000", "10002.84"),
+        ("G20", "1", "1.00284"),
+    ] {
+        assert_eq!(
+            alarm(&arc(units, r, end)),
+            (Code::E303, 3, 1),
+            "{units} R{r} to {end}"
+        );
+    }
+    for (units, r, end) in [
+        ("G21", "1", "1.0282"),
+        ("G21", "100", "100.1001"),
+        ("G21", "10000", "10002.82"),
+        ("G20", "1", "1.00282"),
+    ] {
+        ended(&arc(units, r, end));
+    }
+}
+
+/// The other dialects keep the machine's `arc_tolerance_mm` (0.01 mm): the
+/// Fusion arc rs274 runs is E303 under fanuc.
+#[test]
+fn other_dialects_keep_the_machine_arc_tolerance() {
+    let p = "G21 G17 G90\nG0 X895.5278 Y0\nG3 X0 Y895.5532 I-895.5278 J0 F100\nM30\n";
+    let (_, out) = run_str(&Dialect::fanuc(), p);
+    assert!(
+        matches!(&out, Outcome::Alarm(d) if d.code == Code::E303),
+        "{out:?}"
+    );
+}
