@@ -50,7 +50,9 @@ def machine_toml(tools, parameters=(), header=""):
     path = next((p for p in DEFAULT_MILLS if os.path.exists(p)), DEFAULT_MILLS[0])
     with open(path) as f:
         text = f.read()
-    start = text.index("# Tool table")
+    # The tool section's comment: "# Tool table" before the built-in mill
+    # lost its tools, "# Tool offsets" since.
+    start = min(text.find(m) for m in ("# Tool table", "# Tool offsets") if m in text)
     end = text.index("[parameters]")
     table = ["# Tool table: H is a length, D a radius (geometry + wear). The same",
              "# tools as the LinuxCNC tool table of the fixture generator (there in",

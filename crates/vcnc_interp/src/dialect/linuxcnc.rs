@@ -7,7 +7,7 @@
 //! compensation (D is a tool number; without D the tool in the spindle),
 //! the canned cycles G73, G74 and G81–G86, G89 repeated by L with the dwell
 //! P in seconds and LinuxCNC's cycle levels, G52, G59.1–G59.3, G61.1, G64
-//! P Q, G96/G97, G98/G99, an M6 that stops the spindle, the tool table
+//! P Q, G92.2/G92.3, G96/G97, G98/G99, an M6 that stops the spindle, the tool table
 //! written by `G10 L1 P Z R` and the machine's own M codes (M62–M68,
 //! M100–M199) — as `docs/dialects.md` lists them.
 //!
@@ -104,6 +104,9 @@ const LINUXCNC_G: &[GRow] = &[
     .reads(CYCLE_WORDS_L),
     // G33 X Z K: spindle-synchronized motion, K the distance per turn.
     g(330, GOp::Motion(MotionOp::Thread), Group::Motion).reads(bit(b'K')),
+    // G92.2 suspends the G92 shift, keeping its values; G92.3 restores it.
+    g(922, GOp::Set(SetOp::ShiftSuspend(false)), Group::NonModal),
+    g(923, GOp::Set(SetOp::ShiftSuspend(true)), Group::NonModal),
     g(950, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
     // G96 D S: D the highest spindle speed.
     g(960, GOp::Mode(ModeOp::SurfaceSpeed), Group::SpindleMode).reads(bit(b'D')),
@@ -229,8 +232,6 @@ const NOT_RUN: &[(u16, &str)] = &[
         880,
         "LinuxCNC's G88 (stop for a manual retract) is not run by vcnc",
     ),
-    (922, "G92.2 (suspend the G92 offset) is not run by vcnc"),
-    (923, "G92.3 (restore the G92 offset) is not run by vcnc"),
 ];
 
 /// The LinuxCNC dialect: grbl's reading (`;` comments, whole-unit
