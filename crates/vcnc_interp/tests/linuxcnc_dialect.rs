@@ -387,4 +387,9 @@ fn g64_p_is_a_blending_tolerance_for_the_planner() {
     let ev = ended("G21 G90 G64 G40\nG1 X1 F100\nM2\n");
     assert!(!ev.iter().any(|e| matches!(e, Event::Smoothing { .. })));
     assert_eq!(alarm("G21\nG64 P-1\nM2\n"), (Code::E109, 2, 5));
+    // LinuxCNC 2.9's G64 reads P and Q (the naive-CAM tolerance) only: rs274
+    // 2.9 refuses `G64 P0.01 R0.02` with "R word with no g code that uses
+    // it", and so does vcnc, at the R.
+    assert_eq!(alarm("G21\nG64 P0.01 R0.02\nM2\n"), (Code::E203, 2, 11));
+    assert_eq!(alarm("G21\nG64 R0.02\nM2\n"), (Code::E203, 2, 5));
 }
