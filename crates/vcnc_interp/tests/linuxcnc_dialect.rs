@@ -393,3 +393,80 @@ fn g64_p_is_a_blending_tolerance_for_the_planner() {
     assert_eq!(alarm("G21\nG64 P0.01 R0.02\nM2\n"), (Code::E203, 2, 11));
     assert_eq!(alarm("G21\nG64 R0.02\nM2\n"), (Code::E203, 2, 5));
 }
+
+/// A store that records every subroutine file asked for, and has one:
+/// `mark.ngc`.
+#[derive(Default)]
+struct SubFiles {
+    asked: Vec<String>,
+}
+
+impl vcnc_interp::ProgramStore for SubFiles {
+    fn open(
+        &mut self,
+        _: u32,
+    ) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+        None
+    }
+
+    fn open_subroutine(
+        &mut self,
+        name: &str,
+    ) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+        self.asked.push(name.to_string());
+        let text = match name {
+            "mark" => "o<mark> sub\nG0 X#1\no<mark> endsub [#1 * 2]\nM2\n",
+            "other" => "o<else> sub\no<else> endsub\n",
+            _ => return None,
+        };
+        Some(Ok((
+            Box::new(vcnc_syntax::MemSource(text.as_bytes().to_vec())),
+            format!("{name}.ngc"),
+        )))
+    }
+}
+
+fn run_with_files(program: &str) -> (Vec<Event>, Outcome, Vec<String>) {
+    let machine = vcnc_interp::Machine::default_mill();
+    let mut sink = vcnc_interp::VecSink::default();
+    let mut store = SubFiles::default();
+    let out = vcnc_interp::Interpreter::new(&machine, &Dialect::linuxcnc(), Default::default())
+        .run(
+            Box::new(vcnc_syntax::MemSource(program.as_bytes().to_vec())),
+            &mut store,
+            &mut sink,
+        );
+    (sink.0, out, store.asked)
+}
+
+/// `o<name> call` of a subroutine the program does not define opens
+/// `name.ngc` once (a second call reuses it); a name that is no plain
+/// file name never reaches the store; a file without the sub alarms.
+#[test]
+fn subroutine_files_are_asked_for_by_plain_names_only() {
+    let (ev, out, asked) = run_with_files("G21\no<mark> call [2]\no<mark> call [#<_value>]\nM2\n");
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(common::xs(&ev), vec![2.0, 4.0]);
+    assert_eq!(asked, vec!["mark".to_string()]);
+    for name in [
+        "../mark",
+        "/etc/mark",
+        "sub/mark",
+        ".mark",
+        "c:mark",
+        "..\\mark",
+    ] {
+        let (ev, out, asked) = run_with_files(&format!("G21\no<{name}> call\nG0 X1\nM2\n"));
+        assert!(
+            matches!(&out, Outcome::Alarm(d) if (d.code, d.line, d.column) == (Code::E611, 2, 1)),
+            "{name}: {out:?}"
+        );
+        assert!(asked.is_empty(), "{name} reached the store: {asked:?}");
+        assert!(common::xs(&ev).is_empty());
+    }
+    let (_, out, _) = run_with_files("G21\no<other> call\nM2\n");
+    assert!(
+        matches!(&out, Outcome::Alarm(d) if d.code == Code::E611 && d.message.contains("other.ngc defines no")),
+        "{out:?}"
+    );
+}
