@@ -439,12 +439,29 @@ fn lathe_moves_match(ext: &str, dialect: Option<&str>) -> usize {
 /// rs274 read (`NNN.ngc`, D a tool number).
 #[test]
 fn linuxcnc_compensation_points_are_reached() {
-    let n = compensation_points_reached("nc", None);
-    assert_eq!(n, compensation_points_reached("ngc", Some("linuxcnc")));
+    let n = compensation_points_reached("linuxcnc_comp", "nc", None);
+    assert_eq!(
+        n,
+        compensation_points_reached("linuxcnc_comp", "ngc", Some("linuxcnc"))
+    );
 }
 
-fn compensation_points_reached(ext: &str, dialect: Option<&str>) -> usize {
-    let dir = fixtures_dir("linuxcnc_comp");
+/// `linuxcnc_comp_dynamic`: the same programs with LinuxCNC's dynamic
+/// compensation (`G41.1 D<diameter>`, `G42.1`), which rs274 runs exactly
+/// as G41/G42 with the tool of that diameter
+/// (`tools/linuxcnc/make_dynamic_comp_fixtures.py` checks it), reach the
+/// same points under `--dialect linuxcnc`.
+#[test]
+fn linuxcnc_dynamic_compensation_points_are_reached() {
+    let n = compensation_points_reached("linuxcnc_comp_dynamic", "ngc", Some("linuxcnc"));
+    assert_eq!(
+        n,
+        compensation_points_reached("linuxcnc_comp", "ngc", Some("linuxcnc"))
+    );
+}
+
+fn compensation_points_reached(folder: &str, ext: &str, dialect: Option<&str>) -> usize {
+    let dir = fixtures_dir(folder);
     let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("fixture folder")
         .filter_map(|e| e.ok().map(|e| e.path()))

@@ -470,3 +470,63 @@ fn subroutine_files_are_asked_for_by_plain_names_only() {
         "{out:?}"
     );
 }
+
+/// G41.1/G42.1: compensation by the block's D diameter, no register. On
+/// the mill `G41.1 D6` is G41 with a tool of radius 3 (rs274 alike:
+/// `tests/fixtures/linuxcnc_comp_dynamic`); in lathe mode `G42.1 D0.8 L3`
+/// is G42 with a tool of nose radius 0.4 and orientation 3. rs274's
+/// refusals alarm here too: no D ("G41.1 with no D word"), L outside the
+/// XZ plane ("G41.1 with L word, but plane is not G18").
+#[test]
+fn dynamic_compensation_takes_the_blocks_diameter_and_orientation() {
+    let with_tool = |d: &Dialect, text: &str, tool: vcnc_interp::machine::Tool| {
+        let mut machine = d.machine();
+        machine.tools.insert(1, tool);
+        let mut sink = vcnc_interp::VecSink::default();
+        let out =
+            vcnc_interp::Interpreter::new(&machine, d, Default::default()).run_str(text, &mut sink);
+        assert!(matches!(out, Outcome::Ended(_)), "{out:?}\n{text}");
+        sink.0
+            .into_iter()
+            .filter(|e| !matches!(e, Event::Warning(_)))
+            .collect::<Vec<_>>()
+    };
+    let mill = Dialect::linuxcnc();
+    let contour = |c: &str| {
+        format!(
+            "G21 G17\nG0 X-10 Y-10\n{c} G1 X0 Y0 F100\nG1 X40\nG1 Y30\nG1 X0\nG1 Y0\nG40 G1 X-10 Y-10\nM2\n"
+        )
+    };
+    let radius3 = vcnc_interp::machine::Tool {
+        d_mm: 3.0,
+        ..Default::default()
+    };
+    for (dynamic, table) in [
+        ("G41.1 D6", "G41 D1"),
+        ("G42.1 D6", "G42 D1"),
+        ("G41.1 D-6", "G42 D1"),
+    ] {
+        assert_eq!(
+            with_tool(&mill, &contour(dynamic), radius3),
+            with_tool(&mill, &contour(table), radius3),
+            "{dynamic}"
+        );
+    }
+    let lathe = Dialect::linuxcnc_lathe();
+    let turn = |c: &str| {
+        format!(
+            "G21 G18 G8\nT1 M6\nG0 X30 Z5\n{c} G1 X10 Z0 F100\nG1 Z-20\nG1 X20 Z-30\nG40 G1 X30 Z-30\nM2\n"
+        )
+    };
+    let nose = vcnc_interp::machine::Tool {
+        nose_radius_mm: 0.4,
+        tip: 3,
+        ..Default::default()
+    };
+    assert_eq!(
+        with_tool(&lathe, &turn("G42.1 D0.8 L3"), Default::default()),
+        with_tool(&lathe, &turn("G42 D1"), nose)
+    );
+    assert_eq!(alarm("G21\nG41.1 G1 X1\nM2\n"), (Code::E312, 2, 1));
+    assert_eq!(alarm("G21\nG41.1 D6 L3 G1 X1\nM2\n"), (Code::E203, 2, 10));
+}

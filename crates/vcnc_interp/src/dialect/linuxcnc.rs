@@ -41,6 +41,9 @@ const LINUXCNC_G: &[GRow] = &[
         .claims_absolute_axes(),
     g(410, GOp::Comp(CompOp::Left), Group::CutterComp).reads(bit(b'D')),
     g(420, GOp::Comp(CompOp::Right), Group::CutterComp).reads(bit(b'D')),
+    // G41.1/G42.1 D diameter [L orientation]: dynamic compensation.
+    g(411, GOp::Comp(CompOp::LeftDiameter), Group::CutterComp).reads(bit(b'D') | bit(b'L')),
+    g(421, GOp::Comp(CompOp::RightDiameter), Group::CutterComp).reads(bit(b'D') | bit(b'L')),
     g(430, GOp::Frame(FrameOp::ToolLengthPlus), Group::ToolLength).reads(bit(b'H')),
     g(520, GOp::Set(SetOp::LocalSystem), Group::NonModal).claims_absolute_axes(),
     g(591, GOp::Mode(ModeOp::WorkSystem(6)), Group::Wcs),
@@ -196,14 +199,6 @@ const NOT_RUN: &[(u16, &str)] = &[
         "LinuxCNC's spindle-synchronized G33 (K pitch) is not run by vcnc",
     ),
     (331, "LinuxCNC's rigid tapping G33.1 is not run by vcnc"),
-    (
-        411,
-        "dynamic cutter compensation G41.1/G42.1 is not run by vcnc",
-    ),
-    (
-        421,
-        "dynamic cutter compensation G41.1/G42.1 is not run by vcnc",
-    ),
     (
         432,
         "G43.2 (an added tool length offset) is not run by vcnc",

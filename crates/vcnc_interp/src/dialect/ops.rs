@@ -139,6 +139,10 @@ pub enum CompOp {
     Cancel,
     Left,
     Right,
+    /// LinuxCNC's dynamic compensation G41.1/G42.1: D the tool's diameter
+    /// (a length, not a register), L a lathe tool's orientation.
+    LeftDiameter,
+    RightDiameter,
 }
 
 /// One-shot codes that move by the block's axis words.
@@ -462,6 +466,12 @@ impl CompOp {
             }
             CompOp::Right => {
                 "cutter radius compensation right: the tool runs right of the path by the D radius"
+            }
+            CompOp::LeftDiameter => {
+                "cutter compensation left by the block's D diameter (L: a lathe tool's orientation)"
+            }
+            CompOp::RightDiameter => {
+                "cutter compensation right by the block's D diameter (L: a lathe tool's orientation)"
             }
         }
     }
