@@ -50,11 +50,9 @@ def machine_toml(tools, parameters=(), header=""):
     path = next((p for p in DEFAULT_MILLS if os.path.exists(p)), DEFAULT_MILLS[0])
     with open(path) as f:
         text = f.read()
-    # The built-in mill once had a tool table; now it says its offsets are
-    # empty. Either comment block is replaced.
-    start = text.find("# Tool table")
-    if start < 0:
-        start = text.index("# Tool offsets")
+    # The tool section's comment: "# Tool table" before the built-in mill
+    # lost its tools, "# Tool offsets" since.
+    start = min(text.find(m) for m in ("# Tool table", "# Tool offsets") if m in text)
     end = text.index("[parameters]")
     table = ["# Tool table: H is a length, D a radius (geometry + wear). The same",
              "# tools as the LinuxCNC tool table of the fixture generator (there in",

@@ -251,4 +251,38 @@ impl vcnc_interp::ProgramStore for DirStore {
         let shown = path.display().to_string();
         Some(File::open(&path).map(|f| (Box::new(FileSource(f)) as Box<dyn TextSource>, shown)))
     }
+
+    /// LinuxCNC's subroutine files: `name.ngc` in the directory, and only
+    /// there — a name with a path in it, or a file that resolves outside
+    /// the directory (a symbolic link), is an error, never read.
+    fn open_subroutine(&mut self, name: &str) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
+        let path = self.dir.join(format!("{name}.ngc"));
+        if !path.is_file() {
+            return None;
+        }
+        let shown = path.display().to_string();
+        Some(inside(&self.dir, name, &path).and_then(|p| {
+            File::open(p).map(|f| (Box::new(FileSource(f)) as Box<dyn TextSource>, shown))
+        }))
+    }
+}
+
+/// `path`, the file `name.ngc` of `dir`, when it is one plain file name
+/// and resolves (links followed) inside `dir`; otherwise an error that
+/// says so without reading it.
+fn inside(dir: &Path, name: &str, path: &Path) -> io::Result<PathBuf> {
+    let refuse = |why: &str| io::Error::new(io::ErrorKind::PermissionDenied, why.to_string());
+    let plain = Path::new(name)
+        .components()
+        .all(|c| matches!(c, std::path::Component::Normal(_)))
+        && !name.contains(['/', '\\', ':']);
+    if !plain {
+        return Err(refuse("a subroutine name is a file name, not a path"));
+    }
+    let root = dir.canonicalize()?;
+    let real = path.canonicalize()?;
+    if !real.starts_with(&root) {
+        return Err(refuse("it leads outside the program directory"));
+    }
+    Ok(real)
 }

@@ -927,6 +927,67 @@ fn unknown_subcommand_and_bad_arguments_are_usage_errors() {
 // Options
 // ---------------------------------------------------------------------------
 
+/// LinuxCNC's `o<name> call` of a subroutine kept in its own file reads
+/// `name.ngc` from the program directory, and nothing outside it: a name
+/// with a path (`../x`, an absolute one) or a file that is a link leading
+/// out of the directory alarms at the call, and the outside file's text
+/// never appears (alarm text quotes source lines, so a server checking
+/// untrusted programs would leak files otherwise).
+#[test]
+fn subroutine_files_are_read_from_the_program_directory_only() {
+    let dir = TempDir::new("ngc-subs");
+    let secret = dir.write(
+        "secret.ngc",
+        "o<secret> sub\n(TOP SECRET)\no<secret> endsub\n",
+    );
+    let subs = dir.path().join("subs");
+    dir.write(
+        "subs/mark.ngc",
+        "o<mark> sub\nG0 X#1\no<mark> endsub [#1 * 2]\nM2\n",
+    );
+    dir.write(
+        "subs/main.ngc",
+        "G21\no<mark> call [3]\nG0 Y#<_value>\nM2\n",
+    );
+    let o = vcnc_in(&subs, &["run", "main.ngc", "--dialect", "linuxcnc"]);
+    assert_eq!(code(&o), 0, "stderr: {}", stderr(&o));
+    let moves: Vec<_> = jsonl(&o)
+        .into_iter()
+        .filter(|e| e["type"] == "rapid")
+        .map(|e| (e["to"]["x"].clone(), e["to"]["y"].clone()))
+        .collect();
+    assert_eq!(
+        moves,
+        vec![(json!(3.0), json!(0.0)), (json!(3.0), json!(6.0))]
+    );
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&secret, subs.join("leak.ngc")).expect("symlink");
+    let absolute = secret.with_extension("").display().to_string();
+    let mut calls = vec![
+        ("o<../secret> call".to_string(), "E611"),
+        (format!("o<{absolute}> call"), "E611"),
+        ("o<nowhere> call".to_string(), "E611"),
+    ];
+    if cfg!(unix) {
+        calls.push(("o<leak> call".to_string(), "E408"));
+    }
+    for (call, alarm) in calls {
+        dir.write("subs/probe.ngc", &format!("G21\n{call}\nG0 X1\nM2\n"));
+        let o = vcnc_in(&subs, &["run", "probe.ngc", "--dialect", "linuxcnc"]);
+        assert_eq!(code(&o), 1, "{call}");
+        let events = jsonl(&o);
+        let last = events.last().unwrap();
+        assert_eq!(
+            (&last["code"], &last["line"], &last["column"]),
+            (&json!(alarm), &json!(2), &json!(1)),
+            "{call}"
+        );
+        assert!(!events.iter().any(|e| e["type"] == "rapid"), "{call}");
+        let all = format!("{}{}", String::from_utf8_lossy(&o.stdout), stderr(&o));
+        assert!(!all.contains("TOP SECRET"), "{call} leaked the file: {all}");
+    }
+}
+
 #[test]
 fn program_dir_finds_called_programs() {
     let dir = TempDir::new("program-dir");

@@ -102,6 +102,19 @@ impl vcnc_interp::ProgramStore for DirStore {
             p.display().to_string(),
         )))
     }
+
+    /// LinuxCNC's subroutine files (the fixtures' own `name.ngc`).
+    fn open_subroutine(
+        &mut self,
+        name: &str,
+    ) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+        let p = self.0.join(format!("{name}.ngc"));
+        let text = std::fs::read(&p).ok()?;
+        Some(Ok((
+            Box::new(vcnc_syntax::MemSource(text)),
+            p.display().to_string(),
+        )))
+    }
 }
 
 fn close(a: &Value, b: &Value, tol: f64, key: &str) -> bool {
@@ -164,6 +177,11 @@ fn check_programs(
             !p.file_name()
                 .is_some_and(|n| n.to_string_lossy().starts_with('O'))
         })
+        // A LinuxCNC subroutine file (it opens with its `o<name> sub`) is
+        // called by the programs beside it, not run on its own.
+        .filter(|p| {
+            !std::fs::read_to_string(p).is_ok_and(|t| t.to_ascii_lowercase().starts_with("o<"))
+        })
         .collect();
     programs.sort();
     let mut failures = Vec::new();
@@ -179,6 +197,14 @@ fn check_programs(
             })
             .collect();
         let mut got = run_under(p, default_dialect, dialect);
+        // A called file is named by its file name (the store shows a path).
+        for e in &mut got {
+            if let Some(f) = e.get_mut("file")
+                && let Some(name) = f.as_str().and_then(|s| Path::new(s).file_name())
+            {
+                *f = Value::from(name.to_string_lossy().into_owned());
+            }
+        }
         // `contour` events (the programmed path under cutter compensation)
         // are compared only where a fixture lists them; the hand-derived
         // compensation fixtures check the tool-centre path, and
@@ -306,6 +332,7 @@ fn linuxcnc_dialect_reads_the_programs_rs274_read() {
         "linuxcnc_grbl",
         "linuxcnc_cycles",
         "linuxcnc_dialect",
+        "linuxcnc_subfiles",
     ]
     .iter()
     .map(|f| check_ngc_folder(f))
@@ -412,12 +439,29 @@ fn lathe_moves_match(ext: &str, dialect: Option<&str>) -> usize {
 /// rs274 read (`NNN.ngc`, D a tool number).
 #[test]
 fn linuxcnc_compensation_points_are_reached() {
-    let n = compensation_points_reached("nc", None);
-    assert_eq!(n, compensation_points_reached("ngc", Some("linuxcnc")));
+    let n = compensation_points_reached("linuxcnc_comp", "nc", None);
+    assert_eq!(
+        n,
+        compensation_points_reached("linuxcnc_comp", "ngc", Some("linuxcnc"))
+    );
 }
 
-fn compensation_points_reached(ext: &str, dialect: Option<&str>) -> usize {
-    let dir = fixtures_dir("linuxcnc_comp");
+/// `linuxcnc_comp_dynamic`: the same programs with LinuxCNC's dynamic
+/// compensation (`G41.1 D<diameter>`, `G42.1`), which rs274 runs exactly
+/// as G41/G42 with the tool of that diameter
+/// (`tools/linuxcnc/make_dynamic_comp_fixtures.py` checks it), reach the
+/// same points under `--dialect linuxcnc`.
+#[test]
+fn linuxcnc_dynamic_compensation_points_are_reached() {
+    let n = compensation_points_reached("linuxcnc_comp_dynamic", "ngc", Some("linuxcnc"));
+    assert_eq!(
+        n,
+        compensation_points_reached("linuxcnc_comp", "ngc", Some("linuxcnc"))
+    );
+}
+
+fn compensation_points_reached(folder: &str, ext: &str, dialect: Option<&str>) -> usize {
+    let dir = fixtures_dir(folder);
     let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("fixture folder")
         .filter_map(|e| e.ok().map(|e| e.path()))

@@ -546,6 +546,18 @@ pub fn program_unreadable(span: Span, number: u32, err: &std::io::Error) -> Diag
     )
 }
 
+/// E408: LinuxCNC's subroutine file `name.ngc` could not be read (or
+/// the store refused it: a link leading outside the program directory).
+#[cold]
+pub fn sub_file_unreadable(span: Span, name: &str, err: &std::io::Error) -> Diagnostic {
+    d(
+        Code::E408,
+        span,
+        format!("subroutine file {name}.ngc could not be read: {err}"),
+        "check the file's permissions; a subroutine file lives in the --program-dir itself",
+    )
+}
+
 /// E501: soft over-travel.
 #[cold]
 pub fn over_travel(span: Span, axis: u8, value: f64, min: f64, max: f64) -> Diagnostic {

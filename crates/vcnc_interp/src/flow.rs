@@ -50,6 +50,18 @@ pub trait ProgramStore {
         let _ = name;
         None
     }
+
+    /// Opens LinuxCNC's subroutine file `name.ngc` (`o<name> call` of a
+    /// subroutine its program does not define), looked up along the
+    /// store's program directories. The interpreter passes only a plain
+    /// file name (ASCII letters, digits, `_`, `-`, `.`, never a leading
+    /// `.`); the store must still refuse a file that resolves outside its
+    /// directories (a symbolic link), with an error rather than its text.
+    /// A store that has none returns `None`.
+    fn open_subroutine(&mut self, name: &str) -> Option<io::Result<(Box<dyn TextSource>, String)>> {
+        let _ = name;
+        None
+    }
 }
 
 /// A store with no programs: every call must be satisfied by the main file.

@@ -649,13 +649,17 @@ impl Interpreter<'_> {
     }
 
     /// Step 6b: one-shot settings without axis words (G28.1/G30.1, G92.1,
-    /// G187, LinuxCNC's G4).
+    /// G92.2/G92.3, G187, LinuxCNC's G4).
     fn setting_codes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         for at in w.once_codes() {
             match at.def.op {
                 GOp::Set(SetOp::RefStore(n)) => self.store_reference(n),
                 GOp::Set(SetOp::ShiftCancel) => {
                     self.tables.set_shift(crate::events::Pos::default());
+                    self.state.refresh_origin(&self.tables);
+                }
+                GOp::Set(SetOp::ShiftSuspend(on)) => {
+                    self.tables.suspend_shift(on);
                     self.state.refresh_origin(&self.tables);
                 }
                 GOp::Pace(PaceOp::Smoothing) => self.haas_smoothing(w),

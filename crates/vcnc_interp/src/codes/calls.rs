@@ -104,10 +104,28 @@ impl Interpreter<'_> {
         returns_with: &'static str,
     ) {
         let caller = self.flow().frame();
+        self.enter_sub_in(caller.source, start, ret, returns_with);
+    }
+
+    /// A call of a subroutine at `start` of source `source` (the running
+    /// one, or LinuxCNC's subroutine file) with the caller's locals.
+    pub(crate) fn enter_sub_in(
+        &mut self,
+        source: usize,
+        start: Cursor,
+        ret: Cursor,
+        returns_with: &'static str,
+    ) {
+        let caller = self.flow().frame();
+        let program = if source == caller.source {
+            caller.program
+        } else {
+            Cursor::default()
+        };
         self.flow().frames.push(Frame {
-            source: caller.source,
+            source,
             start,
-            program: caller.program,
+            program,
             last: None,
             ret,
             runs_left: 1,

@@ -31,6 +31,14 @@ impl Interpreter<'_> {
         if let (Some(_), Some(m)) = (code, arc) {
             return Err(alarms::comp_arc_startup(m.span));
         }
+        if let Some(c) = code
+            && matches!(
+                c.def.op,
+                GOp::Comp(CompOp::LeftDiameter | CompOp::RightDiameter)
+            )
+        {
+            return self.dynamic_comp(w, c.def.op, c.span);
+        }
         let d_number = match w.get(b'D').filter(|_| self.reads_d(w)) {
             Some(d) => Some(self.offset_word(&d)?),
             None => match code {
@@ -57,14 +65,60 @@ impl Interpreter<'_> {
         }
         let Some(code) = code else { return Ok(()) };
         let side = match code.def.op {
-            GOp::Comp(CompOp::Left) => CompSide::Left,
-            GOp::Comp(CompOp::Right) => CompSide::Right,
+            GOp::Comp(CompOp::Left | CompOp::LeftDiameter) => CompSide::Left,
+            GOp::Comp(CompOp::Right | CompOp::RightDiameter) => CompSide::Right,
             _ => CompSide::Off,
         };
         self.set_comp_side(side);
         if side != CompSide::Off && self.state.comp_d_mm == 0.0 {
             self.warn_zero_radius(code.span, side);
         }
+        Ok(())
+    }
+
+    /// LinuxCNC's G41.1/G42.1 D L: the radius is half the block's D (a
+    /// length in program units; negative: the other side, as G41's), no
+    /// offset register; L (0–9, LinuxCNC's numbering) is a lathe tool's
+    /// orientation, only in the XZ plane, as rs274 refuses it elsewhere
+    /// ("G41.1 with L word, but plane is not G18").
+    fn dynamic_comp(
+        &mut self,
+        w: &Words<'_>,
+        op: GOp,
+        at: vcnc_syntax::Span,
+    ) -> Result<(), Diagnostic> {
+        let g = if op == GOp::Comp(CompOp::LeftDiameter) {
+            "G41.1"
+        } else {
+            "G42.1"
+        };
+        let d = w
+            .get(b'D')
+            .ok_or_else(|| alarms::needs_word(at, g, "D (the tool's diameter)"))?;
+        if let Some(l) = w.get(b'L') {
+            if self.state.modal.plane != crate::events::Plane::Zx {
+                return Err(alarms::word_not_allowed(l.span, b'L'));
+            }
+            let tip = crate::block::convert::whole(
+                &l,
+                b'L',
+                0.0,
+                9.0,
+                "L is a lathe tool's orientation, 0 to 9",
+            )?;
+            // 0..=9: the cast is exact.
+            #[allow(clippy::cast_possible_truncation)]
+            let tip = tip as u8;
+            self.state.lathe.tip = crate::motion::comp::nose::linuxcnc_tip(tip);
+        }
+        self.state.d_number = 0;
+        self.state.comp_d_mm = self.length_mm(&d) / 2.0;
+        let side = if op == GOp::Comp(CompOp::LeftDiameter) {
+            CompSide::Left
+        } else {
+            CompSide::Right
+        };
+        self.set_comp_side(side);
         Ok(())
     }
 

@@ -341,8 +341,8 @@ impl Interpreter<'_> {
                     span = code.span;
                 }
                 GOp::Comp(CompOp::Cancel) => comp = Some(CompSide::Off),
-                GOp::Comp(CompOp::Left) => comp = Some(CompSide::Left),
-                GOp::Comp(CompOp::Right) => comp = Some(CompSide::Right),
+                GOp::Comp(CompOp::Left | CompOp::LeftDiameter) => comp = Some(CompSide::Left),
+                GOp::Comp(CompOp::Right | CompOp::RightDiameter) => comp = Some(CompSide::Right),
                 GOp::Mode(ModeOp::SurfaceSpeed)
                 | GOp::Mode(ModeOp::SpindleRpm)
                 | GOp::Mode(ModeOp::PerMinute)

@@ -78,7 +78,7 @@ impl Interpreter<'_> {
             SetOp::PresetOrClamp => self.preset(w, cmd),
             SetOp::LocalSystem => self.local_system(w, cmd),
             SetOp::ProgramZero => self.program_zero(w, cmd),
-            SetOp::RefStore(_) | SetOp::ShiftCancel => Ok(()),
+            SetOp::RefStore(_) | SetOp::ShiftCancel | SetOp::ShiftSuspend(_) => Ok(()),
         }
     }
 

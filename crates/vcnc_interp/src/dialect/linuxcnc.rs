@@ -7,7 +7,7 @@
 //! compensation (D is a tool number; without D the tool in the spindle),
 //! the canned cycles G73, G74 and G81–G86, G89 repeated by L with the dwell
 //! P in seconds and LinuxCNC's cycle levels, G52, G59.1–G59.3, G61.1, G64
-//! P Q, G96/G97, G98/G99, an M6 that stops the spindle, the tool table
+//! P Q, G92.2/G92.3, G96/G97, G98/G99, an M6 that stops the spindle, the tool table
 //! written by `G10 L1 P Z R` and the machine's own M codes (M62–M68,
 //! M100–M199) — as `docs/dialects.md` lists them.
 //!
@@ -41,6 +41,9 @@ const LINUXCNC_G: &[GRow] = &[
         .claims_absolute_axes(),
     g(410, GOp::Comp(CompOp::Left), Group::CutterComp).reads(bit(b'D')),
     g(420, GOp::Comp(CompOp::Right), Group::CutterComp).reads(bit(b'D')),
+    // G41.1/G42.1 D diameter [L orientation]: dynamic compensation.
+    g(411, GOp::Comp(CompOp::LeftDiameter), Group::CutterComp).reads(bit(b'D') | bit(b'L')),
+    g(421, GOp::Comp(CompOp::RightDiameter), Group::CutterComp).reads(bit(b'D') | bit(b'L')),
     g(430, GOp::Frame(FrameOp::ToolLengthPlus), Group::ToolLength).reads(bit(b'H')),
     g(520, GOp::Set(SetOp::LocalSystem), Group::NonModal).claims_absolute_axes(),
     g(591, GOp::Mode(ModeOp::WorkSystem(6)), Group::Wcs),
@@ -104,6 +107,9 @@ const LINUXCNC_G: &[GRow] = &[
     .reads(CYCLE_WORDS_L),
     // G33 X Z K: spindle-synchronized motion, K the distance per turn.
     g(330, GOp::Motion(MotionOp::Thread), Group::Motion).reads(bit(b'K')),
+    // G92.2 suspends the G92 shift, keeping its values; G92.3 restores it.
+    g(922, GOp::Set(SetOp::ShiftSuspend(false)), Group::NonModal),
+    g(923, GOp::Set(SetOp::ShiftSuspend(true)), Group::NonModal),
     g(950, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
     // G96 D S: D the highest spindle speed.
     g(960, GOp::Mode(ModeOp::SurfaceSpeed), Group::SpindleMode).reads(bit(b'D')),
@@ -194,14 +200,6 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (331, "LinuxCNC's rigid tapping G33.1 is not run by vcnc"),
     (
-        411,
-        "dynamic cutter compensation G41.1/G42.1 is not run by vcnc",
-    ),
-    (
-        421,
-        "dynamic cutter compensation G41.1/G42.1 is not run by vcnc",
-    ),
-    (
         432,
         "G43.2 (an added tool length offset) is not run by vcnc",
     ),
@@ -229,8 +227,6 @@ const NOT_RUN: &[(u16, &str)] = &[
         880,
         "LinuxCNC's G88 (stop for a manual retract) is not run by vcnc",
     ),
-    (922, "G92.2 (suspend the G92 offset) is not run by vcnc"),
-    (923, "G92.3 (restore the G92 offset) is not run by vcnc"),
 ];
 
 /// The LinuxCNC dialect: grbl's reading (`;` comments, whole-unit

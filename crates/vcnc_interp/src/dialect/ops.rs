@@ -139,6 +139,10 @@ pub enum CompOp {
     Cancel,
     Left,
     Right,
+    /// LinuxCNC's dynamic compensation G41.1/G42.1: D the tool's diameter
+    /// (a length, not a register), L a lathe tool's orientation.
+    LeftDiameter,
+    RightDiameter,
 }
 
 /// One-shot codes that move by the block's axis words.
@@ -185,6 +189,9 @@ pub enum SetOp {
     PresetOrClamp,
     /// G92.1: cancel the G92 shift.
     ShiftCancel,
+    /// LinuxCNC's G92.2 (false: suspend the G92 shift, keeping its values)
+    /// and G92.3 (true: put the kept shift back in force).
+    ShiftSuspend(bool),
     /// G28.1 (1) / G30.1 (2): store the position as that reference point.
     RefStore(u8),
     /// The seed lathe's G75: the program zero from the tool's position.
@@ -462,6 +469,12 @@ impl CompOp {
             CompOp::Right => {
                 "cutter radius compensation right: the tool runs right of the path by the D radius"
             }
+            CompOp::LeftDiameter => {
+                "cutter compensation left by the block's D diameter (L: a lathe tool's orientation)"
+            }
+            CompOp::RightDiameter => {
+                "cutter compensation right by the block's D diameter (L: a lathe tool's orientation)"
+            }
         }
     }
 }
@@ -505,6 +518,8 @@ impl SetOp {
                 "sets the coordinate system so the tool reads the axis words; with S alone, the spindle speed clamp"
             }
             SetOp::ShiftCancel => "cancels the coordinate shift",
+            SetOp::ShiftSuspend(false) => "suspends the coordinate shift, keeping its values",
+            SetOp::ShiftSuspend(true) => "restores the coordinate shift that G92.2 suspended",
             SetOp::RefStore(_) => "stores the current position as a reference point",
             SetOp::ProgramZero => "sets the program zero from the tool's position",
         }

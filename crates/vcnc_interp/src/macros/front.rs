@@ -166,7 +166,7 @@ impl Interpreter<'_> {
         // which Macro B would misread as its own WHILE.
         if self.macros.rules.iso == IsoMacros::Ngc {
             if lexed.code == vcnc_syntax::Code::E604 {
-                return self.ngc_oword(src, line, start, lexed, i);
+                return self.ngc_oword(src, line, start, lexed, i, store);
             }
             return self.ngc_block(src, line, start, lexed, i, block, store, sink);
         }

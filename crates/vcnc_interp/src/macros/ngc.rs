@@ -17,8 +17,9 @@
 //! `**` is a power, `ATAN[y]/[x]` is the full-circle angle, EQ and NE
 //! compare within 0.0001, MOD lands in [0, |divisor|), and the
 //! precedence is `**` > `* / MOD` > `+ -` > comparisons > `AND OR XOR`.
-//! Named parameters live for the whole program (vcnc runs no O-word
-//! subroutine, whose locals they would otherwise be). System parameters
+//! Named parameters without a leading `_` are local to an O-word
+//! subroutine (`oword.rs` saves them at its call, restores them at its
+//! return); the others live for the whole program. System parameters
 //! (#5061–#5428: probe results, offsets, the position) read what the
 //! program wrote, 0 otherwise.
 

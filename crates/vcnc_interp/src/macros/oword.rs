@@ -16,11 +16,14 @@
 //! it goes without searching the text again. A statement's partner is the
 //! next one with the same label in the file (the previous one for the
 //! loops' ends). Every jump counts against `limits.max_jumps`, calls
-//! against `limits.max_call_depth`. Not read: subroutine files
-//! (`o<name> call` whose `sub` is not in the program: E611).
+//! against `limits.max_call_depth`. A call of a subroutine the program
+//! does not define reads the file `NAME.ngc` of the program directories
+//! (LinuxCNC's subroutine path), once, through the `ProgramStore`; the name
+//! must be a plain file name, so no call reads outside those directories.
 
 use super::ngc::{Kw, OStmt, o_statement, operands};
 use crate::alarms;
+use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
 use vcnc_syntax::{Cursor, Diagnostic, Line, ReadError, Span};
@@ -111,6 +114,24 @@ fn past(
         .ok_or_else(|| unpaired(span, st, &format!("{kw:?}").to_lowercase()))
 }
 
+/// A subroutine file's name: ASCII letters, digits, `_`, `-` and `.`, not
+/// starting with `.` — one file of the directory, never a path.
+fn is_file_name(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .bytes()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, b'_' | b'-' | b'.'))
+}
+
+fn defined_twice(span: Span, label: &str, times: usize, place: &str) -> Diagnostic {
+    alarms::bad_structure(
+        span,
+        format!("o{label} sub is defined {times} times in {place}"),
+        "give each subroutine its own label (rs274: \"redefining sub\")",
+    )
+}
+
 fn unpaired(span: Span, st: &OStmt, wanted: &str) -> Diagnostic {
     alarms::bad_structure(
         span,
@@ -133,6 +154,7 @@ impl Interpreter<'_> {
         start: usize,
         lexed: Diagnostic,
         i: &mut usize,
+        store: &mut dyn ProgramStore,
     ) -> Result<(Step, Span), Diagnostic> {
         let Some(s) = self.flow.source(src) else {
             return Err(lexed);
@@ -186,27 +208,12 @@ impl Interpreter<'_> {
                     .subs
                     .get(&st.label)
                     .map_or(&[][..], Vec::as_slice);
-                if subs.len() > 1 {
-                    return Err(alarms::bad_structure(
-                        span,
-                        format!(
-                            "o{} sub is defined {} times in this program",
-                            st.label,
-                            subs.len()
-                        ),
-                        "give each subroutine its own label (rs274: \"redefining sub\")",
-                    ));
-                }
-                let sub = subs.first().map(|&i| &entries[i]);
-                let sub = sub.ok_or_else(|| {
-                    alarms::bad_structure(
-                        span,
-                        format!("o{} call: no o{} sub in this program", st.label, st.label),
-                        "define the subroutine in the same file (subroutine files are not read by vcnc)",
-                    )
-                })?;
-                let start = sub.after;
-                self.ngc_call(span, start, here.after, &values)?;
+                let (source, start) = match subs {
+                    [] => self.sub_file(&st, span, store)?,
+                    [one] => (None, entries[*one].after),
+                    more => return Err(defined_twice(span, &st.label, more.len(), "this program")),
+                };
+                self.ngc_call(span, source, start, here.after, &values)?;
                 Step::Jump(start)
             }
             Kw::EndSub | Kw::Return => self.ngc_return(span, value)?,
@@ -376,10 +383,12 @@ impl Interpreter<'_> {
         }))
     }
 
-    /// O CALL: a level of the flow like a subprogram's, the locals saved.
+    /// O CALL: a level of the flow like a subprogram's, the locals saved;
+    /// `source` is a subroutine file's (`None`: the running one's).
     fn ngc_call(
         &mut self,
         span: Span,
+        source: Option<usize>,
         start: Cursor,
         ret: Cursor,
         args: &[f64],
@@ -390,8 +399,98 @@ impl Interpreter<'_> {
         let flow = self.oword_flow();
         let repeats = flow.repeats.len();
         flow.saved.push((saved, repeats));
-        self.enter_local_sub(start, ret, "endsub");
+        match source {
+            None => self.enter_local_sub(start, ret, "endsub"),
+            Some(src) => self.enter_sub_in(src, start, ret, "endsub"),
+        }
         Ok(())
+    }
+
+    /// A call of a subroutine its program does not define: the `sub` of
+    /// the file `NAME.ngc` in the program directories (LinuxCNC's
+    /// subroutine path), opened once. The name is checked to be a plain
+    /// file name before the store sees it, so `o<../x>` or `o</etc/x>`
+    /// reads nothing.
+    fn sub_file(
+        &mut self,
+        st: &OStmt,
+        span: Span,
+        store: &mut dyn ProgramStore,
+    ) -> Result<(Option<usize>, Cursor), Diagnostic> {
+        let name = st.label.as_str();
+        if !is_file_name(name) {
+            return Err(alarms::bad_structure(
+                span,
+                format!(
+                    "o<{name}> call: no o<{name}> sub in this program, and `{name}` names no file of the program directory"
+                ),
+                "a subroutine kept in its own file is called by its file name: letters, digits, _ and - (o<probe> call reads probe.ngc from the --program-dir; no path)",
+            ));
+        }
+        let src = match self.open_sub_file(name, store) {
+            Ok(Some(src)) => src,
+            Ok(None) => {
+                return Err(alarms::bad_structure(
+                    span,
+                    format!(
+                        "o{name} call: no o{name} sub in this program, and no {name}.ngc in the program directory"
+                    ),
+                    "define the subroutine in this file, or put it in NAME.ngc in the --program-dir",
+                ));
+            }
+            Err(e) => return Err(alarms::sub_file_unreadable(span, name, &e)),
+        };
+        let statements = self.oword_statements(src)?;
+        match statements.subs.get(name).map_or(&[][..], Vec::as_slice) {
+            [one] => Ok((Some(src), statements.entries[*one].after)),
+            [] => Err(alarms::bad_structure(
+                span,
+                format!("o<{name}> call: {name}.ngc defines no o<{name}> sub"),
+                "a subroutine file holds o<NAME> sub … o<NAME> endsub under its own name",
+            )),
+            more => Err(defined_twice(
+                span,
+                name,
+                more.len(),
+                &format!("{name}.ngc"),
+            )),
+        }
+    }
+
+    /// The source of subroutine file `name.ngc`: an open one, else opened
+    /// through the store (`None`: the store has no such file).
+    fn open_sub_file(
+        &mut self,
+        name: &str,
+        store: &mut dyn ProgramStore,
+    ) -> std::io::Result<Option<usize>> {
+        let file = format!("{name}.ngc");
+        let open = self.flow.sources.iter().position(|s| {
+            s.as_ref().is_some_and(|s| {
+                s.number.is_none()
+                    && s.name
+                        .as_deref()
+                        .is_some_and(|n| n.rsplit(['/', '\\']).next() == Some(file.as_str()))
+            })
+        });
+        if let Some(i) = open.filter(|&i| i != 0) {
+            return Ok(Some(i));
+        }
+        match store.open_subroutine(name) {
+            None => Ok(None),
+            Some(Err(e)) => Err(e),
+            Some(Ok((mut text, shown))) => {
+                // An unreadable file alarms at the call.
+                text.read_at(0, &mut [0u8; 1])?;
+                let src = crate::flow::Source {
+                    reader: vcnc_syntax::LineReader::new(text),
+                    name: Some(shown.into()),
+                    number: None,
+                    id: 0,
+                };
+                Ok(Some(self.flow.install(src)))
+            }
+        }
     }
 
     /// ENDSUB or RETURN: the caller's locals back, `#<_value>` set.

@@ -306,7 +306,7 @@ enum Undo {
     Tool(u32, Option<Tool>),
     Transforms(Transforms),
     Local(Pos),
-    Shift(Pos),
+    Shift(Pos, Pos),
     Reference(usize, Option<Pos>),
 }
 
@@ -324,8 +324,11 @@ pub struct Tables {
     pub(crate) transforms: Transforms,
     /// G52 local offset, in the active work system.
     pub local: Pos,
-    /// G92 shift, common to all work systems.
+    /// G92 shift in force, common to all work systems.
     pub shift: Pos,
+    /// The G92 shift as last set (LinuxCNC's parameters #5211–#5219):
+    /// G92.2 suspends the shift and keeps this, G92.3 puts it back.
+    pub shift_kept: Pos,
     /// Reference points 1–4 (machine coordinates): the machine file's,
     /// until G28.1/G30.1 store the current position.
     pub reference: [Option<Pos>; 4],
@@ -341,6 +344,7 @@ impl Tables {
             transforms: Transforms::default(),
             local: Pos::default(),
             shift: Pos::default(),
+            shift_kept: Pos::default(),
             reference: machine.reference,
             journal: Vec::new(),
         }
@@ -366,10 +370,18 @@ impl Tables {
         self.local = p;
     }
 
-    /// Sets the G92 shift.
+    /// Sets the G92 shift (G92, G92.1), the kept one with it.
     pub(crate) fn set_shift(&mut self, p: Pos) {
-        self.journal.push(Undo::Shift(self.shift));
+        self.journal.push(Undo::Shift(self.shift, self.shift_kept));
         self.shift = p;
+        self.shift_kept = p;
+    }
+
+    /// G92.2 (`on` false): the shift suspended, the kept one unchanged;
+    /// G92.3 (`on` true): the kept shift in force again.
+    pub(crate) fn suspend_shift(&mut self, on: bool) {
+        self.journal.push(Undo::Shift(self.shift, self.shift_kept));
+        self.shift = if on { self.shift_kept } else { Pos::default() };
     }
 
     /// Sets reference point `n` (0 = the first).
@@ -413,7 +425,10 @@ impl Tables {
                 }
                 Undo::Transforms(t) => self.transforms = t,
                 Undo::Local(p) => self.local = p,
-                Undo::Shift(p) => self.shift = p,
+                Undo::Shift(p, kept) => {
+                    self.shift = p;
+                    self.shift_kept = kept;
+                }
                 Undo::Reference(n, p) => {
                     if let Some(slot) = self.reference.get_mut(n) {
                         *slot = p;

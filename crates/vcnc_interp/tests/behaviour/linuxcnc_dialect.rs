@@ -387,6 +387,148 @@ fn g64_p_is_a_blending_tolerance_for_the_planner() {
     let ev = ended("G21 G90 G64 G40\nG1 X1 F100\nM2\n");
     assert!(!ev.iter().any(|e| matches!(e, Event::Smoothing { .. })));
     assert_eq!(alarm("G21\nG64 P-1\nM2\n"), (Code::E109, 2, 5));
+    // LinuxCNC 2.9's G64 reads P and Q (the naive-CAM tolerance) only: rs274
+    // 2.9 refuses `G64 P0.01 R0.02` with "R word with no g code that uses
+    // it", and so does vcnc, at the R.
+    assert_eq!(alarm("G21\nG64 P0.01 R0.02\nM2\n"), (Code::E203, 2, 11));
+    assert_eq!(alarm("G21\nG64 R0.02\nM2\n"), (Code::E203, 2, 5));
+}
+
+/// A store that records every subroutine file asked for, and has one:
+/// `mark.ngc`.
+#[derive(Default)]
+struct SubFiles {
+    asked: Vec<String>,
+}
+
+impl vcnc_interp::ProgramStore for SubFiles {
+    fn open(
+        &mut self,
+        _: u32,
+    ) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+        None
+    }
+
+    fn open_subroutine(
+        &mut self,
+        name: &str,
+    ) -> Option<std::io::Result<(Box<dyn vcnc_syntax::TextSource>, String)>> {
+        self.asked.push(name.to_string());
+        let text = match name {
+            "mark" => "o<mark> sub\nG0 X#1\no<mark> endsub [#1 * 2]\nM2\n",
+            "other" => "o<else> sub\no<else> endsub\n",
+            _ => return None,
+        };
+        Some(Ok((
+            Box::new(vcnc_syntax::MemSource(text.as_bytes().to_vec())),
+            format!("{name}.ngc"),
+        )))
+    }
+}
+
+fn run_with_files(program: &str) -> (Vec<Event>, Outcome, Vec<String>) {
+    let machine = vcnc_interp::Machine::default_mill();
+    let mut sink = vcnc_interp::VecSink::default();
+    let mut store = SubFiles::default();
+    let out = vcnc_interp::Interpreter::new(&machine, &Dialect::linuxcnc(), Default::default())
+        .run(
+            Box::new(vcnc_syntax::MemSource(program.as_bytes().to_vec())),
+            &mut store,
+            &mut sink,
+        );
+    (sink.0, out, store.asked)
+}
+
+/// `o<name> call` of a subroutine the program does not define opens
+/// `name.ngc` once (a second call reuses it); a name that is no plain
+/// file name never reaches the store; a file without the sub alarms.
+#[test]
+fn subroutine_files_are_asked_for_by_plain_names_only() {
+    let (ev, out, asked) = run_with_files("G21\no<mark> call [2]\no<mark> call [#<_value>]\nM2\n");
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    assert_eq!(common::xs(&ev), vec![2.0, 4.0]);
+    assert_eq!(asked, vec!["mark".to_string()]);
+    for name in [
+        "../mark",
+        "/etc/mark",
+        "sub/mark",
+        ".mark",
+        "c:mark",
+        "..\\mark",
+    ] {
+        let (ev, out, asked) = run_with_files(&format!("G21\no<{name}> call\nG0 X1\nM2\n"));
+        assert!(
+            matches!(&out, Outcome::Alarm(d) if (d.code, d.line, d.column) == (Code::E611, 2, 1)),
+            "{name}: {out:?}"
+        );
+        assert!(asked.is_empty(), "{name} reached the store: {asked:?}");
+        assert!(common::xs(&ev).is_empty());
+    }
+    let (_, out, _) = run_with_files("G21\no<other> call\nM2\n");
+    assert!(
+        matches!(&out, Outcome::Alarm(d) if d.code == Code::E611 && d.message.contains("other.ngc defines no")),
+        "{out:?}"
+    );
+}
+
+/// G41.1/G42.1: compensation by the block's D diameter, no register. On
+/// the mill `G41.1 D6` is G41 with a tool of radius 3 (rs274 alike:
+/// `tests/fixtures/linuxcnc_comp_dynamic`); in lathe mode `G42.1 D0.8 L3`
+/// is G42 with a tool of nose radius 0.4 and orientation 3. rs274's
+/// refusals alarm here too: no D ("G41.1 with no D word"), L outside the
+/// XZ plane ("G41.1 with L word, but plane is not G18").
+#[test]
+fn dynamic_compensation_takes_the_blocks_diameter_and_orientation() {
+    let with_tool = |d: &Dialect, text: &str, tool: vcnc_interp::machine::Tool| {
+        let mut machine = d.machine();
+        machine.tools.insert(1, tool);
+        let mut sink = vcnc_interp::VecSink::default();
+        let out =
+            vcnc_interp::Interpreter::new(&machine, d, Default::default()).run_str(text, &mut sink);
+        assert!(matches!(out, Outcome::Ended(_)), "{out:?}\n{text}");
+        sink.0
+            .into_iter()
+            .filter(|e| !matches!(e, Event::Warning(_)))
+            .collect::<Vec<_>>()
+    };
+    let mill = Dialect::linuxcnc();
+    let contour = |c: &str| {
+        format!(
+            "G21 G17\nG0 X-10 Y-10\n{c} G1 X0 Y0 F100\nG1 X40\nG1 Y30\nG1 X0\nG1 Y0\nG40 G1 X-10 Y-10\nM2\n"
+        )
+    };
+    let radius3 = vcnc_interp::machine::Tool {
+        d_mm: 3.0,
+        ..Default::default()
+    };
+    for (dynamic, table) in [
+        ("G41.1 D6", "G41 D1"),
+        ("G42.1 D6", "G42 D1"),
+        ("G41.1 D-6", "G42 D1"),
+    ] {
+        assert_eq!(
+            with_tool(&mill, &contour(dynamic), radius3),
+            with_tool(&mill, &contour(table), radius3),
+            "{dynamic}"
+        );
+    }
+    let lathe = Dialect::linuxcnc_lathe();
+    let turn = |c: &str| {
+        format!(
+            "G21 G18 G8\nT1 M6\nG0 X30 Z5\n{c} G1 X10 Z0 F100\nG1 Z-20\nG1 X20 Z-30\nG40 G1 X30 Z-30\nM2\n"
+        )
+    };
+    let nose = vcnc_interp::machine::Tool {
+        nose_radius_mm: 0.4,
+        tip: 3,
+        ..Default::default()
+    };
+    assert_eq!(
+        with_tool(&lathe, &turn("G42.1 D0.8 L3"), Default::default()),
+        with_tool(&lathe, &turn("G42 D1"), nose)
+    );
+    assert_eq!(alarm("G21\nG41.1 G1 X1\nM2\n"), (Code::E312, 2, 1));
+    assert_eq!(alarm("G21\nG41.1 D6 L3 G1 X1\nM2\n"), (Code::E203, 2, 10));
 }
 
 /// rs274's end-point rule for I/J/K arcs: the ends rs274 2.9 refuses
