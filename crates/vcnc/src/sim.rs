@@ -10,10 +10,10 @@
 //!        ─▶ report (text | json) · part.stl · part.png · part.html
 //! ```
 //!
-//! The tools come from one function, [`tool_library`]: today the
-//! machine's offset registers (a D radius, a lathe's nose radius and tip);
-//! a tool nothing describes is an assumed 6 mm flat end mill, said as a
-//! warning.
+//! The tools come from one function, `Setup::tool_library`: the `--tools`
+//! table, else the CAM header's tool list, else the machine's offset
+//! registers (a D radius, a lathe's nose radius and tip); a tool nothing
+//! describes is an assumed 6 mm flat end mill, said as a warning.
 
 use crate::cli::Options;
 use crate::files::{self, Input};
