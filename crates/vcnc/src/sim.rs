@@ -529,6 +529,53 @@ fn report_json(input: &Input, outcome: &Outcome, f: &Finished, columns: &[u32]) 
     })
 }
 
+/// The simulation `plot --stock` runs beside the plot: the stock resolved
+/// (a survey pass for `auto`), the tools from the same place as the plot's.
+pub(crate) fn for_plot(
+    c: &Options,
+    s: &Setup,
+    input: &Input,
+    stock: &str,
+) -> Result<Simulation, String> {
+    let p = plan(c, s, input, (Some(stock), None), false)?;
+    Simulation::new(s.machine, &p.library, s.machine.table_z_mm, p.options)
+}
+
+/// The plot page's meshes from a finished simulation — the stock (hidden
+/// at first: it would hide the part) and the finished part — and the
+/// legend's row for it.
+pub(crate) fn page_meshes(f: &Finished) -> (Vec<vcnc_plot::Mesh>, String) {
+    let r = &f.report;
+    let row = format!(
+        "{}\nremoved {:.1} of {:.1} mm³, {} collision{}{}",
+        r.stock,
+        r.removed_mm3,
+        r.stock_mm3,
+        r.collision_total,
+        if r.collision_total == 1 { "" } else { "s" },
+        if r.collision_total > 0 {
+            " (vcnc sim lists them)"
+        } else {
+            ""
+        }
+    );
+    let Some((stock, part)) = vcnc_sim::mesh::stock_and_part(&f.part) else {
+        return (Vec::new(), row);
+    };
+    let mesh = |name: &str, color, visible, m: vcnc_sim::mesh::Indexed| vcnc_plot::Mesh {
+        name: name.to_string(),
+        color,
+        visible,
+        positions: m.positions,
+        triangles: m.triangles,
+    };
+    let meshes = vec![
+        mesh("stock", vcnc_plot::Rgb(150, 165, 185), false, stock),
+        mesh("finished part", vcnc_plot::Rgb(215, 150, 70), true, part),
+    ];
+    (meshes, row)
+}
+
 /// What `check --stock` adds to a program's report.
 pub(crate) struct CheckSim {
     finished: Finished,
