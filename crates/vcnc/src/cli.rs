@@ -200,7 +200,7 @@ pub struct Options {
     /// Machine file (TOML) or grbl's `$$` settings dump; default: the built-in mill (X Y Z A B C, no travel limits, empty offset memory), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.
     #[arg(long)]
     pub machine: Option<PathBuf>,
-    /// Tool table: LinuxCNC `.tbl` (T P D Z …, D a diameter, in mm) or CSV with the header `tool,diameter,corner_radius,length,flute_length,holder_diameter[,units]`. It fills the H (length) and D (radius) registers of its tools and gives their shapes; without it, shapes come from the program's CAM header comments, which never fill registers.
+    /// Tool table: LinuxCNC `.tbl` (T P D Z …, D a diameter, in mm) or CSV with the header `tool,diameter,corner_radius,length,flute_length,holder_diameter[,shank_diameter,stickout,units]`. It fills the H (length) and D (radius) registers of its tools and gives their shapes; without it, shapes come from the program's CAM header comments, which never fill registers.
     #[arg(long, value_name = "FILE")]
     pub tools: Option<PathBuf>,
     /// Units of lengths: those people read (the summaries of check and time, vcnc tools, plot legends and the page; default mm) and those `run --format gcode` writes (default: the program's own).

@@ -68,6 +68,9 @@ pub struct PlotArgs {
     /// Picture size of SVG and PNG plots, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1200x800", value_parser = parse_size)]
     pub size: (u32, u32),
+    /// Simulate the material removal (as `vcnc sim --stock`: box:x0,y0,z0,x1,y1,z1, bar:D,L[,bore] or auto) and show the stock and the finished part on the page (.html only), each with a toggle.
+    #[arg(long)]
+    pub stock: Option<String>,
 }
 
 /// `--fit`.
@@ -433,6 +436,18 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     drop(input.open()?);
     let s = choice.setup(&input)?;
     let set = settings(args, s.machine, s.dialect.diameter.axis.is_some())?;
+    if args.stock.is_some() && set.format != Format::Html {
+        return Err(
+            "--stock shows the stock and the finished part on the page: write .html (a picture of the part is `vcnc sim FILE --stock … -o part.png`)"
+                .into(),
+        );
+    }
+    // The simulation's stock is resolved (and a bad one refused) before
+    // anything is written.
+    let mut sim = Maybe(match &args.stock {
+        Some(stock) => Some(crate::sim::for_plot(c, &s, &input, stock)?),
+        None => None,
+    });
     // Created before the run, so that an output that cannot be written is
     // known before a long program has run.
     let file = std::fs::File::create(&set.output)
@@ -453,8 +468,9 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
             inner: plan,
             blocks: Blocks::default(),
         };
+        let mut both = timing::Tee(&mut numbered, &mut sim);
         let (outcome, diameter) =
-            execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut numbered))?;
+            execute(c, &s, &input, &mut timing::Tee(&mut counted, &mut both))?;
         let stamps = numbered.inner.into_timeline();
         (outcome, diameter, stamps.sum.total_s, Some(stamps))
     } else {
@@ -471,6 +487,27 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
         Some(other) => Some(run_compare(other, &s, set.options)?),
         None => None,
     };
+    let (meshes, material) = match sim.0 {
+        Some(sim) => {
+            progress.phase("measuring the part");
+            match sim.finish_run() {
+                Ok(finished) => {
+                    for n in &finished.report.notes {
+                        eprintln!("warning: {n}");
+                    }
+                    let (meshes, row) = crate::sim::page_meshes(&finished);
+                    (meshes, Some(row))
+                }
+                Err(e) => {
+                    eprintln!(
+                        "warning: the simulation stopped ({e}): the page shows no stock or part"
+                    );
+                    (Vec::new(), None)
+                }
+            }
+        }
+        None => (Vec::new(), None),
+    };
     progress.phase(&format!("writing {}", set.output.display()));
     let diameter_axis = s.dialect.diameter.axis.filter(|_| diameter);
     let head = input.head(crate::choose::TOOL_COMMENTS_BYTES)?;
@@ -482,6 +519,7 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
         diameter_axis,
         units: set.look.units,
         tools: &tools,
+        material,
     };
     let legend = legend(&input, &s, &facts, args.compare.as_deref());
     let compare = compare.as_ref().map(|p| (p, compare_name(args)));
@@ -495,6 +533,7 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
         tools: &tools,
         main_text: text,
         color_given: args.color.is_some(),
+        meshes: &meshes,
     };
     let written = write(file, &page, &plot, compare);
     progress.finish();
@@ -551,6 +590,8 @@ struct Facts<'a> {
     diameter_axis: Option<u8>,
     units: DisplayUnits,
     tools: &'a ToolLibrary,
+    /// The simulation's stock and what it removed (`--stock`).
+    material: Option<String>,
 }
 
 /// The extents, one axis a line (the legend is narrow), in the display
@@ -627,6 +668,9 @@ fn legend(input: &Input, s: &Setup, f: &Facts<'_>, compare: Option<&Path>) -> Le
             tools.join(" ")
         },
     ));
+    if let Some(m) = &f.material {
+        rows.push(("material".to_string(), m.clone()));
+    }
     Legend {
         title: format!("{} ({})", input.name(), s.dialect.name),
         rows,
@@ -641,6 +685,8 @@ struct Written<'a> {
     tools: &'a ToolLibrary,
     main_text: Option<Source>,
     color_given: bool,
+    /// The simulation's stock and finished part (`--stock`).
+    meshes: &'a [vcnc_plot::Mesh],
 }
 
 fn write(
@@ -687,7 +733,7 @@ fn write(
                 time_label: TIME_LABEL,
                 sources: &sources,
                 tools: Some(w.tools),
-                meshes: &[],
+                meshes: w.meshes,
             };
             vcnc_plot::write_html(plot, compare, &page, &mut out)?;
         }
@@ -723,6 +769,25 @@ fn report(input: &Input, plot: &Plot, outcome: &Outcome) {
             "warning: {} has no motion: the plot is an empty frame",
             input.name()
         );
+    }
+}
+
+/// A sink that is there or not (`plot --stock`'s simulation).
+struct Maybe<S>(Option<S>);
+
+impl<S: Sink> Sink for Maybe<S> {
+    fn event(&mut self, event: &Event) {
+        if let Some(s) = &mut self.0 {
+            s.event(event);
+        }
+    }
+    /// Never: a simulation that fails says so when it finishes, and the
+    /// plot goes on without it.
+    fn is_done(&self) -> bool {
+        false
+    }
+    fn finish(&mut self) -> std::io::Result<()> {
+        self.0.as_mut().map_or(Ok(()), Sink::finish)
     }
 }
 

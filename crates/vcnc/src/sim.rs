@@ -10,10 +10,10 @@
 //!        ─▶ report (text | json) · part.stl · part.png · part.html
 //! ```
 //!
-//! The tools come from one function, [`tool_library`]: today the
-//! machine's offset registers (a D radius, a lathe's nose radius and tip);
-//! a tool nothing describes is an assumed 6 mm flat end mill, said as a
-//! warning.
+//! The tools come from one function, `Setup::tool_library`: the `--tools`
+//! table, else the CAM header's tool list, else the machine's offset
+//! registers (a D radius, a lathe's nose radius and tip); a tool nothing
+//! describes is an assumed 6 mm flat end mill, said as a warning.
 
 use crate::cli::Options;
 use crate::files::{self, Input};
@@ -527,6 +527,53 @@ fn report_json(input: &Input, outcome: &Outcome, f: &Finished, columns: &[u32]) 
         "moves": r.moves,
         "notes": r.notes,
     })
+}
+
+/// The simulation `plot --stock` runs beside the plot: the stock resolved
+/// (a survey pass for `auto`), the tools from the same place as the plot's.
+pub(crate) fn for_plot(
+    c: &Options,
+    s: &Setup,
+    input: &Input,
+    stock: &str,
+) -> Result<Simulation, String> {
+    let p = plan(c, s, input, (Some(stock), None), false)?;
+    Simulation::new(s.machine, &p.library, s.machine.table_z_mm, p.options)
+}
+
+/// The plot page's meshes from a finished simulation — the stock (hidden
+/// at first: it would hide the part) and the finished part — and the
+/// legend's row for it.
+pub(crate) fn page_meshes(f: &Finished) -> (Vec<vcnc_plot::Mesh>, String) {
+    let r = &f.report;
+    let row = format!(
+        "{}\nremoved {:.1} of {:.1} mm³, {} collision{}{}",
+        r.stock,
+        r.removed_mm3,
+        r.stock_mm3,
+        r.collision_total,
+        if r.collision_total == 1 { "" } else { "s" },
+        if r.collision_total > 0 {
+            " (vcnc sim lists them)"
+        } else {
+            ""
+        }
+    );
+    let Some((stock, part)) = vcnc_sim::mesh::stock_and_part(&f.part) else {
+        return (Vec::new(), row);
+    };
+    let mesh = |name: &str, color, visible, m: vcnc_sim::mesh::Indexed| vcnc_plot::Mesh {
+        name: name.to_string(),
+        color,
+        visible,
+        positions: m.positions,
+        triangles: m.triangles,
+    };
+    let meshes = vec![
+        mesh("stock", vcnc_plot::Rgb(150, 165, 185), false, stock),
+        mesh("finished part", vcnc_plot::Rgb(215, 150, 70), true, part),
+    ];
+    (meshes, row)
 }
 
 /// What `check --stock` adds to a program's report.

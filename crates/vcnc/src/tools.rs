@@ -192,7 +192,9 @@ impl Report<'_> {
         for (what, v) in [
             ("flutes", t.flute_length_mm),
             ("length", t.length_mm),
+            ("shank", t.shank_diameter_mm),
             ("holder", t.holder_diameter_mm),
+            ("stickout", t.stickout_mm),
         ] {
             if let Some(v) = v {
                 s.push_str(&format!(", {what} {}", self.len(v)));
@@ -368,6 +370,8 @@ fn shape_json(t: &ToolShape) -> Value {
         "flute_length_mm": nm_opt(t.flute_length_mm),
         "length_mm": nm_opt(t.length_mm),
         "holder_diameter_mm": nm_opt(t.holder_diameter_mm),
+        "shank_diameter_mm": nm_opt(t.shank_diameter_mm),
+        "stickout_mm": nm_opt(t.stickout_mm),
         "description": t.description,
         "source": source,
     });

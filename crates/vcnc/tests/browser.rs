@@ -20,6 +20,9 @@
 //!   a mesh (the material-removal hook) draws it and its toggle hides it;
 //!   under G68 R90 the readout's work coordinates are the program's; the
 //!   page's time format is `vcnc_core::display::duration`'s.
+//! - `plot --stock`: the page carries the simulated stock (hidden at
+//!   first) and finished part (shown), each with a toggle that shows and
+//!   hides it; without `--stock` the page has no meshes.
 //!
 //! No page may log a console error. The tests run one at a time (one
 //! browser on a shared 2-core machine) and save screenshots in the
@@ -570,6 +573,100 @@ fn a_lathe_shows_its_section_a_mesh_its_toggle_and_inches_their_unit() {
     assert_eq!(
         b.js("return [59.96, 3599.96, 61.24, 0.04].map(window.vcnc.fmtTime);"),
         json!(["1m 00.0s", "1h 00m 00.0s", "1m 01.2s", "0.0s"])
+    );
+    assert_eq!(b.console_errors(), Vec::<String>::new());
+}
+
+/// Pixels of the canvas whose colour passes `test` (a JS expression of
+/// `r`, `g`, `b`).
+fn pixels_where(b: &Browser, test: &str) -> u64 {
+    b.js(&format!(
+        "const c = document.getElementById('gl'); \
+         const t = document.createElement('canvas'); t.width = c.width; t.height = c.height; \
+         const g2 = t.getContext('2d'); g2.drawImage(c, 0, 0); \
+         const d = g2.getImageData(0, 0, t.width, t.height).data; let n = 0; \
+         for (let i = 0; i < d.length; i += 4) {{ const r = d[i], g = d[i+1], b = d[i+2]; if ({test}) n++; }} \
+         return n;"
+    ))
+    .as_u64()
+    .unwrap()
+}
+
+/// Clicks the mesh toggle labelled `name`.
+fn toggle_mesh(b: &Browser, name: &str) {
+    let labels = b.js("return [...document.querySelectorAll('#meshToggles label')].map((l) => l.textContent.trim());");
+    let k = labels
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|l| l == name)
+        .unwrap_or_else(|| panic!("no toggle {name}: {labels}"));
+    let toggle = b.element(&format!("#meshToggles label:nth-of-type({}) input", k + 1));
+    b.post(&format!("/element/{toggle}/click"), &json!({}));
+    wait_frame(b);
+}
+
+/// A 30 × 20 pocket 4 mm deep with a 10 mm end mill (a Fusion header
+/// describes it), in a block the page is asked to simulate.
+const POCKET: &str = "(T1 D=10. CR=0. - ZMIN=-4. - flat end mill)\nG21 G90 G17\nT1 M06\n\
+    G00 X0. Y0. Z5.\nG01 Z-4. F300\nG01 X30.\nG01 Y20.\nG01 X0.\nG01 Y0.\nG01 X30. Y20.\n\
+    G00 Z5.\nM30\n";
+
+#[test]
+fn plot_with_a_stock_shows_the_stock_and_the_finished_part_as_toggles() {
+    let _one = one_at_a_time();
+    let dir = shots();
+    let page = page_of(
+        "stock",
+        POCKET,
+        &["--stock", "box:-10,-10,-10,40,30,0", "--view", "iso"],
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(
+        html.contains("\"name\":\"stock\""),
+        "the stock mesh is in the page"
+    );
+    assert!(html.contains("\"name\":\"finished part\""));
+    let b = browser();
+    b.open(&page);
+    wait_frame(&b);
+    let labels = b.js("return [...document.querySelectorAll('#meshToggles label')].map((l) => [l.textContent.trim(), l.querySelector('input').checked]);");
+    assert_eq!(labels, json!([["stock", false], ["finished part", true]]));
+    // The legend says what was simulated.
+    let legend = b.js("return document.body.innerText;");
+    assert!(
+        legend.as_str().unwrap().contains("removed"),
+        "the legend's material row: {legend}"
+    );
+    // The part (orange, 215 150 70 shaded) shows; the stock (grey-blue,
+    // 150 165 185) does not yet.
+    let part = "r > g + 40 && g > b + 20";
+    let stock = "b > r + 8 && g > r + 3 && b > g + 3 && b - r < 60";
+    let (part_shown, stock_hidden) = (pixels_where(&b, part), pixels_where(&b, stock));
+    b.screenshot(&dir.join("stock_part.png"));
+    toggle_mesh(&b, "finished part");
+    let part_hidden = pixels_where(&b, part);
+    toggle_mesh(&b, "stock");
+    let stock_shown = pixels_where(&b, stock);
+    b.screenshot(&dir.join("stock_block.png"));
+    assert!(
+        part_shown > 5000 && part_hidden < part_shown / 20,
+        "part {part_shown} → {part_hidden}"
+    );
+    assert!(
+        stock_shown > 5000 && stock_hidden < stock_shown / 20,
+        "stock {stock_hidden} → {stock_shown}"
+    );
+    assert_eq!(b.console_errors(), Vec::<String>::new());
+
+    // Without --stock the page is as it was: no meshes, no toggles.
+    let plain = page_of("no_stock", POCKET, &["--view", "iso"]);
+    let html = std::fs::read_to_string(&plain).unwrap();
+    assert!(html.contains(",\"meshes\":[]"));
+    b.open(&plain);
+    assert_eq!(
+        b.js("return document.querySelectorAll('#meshToggles input').length;"),
+        json!(0)
     );
     assert_eq!(b.console_errors(), Vec::<String>::new());
 }

@@ -452,6 +452,40 @@ fn an_output_of_unknown_kind_or_place_is_a_usage_error() {
     assert_eq!(o.status.code(), Some(2));
 }
 
+#[test]
+fn a_stock_goes_on_the_page_only_and_a_bad_one_writes_nothing() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("plot_stock");
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("bracket.svg");
+    let o = vcnc(&[
+        "plot",
+        "examples/bracket.nc",
+        "--stock",
+        "auto",
+        "-o",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("write .html"), "{}", stderr(&o));
+    assert!(!svg.exists());
+    let page = dir.join("bracket.html");
+    let o = vcnc(&[
+        "plot",
+        "examples/bracket.nc",
+        "--stock",
+        "box:0,0,0,10,10,0",
+        "-o",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("inverted in Z"),
+        "the stock's own message: {}",
+        stderr(&o)
+    );
+    assert!(!page.exists(), "nothing is written");
+}
+
 /// The page carries everything it shows: the program text (base64), the
 /// path, the compared program's path; it loads nothing from elsewhere.
 #[test]

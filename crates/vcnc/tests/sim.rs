@@ -268,3 +268,118 @@ fn a_lathe_example_turns_its_bar() {
     assert!(removed > 0.0 && removed < stock, "{removed} of {stock}");
     assert_eq!(v["resolution_mm"], Value::Null);
 }
+
+/// A slot 2 mm deep, then a second pass along it 8 mm deep, its plunge
+/// indented to column 4: a tool with 5 mm of flutes passes the first, and
+/// on the second its shank (from 5 mm above the tip, Z−3) stands 1 mm in
+/// the material the first pass left at Z−2.
+const TWO_PASSES: &str = "G21 G90 G17\nT1 M06\nG00 X0. Y0. Z5.\nG01 Z-2. F300\nG01 X20.\n\
+    G00 Z5.\nG00 X0.\n   G01 Z-8. F300\nG01 X20.\nG00 Z5.\nM30\n";
+
+/// `sim FILE --dialect fanuc --stock box:-20,-20,-10,40,20,0 EXTRA…`.
+fn two_passes(file: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "sim",
+        file,
+        "--dialect",
+        "fanuc",
+        "--stock",
+        "box:-20,-20,-10,40,20,0",
+    ];
+    args.extend_from_slice(extra);
+    vcnc(&args)
+}
+
+#[test]
+fn a_tool_table_s_flute_length_puts_the_shank_into_the_stock_at_its_line() {
+    let (dir, file) = program("passes.nc", TWO_PASSES);
+    let tools = dir.join("tools.csv");
+    std::fs::write(
+        &tools,
+        "tool,diameter,corner_radius,length,flute_length,holder_diameter\n1,10,0,,5,30\n",
+    )
+    .unwrap();
+    let o = two_passes(&file, &["--tools", tools.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "a collision fails the run");
+    let t = out(&o);
+    assert!(t.contains("tools      T1 10 mm flat end mill"), "{t}");
+    let shank = "holder_into_stock: the shank runs 1.000 mm into the stock \
+                 (the cut is deeper than the flutes reach)";
+    assert!(
+        t.contains(&format!("{file}:8:4: {shank} at X0 Y0 Z-8")),
+        "{t}"
+    );
+    assert!(
+        t.contains(&format!("{file}:9:1: {shank} at X20 Y0 Z-8")),
+        "{t}"
+    );
+    assert!(t.contains("collisions 2"), "{t}");
+    let json = two_passes(
+        &file,
+        &["--tools", tools.to_str().unwrap(), "--format", "json"],
+    );
+    let v: Value = serde_json::from_str(&out(&json)).unwrap();
+    let c = &v["collisions"][0];
+    assert_eq!(
+        (c["line"].as_u64(), c["column"].as_u64(), c["kind"].as_str()),
+        (Some(8), Some(4), Some("holder_into_stock"))
+    );
+    // Flutes of 10 mm reach past the 8 mm pass: nothing to report.
+    std::fs::write(&tools, "tool,diameter,flute_length\n1,10,10\n").unwrap();
+    let o = two_passes(&file, &["--tools", tools.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", out(&o));
+    assert!(out(&o).contains("collisions 0"), "{}", out(&o));
+}
+
+#[test]
+fn a_tool_table_s_stickout_puts_the_holder_into_the_stock() {
+    // Flutes 5 mm, the holder (30 mm across) 10 mm above the tip: a
+    // plunge to Z−12 into the block's top at Z0 puts the holder's face at
+    // Z−2, 2 mm into the material around the hole.
+    let text = "G21 G90 G17\nT1 M06\nG00 X0. Y0. Z5.\nG01 Z-12. F300\nG00 Z5.\nM30\n";
+    let (dir, file) = program("holder.nc", text);
+    let tools = dir.join("tools.csv");
+    std::fs::write(
+        &tools,
+        "tool,diameter,flute_length,shank_diameter,holder_diameter,stickout\n1,10,5,10,30,10\n",
+    )
+    .unwrap();
+    let o = vcnc(&[
+        "sim",
+        &file,
+        "--dialect",
+        "fanuc",
+        "--stock",
+        "box:-20,-20,-20,40,20,0",
+        "--tools",
+        tools.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    let t = out(&o);
+    assert!(
+        t.contains(&format!(
+            "{file}:4:1: holder_into_stock: the holder runs 2.000 mm into the stock \
+             (the cut is deeper than the tool sticks out of its holder) at X0 Y0 Z-12"
+        )),
+        "{t}"
+    );
+}
+
+#[test]
+fn a_cam_header_s_flute_length_is_checked_without_a_table() {
+    // Carbide Create's CutViewer line: a 10 mm flat end mill with 5 mm of
+    // flutes, for the tool of the next T word (three lines further on).
+    let text = format!("(TOOL/MILL,10.00, 0.00, 5.00, 0.00)\n{TWO_PASSES}");
+    let (_, file) = program("cam.nc", &text);
+    let o = two_passes(&file, &[]);
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    let t = out(&o);
+    assert!(t.contains("tools      T1 10 mm flat end mill"), "{t}");
+    assert!(
+        t.contains(&format!(
+            "{file}:9:4: holder_into_stock: the shank runs 1.000 mm"
+        )),
+        "{t}"
+    );
+    assert!(!err(&o).contains("not described"), "{}", err(&o));
+}

@@ -18,9 +18,9 @@
 //! as UTF-8 by the page. Every string in the JSON escapes `<`, so the data
 //! cannot end its script element either.
 //!
-//! Hook for the material-removal simulation: [`Page::meshes`] takes
-//! triangle meshes (the stock, the finished part) in machine coordinates;
-//! each gets a toggle in the page and is drawn shaded under the path.
+//! [`Page::meshes`] takes triangle meshes (`vcnc plot --stock`: the
+//! simulated stock and finished part) in machine coordinates; each gets a
+//! toggle in the page and is drawn shaded under the path.
 
 use crate::collect::{ColorBy, FitTo, Plot};
 use crate::encode::{Columns, QUANTUM_FEED, QUANTUM_MM, QUANTUM_S, deflate, deltas, quanta, uvar};
@@ -128,8 +128,8 @@ pub struct Page<'a> {
     pub sources: &'a [Source],
     /// The tools' shapes and sizes, for the tool marker.
     pub tools: Option<&'a ToolLibrary>,
-    /// Meshes to show (none until the material-removal simulation gives
-    /// them).
+    /// Meshes to show (`vcnc plot --stock`: the simulated stock and
+    /// finished part).
     pub meshes: &'a [Mesh],
 }
 

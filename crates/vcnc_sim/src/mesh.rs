@@ -20,8 +20,11 @@
 //! enough to write by hand (80-byte header, count, 50 bytes a triangle);
 //! a crate would add a dependency for twenty lines.
 
-use crate::lathe::Section;
+use crate::lathe::{Contour, Section};
+use crate::sim::Part;
 use crate::zmap::ZMap;
+use std::collections::HashMap;
+use std::f64::consts::PI;
 use std::f64::consts::TAU;
 use std::io::{self, Write};
 
@@ -159,7 +162,18 @@ pub fn revolve(s: &Section, emit: &mut dyn FnMut(Triangle)) {
         let r = p[1].max(0.0);
         [r * t.cos(), r * t.sin(), p[0] - s.origin_z]
     };
-    for c in s.shapes.iter().flatten() {
+    sweep(&s.shapes, REVOLVE_STEPS, &ring, emit);
+}
+
+/// Sweeps every contour edge of `shapes` through `steps` steps of `ring`
+/// (a point of the section and a step → the point in space).
+fn sweep(
+    shapes: &[Vec<Contour>],
+    steps: usize,
+    ring: &dyn Fn([f64; 2], usize) -> [f64; 3],
+    emit: &mut dyn FnMut(Triangle),
+) {
+    for c in shapes.iter().flatten() {
         // Material lies left of every contour (outer ones run
         // counter-clockwise, holes clockwise), so one winding faces out.
         for (n, p) in c.iter().enumerate() {
@@ -168,7 +182,7 @@ pub fn revolve(s: &Section, emit: &mut dyn FnMut(Triangle)) {
             if on_axis(p) && on_axis(q) {
                 continue;
             }
-            for k in 0..REVOLVE_STEPS {
+            for k in 0..steps {
                 let (p0, p1, q0, q1) = (ring(p, k), ring(p, k + 1), ring(q, k), ring(q, k + 1));
                 if !on_axis(q) {
                     emit([p0, q0, q1]);
@@ -178,6 +192,86 @@ pub fn revolve(s: &Section, emit: &mut dyn FnMut(Triangle)) {
                 }
             }
         }
+    }
+}
+
+/// Most cells of a milled part's mesh in a viewer page: 256 × 256, each
+/// the mean of its fine cells, about a megabyte of page.
+pub const VIEW_MESH_CELLS: usize = 1 << 16;
+
+/// Steps of a turned part's half revolution in a viewer page.
+pub const VIEW_REVOLVE_STEPS: usize = 48;
+
+/// A triangle mesh with shared vertices: what a viewer page carries.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Indexed {
+    /// Vertices, X Y Z.
+    pub positions: Vec<[f64; 3]>,
+    /// Triangles as indices into `positions`, counter-clockwise seen from
+    /// outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Indexed {
+    /// Welds `triangles` into shared vertices (equal bit for bit: the
+    /// meshes here compute each vertex once per use the same way).
+    pub fn of(triangles: Triangles<'_>) -> Indexed {
+        let mut m = Indexed::default();
+        let mut seen: HashMap<[u64; 3], u32> = HashMap::new();
+        triangles(&mut |t| {
+            let mut tri = [0u32; 3];
+            for (slot, v) in tri.iter_mut().zip(t) {
+                let key = v.map(|c| (c + 0.0).to_bits());
+                *slot = *seen.entry(key).or_insert_with(|| {
+                    m.positions.push(v);
+                    u32::try_from(m.positions.len() - 1).unwrap_or(u32::MAX)
+                });
+            }
+            m.triangles.push(tri);
+        });
+        m
+    }
+}
+
+/// The stock and the finished part, for a viewer: machine coordinates of
+/// the tool's tip (where the path's tool marker puts its tip), a milled
+/// part averaged to at most [`VIEW_MESH_CELLS`] cells, a turned one
+/// revolved over the half X ≥ the spindle axis (the side the lathe's
+/// section view shows) in [`VIEW_REVOLVE_STEPS`] steps. `None` when
+/// nothing was simulated.
+pub fn stock_and_part(part: &Part) -> Option<(Indexed, Indexed)> {
+    match part {
+        Part::Mill(map, _) => {
+            let field = HeightField::of(map, [0.0; 3], VIEW_MESH_CELLS);
+            let block = HeightField {
+                x0: field.x0,
+                y0: field.y0,
+                xs: vec![(field.x0 + field.x1) / 2.0],
+                ys: vec![(field.y0 + field.y1) / 2.0],
+                x1: field.x1,
+                y1: field.y1,
+                h: vec![map.top],
+                bottom: field.bottom,
+            };
+            Some((
+                Indexed::of(&|emit| block.triangles(emit)),
+                Indexed::of(&|emit| field.triangles(emit)),
+            ))
+        }
+        Part::Lathe(s) => {
+            let ring = |p: [f64; 2], k: usize| {
+                let t = PI * (k as f64 / VIEW_REVOLVE_STEPS as f64 - 0.5);
+                let r = p[1].max(0.0);
+                [s.axis_x + r * t.cos(), r * t.sin(), p[0]]
+            };
+            let (z0, r0, z1, r1) = s.stock_box;
+            let bar = [vec![vec![[z0, r0], [z1, r0], [z1, r1], [z0, r1]]]];
+            Some((
+                Indexed::of(&|emit| sweep(&bar, VIEW_REVOLVE_STEPS, &ring, emit)),
+                Indexed::of(&|emit| sweep(&s.shapes, VIEW_REVOLVE_STEPS, &ring, emit)),
+            ))
+        }
+        Part::Empty => None,
     }
 }
 

@@ -267,15 +267,15 @@ impl Mill {
             );
         }
         if h.shank_mm > 0.0 || h.holder_mm > 0.0 {
-            let (what, by) = if h.holder_mm > 0.0 {
-                ("holder", h.holder_mm)
+            let (what, by, reach) = if h.holder_mm > 0.0 {
+                ("holder", h.holder_mm, "the tool sticks out of its holder")
             } else {
-                ("shank", h.shank_mm)
+                ("shank", h.shank_mm, "the flutes reach")
             };
             collide(
                 CollisionKind::HolderIntoStock,
                 format!(
-                    "the {what} runs {by:.3} mm into the stock (the cut is deeper than the flutes reach)"
+                    "the {what} runs {by:.3} mm into the stock (the cut is deeper than {reach})"
                 ),
                 end,
             );

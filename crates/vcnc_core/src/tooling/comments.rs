@@ -91,7 +91,12 @@ impl Scan {
         if !code.trim().is_empty() {
             self.list = List::None;
         }
-        if let (Some(t), Some((found, at))) = (t_word, self.pending.take()) {
+        // A `TOOL/MILL` waits for the next T word, however many lines of
+        // code come between (a post may write G21, a G28 or a spindle
+        // stop before the tool change).
+        if let Some(t) = t_word
+            && let Some((found, at)) = self.pending.take()
+        {
             self.add(
                 Found {
                     number: Some(t),

@@ -19,7 +19,9 @@
 //! reads tables in inches, which is why the fixture generators scale theirs.
 //!
 //! CSV: a header line naming the columns — `tool` and `diameter` required,
-//! `corner_radius`, `length`, `flute_length`, `holder_diameter` and `units`
+//! `corner_radius`, `length`, `flute_length`, `shank_diameter`,
+//! `holder_diameter`, `stickout` (the tip to the holder's face: the
+//! simulation's holder check needs it with `holder_diameter`) and `units`
 //! (`mm` or `in`, per row, default mm) optional, in any order — then one
 //! tool per line. An empty cell is a figure not known. `#` starts a comment
 //! line. The corner radius gives the shape: 0 a flat end mill, half the
@@ -259,9 +261,9 @@ impl Reader<'_> {
             kind,
             diameter_mm,
             flute_length_mm: sizes.flute_length_mm,
-            shank_diameter_mm: None,
+            shank_diameter_mm: sizes.shank_diameter_mm,
             holder_diameter_mm: sizes.holder_diameter_mm,
-            stickout_mm: None,
+            stickout_mm: sizes.stickout_mm,
             length_mm: sizes.length_mm,
             center_cutting: None,
             description: description.chars().take(200).collect(),
@@ -283,28 +285,34 @@ enum Column {
     CornerRadius,
     Length,
     FluteLength,
+    ShankDiameter,
     HolderDiameter,
+    Stickout,
     Units,
 }
 
-const COLUMNS: [(&str, Column); 7] = [
+const COLUMNS: [(&str, Column); 9] = [
     ("tool", Column::Tool),
     ("diameter", Column::Diameter),
     ("corner_radius", Column::CornerRadius),
     ("length", Column::Length),
     ("flute_length", Column::FluteLength),
+    ("shank_diameter", Column::ShankDiameter),
     ("holder_diameter", Column::HolderDiameter),
+    ("stickout", Column::Stickout),
     ("units", Column::Units),
 ];
 
-const CSV_HELP: &str = "the header is `tool,diameter,corner_radius,length,flute_length,holder_diameter[,units]` (tool and diameter required), then one tool a line";
+const CSV_HELP: &str = "the header is `tool,diameter,corner_radius,length,flute_length,holder_diameter[,shank_diameter,stickout,units]` (tool and diameter required), then one tool a line";
 
 /// The sizes a CSV row gives besides the diameter, mm.
 #[derive(Debug, Clone, Copy, Default)]
 struct CsvSizes {
     length_mm: Option<f64>,
     flute_length_mm: Option<f64>,
+    shank_diameter_mm: Option<f64>,
     holder_diameter_mm: Option<f64>,
+    stickout_mm: Option<f64>,
 }
 
 impl Reader<'_> {
@@ -415,7 +423,9 @@ impl Reader<'_> {
         let sizes = CsvSizes {
             length_mm: length(Column::Length, "length")?,
             flute_length_mm: length(Column::FluteLength, "flute_length")?,
+            shank_diameter_mm: length(Column::ShankDiameter, "shank_diameter")?,
             holder_diameter_mm: length(Column::HolderDiameter, "holder_diameter")?,
+            stickout_mm: length(Column::Stickout, "stickout")?,
         };
         let kind = if corner <= 0.0 {
             ToolKind::Flat

@@ -152,6 +152,24 @@ fn csv_columns_come_in_any_order_and_units_is_optional() {
     assert!(close(tool(&lib, 4).diameter_mm, 8.0));
 }
 
+#[test]
+fn csv_shank_and_stickout_columns_give_the_holder_its_place() {
+    let lib = read_table(
+        "tool,diameter,flute_length,shank_diameter,holder_diameter,stickout,units\n\
+         1,10,5,8,30,25,mm\n2,0.25,1,,1.5,,in\n",
+        "t.csv",
+    )
+    .unwrap();
+    let t1 = tool(&lib, 1);
+    assert_eq!(
+        (t1.shank_diameter_mm, t1.holder_diameter_mm, t1.stickout_mm),
+        (Some(8.0), Some(30.0), Some(25.0))
+    );
+    let t2 = tool(&lib, 2);
+    assert!(close(t2.holder_diameter_mm.unwrap(), 38.1));
+    assert_eq!((t2.shank_diameter_mm, t2.stickout_mm), (None, None));
+}
+
 // --- malformed tables: file, line, what --------------------------------------
 
 #[test]
@@ -298,6 +316,18 @@ fn solidcam_vectric_estlcam_and_carbide_create() {
         }
     );
     assert!(close(t390.diameter_mm, 20.03));
+}
+
+#[test]
+fn a_cutviewer_line_waits_for_the_tool_change_past_other_code() {
+    // Regression: any line of code after `TOOL/MILL` used to drop it, so
+    // a header that sets G21 before `M6T1` described no tool.
+    let text = "(TOOL/MILL,10.00, 0.00, 5.00, 0.00)\nG21 G90 G17\nG28 G91 Z0\nM06 T1\nM30\n";
+    let lib = from_comments(text);
+    let t1 = tool(&lib, 1);
+    assert!(close(t1.diameter_mm, 10.0));
+    assert_eq!(t1.flute_length_mm, Some(5.0));
+    assert_eq!(comment_post(t1), ("cutviewer", 1));
 }
 
 #[test]
