@@ -308,6 +308,23 @@ fn the_page_checks_times_and_draws_as_you_type() {
     );
     shot(&b, "6-endless");
 
+    // A worker that traps (a Rust panic) is replaced, the page says so,
+    // and the next edit is checked by the new one.
+    b.js("vcncApp.engine.request('trap', '', null).catch(() => {}); return 0;");
+    wait_for(
+        &b,
+        "vcncApp.restarts() === 1 && !document.getElementById('banner').hidden \
+         && document.getElementById('banner').textContent.includes('restarted')",
+        "the trapped worker is replaced and the page says so",
+    );
+    shot(&b, "6b-worker-restarted");
+    set_text(&b, "G00 X1.\nG01 X2. F100.\nM30\n");
+    assert_eq!(
+        b.js("return document.getElementById('banner').hidden;"),
+        json!(true),
+        "the next check clears the message"
+    );
+
     // A link carries the program and its dialect.
     let program = "G90 G00 X5. Y5.\nG01 X15. F300.\nM30\n";
     set_text(&b, program);

@@ -59,3 +59,11 @@ pub fn detect(text: &str, file_name: Option<String>) -> Result<JsValue, JsValue>
 pub fn dialects() -> Result<JsValue, JsValue> {
     out(Ok(crate::dialects()))
 }
+
+/// Panics, for the page's test of a worker that traps: a panic in wasm32
+/// is a trap the worker cannot recover from, and the page must replace
+/// the worker and say so (crates/vcnc/tests/web.rs).
+#[wasm_bindgen]
+pub fn trap_for_tests() {
+    panic!("trap_for_tests: a deliberate panic");
+}
