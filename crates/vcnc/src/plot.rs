@@ -30,7 +30,7 @@ use vcnc_core::ToolLibrary;
 use vcnc_core::display::{DisplayUnits, duration};
 use vcnc_interp::{Event, Interpreter, Machine, Outcome, Sink};
 use vcnc_output::Summary;
-use vcnc_planner::{AxesMove, CycleTime, Pause, Planner, Profile, Segment, Timeline};
+use vcnc_planner::{Blocks, Numbered, Planner, Stamps};
 use vcnc_plot::{
     Clock, ColorBy, FitTo, Legend, Look, Page, Plot, PlotOptions, PlotSink, Projection, Source,
     Space, Theme, View,
@@ -166,35 +166,6 @@ const MAX_SOURCE_BYTES: u64 = 64 << 20;
 /// What the page's times are.
 const TIME_LABEL: &str = "planned";
 
-/// Numbers the blocks as events arrive: a new number whenever the source
-/// line or file changes. The plot's clock and the planner's feed count
-/// alike, so that a vertex's stamp names the block the planner timed.
-#[derive(Debug, Default)]
-struct Blocks {
-    n: u64,
-    last: Option<(u64, Option<Arc<str>>)>,
-}
-
-impl Blocks {
-    fn see(&mut self, event: &Event) -> u64 {
-        if let Some(loc) = event.loc() {
-            let same = self.last.as_ref().is_some_and(|(line, file)| {
-                *line == loc.line
-                    && match (file, &loc.file) {
-                        (Some(a), Some(b)) => Arc::ptr_eq(a, b) || a == b,
-                        (None, None) => true,
-                        _ => false,
-                    }
-            });
-            if !same {
-                self.n += 1;
-                self.last = Some((loc.line, loc.file.clone()));
-            }
-        }
-        self.n
-    }
-}
-
 /// The plot's clock: the check summary (for the legend) and the block
 /// number as the stamp.
 struct BlockClock {
@@ -213,106 +184,8 @@ impl Clock for BlockClock {
     fn now(&self) -> f64 {
         // Block counts are far below 2^53: exact.
         #[allow(clippy::cast_precision_loss)]
-        let n = self.blocks.n as f64;
+        let n = self.blocks.count() as f64;
         n
-    }
-}
-
-/// Feeds `inner` (the planner) the events with their block number in
-/// place of the line.
-struct Numbered<S> {
-    inner: S,
-    blocks: Blocks,
-}
-
-impl<S: Sink> Sink for Numbered<S> {
-    fn event(&mut self, event: &Event) {
-        let n = self.blocks.see(event);
-        let mut e = event.clone();
-        if let Some(loc) = e.loc_mut() {
-            loc.line = n;
-        }
-        self.inner.event(&e);
-    }
-    fn is_done(&self) -> bool {
-        self.inner.is_done()
-    }
-    fn finish(&mut self) -> std::io::Result<()> {
-        self.inner.finish()
-    }
-}
-
-/// Most blocks whose end time is kept (16 bytes each); past it every
-/// other one is dropped and the rest are interpolated.
-const MAX_STAMPS: usize = 1 << 18;
-
-/// The planned timeline summed up, and the time at the end of each block
-/// (the block number is the line `Numbered` gave it): exact up to
-/// `MAX_STAMPS` blocks, then for every second, fourth … block.
-#[derive(Debug, Default)]
-struct Stamps {
-    sum: CycleTime,
-    table: Vec<(u64, f64)>,
-    stride: u64,
-}
-
-impl Stamps {
-    fn mark(&mut self, block: u64) {
-        let t = self.sum.total_s;
-        match self.table.last_mut() {
-            Some(last) if last.0 == block => last.1 = t,
-            Some(last) if block < last.0 + self.stride.max(1) => {}
-            _ => {
-                self.table.push((block, t));
-                if self.table.len() >= MAX_STAMPS {
-                    let mut k = 0usize;
-                    self.table.retain(|_| {
-                        k += 1;
-                        k.is_multiple_of(2)
-                    });
-                    self.stride = self.stride.max(1) * 2;
-                }
-            }
-        }
-    }
-
-    /// The planned time at the end of block `stamp` (interpolated between
-    /// the blocks kept around it).
-    fn time_of(&self, stamp: f64) -> f64 {
-        let i = self.table.partition_point(|(b, _)| (*b as f64) < stamp);
-        let Some(&(b1, t1)) = self.table.get(i) else {
-            return self.sum.total_s;
-        };
-        let (b0, t0) = i
-            .checked_sub(1)
-            .and_then(|j| self.table.get(j))
-            .copied()
-            .unwrap_or((0, 0.0));
-        let (b0, b1) = (b0 as f64, b1 as f64);
-        if b1 <= b0 || stamp >= b1 {
-            t1
-        } else {
-            t0 + (t1 - t0) * (stamp - b0).max(0.0) / (b1 - b0)
-        }
-    }
-}
-
-impl Timeline for Stamps {
-    fn segment(&mut self, seg: &Segment, profile: &Profile) {
-        self.sum.segment(seg, profile);
-        self.mark(seg.attr.line);
-    }
-    fn axes(&mut self, mv: &AxesMove) {
-        self.sum.axes(mv);
-        self.mark(mv.attr.line);
-    }
-    fn pause(&mut self, p: &Pause) {
-        self.sum.pause(p);
-        self.mark(p.attr.line);
-    }
-    fn untimed(&mut self, from: vcnc_interp::Pos, to: vcnc_interp::Pos, attr: &vcnc_planner::Attr) {
-        self.sum.untimed(from, to, attr);
-        self.mark(attr.line);
     }
 }
 
@@ -921,67 +794,6 @@ fn count_lines(path: &Path) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vcnc_interp::Loc;
-
-    fn at_line(line: u64, file: Option<&Arc<str>>) -> Event {
-        Event::Dwell {
-            loc: Loc {
-                line,
-                file: file.cloned(),
-            },
-            seconds: 1.0,
-        }
-    }
-
-    #[test]
-    fn blocks_are_numbered_by_a_change_of_line_or_file() {
-        let sub: Arc<str> = Arc::from("O0010");
-        let mut b = Blocks::default();
-        let seen: Vec<u64> = [
-            at_line(5, None),
-            at_line(5, None),
-            at_line(6, None),
-            at_line(6, Some(&sub)),
-            at_line(6, Some(&Arc::from("O0010"))),
-            at_line(5, None),
-        ]
-        .iter()
-        .map(|e| b.see(e))
-        .collect();
-        assert_eq!(seen, vec![1, 1, 2, 3, 3, 4]);
-    }
-
-    #[test]
-    fn stamps_give_each_block_its_end_time_exactly_then_within_a_stride() {
-        // Odd blocks take 1 s, even blocks 2 s: block b ends at
-        // b + ⌊b/2⌋ seconds.
-        let end = |b: u64| (b + b / 2) as f64;
-        let mut s = Stamps::default();
-        let few = 1000u64;
-        for b in 1..=few {
-            s.sum.total_s = end(b);
-            s.mark(b);
-        }
-        for b in [1, 2, 3, 500, 999, 1000] {
-            assert_eq!(s.time_of(b as f64), end(b));
-        }
-        assert_eq!(s.time_of(0.0), 0.0);
-        // Past MAX_STAMPS blocks every other one is dropped: the kept ones
-        // stay exact and the others are interpolated within a block's time.
-        let many = 3 * MAX_STAMPS as u64;
-        for b in few + 1..=many {
-            s.sum.total_s = end(b);
-            s.mark(b);
-        }
-        assert!(s.table.len() < MAX_STAMPS);
-        assert!(s.stride >= 4, "{}", s.stride);
-        let mut worst = 0.0f64;
-        for b in (1..=many).step_by(997) {
-            worst = worst.max((s.time_of(b as f64) - end(b)).abs());
-        }
-        assert!(worst <= 1.0, "{worst}");
-        assert_eq!(s.time_of(many as f64 + 5.0), end(many));
-    }
 
     #[test]
     fn without_output_the_page_is_named_after_the_program_here() {

@@ -8,6 +8,7 @@
 //!
 //! ```text
 //! events ─▶ Planner (Sink) ─▶ Timeline ─┬─▶ CycleTime   (vcnc time, check)
+//!                                        ├─▶ Stamps     (a page's times per block)
 //!                                        └─▶ Sampler ─▶ Smoothed (run --format trace;
 //!                                                           the filter profile's average)
 //! ```
@@ -17,6 +18,7 @@ mod path;
 mod planner;
 mod ramp;
 mod ring;
+mod stamps;
 mod time;
 mod timeline;
 mod trace;
@@ -25,6 +27,7 @@ pub use limits::{ARC_NORMAL_SHARE, ARC_TANGENT_SHARE, AxisLimits, corner_speed};
 pub use path::{Path, Shape, Vector};
 pub use planner::{Planner, filter_time};
 pub use ramp::{Kin, Profile, Ramp};
+pub use stamps::{Blocks, MAX_STAMPS, Numbered, Stamps};
 pub use time::CycleTime;
 pub use timeline::{Attr, AxesMove, MoveKind, Pause, PauseKind, Segment, Timeline};
 pub use trace::{MAX_FILTER_SAMPLES, Sample, SampleSink, Sampler, Smoothed, filter_samples};

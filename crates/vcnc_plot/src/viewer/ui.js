@@ -67,11 +67,22 @@ function highlight(file, line) {
   renderLines();
 }
 // A selected line: lit in the text and its segments lit in the view.
-function selectLine(file, line) {
+// Embedded in the web app (docs/web.md), the page tells the app which
+// line a click selected, and the app selects lines from its editor
+// (`quiet`: the app asked, so it is not told back).
+const embedded = window.parent !== window;
+function selectLine(file, line, quiet) {
   showFile(file);
   setSelection(line > 0 ? { file, line } : null);
   scrollTo(line);
   renderLines();
+  if (embedded && !quiet) window.parent.postMessage({ vcnc: "selected", file, line }, "*");
+}
+if (embedded) {
+  window.addEventListener("message", (e) => {
+    const m = e.data;
+    if (e.source === window.parent && m && m.vcnc === "select") selectLine(m.file | 0, m.line | 0, true);
+  });
 }
 pane.addEventListener("scroll", () => requestAnimationFrame(renderLines));
 lines.addEventListener("click", (e) => {

@@ -1,0 +1,69 @@
+//! The wasm-bindgen surface of the engine (wasm32 only): each function
+//! takes the program text and the settings as a JS object
+//! (`{dialect, file_name, machine, tools, tools_name, block_delete,
+//! optional_stop}`, every key optional) and returns a JS object made by
+//! serde-wasm-bindgen from the structs of `check.rs`, or throws a string
+//! that says what is wrong with the settings.
+
+use crate::Settings;
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+fn settings(v: JsValue) -> Result<Settings, JsValue> {
+    if v.is_undefined() || v.is_null() {
+        return Ok(Settings::default());
+    }
+    serde_wasm_bindgen::from_value(v).map_err(|e| JsValue::from_str(&format!("settings: {e}")))
+}
+
+fn out<T: Serialize>(r: Result<T, String>) -> Result<JsValue, JsValue> {
+    let v = r.map_err(|e| JsValue::from_str(&e))?;
+    // Maps as plain objects, so `extents.min.x` reads as in JSON.
+    let ser = serde_wasm_bindgen::Serializer::json_compatible();
+    v.serialize(&ser)
+        .map_err(|e| JsValue::from_str(&format!("result: {e}")))
+}
+
+/// Diagnostics, summary and (with `page`) the viewer page of `text`.
+#[wasm_bindgen]
+pub fn check(text: &str, settings_js: JsValue, page: bool) -> Result<JsValue, JsValue> {
+    out(crate::check(text, &settings(settings_js)?, page))
+}
+
+/// The planned time and its split (`vcnc time`).
+#[wasm_bindgen]
+pub fn time(text: &str, settings_js: JsValue) -> Result<JsValue, JsValue> {
+    out(crate::time(text, &settings(settings_js)?))
+}
+
+/// The flattened program (`vcnc run --format gcode`).
+#[wasm_bindgen]
+pub fn flatten(text: &str, settings_js: JsValue) -> Result<JsValue, JsValue> {
+    out(crate::flatten(text, &settings(settings_js)?))
+}
+
+/// The events (`vcnc run --format jsonl`), as objects.
+#[wasm_bindgen]
+pub fn events(text: &str, settings_js: JsValue) -> Result<JsValue, JsValue> {
+    out(crate::events(text, &settings(settings_js)?))
+}
+
+/// The dialect detection picks for `text`, with its evidence.
+#[wasm_bindgen]
+pub fn detect(text: &str, file_name: Option<String>) -> Result<JsValue, JsValue> {
+    out(Ok(crate::detect(text, file_name.as_deref())))
+}
+
+/// The dialect names besides auto.
+#[wasm_bindgen]
+pub fn dialects() -> Result<JsValue, JsValue> {
+    out(Ok(crate::dialects()))
+}
+
+/// Panics, for the page's test of a worker that traps: a panic in wasm32
+/// is a trap the worker cannot recover from, and the page must replace
+/// the worker and say so (crates/vcnc/tests/web.rs).
+#[wasm_bindgen]
+pub fn trap_for_tests() {
+    panic!("trap_for_tests: a deliberate panic");
+}

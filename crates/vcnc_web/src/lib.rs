@@ -1,0 +1,33 @@
+//! vcnc in the browser (`docs/web.md`): the engine of the offline page
+//! `tools/build-web.sh` writes, over the same crates as the CLI. Each call
+//! takes a program text and [`Settings`] (dialect or auto, a machine file's
+//! text, a tool table's text) and returns plain data that serde hands to
+//! JavaScript as objects (`bindings.rs`, compiled for wasm32 only); natively
+//! the same functions are the tests' and the benchmark's API.
+//!
+//! ```text
+//!   text + Settings ─▶ setup (detect or the named dialect, machine TOML
+//!                      or grbl $$, the tool table into the registers)
+//!     ─▶ check:   keep-going run ─┬─▶ PlotSink (clock: Summary + Blocks) ─▶ viewer page
+//!                                 └─▶ Numbered ─▶ Planner ─▶ Stamps (planned time, retime)
+//!                 ─▶ Checked: diagnostics at UTF-16 columns, summary, page
+//!     ─▶ time:    Planner ─▶ CycleTime      (as `vcnc time`)
+//!     ─▶ flatten: GcodeSink with markers    (as `vcnc run --format gcode`)
+//!     ─▶ events:  write_event per event     (as `vcnc run --format jsonl`)
+//! ```
+//!
+//! The page runs these in a Web Worker; a run ends by the interpreter's
+//! own limits (block budget, line length, call depth), so a runaway
+//! program ends with the CLI's located alarm.
+
+mod check;
+mod setup;
+
+#[cfg(target_arch = "wasm32")]
+mod bindings;
+
+pub use check::{
+    Checked, Diag, Events, Extents, Flattened, Summary, TimeSplit, ToolRow, check, events, flatten,
+    time,
+};
+pub use setup::{DialectChoice, Settings, Setup, detect, dialects};
