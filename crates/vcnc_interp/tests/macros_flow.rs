@@ -645,3 +645,45 @@ fn fanuc_lathe_runs_g65_and_while() {
     // Each call: in along Z at radius #24/2, then out to (#24 + 2)/2.
     assert_eq!(feeds, vec![20.0, 21.0, 18.0, 19.0, 16.0, 17.0]);
 }
+
+/// Fanuc's abbreviations of custom macro words (the first two letters):
+/// `WH[#1GT0]DO1` … `EN1` loops (regression: "END 1 has no DO 1"), AT, RO,
+/// SQ, GO, TH, and the operators XO, AN, MO.
+#[test]
+fn macro_b_words_abbreviated_to_two_letters() {
+    let p = "#1=3\n#5=0\nWH[#1GT0]DO1\n#5=#5+#1\n#1=#1-1\nEN1\n#2=AT[1]/[1]\n\
+             #3=RO[SQ[16.4]]\nIF[#2EQ45.]GO10\n#6=99\nN10 IF[#3NE4]TH#6=1\n\
+             IF[#3EQ4]TH#7=[6XO3]+[6AN3]+[7MO4]\nM30\n";
+    let r = run(
+        "fanuc",
+        p,
+        Store::default(),
+        &["#1", "#5", "#2", "#3", "#6", "#7"],
+    );
+    ended(&r);
+    // 3+2+1 = 6; ATAN 45°; ROUND(√16.4 = 4.05) = 4; GO10 skips #6=99 and
+    // #3 is 4 so TH#6 does not run; 6 XOR 3 = 5, 6 AND 3 = 2, 7 MOD 4 = 3.
+    assert_eq!(
+        r.values,
+        vec![
+            Some(0.0),
+            Some(6.0),
+            Some(45.0),
+            Some(4.0),
+            None,
+            Some(10.0)
+        ]
+    );
+}
+
+/// A line meant to open a loop that cannot be read is reported itself, not
+/// as a later "END 1 has no DO 1".
+#[test]
+fn an_unreadable_loop_head_is_reported_at_its_line() {
+    let p = "#1=3\nWX[#1GT0]DO1\n#1=#1-1\nEND1\nM30\n";
+    let r = run("fanuc", p, Store::default(), &[]);
+    let Outcome::Alarm(d) = &r.outcome else {
+        panic!("no alarm: {:?}", r.outcome)
+    };
+    assert_eq!(d.line, 2, "{d:?}");
+}
