@@ -247,6 +247,22 @@ fn g65_values_without_a_point_are_least_increments_on_fanuc() {
     assert_eq!(r.values, vec![Some(0.01), Some(7.0), Some(100.0)]);
 }
 
+/// Per address: E is no length on a Fanuc mill, so `E41` passes 41 and a
+/// macro's `G#8` is G41 (regression: it read 0.041 and stopped at G0.041);
+/// Q and R are lengths, A an angle.
+#[test]
+fn g65_argument_units_follow_each_address() {
+    let sub = "O9000\n#100 = #8\n#101 = #17\n#102 = #18\n#103 = #1\nG#8 D1\nG40\nM99\n";
+    let r = run(
+        "fanuc",
+        "G65 P9000 E41 Q2500 R500 A90000\nM30\n",
+        Store::default().with(9000, sub),
+        &["#100", "#101", "#102", "#103"],
+    );
+    ended(&r);
+    assert_eq!(r.values, vec![Some(41.0), Some(2.5), Some(0.5), Some(90.0)]);
+}
+
 #[test]
 fn locals_per_level_g65_isolates_m98_shares() {
     // G65: the callee's #1 is its A; the caller's #1 stays 100.
