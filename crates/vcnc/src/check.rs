@@ -95,11 +95,6 @@ impl Checked {
 pub fn check(args: &CheckArgs) -> Result<ExitCode, String> {
     let choice = Choice::new(&args.opts)?;
     let (inputs, single_file) = files::inputs(&args.paths)?;
-    if args.opts.variables.is_some() && inputs.len() > 1 {
-        return Err(
-            "--variables keeps the variables of one program: check one program at a time".into(),
-        );
-    }
     if single_file
         && args.format == CheckFormat::Text
         && let Some(input) = inputs.first()
@@ -191,6 +186,23 @@ fn check_all(
         .build()
         .map_err(|e| format!("cannot start threads: {e}"))?;
     let progress = Progress::new(inputs.len());
+    if args.opts.variables.is_some() {
+        // One variable memory, as on the control: the programs run one
+        // after the other in input order, each reading the kept variables
+        // the one before wrote (never two writers of the file at once).
+        let results = inputs
+            .into_iter()
+            .map(|input| {
+                let run = choice
+                    .setup(&input)
+                    .and_then(|s| check_one(args, &s, &input));
+                progress.tick();
+                Checked { input, run }
+            })
+            .collect();
+        progress.done();
+        return Ok(results);
+    }
     let results = pool.install(|| {
         inputs
             .into_par_iter()

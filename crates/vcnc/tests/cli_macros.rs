@@ -137,6 +137,39 @@ fn kept_variables_survive_between_runs_in_a_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `check DIR --variables F` runs the programs in order with one variable
+/// memory: the second program reads what the first kept.
+#[test]
+fn a_batch_check_with_a_variables_file_runs_in_order_with_one_memory() {
+    let dir = std::env::temp_dir().join(format!("vcnc-vars-batch-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let programs = dir.join("programs");
+    std::fs::create_dir_all(&programs).unwrap();
+    // In name order: a sets the counter, b doubles it, c adds one. Run in
+    // parallel or out of order, the result would differ from 11.
+    std::fs::write(programs.join("a.nc"), "#500 = 5\nM30\n").unwrap();
+    std::fs::write(programs.join("b.nc"), "#500 = #500 * 2\nM30\n").unwrap();
+    std::fs::write(programs.join("c.nc"), "#500 = #500 + 1\n#501 = #500\nM30\n").unwrap();
+    let vars = dir.join("vars.txt");
+    let (p, v) = (programs.display().to_string(), vars.display().to_string());
+    let out = vcnc(
+        &["check", "--dialect", "fanuc", "--variables", &v, &p],
+        None,
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert_eq!(
+        std::fs::read_to_string(&vars).unwrap(),
+        "// vcnc kept macro variables (--variables)\n#500 = 11.0\n#501 = 11.0\n"
+    );
+    // Nothing but the variables file is left beside it (no temporary file).
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A variables file that cannot be written after the run is an error (2),
 /// but what the run wrote stays written: the CSV and G-code sinks are
 /// flushed as when no variables file is given, also now that they run on

@@ -530,6 +530,12 @@ impl Interpreter<'_> {
             self.state.s_value = self.state.rpm;
         }
         let m = w.m_of(MGroup::Spindle);
+        if m.is_some_and(|a| a.def.op == MOp::RigidTap) {
+            // M29 S: the speed waits for the tapping cycle, which turns
+            // the spindle itself (Fanuc rigid tapping).
+            self.state.rigid_tap = true;
+            return Ok(());
+        }
         let dir = match m.map(|a| a.def.op) {
             Some(MOp::SpindleCw) => SpindleDir::Cw,
             Some(MOp::SpindleCcw) => SpindleDir::Ccw,
@@ -826,6 +832,7 @@ impl Interpreter<'_> {
             | MOp::SpindleCcw
             | MOp::SpindleStop
             | MOp::SpindleOrient
+            | MOp::RigidTap
             | MOp::ToolChange
             | MOp::CoolantOn
             | MOp::CoolantOff => {}
@@ -893,6 +900,7 @@ impl Interpreter<'_> {
             | MOp::SpindleCcw
             | MOp::SpindleStop
             | MOp::SpindleOrient
+            | MOp::RigidTap
             | MOp::ToolChange
             | MOp::CoolantOn
             | MOp::CoolantOff => Ok(None),

@@ -151,6 +151,10 @@ impl Interpreter<'_> {
             self.state.cycle.code = Some(c);
             self.state.cycle.hole = hole;
         } else if motion || code.is_some() {
+            // Rigid tapping (M29) ends with the cycle mode it was for.
+            if self.state.cycle.code.is_some() {
+                self.state.rigid_tap = false;
+            }
             self.state.cycle = CycleData::OFF;
         }
         Ok(())
@@ -455,6 +459,10 @@ impl Interpreter<'_> {
             Hole::LeftTap => Some(Some(SpindleDir::Ccw)),
             _ => None,
         };
+        if self.state.rigid_tap && self.state.s_value > 0.0 && wanted.is_some() {
+            // M29: the cycle turns the spindle itself.
+            return Ok(());
+        }
         if let Some(dir) = wanted
             && (!turning || dir.is_some_and(|d| d != self.state.spindle))
         {
@@ -651,7 +659,14 @@ impl Interpreter<'_> {
                     }
                     TapStyle::PeckByQ => {
                         let peck = data.q.filter(|q| *q > 0.0 && hole == Hole::Tap);
-                        self.tap(&mut s, (fwd, rev), (zr, zz), peck, dwell, feed)?;
+                        // Rigid tapping (M29) turns a stopped spindle for
+                        // the tap and stops it again at R.
+                        let started = self.rigid_start(fwd);
+                        let end = started.map_or(fwd, |(dir, _)| dir);
+                        self.tap(&mut s, (fwd, rev, end), (zr, zz), peck, dwell, feed)?;
+                        if let Some((_, rpm)) = started {
+                            self.state.rpm = rpm;
+                        }
                     }
                 }
             }
@@ -662,7 +677,7 @@ impl Interpreter<'_> {
                 } else {
                     SpindleDir::Ccw
                 };
-                self.tap(&mut s, (fwd, rev), (zr, zz), None, None, feed)?;
+                self.tap(&mut s, (fwd, rev, fwd), (zr, zz), None, None, feed)?;
             }
             Hole::Bore => {
                 s.feed(self, zz, feed)?;
@@ -789,13 +804,26 @@ impl Interpreter<'_> {
         }
     }
 
+    /// Under M29 with the spindle not already turning `fwd`: turns it at
+    /// S for the tap and returns how it was, for after the hole.
+    fn rigid_start(&mut self, fwd: SpindleDir) -> Option<(SpindleDir, f64)> {
+        if !self.state.rigid_tap || (self.state.spindle == fwd && self.state.rpm > 0.0) {
+            return None;
+        }
+        let before = (self.state.spindle, self.state.rpm);
+        self.state.rpm = self.state.s_value;
+        self.cycle_spindle(fwd);
+        Some(before)
+    }
+
     /// G74/G84: in with the spindle forward, out reversed; with a peck
     /// depth, pecks (parameter 4001: type II backs off d, type III goes
-    /// back to R).
+    /// back to R). Back at R the spindle turns `end` (forward, or stopped
+    /// after a rigid tap that started it).
     fn tap(
         &mut self,
         s: &mut Steps<'_, '_>,
-        (fwd, rev): (SpindleDir, SpindleDir),
+        (fwd, rev, end): (SpindleDir, SpindleDir, SpindleDir),
         (zr, zz): (f64, f64),
         peck: Option<f64>,
         dwell: Option<f64>,
@@ -816,10 +844,11 @@ impl Interpreter<'_> {
             let out = if last || !type_two { zr } else { next + d };
             s.feed(self, out, feed)?;
             self.cycle_dwell(dwell);
-            self.cycle_spindle(fwd);
             if last {
+                self.cycle_spindle(end);
                 return Ok(());
             }
+            self.cycle_spindle(fwd);
             depth = next;
         }
     }

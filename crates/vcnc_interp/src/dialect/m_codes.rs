@@ -77,6 +77,9 @@ pub(crate) const MILL: &[&[MRow]] = &[
 ];
 
 /// grbl 1.1's M codes: no subprograms, M07 mist coolant.
+/// Fanuc's and Haas's M29 (rigid tapping mode, `M29 S…` before G84).
+pub(crate) const RIGID_TAP: &[MRow] = &[m(29, MOp::RigidTap)];
+
 pub(crate) const GRBL: &[&[MRow]] = &[PROGRAM_END, SPINDLE, TOOL_CHANGE, MIST, COOLANT];
 
 impl MOp {
@@ -91,9 +94,11 @@ impl MOp {
             | MOp::Call
             | MOp::Return
             | MOp::LocalCall => MGroup::Flow,
-            MOp::SpindleCw | MOp::SpindleCcw | MOp::SpindleStop | MOp::SpindleOrient => {
-                MGroup::Spindle
-            }
+            MOp::SpindleCw
+            | MOp::SpindleCcw
+            | MOp::SpindleStop
+            | MOp::SpindleOrient
+            | MOp::RigidTap => MGroup::Spindle,
             MOp::CoolantOn | MOp::CoolantOff => MGroup::Coolant,
             MOp::ToolChange => MGroup::Tool,
         }
@@ -117,6 +122,9 @@ impl MOp {
             MOp::Return => "end of subprogram: return to the caller (or to sequence P)",
             MOp::LocalCall => {
                 "local subprogram call: the blocks from sequence P of this program, L times"
+            }
+            MOp::RigidTap => {
+                "rigid tapping: the next G84/G74 taps at S with the spindle synchronized to the axis, no M03 needed (G80 ends it)"
             }
         }
     }

@@ -389,7 +389,12 @@ const FANUC_LEX: LexRules = LexRules {
 
 /// Fanuc 0i mill.
 pub(super) fn fanuc() -> Dialect {
-    let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, FANUC_G], m_codes::MILL);
+    let rows: Vec<&[MRow]> = m_codes::MILL
+        .iter()
+        .copied()
+        .chain([m_codes::RIGID_TAP])
+        .collect();
+    let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, FANUC_G], &rows);
     Dialect {
         lex: FANUC_LEX,
         g,
@@ -401,7 +406,11 @@ pub(super) fn fanuc() -> Dialect {
 /// Haas mills: Fanuc plus G187, M97 local subprograms, M16, G28 without
 /// axes homing every axis, and the Haas machine's M codes.
 pub(super) fn haas() -> Dialect {
-    let rows: Vec<&[MRow]> = m_codes::MILL.iter().copied().chain([HAAS_M]).collect();
+    let rows: Vec<&[MRow]> = m_codes::MILL
+        .iter()
+        .copied()
+        .chain([m_codes::RIGID_TAP, HAAS_M])
+        .collect();
     let (g, m) = Dialect::tables(&[MILL_G, FANUC_UNITS, FANUC_G, HAAS_G], &rows);
     Dialect {
         name: "haas",

@@ -139,6 +139,8 @@ pub enum MOp {
     Return,
     /// Haas M97: a subprogram at a sequence number of this program.
     LocalCall,
+    /// Fanuc/Haas M29: rigid tapping mode for the next G84/G74.
+    RigidTap,
 }
 
 /// M-code groups: two codes of one group in a block alarm (E206).

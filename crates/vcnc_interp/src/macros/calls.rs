@@ -38,8 +38,11 @@ const FANUC_ARGS: [u8; 26] = [
 ];
 
 /// Letters that pass a length or an angle (least increments without a
-/// decimal point on Fanuc).
-const LENGTH_ARGS: &[u8] = b"ABCEIJKQRUVWXYZ";
+/// decimal point on Fanuc): the axes, the arc centre offsets I J K, R and
+/// the peck depth Q. E is not among them: a Fanuc mill gives E no length
+/// (programs pass codes through it, `G65 P9000 E41` for a `G#8`), so it
+/// passes its number as written, like D, F, H, M, S, T.
+const LENGTH_ARGS: &[u8] = b"ABCIJKQRUVWXYZ";
 
 /// What a call runs.
 #[derive(Debug, Clone, PartialEq)]

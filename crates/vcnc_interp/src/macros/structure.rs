@@ -620,13 +620,15 @@ impl Interpreter<'_> {
             let bytes = s.reader.bytes(&line).to_vec();
             let bytes = bytes.as_slice();
             let mut i = std::mem::take(&mut col);
-            // Every loop statement holds a D (DO, END): other lines only
-            // matter when they end the program.
+            // Every loop statement holds a D (DO, END) or, abbreviated,
+            // EN (`EN1`): other lines only matter when they end the program.
             let boundary_like = bytes
                 .iter()
                 .find(|b| !b.is_ascii_whitespace())
                 .is_some_and(|b| matches!(b, b'%' | b'O' | b'o'));
-            if !boundary_like && !bytes.iter().any(|b| matches!(b, b'D' | b'd')) {
+            let loop_like = bytes.iter().any(|b| matches!(b, b'D' | b'd'))
+                || bytes.windows(2).any(|w| w.eq_ignore_ascii_case(b"EN"));
+            if !boundary_like && !loop_like {
                 seen |= bytes.iter().any(|b| !b.is_ascii_whitespace());
                 continue;
             }
@@ -670,7 +672,7 @@ impl Interpreter<'_> {
                                 i = next;
                             }
                             Ok(None) => break,
-                            Err(d) if loop_keyword(bytes, start) => {
+                            Err(d) if loop_keyword(bytes, start) || opens_loop(bytes, start) => {
                                 return Err(self.locate(d, src, &line));
                             }
                             Err(_) => break,
@@ -691,8 +693,27 @@ impl Interpreter<'_> {
     }
 }
 
+/// Whether the block at `start` holds `DO m` (a digit after DO, blanks
+/// between), after a `]`: an unreadable `WX[#1 GT 0] DO 1` meant to open a
+/// loop, so its own error is reported rather than "END 1 has no DO 1"
+/// later.
+fn opens_loop(bytes: &[u8], start: usize) -> bool {
+    let rest = bytes.get(start..).unwrap_or_default();
+    let Some(close) = rest.iter().rposition(|b| *b == b']') else {
+        return false;
+    };
+    let after = rest.get(close + 1..).unwrap_or_default();
+    let after: Vec<u8> = after
+        .iter()
+        .copied()
+        .filter(|b| !matches!(b, b' ' | b'\t'))
+        .collect();
+    after.len() >= 3 && after[..2].eq_ignore_ascii_case(b"DO") && after[2].is_ascii_digit()
+}
+
 /// Whether the block at `start` begins (after `/` and an N label) with
-/// WHILE, DO or END: its syntax error is reported by the scan.
+/// WHILE, DO or END (or Macro B's abbreviations WH, EN): its syntax error is
+/// reported by the scan.
 fn loop_keyword(bytes: &[u8], start: usize) -> bool {
     let mut i = start;
     let skip = |i: &mut usize, f: &dyn Fn(u8) -> bool| {
@@ -706,7 +727,7 @@ fn loop_keyword(bytes: &[u8], start: usize) -> bool {
         skip(&mut i, &|b| b.is_ascii_digit() || b == b' ' || b == b'\t');
     }
     let rest = bytes.get(i..).unwrap_or_default();
-    ["WHILE", "DO", "END"]
+    ["WHILE", "DO", "END", "WH", "EN"]
         .iter()
         .any(|k| rest.len() >= k.len() && rest[..k.len()].eq_ignore_ascii_case(k.as_bytes()))
 }

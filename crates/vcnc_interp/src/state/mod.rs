@@ -193,6 +193,10 @@ pub struct State {
     pub(crate) feed_factor: f64,
     /// G05 parameter set in force (0: off).
     pub(crate) high_speed_p: u32,
+    /// M29 rigid tapping mode: the next G84/G74 taps with the spindle
+    /// synchronized to the axis, started by the cycle itself; G80 or a
+    /// group-01 code ends it.
+    pub(crate) rigid_tap: bool,
     /// G05.1 path smoothing (Syntec 1.2.7).
     pub(crate) smoothing: crate::state::Smoothing,
     /// Fanuc lathe: turret offset, cycle data, a pending chamfer.
@@ -237,6 +241,7 @@ impl State {
             magnification_pct: 100.0,
             feed_factor: 1.0,
             high_speed_p: 0,
+            rigid_tap: false,
             smoothing: crate::state::Smoothing::OFF,
             lathe: crate::state::lathe::LatheData::power_on(machine),
         };

@@ -247,6 +247,22 @@ fn g65_values_without_a_point_are_least_increments_on_fanuc() {
     assert_eq!(r.values, vec![Some(0.01), Some(7.0), Some(100.0)]);
 }
 
+/// Per address: E is no length on a Fanuc mill, so `E41` passes 41 and a
+/// macro's `G#8` is G41 (regression: it read 0.041 and stopped at G0.041);
+/// Q and R are lengths, A an angle.
+#[test]
+fn g65_argument_units_follow_each_address() {
+    let sub = "O9000\n#100 = #8\n#101 = #17\n#102 = #18\n#103 = #1\nG#8 D1\nG40\nM99\n";
+    let r = run(
+        "fanuc",
+        "G65 P9000 E41 Q2500 R500 A90000\nM30\n",
+        Store::default().with(9000, sub),
+        &["#100", "#101", "#102", "#103"],
+    );
+    ended(&r);
+    assert_eq!(r.values, vec![Some(41.0), Some(2.5), Some(0.5), Some(90.0)]);
+}
+
 #[test]
 fn locals_per_level_g65_isolates_m98_shares() {
     // G65: the callee's #1 is its A; the caller's #1 stays 100.
@@ -644,4 +660,46 @@ fn fanuc_lathe_runs_g65_and_while() {
         .collect();
     // Each call: in along Z at radius #24/2, then out to (#24 + 2)/2.
     assert_eq!(feeds, vec![20.0, 21.0, 18.0, 19.0, 16.0, 17.0]);
+}
+
+/// Fanuc's abbreviations of custom macro words (the first two letters):
+/// `WH[#1GT0]DO1` … `EN1` loops (regression: "END 1 has no DO 1"), AT, RO,
+/// SQ, GO, TH, and the operators XO, AN, MO.
+#[test]
+fn macro_b_words_abbreviated_to_two_letters() {
+    let p = "#1=3\n#5=0\nWH[#1GT0]DO1\n#5=#5+#1\n#1=#1-1\nEN1\n#2=AT[1]/[1]\n\
+             #3=RO[SQ[16.4]]\nIF[#2EQ45.]GO10\n#6=99\nN10 IF[#3NE4]TH#6=1\n\
+             IF[#3EQ4]TH#7=[6XO3]+[6AN3]+[7MO4]\nM30\n";
+    let r = run(
+        "fanuc",
+        p,
+        Store::default(),
+        &["#1", "#5", "#2", "#3", "#6", "#7"],
+    );
+    ended(&r);
+    // 3+2+1 = 6; ATAN 45°; ROUND(√16.4 = 4.05) = 4; GO10 skips #6=99 and
+    // #3 is 4 so TH#6 does not run; 6 XOR 3 = 5, 6 AND 3 = 2, 7 MOD 4 = 3.
+    assert_eq!(
+        r.values,
+        vec![
+            Some(0.0),
+            Some(6.0),
+            Some(45.0),
+            Some(4.0),
+            None,
+            Some(10.0)
+        ]
+    );
+}
+
+/// A line meant to open a loop that cannot be read is reported itself, not
+/// as a later "END 1 has no DO 1".
+#[test]
+fn an_unreadable_loop_head_is_reported_at_its_line() {
+    let p = "#1=3\nWX[#1GT0]DO1\n#1=#1-1\nEND1\nM30\n";
+    let r = run("fanuc", p, Store::default(), &[]);
+    let Outcome::Alarm(d) = &r.outcome else {
+        panic!("no alarm: {:?}", r.outcome)
+    };
+    assert_eq!(d.line, 2, "{d:?}");
 }

@@ -162,6 +162,46 @@ const SYNTEC_UNAVAILABLE: &[&str] = &[
     "CHKINF",
 ];
 
+/// Fanuc's abbreviations of custom macro words: "the first two characters
+/// can be used as an abbreviation" (Fanuc 0i/16i operator's manuals,
+/// custom macro, abbreviations of custom macro words), e.g. `WH[#1GT0]DO1`,
+/// `#2=AT[#3]/[#4]`. The two letters of every word are distinct; the
+/// operators EQ…LE, OR, DO, IF and LN are two letters already.
+const MACRO_B_ABBREVIATIONS: &[(&str, &str)] = &[
+    ("AB", "ABS"),
+    ("AC", "ACOS"),
+    ("AD", "ADP"),
+    ("AN", "AND"),
+    ("AS", "ASIN"),
+    ("AT", "ATAN"),
+    ("BC", "BCD"),
+    ("BI", "BIN"),
+    ("CO", "COS"),
+    ("EN", "END"),
+    ("EX", "EXP"),
+    ("FI", "FIX"),
+    ("FU", "FUP"),
+    ("GO", "GOTO"),
+    ("MO", "MOD"),
+    ("PO", "POW"),
+    ("RO", "ROUND"),
+    ("SI", "SIN"),
+    ("SQ", "SQRT"),
+    ("TA", "TAN"),
+    ("TH", "THEN"),
+    ("WH", "WHILE"),
+    ("XO", "XOR"),
+];
+
+/// The custom macro word `name` (upper case) stands for: the whole word
+/// of a Macro B abbreviation, else `name` itself.
+pub(super) fn macro_b_word(name: &str) -> &str {
+    MACRO_B_ABBREVIATIONS
+        .iter()
+        .find(|(short, _)| *short == name)
+        .map_or(name, |(_, full)| full)
+}
+
 /// Fanuc functions vcnc does not evaluate.
 const MACRO_B_UNAVAILABLE: &[&str] = &["BIN", "BCD", "ADP"];
 
@@ -169,6 +209,7 @@ const MACRO_B_UNAVAILABLE: &[&str] = &["BIN", "BCD", "ADP"];
 pub(super) fn is_function(lang: Lang, name: &str) -> bool {
     match lang {
         Lang::MacroB => {
+            let name = macro_b_word(name);
             MACRO_B_FUNCS.iter().any(|(n, _)| *n == name) || MACRO_B_UNAVAILABLE.contains(&name)
         }
         Lang::Syntec => {
@@ -310,9 +351,13 @@ impl<'s, 'a> ExprParser<'s, 'a> {
         let Some((name, _)) = self.s.peek_ident()? else {
             return Ok(None);
         };
+        let word = match self.s.syn.lang {
+            Lang::MacroB => macro_b_word(&name),
+            Lang::Syntec => &name,
+        };
         Ok(ops
             .iter()
-            .find(|(n, _)| *n == name)
+            .find(|(n, _)| *n == word)
             .map(|(_, op)| (*op, name.len())))
     }
 
@@ -491,6 +536,10 @@ impl<'s, 'a> ExprParser<'s, 'a> {
     /// A function call (the identifier is next, not yet consumed).
     fn call(&mut self, name: String, span: Span) -> Result<(), Diagnostic> {
         let lang = self.s.syn.lang;
+        let name = match lang {
+            Lang::MacroB => macro_b_word(&name).to_string(),
+            Lang::Syntec => name,
+        };
         if lang == Lang::Syntec && name == "STKTOP" {
             self.s.pos = span.end as usize;
             if self.s.peek()? != b'[' {

@@ -72,11 +72,14 @@ fn has_macro_syntax(text: &[u8], start: usize, end: usize) -> bool {
             },
             b'a'..=b'z' | b'A'..=b'Z' if head && word_start => {
                 let rest = &text[i..end];
-                let kw = ["IF", "WHILE", "DO", "END", "GOTO"].iter().any(|k| {
-                    rest.len() >= k.len()
-                        && rest[..k.len()].eq_ignore_ascii_case(k.as_bytes())
-                        && !rest.get(k.len()).is_some_and(u8::is_ascii_alphabetic)
-                });
+                // With Macro B's abbreviations WH, EN, GO.
+                let kw = ["IF", "WHILE", "DO", "END", "GOTO", "WH", "EN", "GO"]
+                    .iter()
+                    .any(|k| {
+                        rest.len() >= k.len()
+                            && rest[..k.len()].eq_ignore_ascii_case(k.as_bytes())
+                            && !rest.get(k.len()).is_some_and(u8::is_ascii_alphabetic)
+                    });
                 if kw {
                     return true;
                 }
@@ -155,8 +158,8 @@ fn iso_statement(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, D
         if s.at_prefix("IF")? {
             return iso_if(s);
         }
-        if s.at_prefix("WHILE")? {
-            s.pos += 5;
+        if let Some(k) = macro_word(s, "WHILE")? {
+            s.pos += k;
             let cond = bracketed(s, "WHILE")?;
             if !s.at_prefix("DO")? {
                 return Err(expected(
@@ -180,14 +183,14 @@ fn iso_statement(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, D
             let m = loop_number(s, "DO")?;
             return finish(s, StmtKind::While { cond: None, m });
         }
-        if s.at_prefix("END")? {
-            s.pos += 3;
+        if let Some(k) = macro_word(s, "END")? {
+            s.pos += k;
             let m = loop_number(s, "END")?;
             return finish(s, StmtKind::End(m));
         }
-        if s.at_prefix("GOTO")? {
-            let word = Span::new(s.pos, s.pos + 4);
-            s.pos += 4;
+        if let Some(k) = macro_word(s, "GOTO")? {
+            let word = Span::new(s.pos, s.pos + k);
+            s.pos += k;
             let target = goto_target(s)?;
             return finish(s, StmtKind::Goto { word, target });
         }
@@ -207,6 +210,21 @@ fn iso_statement(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, D
         words.push(w);
     }
     Ok(StmtKind::Words(std::mem::take(words)))
+}
+
+/// The length of custom macro word `full` (WHILE, END, GOTO) at the
+/// scanner, glued to what follows (`END1`), or of its two-letter
+/// abbreviation in Macro B (`WH`, `EN`, `GO`: Fanuc's abbreviations of
+/// custom macro words, `expr::macro_b_word`).
+fn macro_word(s: &mut Scan<'_>, full: &str) -> Result<Option<usize>, Diagnostic> {
+    if s.at_prefix(full)? {
+        return Ok(Some(full.len()));
+    }
+    let short = full.get(..2).unwrap_or(full);
+    if s.syn.lang == Lang::MacroB && s.at_prefix(short)? {
+        return Ok(Some(short.len()));
+    }
+    Ok(None)
 }
 
 /// After a statement: only blanks and comments may follow.
@@ -315,13 +333,13 @@ fn target(s: &mut Scan<'_>) -> Result<Target, Diagnostic> {
 fn iso_if(s: &mut Scan<'_>) -> Result<StmtKind, Diagnostic> {
     s.pos += 2;
     let cond = bracketed(s, "IF")?;
-    if s.at_prefix("GOTO")? {
-        let word = Span::new(s.pos, s.pos + 4);
-        s.pos += 4;
+    if let Some(k) = macro_word(s, "GOTO")? {
+        let word = Span::new(s.pos, s.pos + k);
+        s.pos += k;
         let target = goto_target(s)?;
         return finish(s, StmtKind::IfGoto { cond, word, target });
     }
-    if s.keyword("THEN")? {
+    if s.keyword("THEN")? || (s.syn.lang == Lang::MacroB && s.keyword("TH")?) {
         if s.peek()? != b'#' {
             return Err(expected(
                 s,
