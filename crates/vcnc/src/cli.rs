@@ -194,7 +194,7 @@ impl From<ProfileArg> for vcnc_planner::ProfileShape {
 /// Options every subcommand takes.
 #[derive(Debug, Clone, Args)]
 pub struct Options {
-    /// Dialect: auto (the default: chosen per file from its own evidence, and said), syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) or linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane); any case.
+    /// Dialect: auto (the default: chosen per file from its own evidence, and said), syntec (Syntec 900M mill), fanuc (Fanuc 0i mill), lathe (the seed lathe controller), eia (EIA-274-D), grbl (grbl 1.1 and hobby CAM output), haas (Haas mills), fanuc-lathe (Fanuc 0i-TF lathes), haas-lathe (Haas lathes), linuxcnc (LinuxCNC 2.9 RS274NGC mills) linuxcnc-lathe (the same in lathe mode: G7/G8, XZ plane) or mach3 (Mach3: RS274/NGC with O-number M98/M99 subprograms and M-code macros); any case.
     #[arg(long, ignore_case = true, value_parser = dialect_names())]
     pub dialect: Option<String>,
     /// Machine file (TOML) or grbl's `$$` settings dump; default: the built-in mill (X Y Z A B C, no travel limits, empty offset memory), or a 2-axis lathe under --dialect lathe, fanuc-lathe, haas-lathe and linuxcnc-lathe.

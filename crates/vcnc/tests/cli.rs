@@ -810,7 +810,7 @@ fn unknown_dialect_is_a_usage_error() {
     assert_usage_error(&o, "invalid value 'heidenhain' for '--dialect");
     assert!(
         stderr(&o).contains(
-            "[possible values: auto, syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe, linuxcnc, linuxcnc-lathe]"
+            "[possible values: auto, syntec, fanuc, lathe, eia, grbl, haas, fanuc-lathe, haas-lathe, linuxcnc, linuxcnc-lathe, mach3]"
         ),
         "{}",
         stderr(&o)

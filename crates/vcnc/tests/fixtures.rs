@@ -281,6 +281,14 @@ fn haas_dialect_differences_match_their_hand_worked_traces() {
     assert!(n >= 10, "only {n} haas fixtures found");
 }
 
+/// Mach3: O-number subprograms called by M98 and skipped in the flow,
+/// parameters, macro M codes (`tests/fixtures/mach3/README.md`).
+#[test]
+fn mach3_programs_match_their_hand_worked_traces() {
+    let n = check_folder("mach3", "mach3", 1e-6);
+    assert!(n >= 2, "{n}");
+}
+
 /// `--dialect fanuc-lathe` (Fanuc 0i-TF): single cycles, G70–G76,
 /// turret offsets, G96 on the work diameter, chamfers, nose radius
 /// compensation, bad input (`tests/fixtures/fanuc_lathe/README.md`).

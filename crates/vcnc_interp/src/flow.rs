@@ -319,6 +319,18 @@ impl Flow {
         found
     }
 
+    /// Where the flow goes on after the subprogram that starts at `from`:
+    /// the block after its first M99 (in the same text, across O headers);
+    /// `None` when the text ends first.
+    pub fn after_return(&mut self, src: usize, from: Cursor, lex: &LexRules) -> Option<Cursor> {
+        self.walk(src, from, lex, false, true, |block, _, _| {
+            block
+                .words()
+                .iter()
+                .any(|w| w.addr == Addr::letter(b'M') && !w.point && whole_u32(w.value) == Some(99))
+        })
+    }
+
     /// Finds `N seq` in the program of `src` that starts at `start`: the
     /// first such block from the start. Like [`program_in`](Self::program_in)
     /// it remembers every label it passes and resumes where it stopped.

@@ -735,6 +735,17 @@ impl<'a> Interpreter<'a> {
             }
             return Ok(Step::Next);
         }
+        if self.cfg.dialect.o_in_flow == crate::dialect::OInFlow::SkipsSubprogram && !block.percent
+        {
+            // Mach3: a subprogram written between the main program's blocks
+            // runs only when called; the flow goes on after its M99.
+            let src = self.flow.frame().source;
+            let lex = self.cfg.dialect.lex;
+            return Ok(match self.flow.after_return(src, next, &lex) {
+                Some(after) => Step::Jump(after),
+                None => Step::ProgramEnd,
+            });
+        }
         Ok(Step::ProgramEnd)
     }
 

@@ -75,7 +75,7 @@ fn full(all: &[Dialect]) -> u32 {
 /// ranges, or its built-in machine's `[m_codes]`.
 fn knows_m(i: usize, d: &Dialect, m: u16) -> bool {
     d.m(f64::from(m)).is_some()
-        || d.aux_m(u32::from(m)).is_some()
+        || d.aux_m(u32::from(m)).is_some_and(|a| !a.is_user_macro())
         || machine_m_codes()
             .get(i)
             .is_some_and(|codes| codes.contains(&u32::from(m)))
@@ -318,6 +318,12 @@ impl Board {
             "ngc" => {
                 let ngc = mask_of(all, |d| d.macros.iso == IsoMacros::Ngc);
                 self.note(".ngc file", 30, ngc);
+            }
+            // Vectric's and SheetCam's Mach3 posts write `.tap` (the
+            // extension Mach3's file dialog offers first).
+            "tap" => {
+                let mach3 = mask_of(all, |d| d.macros.iso == IsoMacros::NgcParams);
+                self.note(".tap file", 20, mach3);
             }
             // Hobby CAM's extension (3D printers' too).
             "gcode" => {
@@ -643,9 +649,12 @@ const HEADER_NAMES: &[(&[&str], &[&str], i32)] = &[
         40,
     ),
     (&["GRBL", "GRBLHAL"], &["grbl"], 40),
-    // Mach3 and Mach4 read integers as whole units and know G64 P and
-    // L repeats: LinuxCNC's reading is the nearest vcnc has.
-    (&["MACH3", "MACH4", "MACH 3", "MACH 4"], &["linuxcnc"], 25),
+    // Mach3 and Mach4 posts name their control (Vectric's "Mach2/3").
+    (
+        &["MACH3", "MACH4", "MACH 3", "MACH 4", "MACH2/3", "MACH2"],
+        &["mach3"],
+        40,
+    ),
     // Hobby CAM and senders that write for grbl.
     (
         &[
@@ -691,11 +700,12 @@ const HEADER_NAMES: &[(&[&str], &[&str], i32)] = &[
 /// CAM output for grbl more often than not; Fanuc before Syntec (they
 /// differ only in G20/G21 against G70/G71) and before Haas, grbl before
 /// LinuxCNC (a subset that runs the same), the Fanuc lathe before Haas's;
-/// EIA-274-D and the seed lathe only on their own evidence. In
+/// EIA-274-D, the seed lathe and Mach3 (which reads what LinuxCNC reads,
+/// and takes any M code as a macro) only on their own evidence. In
 /// [`Dialect::NAMES`] order.
-const PRIOR: [i32; 10] = [
-    // syntec fanuc lathe eia grbl haas fanuc-lathe haas-lathe linuxcnc linuxcnc-lathe
-    2, 3, -4, -6, 4, 0, 2, 0, 1, 0,
+const PRIOR: [i32; 11] = [
+    // syntec fanuc lathe eia grbl haas fanuc-lathe haas-lathe linuxcnc linuxcnc-lathe mach3
+    2, 3, -4, -6, 4, 0, 2, 0, 1, 0, -30,
 ];
 
 /// What would alarm when dialect `d` runs a block of `shape`, and what it

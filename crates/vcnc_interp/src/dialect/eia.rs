@@ -126,6 +126,7 @@ pub(super) fn eia() -> Dialect {
         plane: Plane::Xy,
         long_chord: LongChord::Alarm,
         arc_end: super::ArcEnd::MachineTolerance,
+        o_in_flow: super::OInFlow::EndsProgram,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: &[],

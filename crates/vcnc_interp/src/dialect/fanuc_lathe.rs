@@ -179,6 +179,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         plane: Plane::Zx,
         long_chord: LongChord::Alarm,
         arc_end: super::ArcEnd::MachineTolerance,
+        o_in_flow: super::OInFlow::EndsProgram,
         arc_letters: 0,
         default_machine: DEFAULT_FANUC_LATHE_TOML,
         unsupported: NOT_RUN,

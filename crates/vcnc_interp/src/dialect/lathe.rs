@@ -122,6 +122,7 @@ pub(super) fn lathe() -> Dialect {
         plane: Plane::Zx,
         long_chord: LongChord::Line,
         arc_end: super::ArcEnd::MachineTolerance,
+        o_in_flow: super::OInFlow::EndsProgram,
         arc_letters: bit(b'D'),
         default_machine: DEFAULT_LATHE_TOML,
         unsupported: UNSPECIFIED,

@@ -31,7 +31,7 @@ use crate::machine::DEFAULT_FANUC_LATHE_TOML;
 
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
-const LINUXCNC_G: &[GRow] = &[
+pub(super) const LINUXCNC_G: &[GRow] = &[
     // G4 P seconds; the block's axis words go to its motion, after the
     // dwell (`G4 P0.5 G0 X10`, LinuxCNC's order of execution).
     g(40, GOp::Pace(PaceOp::DwellP), Group::NonModal).reads(bit(b'P')),

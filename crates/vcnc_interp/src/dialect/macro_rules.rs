@@ -14,8 +14,11 @@ pub enum IsoMacros {
     /// Fanuc Custom Macro B.
     CustomMacroB,
     /// LinuxCNC's numbered and named parameters and `[ ]` expressions
-    /// (`macros/ngc.rs`), without its O-word flow.
+    /// (`macros/ngc.rs`), and its O-word flow (`macros/oword.rs`).
     Ngc,
+    /// The same parameters and expressions without O-word flow: Mach3,
+    /// whose subprograms are O numbers called by M98.
+    NgcParams,
 }
 
 /// Programs whose first line is `%@MACRO`.
@@ -114,6 +117,11 @@ impl MacroRules {
     /// LinuxCNC: its parameters and expressions.
     pub const NGC: MacroRules = MacroRules {
         iso: IsoMacros::Ngc,
+        ..MacroRules::NONE
+    };
+    /// Mach3: LinuxCNC's parameters and expressions, no O-word flow.
+    pub const MACH3: MacroRules = MacroRules {
+        iso: IsoMacros::NgcParams,
         ..MacroRules::NONE
     };
     /// Haas: Fanuc's Custom Macro B and Haas's tool-life variables.

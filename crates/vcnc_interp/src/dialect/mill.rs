@@ -334,6 +334,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         plane: Plane::Xy,
         long_chord: LongChord::Alarm,
         arc_end: super::ArcEnd::MachineTolerance,
+        o_in_flow: super::OInFlow::EndsProgram,
         arc_letters: 0,
         default_machine: DEFAULT_MILL_TOML,
         unsupported: SYNTEC_LATER,

@@ -18,6 +18,7 @@ mod grbl;
 mod lathe;
 mod linuxcnc;
 mod m_codes;
+mod mach3;
 mod macro_rules;
 mod mill;
 mod ops;
@@ -280,6 +281,19 @@ pub enum ArcEnd {
     Rs274,
 }
 
+/// What an `O` number met in the program's flow (not as the target of a
+/// call) does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OInFlow {
+    /// It is the next program's header: this program ends there (Fanuc's
+    /// program memory, where each O starts a program).
+    EndsProgram,
+    /// It starts a subprogram that only a call runs: the flow skips to the
+    /// block after its M99 (Mach3, whose posts write `O1 … M99` between
+    /// the main program's blocks).
+    SkipsSubprogram,
+}
+
 /// Diameter programming: which axis, and whether it is on at power-on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Diameter {
@@ -483,6 +497,8 @@ pub struct Dialect {
     pub long_chord: LongChord,
     /// How far an I/J/K arc's end may lie off its circle.
     pub arc_end: ArcEnd,
+    /// What an O number in the flow does.
+    pub o_in_flow: OInFlow,
     /// Letters an arc reads besides the plane's centre offsets and R (the
     /// lathe's D diameter).
     pub arc_letters: u32,
@@ -554,6 +570,15 @@ pub struct AuxM {
     pub letters: u32,
 }
 
+impl AuxM {
+    /// Whether the range is a control's "any other M code runs the user's
+    /// macro of that number" (Mach3), which says nothing of the program's
+    /// control when detecting it.
+    pub fn is_user_macro(&self) -> bool {
+        self.what == mach3::USER_MACRO
+    }
+}
+
 /// G04 P with a decimal point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DwellP {
@@ -593,6 +618,7 @@ impl Dialect {
             "haas-lathe" => Some(fanuc_lathe::haas_lathe()),
             "linuxcnc" => Some(linuxcnc::linuxcnc()),
             "linuxcnc-lathe" => Some(linuxcnc::linuxcnc_lathe()),
+            "mach3" => Some(mach3::mach3()),
             _ => None,
         }
     }
@@ -609,6 +635,7 @@ impl Dialect {
         "haas-lathe",
         "linuxcnc",
         "linuxcnc-lathe",
+        "mach3",
     ];
 
     /// Syntec 900M mill (the default).
@@ -660,6 +687,12 @@ impl Dialect {
     /// LinuxCNC 2.9 in lathe mode (G7/G8, XZ plane).
     pub fn linuxcnc_lathe() -> Dialect {
         linuxcnc::linuxcnc_lathe()
+    }
+
+    /// Mach3: RS274/NGC as LinuxCNC reads it, with O-number subprograms
+    /// (M98/M99) and M-code macros.
+    pub fn mach3() -> Dialect {
+        mach3::mach3()
     }
 
     /// Fills the code tables from rows; the rest of the profile is set by the

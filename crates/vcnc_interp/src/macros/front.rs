@@ -164,11 +164,16 @@ impl Interpreter<'_> {
     ) -> Result<(Step, Span), Diagnostic> {
         // E604 from the lexer is LinuxCNC's O-word flow (`o100 while`),
         // which Macro B would misread as its own WHILE.
-        if self.macros.rules.iso == IsoMacros::Ngc {
-            if lexed.code == vcnc_syntax::Code::E604 {
+        match self.macros.rules.iso {
+            IsoMacros::Ngc if lexed.code == vcnc_syntax::Code::E604 => {
                 return self.ngc_oword(src, line, start, lexed, i, store);
             }
-            return self.ngc_block(src, line, start, lexed, i, block, store, sink);
+            // Mach3: parameters, but O-word flow stays E604.
+            IsoMacros::NgcParams if lexed.code == vcnc_syntax::Code::E604 => return Err(lexed),
+            IsoMacros::Ngc | IsoMacros::NgcParams => {
+                return self.ngc_block(src, line, start, lexed, i, block, store, sink);
+            }
+            IsoMacros::None | IsoMacros::CustomMacroB => {}
         }
         if self.macros.rules.iso == IsoMacros::None || lexed.code == vcnc_syntax::Code::E604 {
             return Err(lexed);

@@ -252,12 +252,12 @@ fn e201_hint_names_every_dialect_that_knows_the_code_and_its_reading() {
     let h = g_hint(&Dialect::syntec(), 21.0);
     assert_eq!(
         h,
-        "G21 is a code of fanuc, haas (which read X20 as 0.020 mm, as syntec does) and of grbl, linuxcnc (which read X20 as 20 mm): choose by how the program writes lengths, or leave --dialect out and vcnc chooses from the program"
+        "G21 is a code of fanuc, haas (which read X20 as 0.020 mm, as syntec does) and of grbl, linuxcnc, mach3 (which read X20 as 20 mm): choose by how the program writes lengths, or leave --dialect out and vcnc chooses from the program"
     );
     // grbl has no canned cycles: never sent to fanuc without the warning
     // that its integers would become micrometres.
     let h = g_hint(&Dialect::grbl(), 81.0);
-    assert!(h.starts_with("G81 is a code of linuxcnc (which read X20 as 20 mm, as grbl does) and of syntec, fanuc, eia, haas (which read X20 as 0.020 mm)"), "{h}");
+    assert!(h.starts_with("G81 is a code of linuxcnc, mach3 (which read X20 as 20 mm, as grbl does) and of syntec, fanuc, eia, haas (which read X20 as 0.020 mm)"), "{h}");
     // All alike: a plain suggestion.
     assert_eq!(
         g_hint(&Dialect::fanuc(), 70.0),

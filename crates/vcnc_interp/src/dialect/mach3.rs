@@ -1,0 +1,117 @@
+//! Mach3 (ArtSoft/Newfangled, "Using Mach3Mill"), the hobby control that
+//! many Vectric, Fusion, SheetCam and pcb2gcode posts write for: RS274/NGC
+//! as LinuxCNC reads it (whole-unit integers, `#` parameters and `[ ]`
+//! expressions, G90.1/G91.1, G28 through the point named, G52, the canned
+//! cycles with L repeats), with Mach3's own program structure:
+//!
+//! ```text
+//!   M98 P1 L6      call the subprogram O1 of this file (or of the
+//!   ...             program store) six times
+//!   M30
+//!   O1 (probe)     the label an M98 P names: an O number, not LinuxCNC's
+//!   ...             `o1 sub … o1 endsub`
+//!   M99            back after the M98
+//!   M40  M1000     an M code Mach3 does not define runs the user macro
+//!                   M40.m1s: an `aux` event with its P, Q, R
+//! ```
+//!
+//! LinuxCNC's O-word flow (`o100 sub`, `o101 while`) is not Mach3's (its
+//! manual has none): E604 says so. Decisions and sources are in
+//! `docs/dialects.md` ("The mach3 dialect").
+
+use super::grbl::GRBL_G;
+use super::linuxcnc::{LINUXCNC_G, linuxcnc};
+use super::m_codes::{self, MRow};
+use super::{AuxM, Dialect, GOp, GRow, Group, MacroRules, MoveOp, bit, g};
+
+/// Mach3's codes beyond LinuxCNC's: G31, its straight probe, moves towards
+/// the point named and stops where the probe touches (Fanuc's skip: without
+/// a probe signal the whole move).
+const MACH3_G: &[GRow] = &[g(310, GOp::Move(MoveOp::Skip), Group::NonModal).claims_axes()];
+
+/// Mach3's built-in M codes: program stops and ends, spindle, tool change,
+/// coolant, M98/M99 subprograms; the rest are macros (below).
+const MACH3_M: &[&[MRow]] = &[
+    m_codes::PROGRAM_END,
+    m_codes::SPINDLE,
+    m_codes::TOOL_CHANGE,
+    m_codes::MIST,
+    m_codes::COOLANT,
+    m_codes::SUBPROGRAMS,
+];
+
+/// What a user macro does, for the `aux` event.
+pub(super) const USER_MACRO: &str =
+    "Mach3 user macro (the M-code script M<n>.m1s of the profile's macro folder)";
+
+/// M codes Mach3 does not define call the user macro of that number with
+/// the block's P, Q and R as its parameters (manual, "Macro M-codes");
+/// M48/M49 switch the overrides. M47 (run again from the first line) is
+/// left out: a checker runs a program once (W105 says it is ignored).
+const MACH3_AUX_M: &[AuxM] = &[
+    aux(10, 18, USER_MACRO),
+    aux(20, 29, USER_MACRO),
+    aux(31, 46, USER_MACRO),
+    AuxM {
+        first: 48,
+        last: 49,
+        what: "feed and speed overrides on (M48) or off (M49)",
+        letters: 0,
+    },
+    aux(50, 97, USER_MACRO),
+    aux(100, 999, USER_MACRO),
+];
+
+const fn aux(first: u16, last: u16, what: &'static str) -> AuxM {
+    AuxM {
+        first,
+        last,
+        what,
+        letters: bit(b'P') | bit(b'Q') | bit(b'R'),
+    }
+}
+
+/// Codes of Mach3's G-code list that vcnc does not run, and why (E201).
+const NOT_RUN: &[(u16, &str)] = &[
+    (
+        120,
+        "Mach3's circular pocket G12/G13 is not run by vcnc's mach3 dialect yet",
+    ),
+    (
+        130,
+        "Mach3's circular pocket G12/G13 is not run by vcnc's mach3 dialect yet",
+    ),
+    (
+        150,
+        "Mach3's polar mode G15/G16 (about the point where G16 was given) is not run by vcnc",
+    ),
+    (
+        160,
+        "Mach3's polar mode G15/G16 (about the point where G16 was given) is not run by vcnc",
+    ),
+    (500, "Mach3's per-axis scaling G50/G51 is not run by vcnc"),
+    (510, "Mach3's per-axis scaling G50/G51 is not run by vcnc"),
+    (
+        680,
+        "Mach3's coordinate rotation G68 A B R is not run by vcnc",
+    ),
+    (
+        690,
+        "Mach3's coordinate rotation G68 A B R is not run by vcnc",
+    ),
+];
+
+/// The Mach3 dialect.
+pub(super) fn mach3() -> Dialect {
+    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, MACH3_G], MACH3_M);
+    Dialect {
+        name: "mach3",
+        g,
+        m,
+        unsupported: NOT_RUN,
+        aux_m: MACH3_AUX_M,
+        macros: MacroRules::MACH3,
+        o_in_flow: super::OInFlow::SkipsSubprogram,
+        ..linuxcnc()
+    }
+}
