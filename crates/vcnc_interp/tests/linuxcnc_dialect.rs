@@ -212,7 +212,15 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
     );
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
-    assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E201, 2, 1));
+    // G33.1 taps with a turning spindle and K in the block, as rs274
+    // wants ("Spindle not turning in G33.1", "K word missing with
+    // g33/g33.1"); the taps themselves are checked against rs274
+    // (`rigid_tapping_g33_1.ngc`).
+    assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E321, 2, 1));
+    assert_eq!(
+        alarm("G21\nS500 M3\nG33.1 Z-5 K1\nZ-6\nM2\n"),
+        (Code::E312, 4, 1)
+    );
 }
 
 /// LinuxCNC's parameters and expressions (`macros/ngc.rs`; their values
@@ -361,7 +369,10 @@ fn second_review_findings_stay_fixed() {
     assert_eq!(code, Code::E201);
     assert!(help.contains("--dialect linuxcnc-lathe"), "{help}");
     let (_, _, _, _, help) = fanuc("G21\nG33.1 Z-5 K1\nM30\n");
-    assert!(!help.contains("--dialect"), "no dialect runs G33.1: {help}");
+    assert!(help.contains("--dialect linuxcnc"), "linuxcnc runs G33.1: {help}");
+    // A code no dialect runs names none.
+    let (_, _, _, _, help) = fanuc("G21\nG43.2 H1\nM30\n");
+    assert!(!help.contains("--dialect"), "no dialect runs G43.2: {help}");
     let (code, _, _, message, _) = fanuc("G21\nG10 L0 P1 X1\nM30\n");
     assert_eq!(code, Code::E109);
     assert!(message.contains("2..20"), "{message}");

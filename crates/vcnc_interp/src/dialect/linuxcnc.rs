@@ -13,7 +13,7 @@
 //!
 //! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
 //! so are the O-word subroutines and loops (`macros/oword.rs`). Not read:
-//! subroutine files, G76, G33.1, splines (G5, G5.1, G5.2) and the UVW
+//! G76, splines (G5, G5.1, G5.2) and the UVW
 //! planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
@@ -107,6 +107,8 @@ const LINUXCNC_G: &[GRow] = &[
     .reads(CYCLE_WORDS_L),
     // G33 X Z K: spindle-synchronized motion, K the distance per turn.
     g(330, GOp::Motion(MotionOp::Thread), Group::Motion).reads(bit(b'K')),
+    // G33.1 X Y Z K: rigid tapping, K the pitch.
+    g(331, GOp::Motion(MotionOp::RigidTap), Group::Motion).reads(bit(b'K')),
     // G92.2 suspends the G92 shift, keeping its values; G92.3 restores it.
     g(922, GOp::Set(SetOp::ShiftSuspend(false)), Group::NonModal),
     g(923, GOp::Set(SetOp::ShiftSuspend(true)), Group::NonModal),
@@ -198,7 +200,6 @@ const NOT_RUN: &[(u16, &str)] = &[
         330,
         "LinuxCNC's spindle-synchronized G33 (K pitch) is not run by vcnc",
     ),
-    (331, "LinuxCNC's rigid tapping G33.1 is not run by vcnc"),
     (
         432,
         "G43.2 (an added tool length offset) is not run by vcnc",

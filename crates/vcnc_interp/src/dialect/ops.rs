@@ -72,6 +72,9 @@ pub enum MotionOp {
     ThreadingCycle,
     /// Fanuc lathe G94: the facing cycle, modal.
     FaceCycle,
+    /// LinuxCNC's G33.1: rigid tapping, in to the axis words with the
+    /// spindle, reversed out to where it started (K the pitch).
+    RigidTap,
 }
 
 /// A modal setting.
@@ -382,6 +385,9 @@ impl MotionOp {
                 "thread cutting: motion synchronised with the spindle, one lead per revolution"
             }
             MotionOp::ThreadInch => "thread cutting with the lead in inches",
+            MotionOp::RigidTap => {
+                "rigid tapping: in to the axis words with the spindle (K the pitch), the spindle reversed, out to the start"
+            }
             MotionOp::ThreePointArc => "an arc through a middle point (IX/IZ) to the end point",
             MotionOp::Nurbs => {
                 "NURBS interpolation: a curve from the control points of the following blocks (K knots, R weights)"
