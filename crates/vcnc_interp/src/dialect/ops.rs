@@ -315,6 +315,9 @@ pub enum TurnOp {
     GrooveCycle,
     /// Fanuc lathe G76: multiple threading.
     ThreadMultiCycle,
+    /// LinuxCNC's lathe G76: threading passes from the drive line (P
+    /// pitch, I peak, J first depth, K full depth, R Q H E L).
+    NgcThreadCycle,
 }
 
 /// Program flow.
@@ -615,6 +618,9 @@ impl TurnOp {
             TurnOp::FacePeckCycle => "end face peck drilling cycle",
             TurnOp::GrooveCycle => "outer or inner diameter grooving cycle",
             TurnOp::ThreadMultiCycle => "multiple threading cycle",
+            TurnOp::NgcThreadCycle => {
+                "threading cycle: passes from the drive line to Z (P pitch, I peak, J first depth, K full depth)"
+            }
         }
     }
 }
