@@ -344,6 +344,28 @@ class Converter:
                    "feed": out_num(self.feed)})
         self.pos = to
 
+    def rigid_tap(self, args):
+        """G33.1: LinuxCNC's RIGID_TAP(x, y, z) is the whole tap, as its
+        G-code reference describes it: in to the point locked to the
+        spindle (the lead of START_SPEED_FEED_SYNC), the spindle reversed,
+        back out to where the tap started (where the interpreter then
+        stands), the spindle's direction restored. The overrun while the
+        spindle reverses is the machine's, not the program's."""
+        if getattr(self, "sync_lead", None) is None:
+            self.err("RIGID_TAP without START_SPEED_FEED_SYNC")
+        if self.spindle_dir not in ("cw", "ccw"):
+            self.err("RIGID_TAP with the spindle stopped")
+        start = self.pos
+        to = self.machine(dict(zip(AXES, map(self.mm, args[0:3]))))
+        lead = out_num(self.sync_lead)
+        fwd = self.spindle_dir
+        rev = "ccw" if fwd == "cw" else "cw"
+        self.emit({"type": "thread", "line": self.line, "to": point(to), "lead_mm": lead})
+        self.emit({"type": "spindle", "line": self.line, "dir": rev, "rpm": out_num(self.rpm)})
+        self.emit({"type": "thread", "line": self.line, "to": point(start), "lead_mm": lead})
+        self.emit({"type": "spindle", "line": self.line, "dir": fwd, "rpm": out_num(self.rpm)})
+        self.pos = start
+
     def spindle(self, call, args):
         if call == "SET_SPINDLE_SPEED":
             rpm = num(args[1])
@@ -407,6 +429,12 @@ class Converter:
             self.straight(call, args)
         elif call == "ARC_FEED":
             self.arc(args)
+        elif call == "START_SPEED_FEED_SYNC":
+            self.sync_lead = self.mm(args[0].split(",")[0], exact=False)
+        elif call == "STOP_SPEED_FEED_SYNCH":
+            self.sync_lead = None
+        elif call == "RIGID_TAP":
+            self.rigid_tap(args)
         elif call == "DWELL":
             s = num(args[0])
             if s == 0 and self.cycles.get(self.line) in ("G86",) + TAPS:

@@ -356,7 +356,7 @@ fn linuxcnc_dialect_reads_the_programs_rs274_read() {
 /// frame events are not compared, nor moves that do not move.
 #[test]
 fn linuxcnc_lathe_moves_match_rs274() {
-    let n = lathe_moves_match("nc", None);
+    let n = lathe_moves_match("linuxcnc_lathe", "nc", None);
     assert!(n >= 40, "only {n} programs");
 }
 
@@ -366,12 +366,21 @@ fn linuxcnc_lathe_moves_match_rs274() {
 /// does not read.
 #[test]
 fn linuxcnc_lathe_dialect_reads_the_lathe_programs_rs274_read() {
-    let n = lathe_moves_match("ngc", Some("linuxcnc-lathe"));
+    let n = lathe_moves_match("linuxcnc_lathe", "ngc", Some("linuxcnc-lathe"));
     assert!(n >= 25, "only {n} programs");
 }
 
-fn lathe_moves_match(ext: &str, dialect: Option<&str>) -> usize {
-    let dir = fixtures_dir("linuxcnc_lathe");
+/// `linuxcnc_lathe_cycles`: LinuxCNC's lathe cycles (G76) in hand-written
+/// programs give rs274's moves under `--dialect linuxcnc-lathe`
+/// (`tools/linuxcnc/make_lathe_cycle_fixtures.py`).
+#[test]
+fn linuxcnc_lathe_cycles_match_rs274() {
+    let n = lathe_moves_match("linuxcnc_lathe_cycles", "ngc", Some("linuxcnc-lathe"));
+    assert!(n >= 5, "only {n} programs");
+}
+
+fn lathe_moves_match(folder: &str, ext: &str, dialect: Option<&str>) -> usize {
+    let dir = fixtures_dir(folder);
     let mut programs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("fixture folder")
         .filter_map(|e| e.ok().map(|e| e.path()))

@@ -370,6 +370,8 @@ impl Interpreter<'_> {
                     Motion::Thread if self.cfg.dialect.thread_lead == ThreadLead::K => {
                         allowed |= bit(b'K');
                     }
+                    // LinuxCNC's G33.1: K, the pitch, in every block.
+                    Motion::RigidTap => allowed |= bit(b'K'),
                     Motion::Rapid | Motion::Thread | Motion::ThreadInch => {}
                 }
             }

@@ -18,6 +18,7 @@ use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::{GOp, Group, PaceOp, ThreadLead};
 use crate::events::MAX_AXES;
+use crate::events::SpindleDir;
 use crate::interpreter::Interpreter;
 use crate::motion::{Move, MoveKind, Target};
 use crate::state::Motion;
@@ -80,7 +81,48 @@ impl Interpreter<'_> {
                 let to = self.to_target(&goal);
                 self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)
             }
+            Motion::RigidTap => self.rigid_tap(w, cmd),
         }
+    }
+
+    /// LinuxCNC's G33.1 K: in to the block's point locked to the spindle,
+    /// K per revolution; the spindle reversed; back out the same way to
+    /// where the tap started, which is where the tool stays; the spindle's
+    /// direction restored. The overrun while the spindle reverses is the
+    /// machine's, not modelled. rs274 wants K in every block ("K word
+    /// missing with g33/g33.1") and a turning spindle ("Spindle not
+    /// turning in G33.1"), either way.
+    fn rigid_tap(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let k = w.get(b'K').ok_or_else(|| {
+            alarms::needs_word(cmd, "G33.1", "K (the pitch: distance per revolution)")
+        })?;
+        let lead_mm = self.length_mm(&k);
+        if lead_mm <= 0.0 {
+            return Err(alarms::value_out_of_range(
+                k.span,
+                b'K',
+                k.value,
+                "G33.1's K is the pitch, more than 0",
+            ));
+        }
+        let fwd = self.state.spindle;
+        let rev = match fwd {
+            SpindleDir::Cw => SpindleDir::Ccw,
+            SpindleDir::Ccw => SpindleDir::Cw,
+            _ => return Err(alarms::tapping_spindle(cmd, "G33.1", None)),
+        };
+        if self.state.rpm <= 0.0 {
+            return Err(alarms::tapping_spindle(cmd, "G33.1", None));
+        }
+        let start = self.state.prog;
+        let goal = self.target(w, self.state.modal.incremental);
+        let to = self.to_target(&goal);
+        self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)?;
+        self.cycle_spindle(rev);
+        let back = crate::motion::Target::Program(start);
+        self.straight(MoveKind::Thread { lead_mm }, back, w, cmd)?;
+        self.cycle_spindle(fwd);
+        Ok(())
     }
 
     /// Commits a straight move of this block.

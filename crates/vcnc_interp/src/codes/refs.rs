@@ -146,6 +146,7 @@ impl Interpreter<'_> {
             TurnOp::FacePeckCycle => self.peck_cycle(w, cmd, true),
             TurnOp::GrooveCycle => self.peck_cycle(w, cmd, false),
             TurnOp::ThreadMultiCycle => self.thread_cycle_multi(w, cmd),
+            TurnOp::NgcThreadCycle => self.ngc_thread_cycle(w, cmd),
             TurnOp::FinishCycle
             | TurnOp::RoughTurnCycle
             | TurnOp::RoughFaceCycle

@@ -12,9 +12,9 @@
 //! M100–M199) — as `docs/dialects.md` lists them.
 //!
 //! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
-//! so are the O-word subroutines and loops (`macros/oword.rs`). Not read:
-//! subroutine files, G76, G33.1, splines (G5, G5.1, G5.2) and the UVW
-//! planes (E201 says why).
+//! so are the O-word subroutines and loops (`macros/oword.rs`). Lathe
+//! mode adds G7/G8 and the threading cycle G76. Not read: G70–G72,
+//! splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
@@ -22,7 +22,7 @@ use super::{
     ThreadLead, ToolChangeSpindle, bit, g,
 };
 use super::{
-    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, SetOp,
+    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, SetOp, TurnOp,
     m_codes::{MRow, m},
 };
 use super::{Diameter, SurfaceSpeedOn};
@@ -107,6 +107,8 @@ pub(super) const LINUXCNC_G: &[GRow] = &[
     .reads(CYCLE_WORDS_L),
     // G33 X Z K: spindle-synchronized motion, K the distance per turn.
     g(330, GOp::Motion(MotionOp::Thread), Group::Motion).reads(bit(b'K')),
+    // G33.1 X Y Z K: rigid tapping, K the pitch.
+    g(331, GOp::Motion(MotionOp::RigidTap), Group::Motion).reads(bit(b'K')),
     // G92.2 suspends the G92 shift, keeping its values; G92.3 restores it.
     g(922, GOp::Set(SetOp::ShiftSuspend(false)), Group::NonModal),
     g(923, GOp::Set(SetOp::ShiftSuspend(true)), Group::NonModal),
@@ -198,7 +200,6 @@ const NOT_RUN: &[(u16, &str)] = &[
         330,
         "LinuxCNC's spindle-synchronized G33 (K pitch) is not run by vcnc",
     ),
-    (331, "LinuxCNC's rigid tapping G33.1 is not run by vcnc"),
     (
         432,
         "G43.2 (an added tool length offset) is not run by vcnc",
@@ -217,7 +218,7 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (
         760,
-        "LinuxCNC's lathe threading cycle G76 is not run by vcnc",
+        "LinuxCNC's lathe threading cycle G76 runs in lathe mode: use --dialect linuxcnc-lathe",
     ),
     (
         870,
@@ -255,6 +256,20 @@ pub(super) fn linuxcnc() -> Dialect {
 const LINUXCNC_LATHE_G: &[GRow] = &[
     g(70, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode),
     g(80, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode),
+    // G76 P Z I J K [R Q H E L]: the threading cycle (codes/ngc_thread.rs).
+    g(760, GOp::Turn(TurnOp::NgcThreadCycle), Group::NonModal)
+        .reads(
+            bit(b'P')
+                | bit(b'I')
+                | bit(b'J')
+                | bit(b'K')
+                | bit(b'R')
+                | bit(b'Q')
+                | bit(b'H')
+                | bit(b'E')
+                | bit(b'L'),
+        )
+        .claims_axes(),
 ];
 
 /// LinuxCNC in lathe mode (a lathe configuration: X and Z, the XZ plane,

@@ -72,6 +72,9 @@ pub enum MotionOp {
     ThreadingCycle,
     /// Fanuc lathe G94: the facing cycle, modal.
     FaceCycle,
+    /// LinuxCNC's G33.1: rigid tapping, in to the axis words with the
+    /// spindle, reversed out to where it started (K the pitch).
+    RigidTap,
 }
 
 /// A modal setting.
@@ -314,6 +317,9 @@ pub enum TurnOp {
     GrooveCycle,
     /// Fanuc lathe G76: multiple threading.
     ThreadMultiCycle,
+    /// LinuxCNC's lathe G76: threading passes from the drive line (P
+    /// pitch, I peak, J first depth, K full depth, R Q H E L).
+    NgcThreadCycle,
 }
 
 /// Program flow.
@@ -384,6 +390,9 @@ impl MotionOp {
                 "thread cutting: motion synchronised with the spindle, one lead per revolution"
             }
             MotionOp::ThreadInch => "thread cutting with the lead in inches",
+            MotionOp::RigidTap => {
+                "rigid tapping: in to the axis words with the spindle (K the pitch), the spindle reversed, out to the start"
+            }
             MotionOp::ThreePointArc => "an arc through a middle point (IX/IZ) to the end point",
             MotionOp::Nurbs => {
                 "NURBS interpolation: a curve from the control points of the following blocks (K knots, R weights)"
@@ -614,6 +623,9 @@ impl TurnOp {
             TurnOp::FacePeckCycle => "end face peck drilling cycle",
             TurnOp::GrooveCycle => "outer or inner diameter grooving cycle",
             TurnOp::ThreadMultiCycle => "multiple threading cycle",
+            TurnOp::NgcThreadCycle => {
+                "threading cycle: passes from the drive line to Z (P pitch, I peak, J first depth, K full depth)"
+            }
         }
     }
 }

@@ -137,6 +137,8 @@ impl Interpreter<'_> {
                 Motion::ArcCw => Value::Long(2),
                 Motion::ArcCcw => Value::Long(3),
                 Motion::Thread | Motion::ThreadInch => Value::Long(33),
+                // LinuxCNC's G33.1 (not a Syntec dialect, for completeness).
+                Motion::RigidTap => Value::Double(33.1),
                 Motion::ThreePointArc => Value::Long(5),
                 // G06.2 has no whole code.
                 Motion::Nurbs => Value::Double(6.2),
@@ -215,6 +217,7 @@ impl Interpreter<'_> {
                 Motion::ArcCw => 2.0,
                 Motion::ArcCcw => 3.0,
                 Motion::Thread => 33.0,
+                Motion::RigidTap => 33.1,
                 Motion::ThreadInch => 32.0,
                 Motion::ThreePointArc => 5.0,
                 Motion::Nurbs => 6.2,

@@ -212,7 +212,15 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
     );
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
-    assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E201, 2, 1));
+    // G33.1 taps with a turning spindle and K in the block, as rs274
+    // wants ("Spindle not turning in G33.1", "K word missing with
+    // g33/g33.1"); the taps themselves are checked against rs274
+    // (`rigid_tapping_g33_1.ngc`).
+    assert_eq!(alarm("G21\nG33.1 Z-5 K1\nM2\n"), (Code::E321, 2, 1));
+    assert_eq!(
+        alarm("G21\nS500 M3\nG33.1 Z-5 K1\nZ-6\nM2\n"),
+        (Code::E312, 4, 1)
+    );
 }
 
 /// LinuxCNC's parameters and expressions (`macros/ngc.rs`; their values
@@ -361,7 +369,13 @@ fn second_review_findings_stay_fixed() {
     assert_eq!(code, Code::E201);
     assert!(help.contains("--dialect linuxcnc-lathe"), "{help}");
     let (_, _, _, _, help) = fanuc("G21\nG33.1 Z-5 K1\nM30\n");
-    assert!(!help.contains("--dialect"), "no dialect runs G33.1: {help}");
+    assert!(
+        help.contains("--dialect linuxcnc"),
+        "linuxcnc runs G33.1: {help}"
+    );
+    // A code no dialect runs names none.
+    let (_, _, _, _, help) = fanuc("G21\nG43.2 H1\nM30\n");
+    assert!(!help.contains("--dialect"), "no dialect runs G43.2: {help}");
     let (code, _, _, message, _) = fanuc("G21\nG10 L0 P1 X1\nM30\n");
     assert_eq!(code, Code::E109);
     assert!(message.contains("2..20"), "{message}");
@@ -575,4 +589,49 @@ fn other_dialects_keep_the_machine_arc_tolerance() {
         matches!(&out, Outcome::Alarm(d) if d.code == Code::E303),
         "{out:?}"
     );
+}
+
+/// LinuxCNC's G76 runs in lathe mode (its passes against rs274 in
+/// `tests/fixtures/linuxcnc_lathe_cycles`); the mill dialect sends it
+/// there, and a block without its words alarms at the code.
+#[test]
+fn g76_threads_in_lathe_mode_and_alarms_without_its_words() {
+    let (_, out) = run("G21\nG76 P1.5 Z-20 I-1 J0.2 K1\nM2\n");
+    assert!(
+        matches!(&out, Outcome::Alarm(d) if d.code == Code::E201 && d.message.contains("linuxcnc-lathe")),
+        "{out:?}"
+    );
+    let lathe = |p: &str| {
+        let (ev, out) = run_str(&Dialect::linuxcnc_lathe(), p);
+        (ev, out)
+    };
+    let head = "G18 G21 G90 G8 G95\nS300 M3\nG0 X12 Z3\n";
+    let (ev, out) = lathe(&format!("{head}G76 P1.5 Z-20 I-1 J0.5 K1\nM2\n"));
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    // Depths 0.5 and 1 (R1: J·n): two passes at X 10.5 and 10.
+    let threads: Vec<f64> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Thread { to, .. } => Some(to.get(0)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(threads, vec![10.5, 10.0]);
+    for (block, code, column) in [
+        ("G76 Z-20 I-1 J0.5 K1", Code::E312, 1),
+        ("G76 P1.5 I-1 J0.5 K1", Code::E312, 1),
+        ("G76 P1.5 Z-20 I0 J0.5 K1", Code::E109, 15),
+        ("G76 P1.5 Z-20 I-1 J0.5 K1 X3", Code::E203, 27),
+        ("G76 P1.5 Z3 I-1 J0.5 K1", Code::E314, 1),
+    ] {
+        let (ev, out) = lathe(&format!("{head}{block}\nM2\n"));
+        assert!(
+            matches!(&out, Outcome::Alarm(d) if (d.code, d.line, d.column) == (code, 4, column)),
+            "{block}: {out:?}"
+        );
+        assert!(
+            !ev.iter().any(|e| matches!(e, Event::Thread { .. })),
+            "{block}"
+        );
+    }
 }
