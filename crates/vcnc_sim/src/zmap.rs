@@ -792,7 +792,7 @@ impl Geometry {
                     row_s,
                 };
                 if along_x {
-                    self.flat_span::<true>(ctx, &span, h, t, hit, f);
+                    self.flat_span_x(ctx, &span, h, t, hit, f);
                 } else {
                     self.flat_span::<false>(ctx, &span, h, t, hit, f);
                 }
@@ -835,6 +835,58 @@ impl Geometry {
             hi = hi.max(s_hi);
         }
         (lo <= hi).then_some((lo, hi, h_lo, h_hi))
+    }
+
+    /// [`Geometry::flat_span`] for a move along X, whose row span lies
+    /// inside the tool's sweep by construction. With the covered
+    /// half-width s fixed along the row, the end the envelope takes (t_c +
+    /// s descending, t_c − s ascending) is linear in x, and clamping it
+    /// to [0, 1] is taking the lower end's height as a floor: each cell is
+    /// e = max(lin, z_min) with lin growing by a constant step.
+    fn flat_span_x(
+        &self,
+        ctx: &RowCtx,
+        span: &FlatSpan,
+        h: &mut [f32],
+        tools: &mut [u8],
+        hit: &mut Hit,
+        f: &FlatLine,
+    ) {
+        let x = self.x0 + (span.i0 as f64 + 0.5) * self.dx;
+        let tc = ((x - f.ax) * f.dx + (span.y - f.ay) * f.dy) * f.inv_l2;
+        let g = self.dx * f.dx * f.inv_l2;
+        let side = if f.dz > 0.0 { -span.row_s } else { span.row_s };
+        let (floor, bottom) = (f.az.min(f.az + f.dz), ctx.bottom);
+        let (mut lin, step) = (f.az + f.dz * (tc + side), f.dz * g);
+        let mut deepest = f64::from(hit.depth_mm);
+        let mut deepest_at = None;
+        for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
+            let e = fmax(lin, floor);
+            lin += step;
+            let before = f64::from(*cell);
+            if e < before - 1e-4 {
+                let new = fmax(e, bottom);
+                let depth = before - new;
+                *cell = to_f32(new);
+                *tool = ctx.id;
+                if depth > deepest {
+                    deepest = depth;
+                    deepest_at = Some(k);
+                }
+                if span.through && e < bottom - CUT_EPS_MM && before > bottom {
+                    hit.below = true;
+                }
+            } else if e < before {
+                *cell = to_f32(fmax(e, bottom));
+            }
+        }
+        if let Some(k) = deepest_at {
+            hit.depth_mm = to_f32(deepest);
+            hit.at = (
+                u32::try_from(span.i0 + k).unwrap_or(0),
+                u32::try_from(span.j).unwrap_or(0),
+            );
+        }
     }
 
     /// [`Geometry::cut_span`] for a flat line. Along a row the
