@@ -422,6 +422,14 @@ impl FlatLine {
     }
 }
 
+/// An envelope linear along a row, floored: max(start + k·step, floor)
+/// at the span's k-th cell.
+struct Linear {
+    start: f64,
+    step: f64,
+    floor: f64,
+}
+
 /// Where a span of a flat line's row lies.
 struct FlatSpan {
     /// Its first cell's column.
@@ -694,6 +702,16 @@ impl Geometry {
             self.flat_line(w, band, &ctx, cut, f, &rows, hit);
             return;
         }
+        if let Shape::Line(l) = &cut.shape
+            && is_flat(cutter)
+            && l.a[0] == l.b[0]
+            && l.a[1] == l.b[1]
+        {
+            // A flat end mill standing or moving straight up or down: its
+            // envelope is the lower end's height over its whole disc.
+            self.flat_disc(w, band, &ctx, [l.a[0], l.a[1], min_z], r, hit);
+            return;
+        }
         for j in self.rows(w, by0 - r, by1 + r) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let base = (j / self.n) * self.nx;
@@ -800,6 +818,56 @@ impl Geometry {
         }
     }
 
+    /// A flat end mill of radius `r` whose lowest tip is `p`, over its
+    /// disc (a chain's vertex, a plunge): every covered cell's envelope is
+    /// p's height.
+    fn flat_disc(
+        &self,
+        w: usize,
+        band: &mut Band,
+        ctx: &RowCtx,
+        p: [f64; 3],
+        r: f64,
+        hit: &mut Hit,
+    ) {
+        let r2 = r * r;
+        let through = p[2] < ctx.bottom - CUT_EPS_MM;
+        let linear = Linear {
+            start: p[2],
+            step: 0.0,
+            floor: p[2],
+        };
+        for (j, base) in self.row_starts(w, p[1] - r, p[1] + r) {
+            let y = self.y0 + (j as f64 + 0.5) * self.dy;
+            let w2 = r2 - (y - p[1]) * (y - p[1]);
+            if w2 < 0.0 {
+                continue;
+            }
+            let half = w2.sqrt();
+            let (i0, i1) = cells_inv(p[0] - half, p[0] + half, self.x0, self.inv_dx, self.nx);
+            let (Ok(i0), Ok(i1)) = (usize::try_from(i0.max(0)), usize::try_from(i1)) else {
+                continue;
+            };
+            if i0 > i1 {
+                continue;
+            }
+            let (Some(h), Some(t)) = (
+                band.h.get_mut(base + i0..=base + i1),
+                band.tool.get_mut(base + i0..=base + i1),
+            ) else {
+                continue;
+            };
+            let span = FlatSpan {
+                i0,
+                j,
+                y,
+                through,
+                row_s: 0.0,
+            };
+            Self::lower_linear(ctx, &span, h, t, hit, &linear);
+        }
+    }
+
     /// The x-interval row `y` meets a line's capsule and the interval of
     /// the disc it skips, for a move not along X.
     fn row_of_line(
@@ -856,8 +924,27 @@ impl Geometry {
         let tc = ((x - f.ax) * f.dx + (span.y - f.ay) * f.dy) * f.inv_l2;
         let g = self.dx * f.dx * f.inv_l2;
         let side = if f.dz > 0.0 { -span.row_s } else { span.row_s };
-        let (floor, bottom) = (f.az.min(f.az + f.dz), ctx.bottom);
-        let (mut lin, step) = (f.az + f.dz * (tc + side), f.dz * g);
+        let linear = Linear {
+            start: f.az + f.dz * (tc + side),
+            step: f.dz * g,
+            floor: f.az.min(f.az + f.dz),
+        };
+        Self::lower_linear(ctx, span, h, tools, hit, &linear);
+    }
+
+    /// Lowers the cells of a span to the envelope max(start + k·step,
+    /// floor) (and not under the bottom), marking the tool and the
+    /// deepest removal.
+    fn lower_linear(
+        ctx: &RowCtx,
+        span: &FlatSpan,
+        h: &mut [f32],
+        tools: &mut [u8],
+        hit: &mut Hit,
+        linear: &Linear,
+    ) {
+        let (floor, bottom, step) = (linear.floor, ctx.bottom, linear.step);
+        let mut lin = linear.start;
         let mut deepest = f64::from(hit.depth_mm);
         let mut deepest_at = None;
         for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
