@@ -422,6 +422,29 @@ impl FlatLine {
     }
 }
 
+/// An envelope linear along a row, floored: max(start + k·step, floor)
+/// at the span's k-th cell.
+struct Linear {
+    start: f64,
+    step: f64,
+    floor: f64,
+}
+
+/// Where a span of a flat line's row lies.
+struct FlatSpan {
+    /// Its first cell's column.
+    i0: usize,
+    /// Its row.
+    j: usize,
+    /// The row's centre line.
+    y: f64,
+    /// Whether the move's tip goes under the stock's bottom at all.
+    through: bool,
+    /// Along X: the covered half-width of the row in the move's
+    /// parameter (the same for every cell).
+    row_s: f64,
+}
+
 /// What a worker needs to apply one move to one row.
 struct RowCtx {
     /// The stock's bottom.
@@ -599,6 +622,20 @@ struct Geometry {
 }
 
 impl Geometry {
+    /// Worker `w`'s rows whose centres lie in [ya, yb], each with the
+    /// index of its first cell in the worker's band (no division a row).
+    fn row_starts(
+        &self,
+        w: usize,
+        ya: f64,
+        yb: f64,
+    ) -> impl Iterator<Item = (usize, usize)> + use<> {
+        let mut rows = self.rows(w, ya, yb).peekable();
+        let (first, nx) = (rows.peek().copied().unwrap_or(0), self.nx);
+        let k0 = first / self.n;
+        rows.zip((k0..).map(move |k| k * nx))
+    }
+
     /// Worker `w`'s rows whose centres lie in [ya, yb].
     fn rows(&self, w: usize, ya: f64, yb: f64) -> impl Iterator<Item = usize> + use<> {
         let (lo, hi) = cells(ya, yb, self.y0, self.dy, self.ny);
@@ -665,6 +702,16 @@ impl Geometry {
             self.flat_line(w, band, &ctx, cut, f, &rows, hit);
             return;
         }
+        if let Shape::Line(l) = &cut.shape
+            && is_flat(cutter)
+            && l.a[0] == l.b[0]
+            && l.a[1] == l.b[1]
+        {
+            // A flat end mill standing or moving straight up or down: its
+            // envelope is the lower end's height over its whole disc.
+            self.flat_disc(w, band, &ctx, [l.a[0], l.a[1], min_z], r, hit);
+            return;
+        }
         for j in self.rows(w, by0 - r, by1 + r) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let base = (j / self.n) * self.nx;
@@ -704,37 +751,39 @@ impl Geometry {
         let r = rows.r;
         let (y_lo, y_hi) = (a[1].min(b[1]) - r, a[1].max(b[1]) + r);
         let margin = 1e-9 * (1.0 + r);
-        for j in self.rows(w, y_lo, y_hi) {
+        // The envelope never goes under the lower end's tip, so a move
+        // whose tip stays above the bottom cannot cut through it.
+        let through = fmin(a[2], b[2]) < ctx.bottom - CUT_EPS_MM;
+        // A move along X crosses each row at one distance from its line:
+        // both discs and the band meet the row over one interval, the
+        // half-width w its only square root.
+        let along_x = f.dy == 0.0;
+        let (x_lo, x_hi) = (fmin(a[0], b[0]), fmax(a[0], b[0]));
+        for (j, base) in self.row_starts(w, y_lo, y_hi) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
-            let (wy, wyb) = (y - a[1], y - b[1]);
-            let (wa2, wb2) = (r2 - wy * wy, r2 - wyb * wyb);
-            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            let (mut h_lo, mut h_hi) = (f64::INFINITY, f64::NEG_INFINITY);
-            if wa2 >= 0.0 {
-                let wa = wa2.sqrt();
-                (lo, hi) = (a[0] - wa, a[0] + wa);
-                if cut.skip_start {
-                    (h_lo, h_hi) = (lo + margin, hi - margin);
+            let (lo, hi, h_lo, h_hi, row_s) = if along_x {
+                let wy = y - a[1];
+                let w2 = r2 - wy * wy;
+                if w2 < 0.0 {
+                    continue;
                 }
-            }
-            if wb2 >= 0.0 {
-                let wb = wb2.sqrt();
-                lo = lo.min(b[0] - wb);
-                hi = hi.max(b[0] + wb);
-                if cut.skip_end {
-                    (h_lo, h_hi) = (b[0] - wb + margin, b[0] + wb - margin);
+                let half = w2.sqrt();
+                let hole = if cut.skip_end {
+                    (b[0] - half + margin, b[0] + half - margin)
+                } else if cut.skip_start {
+                    (a[0] - half + margin, a[0] + half - margin)
+                } else {
+                    (f64::INFINITY, f64::NEG_INFINITY)
+                };
+                (x_lo - half, x_hi + half, hole.0, hole.1, half * f.inv_len)
+            } else {
+                match self.row_of_line(cut, rows, r2, margin, y) {
+                    Some((lo, hi, h_lo, h_hi)) => (lo, hi, h_lo, h_hi, 0.0),
+                    None => continue,
                 }
-            }
-            if let Some((s_lo, s_hi)) = rows.band_span(y) {
-                lo = lo.min(s_lo);
-                hi = hi.max(s_hi);
-            }
-            if lo > hi {
-                continue;
-            }
+            };
             let (i0, i1) = cells_inv(lo, hi, self.x0, self.inv_dx, self.nx);
             let (e0, e1) = cells_inv(h_lo, h_hi, self.x0, self.inv_dx, self.nx);
-            let base = (j / self.n) * self.nx;
             let pieces = if e0 <= e1 {
                 [(i0.max(0), i1.min(e0 - 1)), (i0.max(e1 + 1).max(0), i1)]
             } else {
@@ -753,41 +802,221 @@ impl Geometry {
                 ) else {
                     continue;
                 };
-                self.flat_span(ctx, p0, h, t, j, hit, f, y);
+                let span = FlatSpan {
+                    i0: p0,
+                    j,
+                    y,
+                    through,
+                    row_s,
+                };
+                if along_x {
+                    self.flat_span_x(ctx, &span, h, t, hit, f);
+                } else {
+                    self.flat_span::<false>(ctx, &span, h, t, hit, f);
+                }
             }
+        }
+    }
+
+    /// A flat end mill of radius `r` whose lowest tip is `p`, over its
+    /// disc (a chain's vertex, a plunge): every covered cell's envelope is
+    /// p's height.
+    fn flat_disc(
+        &self,
+        w: usize,
+        band: &mut Band,
+        ctx: &RowCtx,
+        p: [f64; 3],
+        r: f64,
+        hit: &mut Hit,
+    ) {
+        let r2 = r * r;
+        let through = p[2] < ctx.bottom - CUT_EPS_MM;
+        let linear = Linear {
+            start: p[2],
+            step: 0.0,
+            floor: p[2],
+        };
+        for (j, base) in self.row_starts(w, p[1] - r, p[1] + r) {
+            let y = self.y0 + (j as f64 + 0.5) * self.dy;
+            let w2 = r2 - (y - p[1]) * (y - p[1]);
+            if w2 < 0.0 {
+                continue;
+            }
+            let half = w2.sqrt();
+            let (i0, i1) = cells_inv(p[0] - half, p[0] + half, self.x0, self.inv_dx, self.nx);
+            let (Ok(i0), Ok(i1)) = (usize::try_from(i0.max(0)), usize::try_from(i1)) else {
+                continue;
+            };
+            if i0 > i1 {
+                continue;
+            }
+            let (Some(h), Some(t)) = (
+                band.h.get_mut(base + i0..=base + i1),
+                band.tool.get_mut(base + i0..=base + i1),
+            ) else {
+                continue;
+            };
+            let span = FlatSpan {
+                i0,
+                j,
+                y,
+                through,
+                row_s: 0.0,
+            };
+            Self::lower_linear(ctx, &span, h, t, hit, &linear);
+        }
+    }
+
+    /// The x-interval row `y` meets a line's capsule and the interval of
+    /// the disc it skips, for a move not along X.
+    fn row_of_line(
+        &self,
+        cut: &Cut,
+        rows: &CapsuleRows,
+        r2: f64,
+        margin: f64,
+        y: f64,
+    ) -> Option<(f64, f64, f64, f64)> {
+        let (a, b) = (rows.a, rows.b);
+        let (wy, wyb) = (y - a[1], y - b[1]);
+        let (wa2, wb2) = (r2 - wy * wy, r2 - wyb * wyb);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut h_lo, mut h_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        if wa2 >= 0.0 {
+            let wa = wa2.sqrt();
+            (lo, hi) = (a[0] - wa, a[0] + wa);
+            if cut.skip_start {
+                (h_lo, h_hi) = (lo + margin, hi - margin);
+            }
+        }
+        if wb2 >= 0.0 {
+            let wb = wb2.sqrt();
+            lo = lo.min(b[0] - wb);
+            hi = hi.max(b[0] + wb);
+            if cut.skip_end {
+                (h_lo, h_hi) = (b[0] - wb + margin, b[0] + wb - margin);
+            }
+        }
+        if let Some((s_lo, s_hi)) = rows.band_span(y) {
+            lo = lo.min(s_lo);
+            hi = hi.max(s_hi);
+        }
+        (lo <= hi).then_some((lo, hi, h_lo, h_hi))
+    }
+
+    /// [`Geometry::flat_span`] for a move along X, whose row span lies
+    /// inside the tool's sweep by construction. With the covered
+    /// half-width s fixed along the row, the end the envelope takes (t_c +
+    /// s descending, t_c − s ascending) is linear in x, and clamping it
+    /// to [0, 1] is taking the lower end's height as a floor: each cell is
+    /// e = max(lin, z_min) with lin growing by a constant step.
+    fn flat_span_x(
+        &self,
+        ctx: &RowCtx,
+        span: &FlatSpan,
+        h: &mut [f32],
+        tools: &mut [u8],
+        hit: &mut Hit,
+        f: &FlatLine,
+    ) {
+        let x = self.x0 + (span.i0 as f64 + 0.5) * self.dx;
+        let tc = ((x - f.ax) * f.dx + (span.y - f.ay) * f.dy) * f.inv_l2;
+        let g = self.dx * f.dx * f.inv_l2;
+        let side = if f.dz > 0.0 { -span.row_s } else { span.row_s };
+        let linear = Linear {
+            start: f.az + f.dz * (tc + side),
+            step: f.dz * g,
+            floor: f.az.min(f.az + f.dz),
+        };
+        Self::lower_linear(ctx, span, h, tools, hit, &linear);
+    }
+
+    /// Lowers the cells of a span to the envelope max(start + k·step,
+    /// floor) (and not under the bottom), marking the tool and the
+    /// deepest removal.
+    fn lower_linear(
+        ctx: &RowCtx,
+        span: &FlatSpan,
+        h: &mut [f32],
+        tools: &mut [u8],
+        hit: &mut Hit,
+        linear: &Linear,
+    ) {
+        let (floor, bottom, step) = (linear.floor, ctx.bottom, linear.step);
+        let mut lin = linear.start;
+        let mut deepest = f64::from(hit.depth_mm);
+        let mut deepest_at = None;
+        for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
+            let e = fmax(lin, floor);
+            lin += step;
+            let before = f64::from(*cell);
+            if e < before - 1e-4 {
+                let new = fmax(e, bottom);
+                let depth = before - new;
+                *cell = to_f32(new);
+                *tool = ctx.id;
+                if depth > deepest {
+                    deepest = depth;
+                    deepest_at = Some(k);
+                }
+                if span.through && e < bottom - CUT_EPS_MM && before > bottom {
+                    hit.below = true;
+                }
+            } else if e < before {
+                *cell = to_f32(fmax(e, bottom));
+            }
+        }
+        if let Some(k) = deepest_at {
+            hit.depth_mm = to_f32(deepest);
+            hit.at = (
+                u32::try_from(span.i0 + k).unwrap_or(0),
+                u32::try_from(span.j).unwrap_or(0),
+            );
         }
     }
 
     /// [`Geometry::cut_span`] for a flat line. Along a row the
     /// projection t_c and the signed distance d⊥ from the line are linear
-    /// in x, so each cell costs two additions before its square root.
-    #[allow(clippy::too_many_arguments)]
-    fn flat_span(
+    /// in x, so each cell costs two additions before its square root; a
+    /// move along X (`ALONG_X`: the raster of most 3D finishing) keeps d⊥
+    /// and so the covered half-width fixed along the row, and its cells
+    /// need no square root at all (the same figures, computed once).
+    #[inline]
+    fn flat_span<const ALONG_X: bool>(
         &self,
         ctx: &RowCtx,
-        i0: usize,
+        span: &FlatSpan,
         h: &mut [f32],
         tools: &mut [u8],
-        j: usize,
         hit: &mut Hit,
         f: &FlatLine,
-        y: f64,
     ) {
-        let x = self.x0 + (i0 as f64 + 0.5) * self.dx;
-        let (wx, wy) = (x - f.ax, y - f.ay);
+        let x = self.x0 + (span.i0 as f64 + 0.5) * self.dx;
+        let (wx, wy) = (x - f.ax, span.y - f.ay);
         let mut tc = (wx * f.dx + wy * f.dy) * f.inv_l2;
         let mut dp = (wx * f.dy - wy * f.dx) * f.inv_len;
         let (g, q) = (self.dx * f.dx * f.inv_l2, self.dx * f.dy * f.inv_len);
         let up = f.dz > 0.0;
         let bottom = ctx.bottom;
         let (r2, inv_l2, az, dz) = (f.r2, f.inv_l2, f.az, f.dz);
+        let row_s = span.row_s;
+        // The deepest removal of the span, kept in registers.
+        let mut deepest = f64::from(hit.depth_mm);
+        let mut deepest_at = None;
         for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
             let d2 = dp * dp;
-            let s = (fmax(r2 - d2, 0.0) * inv_l2).sqrt();
+            let s = if ALONG_X {
+                row_s
+            } else {
+                (fmax(r2 - d2, 0.0) * inv_l2).sqrt()
+            };
             let (t0, t1) = (fmax(tc - s, 0.0), fmin(tc + s, 1.0));
             tc += g;
-            dp += q;
-            if d2 > r2 || t0 > t1 {
+            if !ALONG_X {
+                dp += q;
+            }
+            if (!ALONG_X && d2 > r2) || t0 > t1 {
                 continue;
             }
             let e = az + dz * if up { t0 } else { t1 };
@@ -797,19 +1026,23 @@ impl Geometry {
                 let depth = before - new;
                 *cell = to_f32(new);
                 *tool = ctx.id;
-                if depth > f64::from(hit.depth_mm) {
-                    hit.depth_mm = to_f32(depth);
-                    hit.at = (
-                        u32::try_from(i0 + k).unwrap_or(0),
-                        u32::try_from(j).unwrap_or(0),
-                    );
+                if depth > deepest {
+                    deepest = depth;
+                    deepest_at = Some(k);
                 }
-                if e < bottom - CUT_EPS_MM && before > bottom {
+                if span.through && e < bottom - CUT_EPS_MM && before > bottom {
                     hit.below = true;
                 }
             } else if e < before {
                 *cell = to_f32(fmax(e, bottom));
             }
+        }
+        if let Some(k) = deepest_at {
+            hit.depth_mm = to_f32(deepest);
+            hit.at = (
+                u32::try_from(span.i0 + k).unwrap_or(0),
+                u32::try_from(span.j).unwrap_or(0),
+            );
         }
     }
 

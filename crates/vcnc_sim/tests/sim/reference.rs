@@ -97,7 +97,7 @@ fn program(moves: &[(u8, f64, f64, f64)], depth: f64) -> String {
     let _ = writeln!(p, "G01 Z{depth:.4} F500");
     let (mut x, mut y, mut z) = (10.0f64, 10.0f64, depth);
     for &(kind, a, b, c) in moves {
-        match kind % 4 {
+        match kind % 6 {
             0 => {
                 x = 2.0 + 16.0 * a;
                 y = 2.0 + 16.0 * b;
@@ -114,12 +114,24 @@ fn program(moves: &[(u8, f64, f64, f64)], depth: f64) -> String {
                 let r = 1.0 + 4.0 * a;
                 let ang0 = std::f64::consts::TAU * b;
                 let (cx, cy) = (x - r * ang0.cos(), y - r * ang0.sin());
-                let sweep = (0.3 + 4.7 * c) * if kind & 4 == 0 { 1.0 } else { -1.0 };
+                let sweep = (0.3 + 4.7 * c) * if kind < 6 { 1.0 } else { -1.0 };
                 let (ex, ey) = (cx + r * (ang0 + sweep).cos(), cy + r * (ang0 + sweep).sin());
                 let code = if sweep > 0.0 { "G03" } else { "G02" };
                 let _ = writeln!(p, "{code} X{ex:.4} Y{ey:.4} I{:.4} J{:.4}", cx - x, cy - y);
                 x = ex;
                 y = ey;
+            }
+            4 => {
+                // Along X, level or ramping (a raster's move: one distance
+                // from the line per row, the Z-map's own path).
+                x = 2.0 + 16.0 * a;
+                z = (z + (c - 0.5) * 3.0 * b).clamp(-5.0, 0.5);
+                let _ = writeln!(p, "G01 X{x:.4} Z{z:.4}");
+            }
+            5 => {
+                y = 2.0 + 16.0 * a;
+                z = (z + (c - 0.5) * 3.0 * b).clamp(-5.0, 0.5);
+                let _ = writeln!(p, "G01 Y{y:.4} Z{z:.4}");
             }
             _ => {
                 z = -5.0 * a;
@@ -217,7 +229,7 @@ fn check(kind: Kind, radius: f64, moves: &[(u8, f64, f64, f64)], depth: f64) {
 }
 
 fn moves() -> impl Strategy<Value = Vec<(u8, f64, f64, f64)>> {
-    prop::collection::vec((0u8..8, 0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64), 1..7)
+    prop::collection::vec((0u8..12, 0.0..1.0f64, 0.0..1.0f64, 0.0..1.0f64), 1..9)
 }
 
 proptest! {
