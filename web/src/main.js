@@ -170,6 +170,33 @@ async function runCheck() {
   app.applied = gen;
   app.lastChecked = text;
   updateLink(text);
+  if ($("simOn").checked) simulate(gen, text);
+}
+
+// Material removal after the check, when asked for (it costs more than a
+// check: a survey pass for the automatic stock, then the cuts).
+async function simulate(gen, text) {
+  const row = $("simRow");
+  if (row) row.textContent = "simulating…";
+  let answer;
+  try {
+    answer = await engine.request("sim", text, Object.assign(settings(), { stock: $("stock").value }));
+  } catch (e) {
+    if (e.cancelled || gen !== app.gen) return;
+    app.sim = { error: e.message };
+    if ($("simRow")) $("simRow").textContent = e.message;
+    return;
+  }
+  if (gen !== app.gen) return;
+  const r = answer.result;
+  app.sim = r;
+  app.simmed = gen;
+  const pct = r.stock_mm3 > 0 ? (100 * r.removed_mm3 / r.stock_mm3).toFixed(1) : "0";
+  let h = '<span id="removed" data-mm3="' + r.removed_mm3 + '">removed ' + r.removed_mm3.toFixed(3) + " mm³ of " + r.stock_mm3.toFixed(3) + " mm³ (" + pct + " %)</span>\n" +
+    esc(r.stock) + "\n" + (r.collision_total ? '<span class="bad">' + r.collision_total + " collision(s)</span>" : "no collision");
+  for (const c of r.collisions.slice(0, 20)) h += "\nline " + c.line + ": " + esc(c.kind) + ": " + esc(c.message);
+  for (const n of r.notes) h += '\n<span class="warn">' + esc(n) + "</span>";
+  if ($("simRow")) $("simRow").innerHTML = h;
 }
 
 // ---- results -------------------------------------------------------------------
@@ -223,7 +250,7 @@ function summary(r) {
   if (s.holes) rows.push(["holes", String(s.holes)]);
   rows.push(["diagnostics", '<span class="' + (s.alarms ? "bad" : "") + '">' + s.alarms + " alarm(s)</span>, <span class=\"" + (s.warnings ? "warn" : "") + '">' + s.warnings + " warning(s)</span>"]);
   rows.push(["machine", esc(s.machine)]);
-  rows.push(["material removal", "not in the browser yet: vcnc sim on the command line"]);
+  rows.push(["material removal", $("simOn").checked ? '<span id="simRow">simulating…</span>' : "off (tick simulate)"]);
   $("summary").innerHTML = "<table>" + rows.map(([k, v]) => "<tr><td>" + esc(k) + "</td><td>" + v + "</td></tr>").join("") + "</table>";
 }
 
@@ -316,6 +343,8 @@ $("saveFlat").addEventListener("click", async () => {
     if (!e.cancelled) showError(e.message);
   }
 });
+$("simOn").addEventListener("change", scheduleCheck);
+$("stock").addEventListener("change", scheduleCheck);
 $("dialect").addEventListener("change", (e) => { setup.dialect = e.target.value; scheduleCheck(); });
 
 // ---- the program in the address: #p=<base64url(deflate-raw)>&dialect=NAME ----------------

@@ -15,7 +15,8 @@
 //!   the detector's evidence shown;
 //! - a click on a segment of the 3D view selects its line in the editor,
 //!   and the editor's line lights its segments in the view;
-//! - the summary's planned time is `vcnc time`'s;
+//! - the summary's planned time is `vcnc time`'s, and the volume the
+//!   simulation removes is `vcnc sim`'s;
 //! - a binary file and an endless loop end in located alarms, the page
 //!   stays up;
 //! - a `#p=` link brings the program and its dialect back;
@@ -246,6 +247,25 @@ fn the_page_checks_times_and_draws_as_you_type() {
         (page_s - cli_s).abs() < 1e-6,
         "page {page_s} s, vcnc time {cli_s} s"
     );
+    // Material removal: what `vcnc sim` removes from the automatic stock.
+    b.js("document.getElementById('simOn').click(); return 0;");
+    wait_for(
+        &b,
+        "vcncApp.simmed === vcncApp.applied && document.getElementById('removed')",
+        "the simulation reports",
+    );
+    let cli_sim = vcnc_json(&["sim", haas_file.to_str().unwrap(), "--format", "json"]);
+    let removed = b.js("return Number(document.getElementById('removed').dataset.mm3);");
+    let (page_mm3, cli_mm3) = (
+        removed.as_f64().unwrap(),
+        cli_sim["removed_mm3"].as_f64().unwrap(),
+    );
+    assert!(cli_mm3 > 0.0, "{cli_sim}");
+    assert!(
+        (page_mm3 - cli_mm3).abs() <= 1e-9 * cli_mm3,
+        "page {page_mm3} mm³, vcnc sim {cli_mm3} mm³"
+    );
+    b.js("document.getElementById('simOn').click(); return 0;");
     viewer_ready(&b);
     b.js("document.getElementById('viewer').contentWindow.vcnc.setIndex(0); return 0;");
     std::thread::sleep(Duration::from_millis(400));

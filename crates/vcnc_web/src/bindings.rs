@@ -48,6 +48,13 @@ pub fn events(text: &str, settings_js: JsValue) -> Result<JsValue, JsValue> {
     out(crate::events(text, &settings(settings_js)?))
 }
 
+/// Material removal on `stock` (`--stock`'s syntax; empty: the header
+/// comment, else automatic): removed volume and collisions.
+#[wasm_bindgen]
+pub fn sim(text: &str, settings_js: JsValue, stock: Option<String>) -> Result<JsValue, JsValue> {
+    out(crate::sim(text, &settings(settings_js)?, stock.as_deref()))
+}
+
 /// The dialect detection picks for `text`, with its evidence.
 #[wasm_bindgen]
 pub fn detect(text: &str, file_name: Option<String>) -> Result<JsValue, JsValue> {

@@ -210,7 +210,14 @@ impl Clock for BlockClock {
     }
 }
 
-fn run<S: Sink>(text: &str, s: &Setup, keep_going: bool, markers: bool, sink: &mut S) -> Outcome {
+/// One run of `text` into `sink`.
+pub(crate) fn run<S: Sink>(
+    text: &str,
+    s: &Setup,
+    keep_going: bool,
+    markers: bool,
+    sink: &mut S,
+) -> Outcome {
     let options = vcnc_interp::Options {
         keep_going,
         ..s.options

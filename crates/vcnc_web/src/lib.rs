@@ -14,6 +14,7 @@
 //!     ─▶ time:    Planner ─▶ CycleTime      (as `vcnc time`)
 //!     ─▶ flatten: GcodeSink with markers    (as `vcnc run --format gcode`)
 //!     ─▶ events:  write_event per event     (as `vcnc run --format jsonl`)
+//!     ─▶ sim:     Survey? ─▶ Simulation     (as `vcnc sim`'s report)
 //! ```
 //!
 //! The page runs these in a Web Worker; a run ends by the interpreter's
@@ -22,6 +23,7 @@
 
 mod check;
 mod setup;
+mod sim;
 
 #[cfg(target_arch = "wasm32")]
 mod bindings;
@@ -31,3 +33,4 @@ pub use check::{
     time,
 };
 pub use setup::{DialectChoice, Settings, Setup, detect, dialects};
+pub use sim::{SimCollision, Simulated, sim};
