@@ -389,6 +389,7 @@ impl<'a> Interpreter<'a> {
             self.looping.first_alarm = Some(d.clone());
         }
         self.stage.pending.push(Event::Alarm(d));
+        self.release_corner();
         Ok(())
     }
 

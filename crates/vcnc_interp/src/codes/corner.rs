@@ -212,6 +212,34 @@ impl Interpreter<'_> {
         out
     }
 
+    /// Under keep-going, after an alarm (the state is as it was before
+    /// the alarmed block): a G01 still held for its corner runs straight
+    /// to the corner, unrounded, so that the blocks after it are read as
+    /// written instead of each alarming against the same stale corner, and
+    /// the path keeps the move. A move that cannot be made is dropped.
+    pub(crate) fn release_corner(&mut self) {
+        let Some(held) = self.state.lathe.corner.take() else {
+            return;
+        };
+        let corner = self.state.prog;
+        let block = vcnc_syntax::Block::default();
+        let w = Words::new(&block);
+        let line = std::mem::replace(&mut self.flow.loc.line, held.line);
+        let cur_line = std::mem::replace(&mut self.stage.cur_line, held.source_line);
+        self.state.prog = held.start;
+        let straight = Move {
+            kind: MoveKind::Feed(held.feed),
+            to: Target::Program(corner),
+            exact_stop: false,
+            cmd: held.cmd,
+        };
+        if self.commit(straight, &w).is_err() {
+            self.state.prog = corner;
+        }
+        self.flow.loc.line = line;
+        self.stage.cur_line = cur_line;
+    }
+
     /// At the end of the program (its last block being the G01 with the
     /// corner): the move it waits for never comes.
     pub(crate) fn check_corner_at_end(&self) -> Result<(), Diagnostic> {

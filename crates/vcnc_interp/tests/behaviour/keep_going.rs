@@ -122,3 +122,25 @@ fn without_keep_going_the_first_alarm_ends_the_run() {
     assert_eq!(alarms(&sink.0).len(), 1);
     assert!(feed_xs(&sink.0).is_empty());
 }
+
+/// A corner round that cannot be made (R20 on 10 mm lines, E347 at the
+/// block after it) leaves its G01 to run straight to the corner: the next
+/// blocks read as written, no stale corner alarms them again, and M30 ends
+/// the run (before, every later block alarmed E347 and nothing moved).
+#[test]
+fn a_corner_that_cannot_be_made_runs_its_g01_straight_and_the_program_goes_on() {
+    let program =
+        "G90 G21 G17 M3 S1000\nG0 X0 Y0\nG1 X10. Y0 ,R20. F100\nG1 X10. Y10.\nX20.\nM30\n";
+    let (events, _) = run(program);
+    assert_eq!(alarms(&events), vec![(Code::E347, 4)]);
+    // Line 3's G01 straight to (10, 0); line 4 skipped; line 5 on to X20.
+    let feeds: Vec<(u64, f64, f64)> = events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed { loc, to, .. } => Some((loc.line, to.get(0), to.get(1))),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds, vec![(3, 10.0, 0.0), (5, 20.0, 0.0)]);
+    assert!(matches!(events.last(), Some(Event::End { .. })));
+}
