@@ -210,24 +210,20 @@ fn cells_inv(a: f64, b: f64, origin: f64, inv: f64, n: usize) -> (isize, isize) 
 #[inline]
 #[allow(clippy::cast_possible_truncation)] // clamped to a small range first
 fn floor_index(v: f64, n: usize) -> isize {
-    if v.is_nan() || v < -1.0 {
-        return -1;
-    }
-    let v = v.min(n as f64);
+    // Clamped first in float (NaN fails the comparison: −1), so the
+    // conversion is in range and the adjustment is one compare.
+    let v = fmin(fmax(v, -1.0), n as f64);
     let t = v as isize;
-    if (t as f64) > v { t - 1 } else { t }
+    t - isize::from((t as f64) > v)
 }
 
 /// ⌈v⌉ clamped to −1 ..= n (NaN: −1).
 #[inline]
 #[allow(clippy::cast_possible_truncation)] // clamped to a small range first
 fn ceil_index(v: f64, n: usize) -> isize {
-    if v.is_nan() || v < -1.0 {
-        return -1;
-    }
-    let v = v.min(n as f64);
+    let v = fmin(fmax(v, -1.0), n as f64);
     let t = v as isize;
-    if (t as f64) < v { t + 1 } else { t }
+    t + isize::from((t as f64) < v)
 }
 
 fn isize_of(n: usize) -> isize {
