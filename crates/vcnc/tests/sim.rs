@@ -305,15 +305,16 @@ fn a_tool_table_s_flute_length_puts_the_shank_into_the_stock_at_its_line() {
     assert!(t.contains("tools      T1 10 mm flat end mill"), "{t}");
     let shank = "holder_into_stock: the shank runs 1.000 mm into the stock \
                  (the cut is deeper than the flutes reach)";
-    assert!(
-        t.contains(&format!("{file}:8:4: {shank} at X0 Y0 Z-8")),
-        "{t}"
-    );
+    // Line 8 plunges to Z−8 in the slot of line 5 (its floor at Z−2): the
+    // flutes go first and cut the column, so the shank (no wider than the
+    // cutter) meets only the wall of its own hole. Line 9 then runs the
+    // shank (from Z−3 up) through the slot's floor at Z−2 ahead: 1 mm.
+    assert!(!t.contains(&format!("{file}:8:4:")), "{t}");
     assert!(
         t.contains(&format!("{file}:9:1: {shank} at X20 Y0 Z-8")),
         "{t}"
     );
-    assert!(t.contains("collisions 2"), "{t}");
+    assert!(t.contains("collisions 1"), "{t}");
     let json = two_passes(
         &file,
         &["--tools", tools.to_str().unwrap(), "--format", "json"],
@@ -322,7 +323,7 @@ fn a_tool_table_s_flute_length_puts_the_shank_into_the_stock_at_its_line() {
     let c = &v["collisions"][0];
     assert_eq!(
         (c["line"].as_u64(), c["column"].as_u64(), c["kind"].as_str()),
-        (Some(8), Some(4), Some("holder_into_stock"))
+        (Some(9), Some(1), Some("holder_into_stock"))
     );
     // Flutes of 10 mm reach past the 8 mm pass: nothing to report.
     std::fs::write(&tools, "tool,diameter,flute_length\n1,10,10\n").unwrap();
@@ -363,6 +364,25 @@ fn a_tool_table_s_stickout_puts_the_holder_into_the_stock() {
         )),
         "{t}"
     );
+    // A necked tool (a 6 mm shank, a holder 9.9 mm across) plunging past
+    // its flutes stays inside the 10 mm hole its flutes cut first: nothing.
+    std::fs::write(
+        &tools,
+        "tool,diameter,flute_length,shank_diameter,holder_diameter,stickout\n1,10,5,6,9.9,10\n",
+    )
+    .unwrap();
+    let o = vcnc(&[
+        "sim",
+        &file,
+        "--dialect",
+        "fanuc",
+        "--stock",
+        "box:-20,-20,-20,40,20,0",
+        "--tools",
+        tools.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", out(&o));
+    assert!(out(&o).contains("collisions 0"), "{}", out(&o));
 }
 
 #[test]
@@ -377,7 +397,7 @@ fn a_cam_header_s_flute_length_is_checked_without_a_table() {
     assert!(t.contains("tools      T1 10 mm flat end mill"), "{t}");
     assert!(
         t.contains(&format!(
-            "{file}:9:4: holder_into_stock: the shank runs 1.000 mm"
+            "{file}:10:1: holder_into_stock: the shank runs 1.000 mm"
         )),
         "{t}"
     );

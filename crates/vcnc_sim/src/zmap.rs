@@ -648,8 +648,15 @@ impl Geometry {
         // A straight retract only leaves what its start stood in.
         let retract = matches!(cut.shape, Shape::Line(l)
             if l.a[0] == l.b[0] && l.a[1] == l.b[1] && l.b[2] > l.a[2]);
+        // A straight plunge: the flutes go first and cut the whole column
+        // the shank and holder then pass through, so a body no wider than
+        // the cutter meets only the wall of its own hole.
+        let plunge = matches!(cut.shape, Shape::Line(l)
+            if l.a[0] == l.b[0] && l.a[1] == l.b[1] && l.b[2] < l.a[2]);
+        let inside_hole = |body_radius: f64| plunge && body_radius <= cutter.radius;
         if let Some(flute) = cutter.flute_mm
             && !retract
+            && !inside_hole(cutter.shank_radius)
             && min_z + flute < self.top
         {
             let shank = cutter.flat_of_radius(cutter.shank_radius);
@@ -657,6 +664,7 @@ impl Geometry {
         }
         if let Some((at, radius)) = cutter.holder
             && !retract
+            && !inside_hole(radius)
             && min_z + at < self.top
         {
             hit.holder_mm = self.penetration(w, band, cut, &cutter.flat_of_radius(radius), at);
