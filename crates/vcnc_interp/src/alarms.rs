@@ -399,7 +399,7 @@ pub fn g53_ignored_incremental(span: Span) -> Diagnostic {
     d(
         Code::W110,
         span,
-        "G53 in incremental mode (G91) is ignored: the block does not move (Fanuc: \"when an incremental command is specified, the G53 command is ignored\")".into(),
+        "G53 in incremental mode (G91) is ignored: its axis words make no move in machine coordinates, though the rest of the block (an H0 cancelling the tool length offset) still acts (Fanuc: \"when an incremental command is specified, the G53 command is ignored\")".into(),
         "write G90 before G53 to move to the machine position (e.g. G90 G53 Z0. for Z home)",
     )
 }

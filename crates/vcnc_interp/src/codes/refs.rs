@@ -16,7 +16,7 @@
 use crate::alarms;
 use crate::block::convert::{dwell_not_negative, whole};
 use crate::block::words::Words;
-use crate::dialect::{BareReturn, DwellP, G53Incremental, GOp};
+use crate::dialect::{BareReturn, DwellP, G53Incremental, G53WithoutAxes, GOp};
 use crate::dialect::{CycleOp, FrameOp, MoveOp, PaceOp, SetOp, TurnOp};
 use crate::events::Event;
 use crate::interpreter::Interpreter;
@@ -364,8 +364,8 @@ impl Interpreter<'_> {
     }
 
     /// G53: a rapid to machine coordinates (absolute only). Without axis
-    /// words it moves nothing (Fanuc and Haas give it no alarm: `G53 G49
-    /// M05`); under G91 the dialect alarms or ignores the block.
+    /// words, and under G91, the dialect's G53 rule alarms or lets the
+    /// block go on without it.
     fn machine_move(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         if self.state.modal.incremental {
             return match self.cfg.dialect.g53_incremental {
@@ -385,7 +385,12 @@ impl Interpreter<'_> {
             }
         }
         if named == 0 {
-            return Ok(());
+            return match self.cfg.dialect.g53_without_axes {
+                G53WithoutAxes::Alarm if w.group(crate::dialect::Group::Motion).is_none() => {
+                    Err(alarms::needs_axes(cmd, "G53"))
+                }
+                _ => Ok(()),
+            };
         }
         self.straight(MoveKind::Rapid, Target::Machine(to), w, cmd)
     }

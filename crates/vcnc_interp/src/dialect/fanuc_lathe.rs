@@ -201,6 +201,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
+        g53_without_axes: super::G53WithoutAxes::MovesNothing,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -230,6 +231,7 @@ pub(super) fn haas_lathe() -> Dialect {
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
+        g53_without_axes: super::G53WithoutAxes::MovesNothing,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

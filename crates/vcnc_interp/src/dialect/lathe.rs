@@ -143,5 +143,6 @@ pub(super) fn lathe() -> Dialect {
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Alarm,
+        g53_without_axes: super::G53WithoutAxes::MovesNothing,
     }
 }

@@ -248,6 +248,7 @@ pub(super) fn linuxcnc() -> Dialect {
         thread_lead: ThreadLead::K,
         macros: super::MacroRules::NGC,
         arc_end: super::ArcEnd::Rs274,
+        g53_without_axes: super::G53WithoutAxes::Alarm,
         ..grbl()
     }
 }

@@ -112,6 +112,8 @@ pub(super) fn mach3() -> Dialect {
         aux_m: MACH3_AUX_M,
         macros: MacroRules::MACH3,
         o_in_flow: super::OInFlow::SkipsSubprogram,
+        // Mach3 programs write a bare `G53 G90 G40` in their headers.
+        g53_without_axes: super::G53WithoutAxes::MovesNothing,
         ..linuxcnc()
     }
 }

@@ -355,6 +355,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         thread_lead: ThreadLead::F,
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
+        g53_without_axes: super::G53WithoutAxes::MovesNothing,
     }
 }
 
@@ -372,6 +373,7 @@ pub(super) fn syntec() -> Dialect {
         macros: super::MacroRules::SYNTEC,
         thread_lead: ThreadLead::FHundredths,
         g53_incremental: super::G53Incremental::Alarm,
+        g53_without_axes: super::G53WithoutAxes::MovesNothing,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }

@@ -436,15 +436,28 @@ pub enum ThreadLead {
 /// G53 (a move in machine coordinates) under G91.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum G53Incremental {
-    /// An alarm (E308): Syntec 1.2.23 says G53 "is not effective in
-    /// increment mode", and an ignored move is worse than an alarm; rs274
-    /// refuses it too ("Cannot use g53 incremental").
+    /// An alarm: under G91 E308 (Syntec 1.2.23 says G53 "is not effective
+    /// in increment mode", and an ignored move is worse than an alarm;
+    /// rs274 refuses it too, "Cannot use g53 incremental").
     Alarm,
-    /// The G53 block does not move, with a warning (W110): Fanuc 0i's
+    /// G53 is ignored, with a warning (W110) under G91: Fanuc 0i's
     /// operator's manual (machine coordinate system, restrictions): "When
-    /// an incremental command is specified, the G53 command is ignored";
+    /// an incremental command is specified, the G53 command is ignored".
     /// Haas follows Fanuc.
     Ignored,
+}
+
+/// G53 without axis words (`G53 G49 M05`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum G53WithoutAxes {
+    /// It moves nothing and is no alarm: Fanuc 0i and Haas document none
+    /// (Fanuc: "IP_: absolute dimension word"), and the other Fanuc-style
+    /// manuals are silent, so Fanuc decides.
+    MovesNothing,
+    /// E312 unless the block has a motion code: rs274 refuses a bare G53
+    /// ("Must use g0 or g1 with g53": G53 only modifies a G0/G1 move) and
+    /// lets `G53 G0` without axes pass.
+    Alarm,
 }
 
 /// The feed mode at power-on (group 05).
@@ -537,6 +550,8 @@ pub struct Dialect {
     pub thread_lead: ThreadLead,
     /// G53 under G91.
     pub g53_incremental: G53Incremental,
+    /// G53 without axis words.
+    pub g53_without_axes: G53WithoutAxes,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,
@@ -774,10 +789,14 @@ impl Dialect {
     }
 
     /// Whether H is a tool length offset register in this dialect (it has
-    /// G43): then `H0` ("no offset") may stand in any block.
+    /// G43, and H names a register, not a tool): then `H0` ("no offset")
+    /// may stand in any block. rs274 refuses `G49 H0` ("H word with no G43
+    /// or G76 to use it").
     pub(crate) fn h_is_length_offset(&self) -> bool {
-        self.g(43.0)
-            .is_some_and(|g| g.op == GOp::Frame(FrameOp::ToolLengthPlus))
+        self.offset_default == OffsetDefault::Modal
+            && self
+                .g(43.0)
+                .is_some_and(|g| g.op == GOp::Frame(FrameOp::ToolLengthPlus))
     }
 
     /// The G code that does `op` in this dialect (the first in the table),

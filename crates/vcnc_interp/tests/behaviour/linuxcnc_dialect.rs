@@ -635,3 +635,13 @@ fn g76_threads_in_lathe_mode_and_alarms_without_its_words() {
         );
     }
 }
+
+/// What Fanuc and Haas let pass beside G53 and G49 rs274 refuses: `G49 H0`
+/// and `G53 G0 H0 Z0` ("H word with no G43 or G76 to use it": H is a tool
+/// number here) and a bare G53 ("Must use g0 or g1 with g53").
+#[test]
+fn h0_beside_g49_and_a_bare_g53_alarm_as_in_rs274() {
+    assert_eq!(alarm("G21\nG49 H0\nM2\n"), (Code::E203, 2, 5));
+    assert_eq!(alarm("G21\nG53 G0 H0 Z0\nM2\n"), (Code::E203, 2, 8));
+    assert_eq!(alarm("G21\nG53\nM2\n"), (Code::E312, 2, 1));
+}

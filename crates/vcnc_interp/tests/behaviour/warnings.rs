@@ -325,3 +325,23 @@ fn w110_fanuc_and_haas_ignore_g53_in_incremental_mode() {
         "{out:?}"
     );
 }
+
+/// W110 says what happens: G53's axis words make no machine move, but an
+/// H0 in the block still cancels the length offset (50 mm), so Z moves
+/// 50 mm down in machine coordinates on that line (Fanuc: "the G53 command
+/// is ignored", the rest of the block is not).
+#[test]
+fn w110_names_what_still_acts_in_an_ignored_g53_block() {
+    let p = "G90 G21 G17\nG10 L10 P1 R50.\nG43 H1 G0 Z10.\nG91 G53 G0 H0 Z0.\nM30\n";
+    let (events, out) = crate::common::run_str(&Dialect::fanuc(), p);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let w = events
+        .iter()
+        .find_map(|e| match e {
+            Event::Warning(d) if d.code == Code::W110 => Some(d),
+            _ => None,
+        })
+        .expect("W110");
+    assert!(w.message.contains("H0"), "{}", w.message);
+    assert!(!w.message.contains("does not move"), "{}", w.message);
+}
