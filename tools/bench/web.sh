@@ -6,8 +6,12 @@
 # the wasm figures are inside one node process (no start-up), the CLI's
 # are whole commands (start-up and file reading included).
 #
+# Then the page itself in headless Chromium (crates/vcnc/benches/web_page.rs):
+# the program opened in the editor, checked, and drawn by the viewer.
+#
 # Usage: tools/bench/web.sh [N]      (N blocks, default 1000000)
-# Needs: tools/build-web.sh's tools (it installs them); node; GNU time.
+# Needs: tools/build-web.sh's tools (it installs them); node; GNU time;
+#        chromium and chromium-driver for the page figures.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 N=${1:-${N:-1000000}}
@@ -28,3 +32,6 @@ for cmd in time check; do
     done
 done
 node tools/bench/web_engine.cjs "$DIR/node/vcnc_web.js" "$DIR/surfacing.nc"
+tools/build-web.sh
+VCNC_WEB_PAGE="$PWD/target/web/vcnc.html" VCNC_WEB_PROGRAM="$DIR/surfacing.nc" \
+    cargo bench -p vcnc --bench web_page

@@ -12,7 +12,8 @@
 //! - a program typed with a mistake shows the diagnostic at the CLI's line
 //!   and column, with the hint on hover; typing the fix removes it;
 //! - a Haas program loaded through the file input is read as haas, with
-//!   the detector's evidence shown;
+//!   the detector's evidence shown; a file dropped on the editor replaces
+//!   the text once and its name counts for detection;
 //! - a click on a segment of the 3D view selects its line in the editor,
 //!   and the editor's line lights its segments in the view;
 //! - the summary's planned time is `vcnc time`'s, and the volume the
@@ -327,6 +328,21 @@ fn the_page_checks_times_and_draws_as_you_type() {
         "no engine error"
     );
     shot(&b, "6-endless");
+
+    // A program dropped on the editor replaces the text (once), and its
+    // name is the detector's: an .ngc file reads as linuxcnc.
+    b.js(
+        "const dt = new DataTransfer(); \
+         dt.items.add(new File(['G21 G90\\nG0 X1 Y2\\nG1 X3 F100\\nM2\\n'], 'drop.ngc')); \
+         const t = document.querySelector('.cm-content'); \
+         t.dispatchEvent(new DragEvent('drop', {dataTransfer: dt, bubbles: true, cancelable: true})); return 0;",
+    );
+    wait_for(
+        &b,
+        "vcncApp.text() === 'G21 G90\\nG0 X1 Y2\\nG1 X3 F100\\nM2\\n' && vcncApp.lastChecked === vcncApp.text() \
+         && document.getElementById('evidence').dataset.dialect === 'linuxcnc'",
+        "the dropped program is read, by its name, as linuxcnc",
+    );
 
     // A worker that traps (a Rust panic) is replaced, the page says so,
     // and the next edit is checked by the new one.
