@@ -58,6 +58,12 @@ impl Interpreter<'_> {
         w: &Words<'_>,
         next: Cursor,
     ) -> Result<Option<Cursor>, Diagnostic> {
+        if op == GOp::Turn(TurnOp::NgcFinishCycle) {
+            // LinuxCNC's G70: the profile is a subroutine; the program goes
+            // on after the cycle block.
+            self.ngc_finish_cycle(w, cmd)?;
+            return Ok(Some(next));
+        }
         let pq = (w.get(b'P'), w.get(b'Q'));
         if op != GOp::Turn(TurnOp::FinishCycle) && pq == (None, None) {
             self.profile_first_block(op, w)?;
@@ -467,6 +473,58 @@ impl Interpreter<'_> {
             return Ok(());
         }
         self.straight(MoveKind::Rapid, Target::Program(to), w, cmd)
+    }
+
+    /// LinuxCNC's G70 Q [X Z D E P]: P passes (default 1) along the
+    /// profile `o<Q> sub`, each a rapid to the start point (X Z, else
+    /// where the tool is) and to the profile's first point, then its
+    /// blocks; the tool stays at the profile's end. D and E, passes kept
+    /// D … E away from the profile, are refused unless 0 (vcnc does not
+    /// offset the profile).
+    pub(crate) fn ngc_finish_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        let q = w
+            .get(b'Q')
+            .ok_or_else(|| alarms::needs_word(cmd, "G70", "Q (the profile's subroutine number)"))?;
+        let label = crate::block::convert::whole(
+            &q,
+            b'Q',
+            1.0,
+            99_999_999.0,
+            "Q is the profile's subroutine number",
+        )?;
+        for l in [b'D', b'E'] {
+            if let Some(d) = w.get(l).filter(|d| d.value != 0.0) {
+                return Err(alarms::value_out_of_range(
+                    d.span,
+                    l,
+                    d.value,
+                    "vcnc runs G70's passes on the profile itself: D0 and E0 (offset passes are not modelled)",
+                ));
+            }
+        }
+        let passes = match w.get(b'P') {
+            Some(p) => self.count(&p, "P is G70's number of passes")?,
+            None => 1,
+        };
+        let goal = self.target(w, self.state.modal.incremental);
+        let a = P2::of(&goal.prog, axes);
+        let (src, start, endsub) = self.ngc_sub_lines(&label.to_string(), q.span)?;
+        let mut profile = self.read_sub_profile(src, start, endsub, q.span)?;
+        // rs274 goes to the profile's first point at rapid, whatever its
+        // block says.
+        if let Some(first) = profile.elems.first_mut() {
+            first.rapid = true;
+        }
+        for _ in 0..passes {
+            self.return_to(a, axes, w, cmd)?;
+            let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
+            let out = self.finish_moves(&profile, axes, w);
+            self.flow.loc.line = line;
+            self.stage.cur_line = cur_line;
+            out?;
+        }
+        Ok(())
     }
 
     /// G70: the profile's own moves (with their F and S, and their lines),

@@ -124,6 +124,14 @@ struct Move {
     span: Span,
 }
 
+/// Where a profile ends: at the block numbered Q (Fanuc), or before the
+/// line at this offset (LinuxCNC's `endsub`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ProfileEnd {
+    Sequence(u32),
+    Before(u64),
+}
+
 /// An arc's centre words.
 #[derive(Clone, Copy)]
 enum ArcWords {
@@ -170,7 +178,44 @@ impl Interpreter<'_> {
         // after M30 or before the cycle leaves the program to go on after
         // the cycle block.
         let follows = self.flow.first_block_from(src, next, &lex) == Some(start);
-        let axes = self.lathe_axes(p.span)?;
+        self.read_profile_blocks(src, start, follows, ProfileEnd::Sequence(nf), q.span)
+    }
+
+    /// LinuxCNC's G70–G72 profile: the body of subroutine `o<label>` of
+    /// source `src`, from `start` (the line after its `sub`) up to the
+    /// line at `endsub` (its `endsub`), read as the blocks of a Fanuc
+    /// profile are.
+    pub(crate) fn read_sub_profile(
+        &mut self,
+        src: usize,
+        start: Cursor,
+        endsub: u64,
+        q: Span,
+    ) -> Result<Profile, Diagnostic> {
+        self.read_profile_blocks(src, start, false, ProfileEnd::Before(endsub), q)
+    }
+
+    /// The profile's blocks from `start` to its end.
+    fn read_profile_blocks(
+        &mut self,
+        src: usize,
+        start: Cursor,
+        follows: bool,
+        end: ProfileEnd,
+        q_span: Span,
+    ) -> Result<Profile, Diagnostic> {
+        let lex = self.cfg.dialect.lex;
+        let nf = match end {
+            ProfileEnd::Sequence(n) => n,
+            ProfileEnd::Before(_) => 0,
+        };
+        let q = Word {
+            addr: Addr::letter(b'Q'),
+            value: f64::from(nf),
+            point: false,
+            span: q_span,
+        };
+        let axes = self.lathe_axes(q_span)?;
         let mut r = Reading {
             profile: Profile {
                 elems: Vec::new(),
@@ -198,6 +243,24 @@ impl Interpreter<'_> {
             let Some((line, bytes)) = self.profile_line(src) else {
                 return Err(alarms::profile_end_missing(q.span, nf));
             };
+            if end == ProfileEnd::Before(line.offset) {
+                // The subroutine's `endsub`: the profile ends before it.
+                if let Some((_, word, held_at)) = r.pending {
+                    let d = alarms::corner_fault(word, "the profile ends at this corner");
+                    return Err(self.locate(d, src, &held_at));
+                }
+                if r.profile.elems.is_empty() {
+                    return Err(alarms::profile_end_missing(q.span, nf));
+                }
+                r.profile.comp_after = r.carry_comp;
+                r.profile.asides_after = (r.asides_from, aside_count(&r.profile));
+                r.profile.after = Cursor {
+                    offset: line.offset,
+                    line: line.number,
+                    col: 0,
+                };
+                return Ok(r.profile);
+            }
             let mut i = std::mem::take(&mut col);
             while i < bytes.len() {
                 let lexed = lex_block(&bytes, i, &lex, &mut block);
@@ -217,10 +280,10 @@ impl Interpreter<'_> {
                     return Err(alarms::profile_too_long(q.span, MAX_BLOCKS));
                 }
                 self.profile_take(&mut r, &block, line, axes)?;
-                let last = block
-                    .words()
-                    .iter()
-                    .any(|w| w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(nf));
+                let last = matches!(end, ProfileEnd::Sequence(_))
+                    && block.words().iter().any(|w| {
+                        w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(nf)
+                    });
                 if last {
                     if let Some((_, word, held_at)) = r.pending {
                         let d = alarms::corner_fault(word, "the profile ends at this corner");

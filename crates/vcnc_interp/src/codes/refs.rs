@@ -148,6 +148,7 @@ impl Interpreter<'_> {
             TurnOp::ThreadMultiCycle => self.thread_cycle_multi(w, cmd),
             TurnOp::NgcThreadCycle => self.ngc_thread_cycle(w, cmd),
             TurnOp::FinishCycle
+            | TurnOp::NgcFinishCycle
             | TurnOp::RoughTurnCycle
             | TurnOp::RoughFaceCycle
             | TurnOp::PatternCycle => Ok(()),

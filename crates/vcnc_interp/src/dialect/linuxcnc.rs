@@ -13,7 +13,8 @@
 //!
 //! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
 //! so are the O-word subroutines and loops (`macros/oword.rs`). Lathe
-//! mode adds G7/G8 and the threading cycle G76. Not read: G70–G72,
+//! mode adds G7/G8, the finishing cycle G70 and the threading cycle G76.
+//! Not read: G71/G72,
 //! splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
@@ -206,7 +207,7 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (
         700,
-        "LinuxCNC's lathe finishing cycle G70 is not run by vcnc",
+        "LinuxCNC's lathe finishing cycle G70 runs in lathe mode: use --dialect linuxcnc-lathe",
     ),
     (
         710,
@@ -257,6 +258,10 @@ pub(super) fn linuxcnc() -> Dialect {
 const LINUXCNC_LATHE_G: &[GRow] = &[
     g(70, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode),
     g(80, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode),
+    // G70 Q [X Z D E P]: finishing along the profile of subroutine Q.
+    g(700, GOp::Turn(TurnOp::NgcFinishCycle), Group::NonModal)
+        .reads(bit(b'Q') | bit(b'D') | bit(b'E') | bit(b'P'))
+        .claims_axes(),
     // G76 P Z I J K [R Q H E L]: the threading cycle (codes/ngc_thread.rs).
     g(760, GOp::Turn(TurnOp::NgcThreadCycle), Group::NonModal)
         .reads(

@@ -320,6 +320,9 @@ pub enum TurnOp {
     /// LinuxCNC's lathe G76: threading passes from the drive line (P
     /// pitch, I peak, J first depth, K full depth, R Q H E L).
     NgcThreadCycle,
+    /// LinuxCNC's lathe G70: finishing passes along the profile of the
+    /// subroutine Q.
+    NgcFinishCycle,
 }
 
 /// Program flow.
@@ -354,6 +357,7 @@ impl GOp {
                     | TurnOp::RoughTurnCycle
                     | TurnOp::RoughFaceCycle
                     | TurnOp::PatternCycle
+                    | TurnOp::NgcFinishCycle
             )
         )
     }
@@ -623,6 +627,9 @@ impl TurnOp {
             TurnOp::FacePeckCycle => "end face peck drilling cycle",
             TurnOp::GrooveCycle => "outer or inner diameter grooving cycle",
             TurnOp::ThreadMultiCycle => "multiple threading cycle",
+            TurnOp::NgcFinishCycle => {
+                "finishing cycle along the profile of subroutine o<Q> (X Z the start point, P passes)"
+            }
             TurnOp::NgcThreadCycle => {
                 "threading cycle: passes from the drive line to Z (P pitch, I peak, J first depth, K full depth)"
             }

@@ -512,6 +512,41 @@ impl Interpreter<'_> {
         self.sub_return(span)
     }
 
+    /// LinuxCNC's G70–G72 profile `o<label> sub … o<label> endsub` in the
+    /// running source: the source, the `sub` line (its cursor past the
+    /// statement) and the `endsub` line's offset.
+    pub(crate) fn ngc_sub_lines(
+        &mut self,
+        label: &str,
+        span: Span,
+    ) -> Result<(usize, Cursor, u64), Diagnostic> {
+        let src = self.flow.frame().source;
+        let statements = self.oword_statements(src)?;
+        // The scan moved the reader: the cycle reads the profile, then the
+        // run goes on after the cycle block (a seek).
+        self.macros.moved_reader = false;
+        let entries = &statements.entries;
+        let missing = || {
+            alarms::bad_structure(
+                span,
+                format!(
+                    "no o{label} sub … o{label} endsub in this program for the cycle's profile"
+                ),
+                "write the profile as a subroutine of this file: o100 sub, its blocks, o100 endsub; Q names it",
+            )
+        };
+        match statements.subs.get(label).map_or(&[][..], Vec::as_slice) {
+            [one] => {
+                let sub = &entries[*one];
+                let (_, end) =
+                    find(entries, one + 1, one + 1, label, &[Kw::EndSub]).ok_or_else(missing)?;
+                Ok((src, sub.after, end.here.offset))
+            }
+            [] => Err(missing()),
+            more => Err(defined_twice(span, label, more.len(), "this program")),
+        }
+    }
+
     /// The O-word statements of source `src`, read once from its start.
     fn oword_statements(&mut self, src: usize) -> Result<Rc<Statements>, Diagnostic> {
         let id = self.source_id(src);
