@@ -41,7 +41,7 @@ M30
 """
 
 # A loop that never ends: the machine's jump limit ends it.
-FOREVER = "S1000 M03\n#1 = 0\nWHILE [1 EQ 1] DO1\nG01 X[#1] F100.\n#1 = #1 + 1\nEND1\nM30\n"
+FOREVER = "S1000 M03\n#1 = 1\nWHILE [1 EQ 1] DO1\nG01 X[#1] F100.\n#1 = #1 + 1\nEND1\nM30\n"
 
 
 def test_check_reports_the_summary_worked_out_by_hand():
@@ -119,7 +119,8 @@ def test_events_are_lazy_and_end_with_the_alarm():
     it = vcnc.events(FOREVER, dialect="fanuc")
     first = list(itertools.islice(it, 6))
     assert [e["type"] for e in first] == ["spindle"] + ["feed"] * 5
-    assert [e["to"]["x"] for e in first[1:]] == [0.0, 1.0, 2.0, 3.0, 4.0]
+    # (From X1: a first move to X0, where the tool is, would not be reported.)
+    assert [e["to"]["x"] for e in first[1:]] == [1.0, 2.0, 3.0, 4.0, 5.0]
     del it
     last = list(vcnc.events(TWO_MISTAKES, dialect="fanuc"))[-1]
     assert last["type"] == "alarm" and last["code"] == "E303" and last["line"] == 3

@@ -190,24 +190,17 @@ fn run_jsonl_is_the_event_contract() {
         Some(&json!({"type": "end", "line": 30, "code": "M30"}))
     );
     // Hand-derived events (docs/events.md): N20 G28 Z0 goes through Z0 to
-    // reference point 1, both legs reported; T1 M06; S2400 M03.
+    // reference point 1, both at the power-on point 0,0,0: neither leg
+    // moves, so neither is reported; T1 M06; S2400 M03.
     assert_eq!(
         events[0],
-        json!({"type": "rapid", "line": 4, "to": {"x": 0.0, "y": 0.0, "z": 0.0}})
-    );
-    assert_eq!(
-        events[1],
-        json!({"type": "rapid", "line": 4, "to": {"x": 0.0, "y": 0.0, "z": 0.0}})
-    );
-    assert_eq!(
-        events[2],
         json!({"type": "tool_change", "line": 5, "tool": 1})
     );
     assert_eq!(
-        events[3],
+        events[1],
         json!({"type": "spindle", "line": 6, "dir": "cw", "rpm": 2400.0})
     );
-    assert_eq!(events[5], json!({"type": "coolant", "line": 8, "on": true}));
+    assert_eq!(events[3], json!({"type": "coolant", "line": 8, "on": true}));
     // N100 G03 X60. Y0. R10. from X50 Y-10: a quarter circle about X50 Y0.
     let arc = json!({"type": "arc", "line": 13, "to": {"x": 60.0, "y": 0.0, "z": -2.0},
         "center": {"x": 50.0, "y": 0.0, "z": -2.0}, "plane": "xy", "dir": "ccw", "feed": 800.0});
@@ -667,12 +660,9 @@ fn an_alarm_exits_1_and_is_rendered_like_a_compiler_error() {
     let o = vcnc_in(dir.path(), &["run", "arc.nc", "--format", "jsonl"]);
     assert_eq!(code(&o), 1);
     let events = jsonl(&o);
-    assert_eq!(events.len(), 2, "{events:?}");
-    assert_eq!(
-        events[0],
-        json!({"type": "rapid", "line": 2, "to": {"x": 0.0, "y": 0.0, "z": 0.0}})
-    );
-    let alarm = &events[1];
+    // `G90 G00 X0 Y0` at the power-on point does not move: no event.
+    assert_eq!(events.len(), 1, "{events:?}");
+    let alarm = &events[0];
     assert_eq!(
         (
             &alarm["type"],

@@ -150,6 +150,33 @@ fn close(a: &Value, b: &Value, tol: f64, key: &str) -> bool {
     }
 }
 
+/// An rs274 trace without its straight moves that do not move (rs274
+/// reports `G28 X0` from X0, a `G0` to where the tool is, …; vcnc drops
+/// them in its motion stage, `docs/events.md`). The committed traces stay
+/// rs274's own output; the comparison leaves these moves out.
+fn without_zero_length_moves(events: Vec<Value>) -> Vec<Value> {
+    // rs274 and these fixtures' machines start at the origin.
+    let mut at: Option<Value> = events.iter().find_map(|e| e.get("to")).map(|to| {
+        let zero: serde_json::Map<String, Value> =
+            to.as_object().map_or_else(serde_json::Map::new, |o| {
+                o.keys().map(|k| (k.clone(), Value::from(0.0))).collect()
+            });
+        Value::Object(zero)
+    });
+    events
+        .into_iter()
+        .filter(|e| {
+            let Some(to) = e.get("to") else {
+                return true;
+            };
+            let straight = matches!(e["type"].as_str(), Some("rapid" | "feed"));
+            let same = straight && at.as_ref().is_some_and(|a| close(a, to, 1e-9, "to"));
+            at = Some(to.clone());
+            !same
+        })
+        .collect()
+}
+
 /// Compares every fixture of a folder; reports all mismatches at once.
 fn check_folder(name: &str, default_dialect: &str, tol: f64) -> usize {
     check_programs(name, "nc", default_dialect, None, tol)
@@ -196,6 +223,11 @@ fn check_programs(
                     .unwrap_or_else(|e| panic!("{}: {e}", expected_path.display()))
             })
             .collect();
+        let expected = if name.starts_with("linuxcnc") {
+            without_zero_length_moves(expected)
+        } else {
+            expected
+        };
         let mut got = run_under(p, default_dialect, dialect);
         // A called file is named by its file name (the store shows a path).
         for e in &mut got {
@@ -507,8 +539,12 @@ fn compensation_points_reached(folder: &str, ext: &str, dialect: Option<&str>) -
             let found = moves[k..].iter().position(|e| {
                 e["line"] == point["line"] && close(&e["to"], &point["to"], 1e-4, "to")
             });
+            // A point the tool is at already is reached by a move that does
+            // not move, which vcnc does not report.
+            let already = k > 0 && close(&moves[k - 1]["to"], &point["to"], 1e-4, "to");
             match found {
                 Some(i) => k += i + 1,
+                None if already => {}
                 None => {
                     failures.push(format!(
                         "{}: point {point} not reached in order",

@@ -220,10 +220,10 @@ fn work_systems_units_and_machine_moves_are_written_out() {
     let work = run(&p("work_systems.nc"), &["--format", "gcode"]);
     let lines: Vec<&str> = work.lines().collect();
     assert_eq!(lines[2], "G21 G90 G94 G17 G54");
-    // G53 G0 Z0. retracts Z alone; X and Y, which the program has not
-    // placed, are not written before it places them.
-    assert_eq!(lines[4], "G53 G0 Z0.");
-    assert_eq!(lines[5], "G0 X10. Y10.");
+    // G53 G0 Z0. at the power-on point (machine Z0) does not move, so it is
+    // not written; X and Y, which the program has not placed, are not
+    // written before it places them.
+    assert_eq!(lines[4], "G0 X10. Y10.");
     assert!(lines.contains(&"G55"), "{work}");
     // G28 X0. Y0.: its reference leg is a machine move of X and Y.
     assert!(lines.contains(&"G53 G0 X0. Y0."), "{work}");

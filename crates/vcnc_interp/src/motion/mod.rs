@@ -10,7 +10,8 @@
 //!             2 compensation  (G41/G42 — a slot for now: passes moves on)
 //!             3 travel     soft limits on the path the tool really follows
 //!             4 events     `frame` if it changed, then rapid/feed/arc/…
-//!                          (dog-legs of parameter 411, the G31 trigger)
+//!                          (dog-legs of parameter 411, the G31 trigger);
+//!                          a straight move that would not move is dropped
 //! ```
 //!
 //! Each stage is its own module with a pure core ([`frame`], [`travel`]);
@@ -480,6 +481,15 @@ impl Interpreter<'_> {
     /// signal fired).
     #[inline(always)]
     fn emit_motion(&mut self, m: &MachineMove, loc: crate::events::Loc) -> Option<Pos> {
+        if matches!(m.kind, MachineKind::Rapid(_) | MachineKind::Feed(_))
+            && same_point(m.from, m.to)
+        {
+            // A straight move that would not move the machine (the second
+            // leg of `G28 X0` from X0, `G91 G28 Z0`, a compensated feed
+            // whose offset ends where it starts) is not reported: the one
+            // place for every code, as the cycles' steps always were.
+            return None;
+        }
         let (exact_stop, to) = (m.exact_stop, m.to);
         let pending = &mut self.stage.pending;
         match m.kind {
@@ -571,4 +581,11 @@ impl Interpreter<'_> {
 #[inline(always)]
 fn push_built(pending: &mut Vec<Event>, make: impl FnOnce() -> Event) {
     pending.extend(std::iter::once_with(make));
+}
+
+/// Whether two machine points are the same: every axis within
+/// [`vcnc_core::geometry::ZERO_MM`].
+#[inline(always)]
+fn same_point(a: Pos, b: Pos) -> bool {
+    (0..crate::events::MAX_AXES).all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
 }

@@ -66,11 +66,11 @@ fn three_mistakes_give_three_alarms_and_the_program_runs_on() {
 #[test]
 fn the_alarmed_block_leaves_the_modes_as_they_were() {
     // G91 in a block that alarms (an unknown G code) does not take effect:
-    // the next X10. is absolute, to X10, not 20 more.
-    let program = "G21 G90 S1000 M03\nG01 X10. F100.\nG91 G999 X5.\nG01 X10.\nM30\n";
+    // the next X15. is absolute, to X15, not 15 more (to 25).
+    let program = "G21 G90 S1000 M03\nG01 X10. F100.\nG91 G999 X5.\nG01 X15.\nM30\n";
     let (events, _) = run(program);
     assert_eq!(alarms(&events), vec![(Code::E201, 3)]);
-    assert_eq!(feed_xs(&events), vec![10.0, 10.0]);
+    assert_eq!(feed_xs(&events), vec![10.0, 15.0]);
 }
 
 #[test]

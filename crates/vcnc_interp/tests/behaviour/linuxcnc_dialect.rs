@@ -239,8 +239,9 @@ fn parameters_alarm_where_rs274_refuses_them() {
     assert_eq!(alarm("G21\nG0 X[FOO[1]]\nM2\n"), (Code::E604, 2, 6));
     assert_eq!(alarm("G21\nG0 X[1 + 2\nM2\n"), (Code::E601, 2, 5));
     assert_eq!(alarm("G21\n#1 2\nM2\n"), (Code::E601, 2, 4));
-    // The settings of a line apply after it: X reads the old #1 (0).
-    let ev = ended("G21 G90\n#1 = 4 G0 X#1\nG0 Y#1\nM2\n");
+    // The settings of a line apply after it: X reads the old #1 (0), so
+    // the first G0 moves Z alone (X0 where the tool is would not move).
+    let ev = ended("G21 G90\n#1 = 4 G0 X#1 Z1\nG0 Y#1\nM2\n");
     let ends: Vec<(f64, f64)> = ev
         .iter()
         .filter_map(|e| match e {
@@ -256,8 +257,8 @@ fn parameters_alarm_where_rs274_refuses_them() {
     let xs = |p: &str| common::xs(&ended(p));
     assert_eq!(xs("G21 G90\nG0 G91 X[1/2]\nM2\n"), vec![0.5]);
     assert_eq!(
-        xs("G21 G90\nG0 X[2 MOD -3]\nG0 X[-7 MOD -3]\nG0 X[[0.1 + 0.2] EQ 0.3]\nM2\n"),
-        vec![2.0, 2.0, 1.0]
+        xs("G21 G90\nG0 X[2 MOD -3]\nG0 X[[0.1 + 0.2] EQ 0.3]\nG0 X[-7 MOD -3]\nM2\n"),
+        vec![2.0, 1.0, 2.0]
     );
     assert_eq!(alarm("G21\nG0 X[10 ** 20]\nM2\n"), (Code::E103, 2, 4));
     assert_eq!(alarm("G21\n#1 = [10 ** 400]\nM2\n"), (Code::E609, 2, 1));

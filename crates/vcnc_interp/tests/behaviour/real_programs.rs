@@ -167,10 +167,12 @@ fn haas_reads_a_dwell_p_with_a_point_as_seconds() {
 /// to its rapid. Fanuc has no such variables: E605.
 #[test]
 fn haas_tool_life_timers_read_zero() {
-    let program = "IF [#5405 GE 6000] THEN #3000=15 (TOOL LIFE EXPIRED)\n#1=#5999\nG0 X#1\nM30\n";
+    // X is #5999 + 1 so that the rapid moves (from the origin) and shows.
+    let program =
+        "IF [#5405 GE 6000] THEN #3000=15 (TOOL LIFE EXPIRED)\n#1=#5999\nG0 X[#1+1.]\nM30\n";
     let (ev, out) = run(&Dialect::haas(), program);
     assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
-    assert_eq!(xs(&ev), vec![0.0]);
+    assert_eq!(xs(&ev), vec![1.0]);
     // A program may set a limit or reset a counter, and reads it back.
     let (ev, out) = run(&Dialect::haas(), "#5701=7.\nG0 X#5701\nG0 X#5702\nM30\n");
     assert!(matches!(out, Outcome::Ended(_)), "{out:?}");

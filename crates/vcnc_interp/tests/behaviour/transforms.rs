@@ -87,7 +87,9 @@ fn step() -> impl Strategy<Value = Step> {
 fn program(steps: &[Step]) -> String {
     // The setup goes before F500; the absolute G01 after it puts the
     // programmed point where the new frame says it is.
-    let mut text = String::from("G21 G17 G90 G00 X10. Y5. Z2.\nF500.\nG01 X10. Y5. Z2.\n");
+    // The G00 goes elsewhere, so that the plain program's G01 moves too (a
+    // move that would not move reports no event).
+    let mut text = String::from("G21 G17 G90 G00 X0. Y0. Z10.\nF500.\nG01 X10. Y5. Z2.\n");
     let (mut x, mut y) = (10.0f64, 5.0f64);
     for s in steps {
         match *s {
