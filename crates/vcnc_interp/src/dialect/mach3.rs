@@ -91,6 +91,11 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (500, "Mach3's per-axis scaling G50/G51 is not run by vcnc"),
     (510, "Mach3's per-axis scaling G50/G51 is not run by vcnc"),
+    (870, "Mach3's back boring G87 is not run by vcnc"),
+    (
+        880,
+        "Mach3's G88 (stop for a manual retract) is not run by vcnc",
+    ),
     (
         680,
         "Mach3's coordinate rotation G68 A B R is not run by vcnc",
