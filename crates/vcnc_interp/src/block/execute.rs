@@ -356,7 +356,7 @@ impl Interpreter<'_> {
                         allowed |= bit(b'R')
                             | self.cfg.dialect.arc_letters
                             | plane_offsets(self.state.modal.plane);
-                        ext |= ext_bit(Addr::CR);
+                        ext |= ext_bit(Addr::CR) | ext_bit(Addr::COMMA_C) | ext_bit(Addr::COMMA_R);
                     }
                     Motion::ThreePointArc => ext |= ext_bit(Addr::IX) | ext_bit(Addr::IZ),
                     Motion::Nurbs => allowed |= bit(b'K') | bit(b'R'),

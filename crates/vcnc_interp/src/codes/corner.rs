@@ -12,11 +12,13 @@
 //!
 //! The G01 with `,C`/`,R` is held: its block moves nothing, and the
 //! programmed point becomes the corner, so that the next block's U/W count
-//! from it, as Fanuc's do. The next move (it must be a G01 in the plane)
-//! first sends the held G01 to P1 and the chamfer or round to P2, with the
+//! from it, as Fanuc's do. The next move (a G01, G02 or G03 in the plane)
+//! first sends the held move to P1 and the chamfer or round to P2, with the
 //! held block's line, then its own move from P2. Anything else in the next
-//! block — no move, a rapid, an arc, a cycle — alarms E347 there, as does a
-//! chamfer longer than either line or two lines in one direction.
+//! block — no move, a rapid, a cycle — alarms E347 there, as does a
+//! chamfer longer than either move or two moves in one direction. Where an
+//! arc meets the corner (Fanuc 0i-MF), `corner_cut_segs` measures a
+//! chamfer as a chord on it and rounds tangent to the arc's circle.
 
 use crate::alarms;
 use crate::block::convert::Goal;
@@ -24,7 +26,7 @@ use crate::block::words::Words;
 use crate::events::{Feed, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{Move, MoveKind, Target};
-use crate::plane::{P2, ZERO_MM};
+use crate::plane::{Curve, P2, Seg, ZERO_MM, intersect};
 use crate::state::lathe::{CornerKind, PendingCorner};
 use vcnc_syntax::{Addr, Diagnostic, Span};
 
@@ -90,6 +92,113 @@ pub(crate) fn corner_cut(
     Ok(CornerCut { p1, p2, arc })
 }
 
+/// The chamfer or round between two elements that meet at `s1`'s end and
+/// `s2`'s start, when either is an arc (two lines: [`corner_cut`]). A
+/// chamfer's ends lie `c` from the corner in a straight line on each
+/// element; a round's centre is `r` from both, on the inside of the turn,
+/// and its ends are the feet of that centre on each.
+pub(crate) fn corner_cut_segs(
+    s1: &Seg,
+    s2: &Seg,
+    kind: CornerKind,
+) -> Result<CornerCut, &'static str> {
+    if !s1.is_arc() && !s2.is_arc() {
+        return corner_cut(s1.start(), s1.end(), s2.end(), kind);
+    }
+    let corner = s1.end();
+    let (t1, t2) = (s1.tangent(true), s2.tangent(false));
+    let cross = t1.cross(t2);
+    let turn = cross.atan2(t1.dot(t2));
+    if turn.abs() < STRAIGHT_RAD {
+        return Err("the two moves run in one direction, there is no corner");
+    }
+    if (turn.abs() - std::f64::consts::PI).abs() < STRAIGHT_RAD {
+        return Err("the next move turns straight back");
+    }
+    let (p1, p2, arc) = match kind {
+        CornerKind::Chamfer(c) => {
+            let at = |s: &Seg, back: bool| match s.arc_of() {
+                None => Some(corner + s.tangent(back) * if back { -c } else { c }),
+                Some((centre, _)) => {
+                    let guess = corner + s.tangent(back) * if back { -c } else { c };
+                    intersect(
+                        Curve::Circle {
+                            c: centre,
+                            r: centre.dist(corner),
+                        },
+                        Curve::Circle { c: corner, r: c },
+                        guess,
+                        0.0,
+                    )
+                }
+            };
+            let (Some(p1), Some(p2)) = (at(s1, true), at(s2, false)) else {
+                return Err("it is longer than one of the two moves");
+            };
+            (p1, p2, None)
+        }
+        CornerKind::Round(r) => {
+            // Left turn: the round's centre is on the left of both paths.
+            let side = if cross > 0.0 { 1.0 } else { -1.0 };
+            let offset = |s: &Seg| match s.arc_of() {
+                None => Curve::Line {
+                    p: s.start() + s.tangent(false).left() * (side * r),
+                    d: s.tangent(false),
+                },
+                Some((centre, ccw)) => {
+                    let big = centre.dist(corner);
+                    // The path's centre is on its left when it turns ccw.
+                    let inward = if ccw { side > 0.0 } else { side < 0.0 };
+                    Curve::Circle {
+                        c: centre,
+                        r: if inward { big - r } else { big + r },
+                    }
+                }
+            };
+            let guess = corner + (t2 - t1).unit() * r;
+            let Some(c) = intersect(offset(s1), offset(s2), guess, 0.0) else {
+                return Err("no round of that radius touches both moves");
+            };
+            let foot = |s: &Seg| match s.arc_of() {
+                None => c - s.tangent(false).left() * (side * r),
+                Some((centre, _)) => centre + (c - centre).unit() * centre.dist(corner),
+            };
+            (foot(s1), foot(s2), Some((c, cross > 0.0)))
+        }
+    };
+    if !on_seg(s1, p1) || !on_seg(s2, p2) {
+        return Err("it is longer than one of the two moves");
+    }
+    Ok(CornerCut { p1, p2, arc })
+}
+
+/// Whether `p` (on the element's line or circle) lies between its ends.
+fn on_seg(s: &Seg, p: P2) -> bool {
+    match s.arc_of() {
+        None => {
+            let d = s.end() - s.start();
+            let t = (p - s.start()).dot(d);
+            t >= -OVERRUN_MM && t <= d.dot(d) + OVERRUN_MM * d.hypot()
+        }
+        Some((c, ccw)) => {
+            let sweep = |a: P2, b: P2| {
+                let x = (a - c).angle_to(b - c);
+                let x = if ccw { x } else { -x };
+                if x < 0.0 {
+                    x + std::f64::consts::TAU
+                } else {
+                    x
+                }
+            };
+            let whole = match sweep(s.start(), s.end()) {
+                x if x <= 0.0 => std::f64::consts::TAU,
+                x => x,
+            };
+            sweep(s.start(), p) <= whole + OVERRUN_MM / c.dist(p).max(ZERO_MM)
+        }
+    }
+}
+
 impl Interpreter<'_> {
     /// A G01 with `,C` or `,R`: hold it until the next block.
     pub(crate) fn hold_corner(
@@ -98,6 +207,7 @@ impl Interpreter<'_> {
         cmd: Span,
         feed: Feed,
         goal: &Goal,
+        arc: Option<(Pos, bool)>,
     ) -> Result<(), Diagnostic> {
         let (kind, word) = match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
             (Some(_), Some(r)) => return Err(alarms::corner_fault(r.span, "both ,C and ,R")),
@@ -117,18 +227,35 @@ impl Interpreter<'_> {
         }
         if self.state.lathe.corner.is_some() {
             // The corner held before this G01 is cut first.
+            let kind = match arc {
+                Some((c, cw)) => {
+                    let here = self.state.prog;
+                    let mut offset = Pos::default();
+                    for i in 0..crate::events::MAX_AXES {
+                        offset.set(i, c.get(i) - here.get(i));
+                    }
+                    MoveKind::Arc {
+                        offset,
+                        plane: self.state.modal.plane,
+                        cw,
+                        feed,
+                    }
+                }
+                None => MoveKind::Feed(feed),
+            };
             let mv = Move {
-                kind: MoveKind::Feed(feed),
+                kind,
                 to: Target::Program(goal.prog),
                 exact_stop: false,
                 cmd,
             };
-            self.cut_corner(&mv, w)?;
+            self.cut_corner(mv, w)?;
         }
         self.state.lathe.corner = Some(PendingCorner {
             kind,
             start: self.state.prog,
             feed,
+            arc,
             cmd,
             word: word.span,
             line: self.flow.loc.line,
@@ -141,18 +268,18 @@ impl Interpreter<'_> {
 
     /// Before the move after a held G01: the G01 to P1 and the chamfer or
     /// round to P2 (with the held block's line).
-    pub(crate) fn cut_corner(&mut self, mv: &Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+    pub(crate) fn cut_corner(&mut self, mv: Move, w: &Words<'_>) -> Result<Move, Diagnostic> {
         let Some(held) = self.state.lathe.corner.take() else {
-            return Ok(());
+            return Ok(mv);
         };
         let corner = self.state.prog;
         let end = match (mv.kind, mv.to) {
-            (MoveKind::Feed(_), Target::Program(p)) => p,
-            (MoveKind::Feed(_), Target::Relative(d)) => corner.plus(d),
+            (MoveKind::Feed(_) | MoveKind::Arc { .. }, Target::Program(p)) => p,
+            (MoveKind::Feed(_) | MoveKind::Arc { .. }, Target::Relative(d)) => corner.plus(d),
             _ => {
                 return Err(alarms::corner_fault(
                     mv.cmd,
-                    "the block after a ,C or ,R must be a G01 move",
+                    "the block after a ,C or ,R must be a G01, G02 or G03 move",
                 ));
             }
         };
@@ -168,15 +295,36 @@ impl Interpreter<'_> {
         if off_plane {
             return Err(alarms::corner_fault(mv.cmd, "the moves leave the plane"));
         }
-        let cut = corner_cut(p(held.start), p(corner), p(end), held.kind)
-            .map_err(|why| alarms::corner_fault(mv.cmd, why))?;
+        let seg = |from: Pos, to: Pos, arc: Option<(Pos, bool)>| match arc {
+            Some((c, cw)) => Seg::arc(p(from), p(to), p(c), !cw),
+            None => Seg::line(p(from), p(to)),
+        };
+        let next_arc = match mv.kind {
+            MoveKind::Arc { offset, cw, .. } => Some((corner.plus(offset), cw)),
+            _ => None,
+        };
+        let cut = corner_cut_segs(
+            &seg(held.start, corner, held.arc),
+            &seg(corner, end, next_arc),
+            held.kind,
+        )
+        .map_err(|why| alarms::corner_fault(mv.cmd, why))?;
         let at = |q: P2| q.placed(corner, ab);
         // The held block's moves carry its line (and its alarms its place).
         let line = std::mem::replace(&mut self.flow.loc.line, held.line);
         let cur_line = std::mem::replace(&mut self.stage.cur_line, held.source_line);
         self.state.prog = held.start;
+        let first_kind = match held.arc {
+            Some((c, cw)) => MoveKind::Arc {
+                offset: (p(c) - p(held.start)).placed(Pos::default(), ab),
+                plane: self.state.modal.plane,
+                cw,
+                feed: held.feed,
+            },
+            None => MoveKind::Feed(held.feed),
+        };
         let first = Move {
-            kind: MoveKind::Feed(held.feed),
+            kind: first_kind,
             to: Target::Program(at(cut.p1)),
             exact_stop: false,
             cmd: held.cmd,
@@ -209,7 +357,24 @@ impl Interpreter<'_> {
             (out, _) => out,
         };
         self.stage.cur_line = cur_line;
-        out
+        out?;
+        // The next move starts where the chamfer or round ends: an arc's
+        // centre offset counts from there.
+        let kind = match (mv.kind, next_arc) {
+            (
+                MoveKind::Arc {
+                    plane, cw, feed, ..
+                },
+                Some((c, _)),
+            ) => MoveKind::Arc {
+                offset: (p(c) - cut.p2).placed(Pos::default(), ab),
+                plane,
+                cw,
+                feed,
+            },
+            (kind, _) => kind,
+        };
+        Ok(Move { kind, ..mv })
     }
 
     /// Under keep-going, after an alarm (the state is as it was before

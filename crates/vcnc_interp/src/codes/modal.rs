@@ -61,7 +61,7 @@ impl Interpreter<'_> {
                 let to = self.to_target(&goal);
                 if w.ext_present != 0 {
                     // `,C`/`,R`: the corner waits for the next block.
-                    return self.hold_corner(w, cmd, feed, &goal);
+                    return self.hold_corner(w, cmd, feed, &goal, None);
                 }
                 self.straight(MoveKind::Feed(feed), to, w, cmd)
             }
@@ -148,10 +148,13 @@ impl Interpreter<'_> {
     /// [`commit`](Self::commit) takes it.
     #[inline]
     pub(crate) fn send(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if self.state.lathe.corner.is_some() {
-            // A G01's chamfer or corner R is cut before this move.
-            self.cut_corner(&mv, w)?;
-        }
+        let mv = if self.state.lathe.corner.is_some() {
+            // A G01's or an arc's chamfer or corner R is cut before this
+            // move, which then starts where the chamfer or round ends.
+            self.cut_corner(mv, w)?
+        } else {
+            mv
+        };
         if self.state.modal.css {
             // A lathe's G96: the speed follows the diameter.
             self.css_follow(&mv)?;

@@ -22,7 +22,7 @@
 use super::grbl::GRBL_G;
 use super::linuxcnc::{LINUXCNC_G, linuxcnc};
 use super::m_codes::{self, MRow};
-use super::{AuxM, Dialect, GOp, GRow, Group, MacroRules, MoveOp, bit, g};
+use super::{AuxM, Dialect, GOp, GRow, Group, MOp, MacroRules, MoveOp, bit, g};
 
 /// Mach3's codes beyond LinuxCNC's: G31, its straight probe, moves towards
 /// the point named and stops where the probe touches (Fanuc's skip: without
@@ -37,7 +37,13 @@ const MACH3_M: &[&[MRow]] = &[
     m_codes::TOOL_CHANGE,
     m_codes::MIST,
     m_codes::COOLANT,
-    m_codes::SUBPROGRAMS,
+    MACH3_CALLS,
+];
+
+/// M98 P (the O number) L (repeats) and M99: Mach3's calls read no H.
+const MACH3_CALLS: &[MRow] = &[
+    m_codes::m(98, MOp::Call).reads(bit(b'P') | bit(b'L')),
+    m_codes::m(99, MOp::Return).reads(bit(b'P')),
 ];
 
 /// What a user macro does, for the `aux` event.
@@ -91,6 +97,11 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (500, "Mach3's per-axis scaling G50/G51 is not run by vcnc"),
     (510, "Mach3's per-axis scaling G50/G51 is not run by vcnc"),
+    (870, "Mach3's back boring G87 is not run by vcnc"),
+    (
+        880,
+        "Mach3's G88 (stop for a manual retract) is not run by vcnc",
+    ),
     (
         680,
         "Mach3's coordinate rotation G68 A B R is not run by vcnc",

@@ -161,6 +161,13 @@ impl Interpreter<'_> {
         } else {
             self.feed(cmd)?
         };
+        if w.get_ext(Addr::COMMA_C).is_some() || w.get_ext(Addr::COMMA_R).is_some() {
+            // `,C`/`,R` at the arc's end: the corner waits for the next block.
+            let mut c = from;
+            c.set(idx.a, center.0);
+            c.set(idx.b, center.1);
+            return self.hold_corner(w, cmd, feed, &goal, Some((c, cw)));
+        }
         self.straight(
             MoveKind::Arc {
                 offset,

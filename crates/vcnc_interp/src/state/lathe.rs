@@ -109,6 +109,9 @@ pub(crate) struct PendingCorner {
     /// already the corner, so that the next block's U/W count from it.
     pub start: Pos,
     pub feed: Feed,
+    /// A held arc's centre (program coordinates) and whether it turns
+    /// clockwise; `None` for a G01.
+    pub arc: Option<(Pos, bool)>,
     /// The G01 word (or the block's first word) and the `,C`/`,R` word.
     pub cmd: Span,
     pub word: Span,
