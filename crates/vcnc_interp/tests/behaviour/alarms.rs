@@ -1110,3 +1110,40 @@ fn regression_e408_read_error_points_at_the_p_word() {
         "the alarm is located at the call in the main program"
     );
 }
+
+/// Review #5: the Fanuc 0i-MF makes `,C`/`,R` corners between a line and an
+/// arc too, which vcnc does not run. Under fanuc that is E201 (a form vcnc
+/// does not run), not E347 (a rule of the program) nor E203 ("not used");
+/// Haas documents `,C`/`,R` between G01 blocks only, so there E347 and
+/// E203 stay. No motion from the held G01 or the alarming block.
+#[test]
+fn fanuc_corner_with_an_arc_is_not_run_haas_corner_with_an_arc_is_wrong() {
+    let go = |dialect: &str, text: &str| {
+        run_with(
+            &Machine::default_mill(),
+            dialect,
+            Options::default(),
+            text.as_bytes(),
+            &mut NoPrograms,
+        )
+    };
+    let start = "G90 G21 G17 M3 S1000\nG0 X0 Y0\n";
+    let line_arc = format!("{start}G1 X10. Y0 ,R2. F100\nG3 X20. Y10. R10.\nM30\n");
+    let arc_corner = format!("{start}G1 X10. F100\nG2 X20. Y0 R5. ,R2.\nY10.\nM30\n");
+    let chamfer_arc = format!("{start}G1 X10. Y0 ,C2. F100\nG2 X20. Y0 R5.\nM30\n");
+    // The arc block after the held corner: at its motion word G3/G2 (column 1).
+    let d = assert_alarm(&go("fanuc", &line_arc), Code::E201, 4, 1);
+    assert!(
+        d.message.contains("not") || d.message.contains("vcnc"),
+        "{}",
+        d.message
+    );
+    assert!(d.message.contains("0i-MF"), "{}", d.message);
+    assert_alarm(&go("fanuc", &chamfer_arc), Code::E201, 4, 1);
+    assert_alarm(&go("haas", &line_arc), Code::E347, 4, 1);
+    assert_alarm(&go("haas", &chamfer_arc), Code::E347, 4, 1);
+    // `,R` on the arc itself: at the `,R` word, line 4 column 16.
+    let d = assert_alarm(&go("fanuc", &arc_corner), Code::E201, 4, 16);
+    assert!(d.message.contains("0i-MF"), "{}", d.message);
+    assert_alarm(&go("haas", &arc_corner), Code::E203, 4, 16);
+}
