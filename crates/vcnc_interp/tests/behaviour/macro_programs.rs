@@ -260,3 +260,16 @@ fn comma_chamfer_and_corner_take_a_variable_or_an_expression() {
     assert!(common::near(cuts[1], 10.0, 1.0, 0.0), "{cuts:?}");
     assert!(common::near(cuts[2], 10.0, 10.0, 0.0), "{cuts:?}");
 }
+
+#[test]
+fn fanuc_lathe_comma_chamfer_takes_a_variable() {
+    // The review found `,C#1` alarming E101 under fanuc-lathe too: with
+    // #1 = 1 it is the chamfer `,C1.` written out (the same events).
+    let lathe = Dialect::fanuc_lathe();
+    let literal = "G97 S1000 M03\nG00 X0. Z2.\n#1=1.\nG01 X20. Z0. ,C1. F0.1\nG01 Z-10.\nM30\n";
+    let (want, out) = common::run_on_its_machine(&lathe, literal);
+    assert!(matches!(out, Outcome::Ended { .. }), "{out:?}");
+    let (got, out) = common::run_on_its_machine(&lathe, &literal.replace(",C1.", ",C#1"));
+    assert!(matches!(out, Outcome::Ended { .. }), "{out:?}");
+    assert_eq!(got, want);
+}
