@@ -86,20 +86,6 @@ pub fn unsupported_g(span: Span, why: &str) -> Diagnostic {
     )
 }
 
-/// E201: a `,C`/`,R` corner with an arc on its side, which the Fanuc
-/// 0i-MF runs (line–arc, arc–line, arc–arc) and vcnc does not.
-#[cold]
-pub fn corner_with_arc_not_run(span: Span, which: &str) -> Diagnostic {
-    d(
-        Code::E201,
-        span,
-        format!(
-            "a ,C or ,R {which}: the Fanuc 0i-MF makes this corner, vcnc runs ,C/,R only between two G01 moves"
-        ),
-        "vcnc cannot run this program as written: program the chamfer or round as its own G01/G02/G03 moves (see docs/dialects.md)",
-    )
-}
-
 /// E202: unknown M code.
 #[cold]
 pub fn unknown_m(span: Span, value: f64, dialect: &str) -> Diagnostic {

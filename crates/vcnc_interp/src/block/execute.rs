@@ -128,7 +128,6 @@ impl Interpreter<'_> {
         }
         if w.has_arc_words(self.cfg.axis_mask) {
             let (allowed, ext) = self.allowed_letters(w);
-            self.corner_on_arc(w)?;
             w.check_used(allowed, ext)?;
         }
         if self.points.active {
@@ -170,7 +169,6 @@ impl Interpreter<'_> {
             self.report_modes(wcs_before, inch_before);
         }
         let (allowed, ext) = self.allowed_letters(w);
-        self.corner_on_arc(w)?;
         w.check_used(allowed, ext)
             .map_err(|d| cancelled_cycle_hint(d, w))?;
         if self.points.active {

@@ -16,9 +16,7 @@
 //! first sends the held G01 to P1 and the chamfer or round to P2, with the
 //! held block's line, then its own move from P2. Anything else in the next
 //! block — no move, a rapid, an arc, a cycle — alarms E347 there, as does a
-//! chamfer longer than either line or two lines in one direction. Under
-//! fanuc an arc on either side is E201 instead: the 0i-MF makes those
-//! corners, vcnc does not.
+//! chamfer longer than either line or two lines in one direction.
 
 use crate::alarms;
 use crate::block::convert::Goal;
@@ -151,12 +149,6 @@ impl Interpreter<'_> {
         let end = match (mv.kind, mv.to) {
             (MoveKind::Feed(_), Target::Program(p)) => p,
             (MoveKind::Feed(_), Target::Relative(d)) => corner.plus(d),
-            (MoveKind::Arc { .. }, _) if self.corner_arcs_on_controller() => {
-                return Err(alarms::corner_with_arc_not_run(
-                    mv.cmd,
-                    "followed by a G02/G03 arc",
-                ));
-            }
             _ => {
                 return Err(alarms::corner_fault(
                     mv.cmd,
@@ -246,37 +238,6 @@ impl Interpreter<'_> {
         }
         self.flow.loc.line = line;
         self.stage.cur_line = cur_line;
-    }
-
-    /// Whether the dialect's controller makes `,C`/`,R` corners with arcs
-    /// too (Fanuc 0i-MF "optional chamfering and corner R": line–arc,
-    /// arc–line, arc–arc), which vcnc does not: then a corner with an arc
-    /// alarms as a form vcnc does not run (E201), not as a program error.
-    /// Haas documents G01–G01 only: E347/E203 stay right there.
-    pub(crate) fn corner_arcs_on_controller(&self) -> bool {
-        self.cfg.dialect.name == "fanuc"
-    }
-
-    /// A `,C`/`,R` on a G02/G03 block (step 6c, before the unused-word
-    /// check): under fanuc a form vcnc does not run, else left to E203.
-    pub(crate) fn corner_on_arc(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if w.ext_present == 0
-            || w.axis_user.is_some()
-            || !matches!(
-                self.state.modal.motion,
-                crate::state::Motion::ArcCw | crate::state::Motion::ArcCcw
-            )
-            || !self.corner_arcs_on_controller()
-        {
-            return Ok(());
-        }
-        match w.get_ext(Addr::COMMA_C).or(w.get_ext(Addr::COMMA_R)) {
-            Some(word) => Err(alarms::corner_with_arc_not_run(
-                word.span,
-                "at the end of a G02/G03 arc",
-            )),
-            None => Ok(()),
-        }
     }
 
     /// At the end of the program (its last block being the G01 with the
