@@ -298,7 +298,12 @@ fn text_report(out: &mut impl Write, results: &[Checked], detected: bool) -> std
             Ok(ran) => ran,
             Err(e) => {
                 unreadable += 1;
-                writeln!(out, "{}: error: {e}", r.input.name())?;
+                writeln!(
+                    out,
+                    "{}: error: {}",
+                    crate::render::visible(&r.input.name()),
+                    crate::render::visible(&e.to_string())
+                )?;
                 continue;
             }
         };

@@ -35,7 +35,9 @@ fn main() -> ExitCode {
     match run(cli) {
         Ok(code) => code,
         Err(message) => {
-            eprintln!("error: {message}");
+            // Tool tables and machine files are quoted in these messages:
+            // their control characters are shown, not obeyed.
+            eprintln!("error: {}", render::visible(&message));
             ExitCode::from(2)
         }
     }

@@ -31,14 +31,39 @@ fn lossy_offset(raw: &[u8], text: &str, byte: usize) -> usize {
     at
 }
 
+/// `text` safe to write to a terminal: the control characters that
+/// start escape sequences (ESC, BEL, CSI …) shown, not obeyed, the way
+/// the source line of an alarm shows them (annotate-snippets' control
+/// pictures: ESC is `␛`, BEL `␇`); C1 controls and DEL as `\u{..}`.
+/// Newlines and tabs stay. Text from files vcnc reads (tool tables,
+/// machine files, file names, messages quoting a program's comments)
+/// goes through this before it reaches stderr.
+pub fn visible(text: &str) -> std::borrow::Cow<'_, str> {
+    let shown = |c: char| c == '\n' || c == '\t' || !c.is_control();
+    if text.chars().all(shown) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        match c {
+            c if shown(c) => out.push(c),
+            // U+2400 + c: the Control Pictures block.
+            '\0'..='\u{1f}' => out.push(char::from_u32(0x2400 + c as u32).unwrap_or('\u{fffd}')),
+            c => out.push_str(&c.escape_unicode().to_string()),
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 /// An alarm or a warning with its source line and a caret, like rustc.
 pub fn diagnostic(d: &Diagnostic, main: &Input) -> String {
-    let file = d.file.clone().unwrap_or_else(|| main.name());
+    let file = visible(&d.file.clone().unwrap_or_else(|| main.name())).into_owned();
     let warning = d.code.is_warning();
+    let message = visible(&d.message);
     let (level, title) = if warning {
-        (Level::WARNING, d.message.clone())
+        (Level::WARNING, message.into_owned())
     } else {
-        (Level::ERROR, format!("alarm: {}", d.message))
+        (Level::ERROR, format!("alarm: {message}"))
     };
     let renderer = if std::env::var_os("NO_COLOR").is_none() && io_is_terminal() {
         Renderer::styled()
@@ -63,18 +88,18 @@ pub fn diagnostic(d: &Diagnostic, main: &Input) -> String {
                                 .label(d.code.as_str()),
                         ),
                 )
-                .element(Level::HELP.message(d.help.clone()))];
+                .element(Level::HELP.message(visible(&d.help).into_owned()))];
             renderer.render(&report)
         }
         None => format!(
             "{}[{}]: {} at {}:{}:{}\n  help: {}",
             if warning { "warning" } else { "error" },
             d.code.as_str(),
-            d.message,
+            visible(&d.message),
             file,
             d.line,
             d.column,
-            d.help
+            visible(&d.help)
         ),
     };
     format!("{text}\n")

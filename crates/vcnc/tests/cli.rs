@@ -1436,3 +1436,34 @@ fn files_that_are_not_tables_or_machines_are_refused() {
         assert!(stderr(&o).contains(needle), "{file}: {}", stderr(&o));
     }
 }
+
+/// Review #15: a tool table or machine file that holds terminal escape
+/// sequences (ESC ] … BEL sets the window title, ESC [ 2 J clears the
+/// screen) is quoted in its error with the control characters shown as
+/// control pictures (`␛`, `␇`), as an alarm's source line shows a
+/// program's, never written raw to the terminal.
+#[test]
+fn tool_table_and_machine_file_errors_do_not_write_escape_sequences() {
+    let dir = TempDir::new("escapes");
+    dir.write("h.nc", "G0 X0\nM30\n");
+    dir.write("esc.csv", "tool,diameter\n1,\u{1b}]0;pwned\u{7}\n");
+    dir.write("esc.tbl", "T1 P1 D\u{1b}[31m6 ;\n");
+    dir.write("esc.toml", "[axes.x]\nfoo\u{1b}[2J = 1\n");
+    for (flag, file, shown) in [
+        ("--tools", "esc.csv", "\u{241b}]0;pwned\u{2407}"),
+        ("--tools", "esc.tbl", "D\u{241b}[31m6"),
+        ("--machine", "esc.toml", "foo\u{241b}[2J"),
+    ] {
+        let o = vcnc_in(
+            dir.path(),
+            &["check", "--dialect", "fanuc", flag, file, "h.nc"],
+        );
+        let err = stderr(&o);
+        assert_eq!(code(&o), 2, "{file}: {err}");
+        assert!(
+            !err.contains('\u{1b}') && !err.contains('\u{7}'),
+            "{file}: {err:?}"
+        );
+        assert!(err.contains(shown), "{file}: {err}");
+    }
+}

@@ -732,16 +732,18 @@ impl Interpreter<'_> {
 
     /// Fanuc G08 P1 / P0: AI look-ahead control. It reads blocks ahead and
     /// lowers the feed before corners by the allowed acceleration, keeping
-    /// to the path: one `smoothing` event for the planner, on with the
+    /// to the path: a `smoothing` event for the planner, on with the
     /// machine's own corner tolerance (`motion.corner_tolerance_mm`, no
-    /// path error of its own, unlike G05.1's E), or off.
+    /// path error of its own, unlike G05.1's E), or off. It is the mode
+    /// G05.1 Q1 starts too: G05.1 Q0 ends it and G08 P0 ends G05.1's
+    /// (`codes/smoothing.rs`).
     fn look_ahead(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G08", "P (1 on, 0 off)"))?;
-        let on = match p.value {
-            1.0 => true,
-            0.0 => false,
+        match p.value {
+            1.0 => self.look_ahead_on(),
+            0.0 => self.smoothing_off(),
             _ => {
                 return Err(alarms::value_out_of_range(
                     p.span,
@@ -750,17 +752,7 @@ impl Interpreter<'_> {
                     "G08 P is 1 (look-ahead on) or 0 (off)",
                 ));
             }
-        };
-        let tolerance_mm = if on {
-            self.cfg.machine.motion.corner_tolerance_mm
-        } else {
-            0.0
-        };
-        self.emit(|loc| Event::Smoothing {
-            loc,
-            on,
-            tolerance_mm,
-        });
+        }
         Ok(())
     }
 

@@ -20,10 +20,16 @@
 //! What a G01 gets is decided when it is executed; a `smoothing` event is
 //! sent before it whenever that differs from what the last G01 got (and at
 //! `G05.1 Q0` when it was on), so the planner knows, move by move.
+//!
+//! Fanuc (and Haas, which reads Fanuc's codes) has one look-ahead
+//! smoothing mode that two codes switch: G05.1 Q1 (AI contour control) and
+//! G08 P1 (AI look-ahead control) start it, G05.1 Q0 and G08 P0 end it,
+//! whichever started it. There `G05.1 Q1` without E is not ineffective: it
+//! starts the mode as `G08 P1` does, with the machine's corner tolerance.
 
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::Group;
+use crate::dialect::{GOp, Group, PaceOp};
 use crate::events::{Event, PathMode};
 use crate::interpreter::Interpreter;
 use vcnc_syntax::{Diagnostic, Span};
@@ -43,14 +49,14 @@ impl Interpreter<'_> {
             ));
         }
         if q.value == 0.0 {
-            self.state.smoothing.tolerance_mm = 0.0;
-            self.state.smoothing.skip_next = false;
-            if self.state.smoothing.reported_mm > 0.0 {
-                self.report_smoothing(0.0);
-            }
+            self.smoothing_off();
             return Ok(());
         }
         let Some(e) = w.get(b'E') else {
+            if self.has_look_ahead_mode() {
+                // Fanuc's AI contour control: G08 P1's mode.
+                self.look_ahead_on();
+            }
             return Ok(()); // ineffective (rule 1)
         };
         if matches!(
@@ -70,6 +76,36 @@ impl Interpreter<'_> {
         }
         self.state.smoothing.tolerance_mm = tol;
         Ok(())
+    }
+
+    /// Whether this dialect's G05.1 Q1 and G08 P1 are one mode (Fanuc,
+    /// Haas): it has G08 look-ahead.
+    fn has_look_ahead_mode(&self) -> bool {
+        self.cfg
+            .dialect
+            .g(8.0)
+            .is_some_and(|d| d.op == GOp::Pace(PaceOp::LookAhead))
+    }
+
+    /// G08 P1, Fanuc's G05.1 Q1 without E: smoothing on with the
+    /// machine's corner tolerance, reported at once.
+    pub(crate) fn look_ahead_on(&mut self) {
+        let tol = self.cfg.machine.motion.corner_tolerance_mm;
+        self.state.smoothing.tolerance_mm = tol;
+        self.state.smoothing.skip_next = false;
+        if self.state.smoothing.reported_mm != tol {
+            self.report_smoothing(tol);
+        }
+    }
+
+    /// G05.1 Q0, G08 P0: the mode ends, whichever code started it; `off`
+    /// when the planner was last told `on`.
+    pub(crate) fn smoothing_off(&mut self) {
+        self.state.smoothing.tolerance_mm = 0.0;
+        self.state.smoothing.skip_next = false;
+        if self.state.smoothing.reported_mm > 0.0 {
+            self.report_smoothing(0.0);
+        }
     }
 
     /// Step 6: a tool length or work system code exempts the next G01.

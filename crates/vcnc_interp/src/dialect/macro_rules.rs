@@ -149,12 +149,13 @@ impl MacroRules {
     }
 
     /// The parser's settings for a language.
-    pub fn syntax(&self, lang: Lang, slash_comments: bool) -> MacroSyntax {
+    pub fn syntax(&self, lang: Lang, lex: &vcnc_syntax::LexRules) -> MacroSyntax {
         match lang {
             Lang::MacroB => MacroSyntax {
                 lang,
                 max_nesting: self.macro_b_nesting,
-                slash_comments,
+                slash_comments: lex.slash_comments,
+                extended: lex.extended,
             },
             // The Syntec manual names no bracket limit, only "too complex"
             // (COM-005): 32 keeps recursion small.
@@ -162,6 +163,7 @@ impl MacroRules {
                 lang,
                 max_nesting: 32,
                 slash_comments: true,
+                extended: &[],
             },
         }
     }

@@ -181,7 +181,7 @@ impl Interpreter<'_> {
         let syn = self
             .macros
             .rules
-            .syntax(Lang::MacroB, self.cfg.dialect.lex.slash_comments);
+            .syntax(Lang::MacroB, &self.cfg.dialect.lex);
         let parsed = match self.flow.source(src) {
             Some(s) => parse_iso_block(s.reader.bytes(line), start, &syn)?,
             None => None,
@@ -320,7 +320,7 @@ impl Interpreter<'_> {
         let syn = self
             .macros
             .rules
-            .syntax(Lang::MacroB, self.cfg.dialect.lex.slash_comments);
+            .syntax(Lang::MacroB, &self.cfg.dialect.lex);
         let Some((st, next)) = parse_iso_block(bytes, start, &syn)? else {
             return Err(lexed);
         };
@@ -591,7 +591,10 @@ impl Interpreter<'_> {
         text.extend_from_slice(&bytes);
         lines.push((0, line));
         let mut start = (at.col as usize).min(text.len());
-        let syn = self.macros.rules.syntax(Lang::Syntec, true);
+        let syn = self
+            .macros
+            .rules
+            .syntax(Lang::Syntec, &self.cfg.dialect.lex);
         let (first, end) = loop {
             let ext = syntec_extent(text, start);
             if ext.empty {

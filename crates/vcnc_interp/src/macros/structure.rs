@@ -603,7 +603,7 @@ impl Interpreter<'_> {
     fn scan_iso(&mut self, src: usize, program: Cursor) -> Result<Pairing, Diagnostic> {
         let id = self.source_id(src);
         let lex = self.cfg.dialect.lex;
-        let syn = self.macros.rules.syntax(Lang::MacroB, lex.slash_comments);
+        let syn = self.macros.rules.syntax(Lang::MacroB, &lex);
         let mut pairing = Pairing::new(id);
         let mut block = vcnc_syntax::Block::default();
         let mut col = program.col as usize;

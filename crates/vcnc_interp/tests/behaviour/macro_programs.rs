@@ -216,3 +216,61 @@ fn program_number_4115_is_the_running_program_also_in_the_main_file() {
         vec![Some(555.0), Some(13.0), Some(14.0), Some(555.0), Some(20.0)]
     );
 }
+
+#[test]
+fn comma_chamfer_and_corner_take_a_variable_or_an_expression() {
+    // Fanuc Macro B: a variable or a bracketed expression stands wherever
+    // an address takes a value, the comma addresses too. `,R#1` with
+    // #1 = 2 rounds the corner at X10 Y0 with R2: the G01 stops at X8
+    // (10 − 2), an arc follows to X10 Y2, then the line to Y10: the same
+    // motion as `,R2.` written out. `,C[0.5+0.5]` chamfers 1 mm: the line
+    // stops at X9, the chamfer goes to X10 Y1.
+    let fanuc = Dialect::fanuc();
+    let literal = "G90 G21 G17 M3 S1000\nG0 X0 Y0\n#1=2.\nG1 X10. ,R2. F100\nY10.\nM30\n";
+    let (want, out) = common::run_str(&fanuc, literal);
+    assert!(matches!(out, Outcome::Ended { .. }), "{out:?}");
+    for form in [",R#1", ",R[1+1]", ",R #1", ",r#1"] {
+        let p = literal.replace(",R2.", form);
+        let (got, out) = common::run_str(&fanuc, &p);
+        assert!(matches!(out, Outcome::Ended { .. }), "{form}: {out:?}");
+        assert_eq!(got, want, "{form}");
+    }
+    let (events, out) = common::run_str(&fanuc, &literal.replace(",R2.", ",R#1"));
+    assert!(matches!(out, Outcome::Ended { .. }));
+    let first_cut = events.iter().find_map(|e| match e {
+        Event::Feed { to, .. } => Some(*to),
+        _ => None,
+    });
+    assert!(
+        common::near(first_cut.unwrap(), 8.0, 0.0, 0.0),
+        "{first_cut:?}"
+    );
+
+    let chamfer = "G90 G21 G17 M3 S1000\nG0 X0 Y0\nG1 X10. ,C[0.5+0.5] F100\nY10.\nM30\n";
+    let (events, out) = common::run_str(&fanuc, chamfer);
+    assert!(matches!(out, Outcome::Ended { .. }), "{out:?}");
+    let cuts: Vec<_> = events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed { to, .. } => Some(*to),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(cuts.len(), 3, "{cuts:?}");
+    assert!(common::near(cuts[0], 9.0, 0.0, 0.0), "{cuts:?}");
+    assert!(common::near(cuts[1], 10.0, 1.0, 0.0), "{cuts:?}");
+    assert!(common::near(cuts[2], 10.0, 10.0, 0.0), "{cuts:?}");
+}
+
+#[test]
+fn fanuc_lathe_comma_chamfer_takes_a_variable() {
+    // The review found `,C#1` alarming E101 under fanuc-lathe too: with
+    // #1 = 1 it is the chamfer `,C1.` written out (the same events).
+    let lathe = Dialect::fanuc_lathe();
+    let literal = "G97 S1000 M03\nG00 X0. Z2.\n#1=1.\nG01 X20. Z0. ,C1. F0.1\nG01 Z-10.\nM30\n";
+    let (want, out) = common::run_on_its_machine(&lathe, literal);
+    assert!(matches!(out, Outcome::Ended { .. }), "{out:?}");
+    let (got, out) = common::run_on_its_machine(&lathe, &literal.replace(",C1.", ",C#1"));
+    assert!(matches!(out, Outcome::Ended { .. }), "{out:?}");
+    assert_eq!(got, want);
+}

@@ -52,6 +52,11 @@ pub struct MacroSyntax {
     pub max_nesting: u8,
     /// `//` starts a comment to the end of the line.
     pub slash_comments: bool,
+    /// The dialect's addresses written with more than a letter (the
+    /// lexer's `LexRules::extended`); those that start with `,` (`,C`,
+    /// `,R`) are words of a macro block too, so that they take a variable
+    /// or an expression as any address does (`,R#1`).
+    pub extended: &'static [(&'static str, Addr)],
 }
 
 /// Most ops one expression compiles to (E602 beyond).

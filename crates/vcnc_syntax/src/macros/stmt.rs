@@ -200,7 +200,7 @@ fn iso_statement(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, D
         if s.pos >= s.end {
             break;
         }
-        if !b.is_ascii_alphabetic() {
+        if !b.is_ascii_alphabetic() && comma_address(s).is_none() {
             return Err(stray(s));
         }
         if words.len() >= MAX_MACRO_WORDS {
@@ -403,9 +403,10 @@ fn loop_number(s: &mut Scan<'_>, keyword: &str) -> Result<u8, Diagnostic> {
 fn iso_word(s: &mut Scan<'_>, words_follow: bool) -> Result<MWord, Diagnostic> {
     s.trivia()?;
     let at = s.pos;
-    let letter = s.at(0).to_ascii_uppercase();
-    s.pos += 1;
-    let addr = Addr::letter(letter);
+    let (addr, len) = comma_address(s).unwrap_or((Addr::letter(s.at(0).to_ascii_uppercase()), 1));
+    // For messages: the letter of `,R` is R.
+    let letter = s.at(len - 1).to_ascii_uppercase();
+    s.pos += len;
     // Blanks may separate the letter from its value.
     s.trivia()?;
     let value_at = s.pos;
@@ -480,10 +481,22 @@ fn iso_word(s: &mut Scan<'_>, words_follow: bool) -> Result<MWord, Diagnostic> {
 /// After a word's value: another word, a comment or the end.
 fn after_value(s: &mut Scan<'_>) -> Result<(), Diagnostic> {
     let b = s.peek()?;
-    if s.pos >= s.end || b.is_ascii_alphabetic() {
+    if s.pos >= s.end || b.is_ascii_alphabetic() || comma_address(s).is_some() {
         return Ok(());
     }
     Err(stray(s))
+}
+
+/// The dialect's `,C`/`,R` address at the scanner, and its length.
+fn comma_address(s: &Scan<'_>) -> Option<(Addr, usize)> {
+    if s.at(0) != b',' {
+        return None;
+    }
+    s.syn.extended.iter().find_map(|(text, addr)| {
+        let t = text.as_bytes();
+        (t.first() == Some(&b',') && (0..t.len()).all(|k| s.at(k).eq_ignore_ascii_case(&t[k])))
+            .then_some((*addr, t.len()))
+    })
 }
 
 /// A whole number that fits a `u32`.
@@ -1064,11 +1077,13 @@ mod tests {
         lang: Lang::MacroB,
         max_nesting: 5,
         slash_comments: true,
+        extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     };
     const S: MacroSyntax = MacroSyntax {
         lang: Lang::Syntec,
         max_nesting: 32,
         slash_comments: true,
+        extended: &[],
     };
 
     fn codes(e: &Expr) -> Vec<OpCode> {
