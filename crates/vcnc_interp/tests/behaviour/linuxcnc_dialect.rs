@@ -483,6 +483,26 @@ fn subroutine_files_are_asked_for_by_plain_names_only() {
         matches!(&out, Outcome::Alarm(d) if d.code == Code::E611 && d.message.contains("other.ngc defines no")),
         "{out:?}"
     );
+    // A missing sub is named as an o-word, `o<name>`, in lower case as
+    // rs274 reads it, and the help says the file name is lower case.
+    let (_, out, asked) = run_with_files(
+        "G21
+o<MySub> call
+M2
+",
+    );
+    let Outcome::Alarm(d) = &out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E611, 2, 1));
+    assert!(
+        d.message
+            .starts_with("o<mysub> call: no o<mysub> sub in this program, and no mysub.ngc"),
+        "{}",
+        d.message
+    );
+    assert!(d.help.contains("lower case"), "{}", d.help);
+    assert_eq!(asked, vec!["mysub".to_string()]);
 }
 
 /// G41.1/G42.1: compensation by the block's D diameter, no register. On
