@@ -250,6 +250,7 @@ pub(super) fn linuxcnc() -> Dialect {
         macros: super::MacroRules::NGC,
         arc_end: super::ArcEnd::Rs274,
         g53_without_axes: super::G53WithoutAxes::Alarm,
+        comp_when_on: super::CompWhenOn::Alarm,
         ..grbl()
     }
 }

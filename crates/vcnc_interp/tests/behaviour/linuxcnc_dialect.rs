@@ -565,6 +565,40 @@ fn dynamic_compensation_takes_the_blocks_diameter_and_orientation() {
     assert_eq!(alarm("G21\nG41.1 D6 L3 G1 X1\nM2\n"), (Code::E203, 2, 10));
 }
 
+/// rs274 refuses to turn compensation on while it is on, whatever the
+/// code, side or diameter ("Cannot turn cutter radius comp on when on",
+/// probed with rs274 -g: `G41.1 D8` under G41.1, `G42` under G41, `G41`
+/// under G41 with no move between); E320 here, at the code, with no
+/// motion after it. Fanuc changes side and offset in offset mode: runs.
+#[test]
+fn compensation_turned_on_while_on_alarms_as_in_rs274() {
+    let on_on = |first: &str, second: &str| {
+        format!(
+            "G21 G90 G17\nG10 L1 P1 R2\nT1 M6\nG0 X-10 Y-10\n{first} G1 X0 Y0 F100\nX20\n{second} X40\nG40 X50 Y30\nM2\n"
+        )
+    };
+    for (first, second) in [
+        ("G41.1 D4", "G41.1 D8"),
+        ("G41.1 D4", "G42.1 D4"),
+        ("G41", "G42"),
+        ("G42 D1", "G42 D1"),
+        ("G41", "G41.1 D4"),
+    ] {
+        let program = on_on(first, second);
+        assert_eq!(alarm(&program), (Code::E320, 7, 1), "{program}");
+    }
+    assert_eq!(
+        alarm("G21\nG10 L1 P1 R2\nT1 M6\nG41\nG41\nG40\nM2\n"),
+        (Code::E320, 5, 1)
+    );
+    // After G40 it may start again.
+    let (_, out) = run(&on_on("G41", "G40 X30\nG42"));
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let fanuc = on_on("G41 D1", "G42 D1").replace("G10 L1 ", "G10 L12 ");
+    let (_, out) = run_str(&Dialect::fanuc(), &fanuc);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+}
+
 /// rs274's end-point rule for I/J/K arcs: the ends rs274 2.9 refuses
 /// ("Radius to end of arc differs from radius to start"), each just past
 /// the edge the fixture `linuxcnc_dialect/arc_end_tolerance` runs on its
