@@ -1256,6 +1256,17 @@ pub fn read_only_variable(span: Span, sigil: char, n: u32) -> Diagnostic {
     )
 }
 
+/// E606: a setting of one of LinuxCNC's predefined named parameters.
+#[cold]
+pub fn read_only_named(span: Span, name: &str) -> Diagnostic {
+    d(
+        Code::E606,
+        span,
+        format!("#<{name}> is read-only: it is one of LinuxCNC's predefined named parameters"),
+        "keep the value in a parameter of your own (a name of your choice: #<_mine> is global, #<mine> local to a subroutine)",
+    )
+}
+
 /// E607: a vacant value where a number is required.
 #[cold]
 pub fn vacant_value(span: Span, what: &str) -> Diagnostic {

@@ -90,6 +90,70 @@ impl Params {
     }
 }
 
+/// rs274 2.9's predefined named parameters, which a program cannot set
+/// ("Cannot assign to read-only parameter #<_x>", probed name by name
+/// with `rs274 -g`: `_abs_u`…`_abs_w`, `_hal`, `_ini` and other `_` names
+/// are ordinary globals). vcnc provides only `_value` and
+/// `_value_returned`; the others read as unset names.
+const READ_ONLY: &[&str] = &[
+    "_vmajor",
+    "_vminor",
+    "_line",
+    "_motion_mode",
+    "_plane",
+    "_ccomp",
+    "_metric",
+    "_imperial",
+    "_absolute",
+    "_incremental",
+    "_inverse_time",
+    "_units_per_minute",
+    "_units_per_rev",
+    "_coord_system",
+    "_tool_offset",
+    "_retract_r_plane",
+    "_retract_old_z",
+    "_spindle_rpm_mode",
+    "_spindle_css_mode",
+    "_ijk_absolute_mode",
+    "_lathe_diameter_mode",
+    "_lathe_radius_mode",
+    "_spindle_on",
+    "_spindle_cw",
+    "_mist",
+    "_flood",
+    "_speed_override",
+    "_feed_override",
+    "_adaptive_feed",
+    "_feed_hold",
+    "_feed",
+    "_rpm",
+    "_x",
+    "_y",
+    "_z",
+    "_a",
+    "_b",
+    "_c",
+    "_u",
+    "_v",
+    "_w",
+    "_abs_x",
+    "_abs_y",
+    "_abs_z",
+    "_abs_a",
+    "_abs_b",
+    "_abs_c",
+    "_current_tool",
+    "_current_pocket",
+    "_selected_tool",
+    "_selected_pocket",
+    "_value",
+    "_value_returned",
+    "_task",
+    "_call_level",
+    "_remap_level",
+];
+
 /// Reads `text[start..]`, one LinuxCNC line, with the parameters as they
 /// were before it.
 pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Line, Diagnostic> {
@@ -112,6 +176,11 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
             0 => return Ok(line),
             b'#' => {
                 let key = r.target()?;
+                if let Key::Named(name) = &key
+                    && READ_ONLY.contains(&name.as_str())
+                {
+                    return Err(alarms::read_only_named(Span::new(at, r.i), name));
+                }
                 r.blank();
                 if r.peek() != b'=' {
                     return Err(syntax(Span::new(r.i, r.i + 1), "`=` after the parameter"));

@@ -266,6 +266,31 @@ fn parameters_alarm_where_rs274_refuses_them() {
     // Nesting is bounded (the reader recurses): 3,000 brackets alarm.
     let deep = format!("G21\nG0 X{}1{}\nM2\n", "[".repeat(3000), "]".repeat(3000));
     assert_eq!(alarm(&deep).0, Code::E602);
+    // rs274's predefined named parameters are read-only ("Cannot assign
+    // to read-only parameter #<_value>"), in any case; a `_` name of the
+    // program's own is a global it may set.
+    assert_eq!(
+        alarm("o<f> sub\no<f> endsub\n#<_value>=5\no<f> call\nG0 X#<_value>\nM2\n"),
+        (Code::E606, 3, 1)
+    );
+    for name in [
+        "_value_returned",
+        "_X",
+        "_feed",
+        "_line",
+        "_abs_c",
+        "_call_level",
+    ] {
+        assert_eq!(
+            alarm(&format!("G21\nG0 X1 #<{name}> = 2\nM2\n")),
+            (Code::E606, 2, 7),
+            "{name}"
+        );
+    }
+    assert_eq!(
+        xs("G21 G90\n#<_abs_u> = 2\n#<_mine> = 3\nG0 X[#<_abs_u> + #<_mine>]\nM2\n"),
+        vec![5.0]
+    );
     // grbl reads no parameters.
     let (_, out) = run_str(&Dialect::grbl(), "G21\n#1 = 2\nM2\n");
     assert!(matches!(out, Outcome::Alarm(d) if d.code == Code::E101));
