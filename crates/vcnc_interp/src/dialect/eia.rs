@@ -105,6 +105,7 @@ const EIA_LEX: LexRules = LexRules {
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// The EIA-274-D dialect.

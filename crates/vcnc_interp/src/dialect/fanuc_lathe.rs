@@ -131,6 +131,7 @@ const FANUC_LATHE_LEX: LexRules = LexRules {
     extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: true,
+    paren_in_comment_alarms: false,
 };
 
 /// Codes of the 0i-TF list vcnc does not run, and why (E201 quotes it).

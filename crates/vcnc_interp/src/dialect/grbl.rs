@@ -112,13 +112,14 @@ pub(super) const GRBL_G: &[GRow] = &[
 pub(super) const GRBL_M: &[&[MRow]] = m_codes::GRBL;
 
 /// `;` starts a comment; no `//` comments, no full-width `；`.
-const GRBL_LEX: LexRules = LexRules {
+pub(super) const GRBL_LEX: LexRules = LexRules {
     semicolon: Semicolon::Comment,
     slash_comments: false,
     fullwidth_semicolon: false,
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// The grbl dialect.

@@ -97,6 +97,7 @@ const LATHE_LEX: LexRules = LexRules {
     ],
     foreign: &[],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// Listed by the document without a format to run.

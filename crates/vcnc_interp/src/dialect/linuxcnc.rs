@@ -238,6 +238,11 @@ pub(super) fn linuxcnc() -> Dialect {
     let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
     Dialect {
         name: "linuxcnc",
+        // rs274 refuses any `(` inside a comment: "Nested comment found".
+        lex: vcnc_syntax::LexRules {
+            paren_in_comment_alarms: true,
+            ..super::grbl::GRBL_LEX
+        },
         g,
         m,
         unsupported: NOT_RUN,

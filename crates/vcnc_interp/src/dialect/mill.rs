@@ -224,6 +224,7 @@ const MILL_LEX: LexRules = LexRules {
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// Codes of the Syntec G-code list (manual 1.1) that later work will run.
@@ -388,6 +389,7 @@ pub(super) fn syntec() -> Dialect {
 /// chamfering and corner R", Haas mill "corner rounding and chamfering").
 const FANUC_LEX: LexRules = LexRules {
     colon_is_o: true,
+    paren_in_comment_alarms: false,
     extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     ..MILL_LEX
 };

@@ -163,6 +163,7 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
         params,
         depth: 0,
     };
+    paren_in_comment(&text[start.min(text.len())..], start)?;
     let mut line = Line::default();
     r.blank();
     if r.peek() == b'/' {
@@ -232,6 +233,27 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
             }
         }
     }
+}
+
+/// E101 at a `(` inside a `( )` comment of `text` (which starts at byte
+/// `start` of its line): rs274 stops with "Nested comment found".
+fn paren_in_comment(text: &[u8], start: usize) -> Result<(), Diagnostic> {
+    let mut open = None;
+    for (k, c) in text.iter().enumerate() {
+        match (c, open) {
+            (b';', None) => return Ok(()),
+            (b'(', None) => open = Some(k),
+            (b'(', Some(_)) => {
+                return Err(vcnc_syntax::diagnostics::paren_in_comment(Span::new(
+                    start + k,
+                    start + k + 1,
+                )));
+            }
+            (b')', Some(_)) => open = None,
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// E601 in LinuxCNC's syntax.

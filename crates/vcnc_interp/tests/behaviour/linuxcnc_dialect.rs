@@ -624,6 +624,25 @@ fn compensation_turned_on_while_on_alarms_as_in_rs274() {
     assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
 }
 
+/// rs274 refuses any `(` inside a comment ("Nested comment found",
+/// probed with rs274 -g: also in a `(msg, …)` and on a line with a
+/// parameter setting; a `(` after `;` and two comments side by side
+/// pass); E101 at the inner `(`. The Fanuc family reads it as text.
+#[test]
+fn a_parenthesis_inside_a_comment_alarms_as_in_rs274() {
+    assert_eq!(alarm("G0 X1 (T1 (6MM END MILL)\nM2\n"), (Code::E101, 1, 11));
+    assert_eq!(alarm("G21\n(msg, a (b)\nM2\n"), (Code::E101, 2, 9));
+    assert_eq!(alarm("G21\n#1=2 (a (b)\nM2\n"), (Code::E101, 2, 9));
+    assert_eq!(alarm("G21\nG0 X1 (a ( b) (c)\nM2\n"), (Code::E101, 2, 10));
+    let xs = |p: &str| common::xs(&ended(p));
+    assert_eq!(
+        xs("G21\nG0 X1 ; a (b\nG0 X2 (a b) (c)\nM2\n"),
+        vec![1.0, 2.0]
+    );
+    let (_, out) = run_str(&Dialect::fanuc(), "G21\nG0 X1 (T1 (6MM END MILL)\nM30\n");
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+}
+
 /// rs274's end-point rule for I/J/K arcs: the ends rs274 2.9 refuses
 /// ("Radius to end of arc differs from radius to start"), each just past
 /// the edge the fixture `linuxcnc_dialect/arc_end_tolerance` runs on its
