@@ -188,11 +188,11 @@ const NOT_RUN: &[(u16, &str)] = &[
     (52, "LinuxCNC's NURBS block G5.2/G5.3 is not run by vcnc"),
     (
         70,
-        "lathe diameter mode: use --dialect fanuc-lathe for lathe programs",
+        "LinuxCNC's lathe diameter mode G7 (X in diameters) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
     ),
     (
         80,
-        "lathe radius mode: use --dialect fanuc-lathe for lathe programs",
+        "LinuxCNC's lathe radius mode G8 (X in radii) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
     ),
     (171, "the UVW planes G17.1-G19.1 are not run by vcnc"),
     (181, "the UVW planes G17.1-G19.1 are not run by vcnc"),

@@ -212,6 +212,19 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
     );
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
+    // rs274 runs G7/G8 in a mill program (G7 halves X); vcnc runs them in
+    // linuxcnc-lathe only, and the alarm names that dialect.
+    for g in ["G7", "G8"] {
+        let (_, out) = run(&format!("G21\n{g}\nM2\n"));
+        let Outcome::Alarm(d) = out else {
+            panic!("{out:?}")
+        };
+        let text = format!("{} {}", d.message, d.help);
+        assert!(
+            text.contains("--dialect linuxcnc-lathe") && !text.contains("fanuc-lathe"),
+            "{text}"
+        );
+    }
     // G33.1 taps with a turning spindle and K in the block, as rs274
     // wants ("Spindle not turning in G33.1", "K word missing with
     // g33/g33.1"); the taps themselves are checked against rs274
