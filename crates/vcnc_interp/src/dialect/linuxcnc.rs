@@ -33,6 +33,10 @@ use crate::machine::DEFAULT_FANUC_LATHE_TOML;
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
 pub(super) const LINUXCNC_G: &[GRow] = &[
+    // G2/G3 P: the number of turns (rs274's ARC_FEED turns; P1 is the
+    // plain arc, more turns are not run: `motion/arc.rs`).
+    g(20, GOp::Motion(MotionOp::ArcCw), Group::Motion).reads(bit(b'P')),
+    g(30, GOp::Motion(MotionOp::ArcCcw), Group::Motion).reads(bit(b'P')),
     // G4 P seconds; the block's axis words go to its motion, after the
     // dwell (`G4 P0.5 G0 X10`, LinuxCNC's order of execution).
     g(40, GOp::Pace(PaceOp::DwellP), Group::NonModal).reads(bit(b'P')),

@@ -656,6 +656,30 @@ fn a_parenthesis_inside_a_comment_alarms_as_in_rs274() {
     assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
 }
 
+/// G2/G3 P, LinuxCNC's number of turns (rs274 -g: `G3 … P2` is
+/// `ARC_FEED(…, 2, …)`; P0, P-1: "P value should be 1 or greater with G2
+/// or G3"; P1.5: "P value not an integer"): P1 is the plain arc, more
+/// turns are E201 saying vcnc does not run them, not E203.
+#[test]
+fn arc_turns_p_is_read_and_more_than_one_turn_is_not_run() {
+    let arc = |p: &str| format!("G21 G90 G17\nG0 X100 Y0\nG3 X0 Y100 I-100 J0 {p} F100\nM2\n");
+    assert_eq!(ended(&arc("P1")), ended(&arc("")));
+    let (_, out) = run(&arc("P2"));
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E201, 3, 1));
+    assert!(d.message.contains("not run by vcnc"), "{}", d.message);
+    assert_eq!(alarm(&arc("P2")), (Code::E201, 3, 1));
+    for (bad, code) in [
+        ("P0", Code::E109),
+        ("P-1", Code::E109),
+        ("P1.5", Code::E108),
+    ] {
+        assert_eq!(alarm(&arc(bad)).0, code, "{bad}");
+    }
+}
+
 /// rs274's end-point rule for I/J/K arcs: the ends rs274 2.9 refuses
 /// ("Radius to end of arc differs from radius to start"), each just past
 /// the edge the fixture `linuxcnc_dialect/arc_end_tolerance` runs on its
