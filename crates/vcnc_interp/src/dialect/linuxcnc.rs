@@ -259,6 +259,8 @@ pub(super) fn linuxcnc() -> Dialect {
         macros: super::MacroRules::NGC,
         arc_end: super::ArcEnd::Rs274,
         g53_without_axes: super::G53WithoutAxes::Alarm,
+        // P, the arc's number of turns, also in a modal G2/G3 block.
+        arc_letters: bit(b'P'),
         comp_when_on: super::CompWhenOn::Alarm,
         ..grbl()
     }

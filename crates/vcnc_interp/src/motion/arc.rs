@@ -93,9 +93,7 @@ impl Interpreter<'_> {
     /// rs274 wants: "P value should be 1 or greater with G2 or G3"): P1
     /// is the plain arc; more turns are E201, not run by vcnc.
     fn arc_turns(&self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let reads_p = w
-            .group(crate::dialect::Group::Motion)
-            .is_some_and(|m| m.def.letters & bit(b'P') != 0);
+        let reads_p = self.cfg.dialect.arc_letters & bit(b'P') != 0;
         let Some(p) = w.get(b'P').filter(|_| reads_p) else {
             return Ok(());
         };

@@ -671,6 +671,9 @@ fn arc_turns_p_is_read_and_more_than_one_turn_is_not_run() {
     assert_eq!((d.code, d.line, d.column), (Code::E201, 3, 1));
     assert!(d.message.contains("not run by vcnc"), "{}", d.message);
     assert_eq!(alarm(&arc("P2")), (Code::E201, 3, 1));
+    // In a modal G3 block too (rs274: ARC_FEED(…, 2, …)).
+    let modal = arc("P1").replace("M2\n", "X100 Y0 I100 J0 P2\nM2\n");
+    assert_eq!(alarm(&modal), (Code::E201, 4, 1));
     for (bad, code) in [
         ("P0", Code::E109),
         ("P-1", Code::E109),
