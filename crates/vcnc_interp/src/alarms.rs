@@ -777,6 +777,18 @@ pub fn not_while_compensating(span: Span, what: &str) -> Diagnostic {
     )
 }
 
+/// E320: G41/G42 (G41.1/G42.1) while compensation is on, in a dialect
+/// that refuses it (rs274: "Cannot turn cutter radius comp on when on").
+#[cold]
+pub fn comp_on_when_on(span: Span, code: &str) -> Diagnostic {
+    d(
+        Code::E320,
+        span,
+        format!("{code} cannot turn cutter compensation on while it is already on"),
+        "cancel compensation with G40 (and move off the contour) before starting it again with another side or diameter",
+    )
+}
+
 /// E321: a tapping cycle with the spindle stopped or turning the wrong
 /// way (`cw`: the direction it must turn, `None`: either).
 #[cold]
@@ -1241,6 +1253,17 @@ pub fn read_only_variable(span: Span, sigil: char, n: u32) -> Diagnostic {
         span,
         format!("{sigil}{n} is read-only"),
         "write to a local or common variable instead",
+    )
+}
+
+/// E606: a setting of one of LinuxCNC's predefined named parameters.
+#[cold]
+pub fn read_only_named(span: Span, name: &str) -> Diagnostic {
+    d(
+        Code::E606,
+        span,
+        format!("#<{name}> is read-only: it is one of LinuxCNC's predefined named parameters"),
+        "keep the value in a parameter of your own (a name of your choice: #<_mine> is global, #<mine> local to a subroutine)",
     )
 }
 

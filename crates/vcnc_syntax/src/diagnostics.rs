@@ -84,6 +84,17 @@ pub fn nested_comment(inner_open: Span) -> Diagnostic {
     )
 }
 
+/// E101: a `(` inside a comment, in a dialect whose comments may hold
+/// none (LinuxCNC: rs274 stops with "Nested comment found").
+pub fn paren_in_comment(inner_open: Span) -> Diagnostic {
+    Diagnostic::new(
+        Code::E101,
+        inner_open,
+        "`(` inside a comment: LinuxCNC refuses a comment holding a parenthesis (\"Nested comment found\")".to_string(),
+        "write the inner parentheses of a comment as [ ], or remove them",
+    )
+}
+
 /// E101: a block that starts with a digit.
 pub fn digit_first(span: Span, text: &str) -> Diagnostic {
     Diagnostic::new(

@@ -39,6 +39,10 @@ pub struct LexRules {
     /// a word starts with it, so that it costs the words that start with
     /// letters nothing (as an extended address it was tried at each).
     pub colon_is_o: bool,
+    /// Any `(` inside a `( )` comment is E101 (rs274: "Nested comment
+    /// found"); otherwise only the `(A (B) C)` form, where a second `)`
+    /// shows the programmer meant the comment to nest.
+    pub paren_in_comment_alarms: bool,
 }
 
 /// What `;` means in a dialect.
@@ -153,7 +157,7 @@ fn lex_rest(
                 return finish(out, start, i, line.len());
             }
             b';' => return finish(out, start, i, i + 1),
-            b'(' => i = skip_comment(line, i)?,
+            b'(' => i = skip_comment(line, i, rules.paren_in_comment_alarms)?,
             b'/' if rules.slash_comments && line.get(i + 1) == Some(&b'/') => {
                 return finish(out, start, i, line.len());
             }
@@ -211,11 +215,17 @@ fn finish(out: &mut Block, start: usize, end: usize, next: usize) -> Result<usiz
     Ok(next)
 }
 
-fn skip_comment(line: &[u8], open: usize) -> Result<usize, Diagnostic> {
+fn skip_comment(line: &[u8], open: usize, strict: bool) -> Result<usize, Diagnostic> {
     match memchr::memchr(b')', &line[open + 1..]) {
         Some(k) => {
             let close = open + 1 + k;
             if let Some(inner) = memchr::memchr(b'(', &line[open + 1..close]) {
+                if strict {
+                    return Err(diag::paren_in_comment(Span::new(
+                        open + 1 + inner,
+                        open + 2 + inner,
+                    )));
+                }
                 nested_comment(line, open + 1 + inner, close)?;
             }
             Ok(close + 1)
@@ -481,6 +491,7 @@ mod tests {
         extended: &[],
         foreign: &[("CR=", "lathe")],
         colon_is_o: false,
+        paren_in_comment_alarms: false,
     };
 
     fn blocks(src: &str) -> Result<Vec<String>, Code> {
@@ -533,6 +544,15 @@ mod tests {
         // follower opens a second comment.
         assert_eq!(blocks("G0 X1 (A ( B)").unwrap(), vec!["G0 X1"]);
         assert_eq!(blocks("G0 X1 (A ( B) (C)").unwrap(), vec!["G0 X1"]);
+        // Where any `(` in a comment alarms (LinuxCNC), both do.
+        let strict = LexRules {
+            paren_in_comment_alarms: true,
+            ..SYNTEC
+        };
+        for text in [&b"G0 X1 (A ( B)"[..], b"G0 X1 (A ( B) (C)"] {
+            let err = lex_block(text, 0, &strict, &mut out).unwrap_err();
+            assert_eq!((err.code, err.span.start), (Code::E101, 9));
+        }
     }
 
     #[test]

@@ -31,6 +31,9 @@ impl Interpreter<'_> {
         if let (Some(_), Some(m)) = (code, arc) {
             return Err(alarms::comp_arc_startup(m.span));
         }
+        if let Some(c) = code {
+            self.check_comp_when_on(c.def.op, c.span)?;
+        }
         if let Some(c) = code
             && matches!(
                 c.def.op,
@@ -74,6 +77,24 @@ impl Interpreter<'_> {
             self.warn_zero_radius(code.span, side);
         }
         Ok(())
+    }
+
+    /// E320 when the dialect refuses to turn compensation on while it is
+    /// on (rs274: "Cannot turn cutter radius comp on when on").
+    fn check_comp_when_on(&self, op: GOp, at: vcnc_syntax::Span) -> Result<(), Diagnostic> {
+        if self.cfg.dialect.comp_when_on != crate::dialect::CompWhenOn::Alarm
+            || self.state.modal.comp == CompSide::Off
+        {
+            return Ok(());
+        }
+        let g = match op {
+            GOp::Comp(CompOp::Left) => "G41",
+            GOp::Comp(CompOp::Right) => "G42",
+            GOp::Comp(CompOp::LeftDiameter) => "G41.1",
+            GOp::Comp(CompOp::RightDiameter) => "G42.1",
+            _ => return Ok(()),
+        };
+        Err(alarms::comp_on_when_on(at, g))
     }
 
     /// LinuxCNC's G41.1/G42.1 D L: the radius is half the block's D (a

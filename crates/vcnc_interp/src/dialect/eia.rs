@@ -105,6 +105,7 @@ const EIA_LEX: LexRules = LexRules {
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// The EIA-274-D dialect.
@@ -148,5 +149,6 @@ pub(super) fn eia() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        comp_when_on: super::CompWhenOn::Changes,
     }
 }

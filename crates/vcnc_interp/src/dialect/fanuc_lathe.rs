@@ -131,6 +131,7 @@ const FANUC_LATHE_LEX: LexRules = LexRules {
     extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: true,
+    paren_in_comment_alarms: false,
 };
 
 /// Codes of the 0i-TF list vcnc does not run, and why (E201 quotes it).
@@ -202,6 +203,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        comp_when_on: super::CompWhenOn::Changes,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -232,6 +234,7 @@ pub(super) fn haas_lathe() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        comp_when_on: super::CompWhenOn::Changes,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

@@ -97,6 +97,7 @@ const LATHE_LEX: LexRules = LexRules {
     ],
     foreign: &[],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// Listed by the document without a format to run.
@@ -144,5 +145,6 @@ pub(super) fn lathe() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        comp_when_on: super::CompWhenOn::Changes,
     }
 }

@@ -33,6 +33,10 @@ use crate::machine::DEFAULT_FANUC_LATHE_TOML;
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
 pub(super) const LINUXCNC_G: &[GRow] = &[
+    // G2/G3 P: the number of turns (rs274's ARC_FEED turns; P1 is the
+    // plain arc, more turns are not run: `motion/arc.rs`).
+    g(20, GOp::Motion(MotionOp::ArcCw), Group::Motion).reads(bit(b'P')),
+    g(30, GOp::Motion(MotionOp::ArcCcw), Group::Motion).reads(bit(b'P')),
     // G4 P seconds; the block's axis words go to its motion, after the
     // dwell (`G4 P0.5 G0 X10`, LinuxCNC's order of execution).
     g(40, GOp::Pace(PaceOp::DwellP), Group::NonModal).reads(bit(b'P')),
@@ -188,11 +192,11 @@ const NOT_RUN: &[(u16, &str)] = &[
     (52, "LinuxCNC's NURBS block G5.2/G5.3 is not run by vcnc"),
     (
         70,
-        "lathe diameter mode: use --dialect fanuc-lathe for lathe programs",
+        "LinuxCNC's lathe diameter mode G7 (X in diameters) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
     ),
     (
         80,
-        "lathe radius mode: use --dialect fanuc-lathe for lathe programs",
+        "LinuxCNC's lathe radius mode G8 (X in radii) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
     ),
     (171, "the UVW planes G17.1-G19.1 are not run by vcnc"),
     (181, "the UVW planes G17.1-G19.1 are not run by vcnc"),
@@ -238,6 +242,11 @@ pub(super) fn linuxcnc() -> Dialect {
     let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
     Dialect {
         name: "linuxcnc",
+        // rs274 refuses any `(` inside a comment: "Nested comment found".
+        lex: vcnc_syntax::LexRules {
+            paren_in_comment_alarms: true,
+            ..super::grbl::GRBL_LEX
+        },
         g,
         m,
         unsupported: NOT_RUN,
@@ -250,6 +259,9 @@ pub(super) fn linuxcnc() -> Dialect {
         macros: super::MacroRules::NGC,
         arc_end: super::ArcEnd::Rs274,
         g53_without_axes: super::G53WithoutAxes::Alarm,
+        // P, the arc's number of turns, also in a modal G2/G3 block.
+        arc_letters: bit(b'P'),
+        comp_when_on: super::CompWhenOn::Alarm,
         ..grbl()
     }
 }

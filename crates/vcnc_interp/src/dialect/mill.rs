@@ -224,6 +224,7 @@ const MILL_LEX: LexRules = LexRules {
     extended: &[],
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
+    paren_in_comment_alarms: false,
 };
 
 /// Codes of the Syntec G-code list (manual 1.1) that later work will run.
@@ -356,6 +357,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        comp_when_on: super::CompWhenOn::Changes,
     }
 }
 
@@ -374,6 +376,7 @@ pub(super) fn syntec() -> Dialect {
         thread_lead: ThreadLead::FHundredths,
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        comp_when_on: super::CompWhenOn::Changes,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }
@@ -386,6 +389,7 @@ pub(super) fn syntec() -> Dialect {
 /// chamfering and corner R", Haas mill "corner rounding and chamfering").
 const FANUC_LEX: LexRules = LexRules {
     colon_is_o: true,
+    paren_in_comment_alarms: false,
     extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
     ..MILL_LEX
 };

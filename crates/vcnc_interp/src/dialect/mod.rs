@@ -460,6 +460,17 @@ pub enum G53WithoutAxes {
     Alarm,
 }
 
+/// G41/G42 (and LinuxCNC's G41.1/G42.1) while compensation is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CompWhenOn {
+    /// The side and the radius change without a G40 (Fanuc 0i: G41/G42
+    /// in offset mode changes the offset direction or value).
+    Changes,
+    /// E320: rs274 refuses it ("Cannot turn cutter radius comp on when
+    /// on"); the program must G40 first.
+    Alarm,
+}
+
 /// The feed mode at power-on (group 05).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FeedAtPowerOn {
@@ -552,6 +563,8 @@ pub struct Dialect {
     pub g53_incremental: G53Incremental,
     /// G53 without axis words.
     pub g53_without_axes: G53WithoutAxes,
+    /// G41/G42 (G41.1/G42.1) while cutter compensation is already on.
+    pub comp_when_on: CompWhenOn,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,

@@ -90,6 +90,70 @@ impl Params {
     }
 }
 
+/// rs274 2.9's predefined named parameters, which a program cannot set
+/// ("Cannot assign to read-only parameter #<_x>", probed name by name
+/// with `rs274 -g`: `_abs_u`…`_abs_w`, `_hal`, `_ini` and other `_` names
+/// are ordinary globals). vcnc provides only `_value` and
+/// `_value_returned`; the others read as unset names.
+const READ_ONLY: &[&str] = &[
+    "_vmajor",
+    "_vminor",
+    "_line",
+    "_motion_mode",
+    "_plane",
+    "_ccomp",
+    "_metric",
+    "_imperial",
+    "_absolute",
+    "_incremental",
+    "_inverse_time",
+    "_units_per_minute",
+    "_units_per_rev",
+    "_coord_system",
+    "_tool_offset",
+    "_retract_r_plane",
+    "_retract_old_z",
+    "_spindle_rpm_mode",
+    "_spindle_css_mode",
+    "_ijk_absolute_mode",
+    "_lathe_diameter_mode",
+    "_lathe_radius_mode",
+    "_spindle_on",
+    "_spindle_cw",
+    "_mist",
+    "_flood",
+    "_speed_override",
+    "_feed_override",
+    "_adaptive_feed",
+    "_feed_hold",
+    "_feed",
+    "_rpm",
+    "_x",
+    "_y",
+    "_z",
+    "_a",
+    "_b",
+    "_c",
+    "_u",
+    "_v",
+    "_w",
+    "_abs_x",
+    "_abs_y",
+    "_abs_z",
+    "_abs_a",
+    "_abs_b",
+    "_abs_c",
+    "_current_tool",
+    "_current_pocket",
+    "_selected_tool",
+    "_selected_pocket",
+    "_value",
+    "_value_returned",
+    "_task",
+    "_call_level",
+    "_remap_level",
+];
+
 /// Reads `text[start..]`, one LinuxCNC line, with the parameters as they
 /// were before it.
 pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Line, Diagnostic> {
@@ -99,6 +163,7 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
         params,
         depth: 0,
     };
+    paren_in_comment(&text[start.min(text.len())..], start)?;
     let mut line = Line::default();
     r.blank();
     if r.peek() == b'/' {
@@ -112,6 +177,11 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
             0 => return Ok(line),
             b'#' => {
                 let key = r.target()?;
+                if let Key::Named(name) = &key
+                    && READ_ONLY.contains(&name.as_str())
+                {
+                    return Err(alarms::read_only_named(Span::new(at, r.i), name));
+                }
                 r.blank();
                 if r.peek() != b'=' {
                     return Err(syntax(Span::new(r.i, r.i + 1), "`=` after the parameter"));
@@ -163,6 +233,27 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
             }
         }
     }
+}
+
+/// E101 at a `(` inside a `( )` comment of `text` (which starts at byte
+/// `start` of its line): rs274 stops with "Nested comment found".
+fn paren_in_comment(text: &[u8], start: usize) -> Result<(), Diagnostic> {
+    let mut open = None;
+    for (k, c) in text.iter().enumerate() {
+        match (c, open) {
+            (b';', None) => return Ok(()),
+            (b'(', None) => open = Some(k),
+            (b'(', Some(_)) => {
+                return Err(vcnc_syntax::diagnostics::paren_in_comment(Span::new(
+                    start + k,
+                    start + k + 1,
+                )));
+            }
+            (b')', Some(_)) => open = None,
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// E601 in LinuxCNC's syntax.

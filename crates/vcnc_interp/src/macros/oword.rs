@@ -433,9 +433,9 @@ impl Interpreter<'_> {
                 return Err(alarms::bad_structure(
                     span,
                     format!(
-                        "o{name} call: no o{name} sub in this program, and no {name}.ngc in the program directory"
+                        "o<{name}> call: no o<{name}> sub in this program, and no {name}.ngc in the program directory"
                     ),
-                    "define the subroutine in this file, or put it in NAME.ngc in the --program-dir",
+                    "define the subroutine in this file, or put it in NAME.ngc in the --program-dir; as in LinuxCNC, names are read in lower case, so the file name must be lower case (o<MySub> call reads mysub.ngc, not MySub.ngc)",
                 ));
             }
             Err(e) => return Err(alarms::sub_file_unreadable(span, name, &e)),

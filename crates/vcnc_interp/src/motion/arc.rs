@@ -60,6 +60,7 @@ impl Interpreter<'_> {
         if named == 0 && !has_center && radius.is_none() {
             return Ok(());
         }
+        self.arc_turns(w, cmd)?;
         let idx = self.plane_idx(plane, cmd)?;
         let feed = self.feed(cmd)?;
         let from = self.state.prog;
@@ -86,6 +87,33 @@ impl Interpreter<'_> {
             None => return Err(alarms::arc_without_center(cmd, plane.as_str())),
         };
         self.commit_arc(goal, center, cw, w, cmd)
+    }
+
+    /// LinuxCNC's G2/G3 P, the number of turns (a whole number from 1, as
+    /// rs274 wants: "P value should be 1 or greater with G2 or G3"): P1
+    /// is the plain arc; more turns are E201, not run by vcnc.
+    fn arc_turns(&self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let reads_p = self.cfg.dialect.arc_letters & bit(b'P') != 0;
+        let Some(p) = w.get(b'P').filter(|_| reads_p) else {
+            return Ok(());
+        };
+        let turns = crate::block::convert::whole(
+            &p,
+            b'P',
+            1.0,
+            1e6,
+            "P is the arc's number of turns, a whole number from 1",
+        )?;
+        if turns > 1 {
+            return Err(alarms::unsupported_g(
+                cmd,
+                &format!(
+                    "a multi-turn arc (G2/G3 P{turns}: {} more full turns before the arc's end) is not run by vcnc",
+                    turns - 1
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Program indices of a plane's axes (E305 if the machine lacks one).

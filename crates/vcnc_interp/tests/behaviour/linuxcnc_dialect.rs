@@ -212,6 +212,19 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
     );
     assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
+    // rs274 runs G7/G8 in a mill program (G7 halves X); vcnc runs them in
+    // linuxcnc-lathe only, and the alarm names that dialect.
+    for g in ["G7", "G8"] {
+        let (_, out) = run(&format!("G21\n{g}\nM2\n"));
+        let Outcome::Alarm(d) = out else {
+            panic!("{out:?}")
+        };
+        let text = format!("{} {}", d.message, d.help);
+        assert!(
+            text.contains("--dialect linuxcnc-lathe") && !text.contains("fanuc-lathe"),
+            "{text}"
+        );
+    }
     // G33.1 taps with a turning spindle and K in the block, as rs274
     // wants ("Spindle not turning in G33.1", "K word missing with
     // g33/g33.1"); the taps themselves are checked against rs274
@@ -267,6 +280,31 @@ fn parameters_alarm_where_rs274_refuses_them() {
     // Nesting is bounded (the reader recurses): 3,000 brackets alarm.
     let deep = format!("G21\nG0 X{}1{}\nM2\n", "[".repeat(3000), "]".repeat(3000));
     assert_eq!(alarm(&deep).0, Code::E602);
+    // rs274's predefined named parameters are read-only ("Cannot assign
+    // to read-only parameter #<_value>"), in any case; a `_` name of the
+    // program's own is a global it may set.
+    assert_eq!(
+        alarm("o<f> sub\no<f> endsub\n#<_value>=5\no<f> call\nG0 X#<_value>\nM2\n"),
+        (Code::E606, 3, 1)
+    );
+    for name in [
+        "_value_returned",
+        "_X",
+        "_feed",
+        "_line",
+        "_abs_c",
+        "_call_level",
+    ] {
+        assert_eq!(
+            alarm(&format!("G21\nG0 X1 #<{name}> = 2\nM2\n")),
+            (Code::E606, 2, 7),
+            "{name}"
+        );
+    }
+    assert_eq!(
+        xs("G21 G90\n#<_abs_u> = 2\n#<_mine> = 3\nG0 X[#<_abs_u> + #<_mine>]\nM2\n"),
+        vec![5.0]
+    );
     // grbl reads no parameters.
     let (_, out) = run_str(&Dialect::grbl(), "G21\n#1 = 2\nM2\n");
     assert!(matches!(out, Outcome::Alarm(d) if d.code == Code::E101));
@@ -484,6 +522,26 @@ fn subroutine_files_are_asked_for_by_plain_names_only() {
         matches!(&out, Outcome::Alarm(d) if d.code == Code::E611 && d.message.contains("other.ngc defines no")),
         "{out:?}"
     );
+    // A missing sub is named as an o-word, `o<name>`, in lower case as
+    // rs274 reads it, and the help says the file name is lower case.
+    let (_, out, asked) = run_with_files(
+        "G21
+o<MySub> call
+M2
+",
+    );
+    let Outcome::Alarm(d) = &out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E611, 2, 1));
+    assert!(
+        d.message
+            .starts_with("o<mysub> call: no o<mysub> sub in this program, and no mysub.ngc"),
+        "{}",
+        d.message
+    );
+    assert!(d.help.contains("lower case"), "{}", d.help);
+    assert_eq!(asked, vec!["mysub".to_string()]);
 }
 
 /// G41.1/G42.1: compensation by the block's D diameter, no register. On
@@ -544,6 +602,86 @@ fn dynamic_compensation_takes_the_blocks_diameter_and_orientation() {
     );
     assert_eq!(alarm("G21\nG41.1 G1 X1\nM2\n"), (Code::E312, 2, 1));
     assert_eq!(alarm("G21\nG41.1 D6 L3 G1 X1\nM2\n"), (Code::E203, 2, 10));
+}
+
+/// rs274 refuses to turn compensation on while it is on, whatever the
+/// code, side or diameter ("Cannot turn cutter radius comp on when on",
+/// probed with rs274 -g: `G41.1 D8` under G41.1, `G42` under G41, `G41`
+/// under G41 with no move between); E320 here, at the code, with no
+/// motion after it. Fanuc changes side and offset in offset mode: runs.
+#[test]
+fn compensation_turned_on_while_on_alarms_as_in_rs274() {
+    let on_on = |first: &str, second: &str| {
+        format!(
+            "G21 G90 G17\nG10 L1 P1 R2\nT1 M6\nG0 X-10 Y-10\n{first} G1 X0 Y0 F100\nX20\n{second} X40\nG40 X50 Y30\nM2\n"
+        )
+    };
+    for (first, second) in [
+        ("G41.1 D4", "G41.1 D8"),
+        ("G41.1 D4", "G42.1 D4"),
+        ("G41", "G42"),
+        ("G42 D1", "G42 D1"),
+        ("G41", "G41.1 D4"),
+    ] {
+        let program = on_on(first, second);
+        assert_eq!(alarm(&program), (Code::E320, 7, 1), "{program}");
+    }
+    assert_eq!(
+        alarm("G21\nG10 L1 P1 R2\nT1 M6\nG41\nG41\nG40\nM2\n"),
+        (Code::E320, 5, 1)
+    );
+    // After G40 it may start again.
+    let (_, out) = run(&on_on("G41", "G40 X30\nG42"));
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let fanuc = on_on("G41 D1", "G42 D1").replace("G10 L1 ", "G10 L12 ");
+    let (_, out) = run_str(&Dialect::fanuc(), &fanuc);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+}
+
+/// rs274 refuses any `(` inside a comment ("Nested comment found",
+/// probed with rs274 -g: also in a `(msg, …)` and on a line with a
+/// parameter setting; a `(` after `;` and two comments side by side
+/// pass); E101 at the inner `(`. The Fanuc family reads it as text.
+#[test]
+fn a_parenthesis_inside_a_comment_alarms_as_in_rs274() {
+    assert_eq!(alarm("G0 X1 (T1 (6MM END MILL)\nM2\n"), (Code::E101, 1, 11));
+    assert_eq!(alarm("G21\n(msg, a (b)\nM2\n"), (Code::E101, 2, 9));
+    assert_eq!(alarm("G21\n#1=2 (a (b)\nM2\n"), (Code::E101, 2, 9));
+    assert_eq!(alarm("G21\nG0 X1 (a ( b) (c)\nM2\n"), (Code::E101, 2, 10));
+    let xs = |p: &str| common::xs(&ended(p));
+    assert_eq!(
+        xs("G21\nG0 X1 ; a (b\nG0 X2 (a b) (c)\nM2\n"),
+        vec![1.0, 2.0]
+    );
+    let (_, out) = run_str(&Dialect::fanuc(), "G21\nG0 X1 (T1 (6MM END MILL)\nM30\n");
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+}
+
+/// G2/G3 P, LinuxCNC's number of turns (rs274 -g: `G3 … P2` is
+/// `ARC_FEED(…, 2, …)`; P0, P-1: "P value should be 1 or greater with G2
+/// or G3"; P1.5: "P value not an integer"): P1 is the plain arc, more
+/// turns are E201 saying vcnc does not run them, not E203.
+#[test]
+fn arc_turns_p_is_read_and_more_than_one_turn_is_not_run() {
+    let arc = |p: &str| format!("G21 G90 G17\nG0 X100 Y0\nG3 X0 Y100 I-100 J0 {p} F100\nM2\n");
+    assert_eq!(ended(&arc("P1")), ended(&arc("")));
+    let (_, out) = run(&arc("P2"));
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}")
+    };
+    assert_eq!((d.code, d.line, d.column), (Code::E201, 3, 1));
+    assert!(d.message.contains("not run by vcnc"), "{}", d.message);
+    assert_eq!(alarm(&arc("P2")), (Code::E201, 3, 1));
+    // In a modal G3 block too (rs274: ARC_FEED(…, 2, …)).
+    let modal = arc("P1").replace("M2\n", "X100 Y0 I100 J0 P2\nM2\n");
+    assert_eq!(alarm(&modal), (Code::E201, 4, 1));
+    for (bad, code) in [
+        ("P0", Code::E109),
+        ("P-1", Code::E109),
+        ("P1.5", Code::E108),
+    ] {
+        assert_eq!(alarm(&arc(bad)).0, code, "{bad}");
+    }
 }
 
 /// rs274's end-point rule for I/J/K arcs: the ends rs274 2.9 refuses
