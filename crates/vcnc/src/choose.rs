@@ -133,8 +133,11 @@ impl Choice {
                 (d, Some(found))
             }
         };
+        let machine = self.machine_of(dialect)?;
+        // The machine's G-code system renumbers a Fanuc lathe's codes.
+        let dialect = dialect.for_system(machine.gcode_system);
         Ok(Setup {
-            machine: self.machine_of(dialect)?,
+            machine,
             dialect,
             options: self.options,
             detection,

@@ -234,6 +234,38 @@ pub struct Machine {
     /// Machine Z of the table's top, where a tool's tip would touch it
     /// (`vcnc sim`'s fixture check); `None` when the file gives none.
     pub table_z_mm: Option<f64>,
+    /// The Fanuc lathe G-code system (`gcode_system = "A"`, `"B"` or
+    /// `"C"`, Fanuc 0i-TF parameter GSB/GSC No. 3401): which numbers the
+    /// `fanuc-lathe` dialect gives its codes. Other dialects ignore it.
+    pub gcode_system: GcodeSystem,
+}
+
+/// The three G-code systems of a Fanuc lathe (0i-TF operator's manual,
+/// "G code list": table of systems A, B and C).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GcodeSystem {
+    /// G90/G92/G94 are the turning, threading and facing cycles, G50 sets
+    /// coordinates, G98/G99 feed per minute/revolution, U/W incremental.
+    #[default]
+    A,
+    /// G77/G78/G79 are the cycles, G90/G91 absolute/incremental, G92 sets
+    /// coordinates, G94/G95 feed per minute/revolution, G98/G99 cycle
+    /// return levels.
+    B,
+    /// As B, with G20/G21/G24 the cycles, G70/G71 inch/mm and the
+    /// multiple repetitive cycles at G72–G78.
+    C,
+}
+
+impl GcodeSystem {
+    /// `A`, `B` or `C`.
+    pub fn letter(self) -> &'static str {
+        match self {
+            GcodeSystem::A => "A",
+            GcodeSystem::B => "B",
+            GcodeSystem::C => "C",
+        }
+    }
 }
 
 /// Why a machine file was rejected.
@@ -322,6 +354,24 @@ struct File {
     m_macros: BTreeMap<String, String>,
     #[serde(default)]
     table_z_mm: Option<f64>,
+    #[serde(default)]
+    gcode_system: GcodeSystem,
+}
+
+/// `gcode_system` is exactly `"A"`, `"B"` or `"C"`; anything else is an
+/// error at its line and column in the file.
+impl<'de> Deserialize<'de> for GcodeSystem {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<GcodeSystem, D::Error> {
+        let text = String::deserialize(d)?;
+        match text.as_str() {
+            "A" => Ok(GcodeSystem::A),
+            "B" => Ok(GcodeSystem::B),
+            "C" => Ok(GcodeSystem::C),
+            other => Err(serde::de::Error::custom(format!(
+                "gcode_system: {other:?} is not a Fanuc lathe G-code system; write \"A\", \"B\" or \"C\" (docs/machine.md)"
+            ))),
+        }
+    }
 }
 
 /// Validates one `[m_macros]` entry: an M code the controller does not
@@ -413,6 +463,7 @@ impl Machine {
             motion: f.motion,
             m_macros: BTreeMap::new(),
             table_z_mm: f.table_z_mm,
+            gcode_system: f.gcode_system,
         };
         if f.table_z_mm.is_some_and(|z| !z.is_finite()) {
             return Err(MachineError(
@@ -705,5 +756,29 @@ mod tests {
         assert!(Machine::from_toml(&bad).unwrap_err().0.contains("G60"));
         assert_eq!(work_system_index("g59.9"), Some(14));
         assert_eq!(work_system_index("G59.0"), None);
+    }
+
+    #[test]
+    fn gcode_system_is_a_b_or_c_and_defaults_to_a() {
+        let fl = Machine::from_toml(DEFAULT_FANUC_LATHE_TOML).unwrap();
+        assert_eq!(fl.gcode_system, GcodeSystem::A);
+        for (text, sys) in [
+            ("B", GcodeSystem::B),
+            ("C", GcodeSystem::C),
+            ("A", GcodeSystem::A),
+        ] {
+            let file = format!("gcode_system = \"{text}\"\n{DEFAULT_FANUC_LATHE_TOML}");
+            assert_eq!(Machine::from_toml(&file).unwrap().gcode_system, sys);
+        }
+        // Lowercase, another letter, or a number: each says what to write.
+        for bad in ["\"b\"", "\"D\"", "\"\""] {
+            let file = format!("gcode_system = {bad}\n{DEFAULT_FANUC_LATHE_TOML}");
+            let e = Machine::from_toml(&file).unwrap_err().0;
+            assert!(e.contains("line 1") && e.contains("gcode_system: "), "{e}");
+            assert!(e.contains("\"A\", \"B\" or \"C\""), "{e}");
+        }
+        let file = format!("gcode_system = 2\n{DEFAULT_FANUC_LATHE_TOML}");
+        let e = Machine::from_toml(&file).unwrap_err().0;
+        assert!(e.contains("gcode_system") && e.contains("line 1"), "{e}");
     }
 }

@@ -157,6 +157,30 @@ fn bounded(bytes: &[u8]) -> &[u8] {
     }
 }
 
+/// E201's help when another G-code system of `current` (a Fanuc lathe's
+/// A, B or C, docs/machine.md) has G `value`: the machine file chooses the
+/// system, not `--dialect`, so the help names the key to set.
+fn system_hint(current: &Dialect, code: &str, value: f64) -> Option<String> {
+    use crate::machine::GcodeSystem;
+    let base = dialect(current.name)?;
+    let systems: Vec<&str> = [GcodeSystem::A, GcodeSystem::B, GcodeSystem::C]
+        .into_iter()
+        .filter(|s| {
+            let d = base.for_system(*s);
+            !std::ptr::eq(d, current) && d.g(value).is_some() && d.g_rows().ne(current.g_rows())
+        })
+        .map(|s| s.letter())
+        .collect();
+    let (first, rest) = systems.split_first()?;
+    let others: String = rest.iter().map(|s| format!(" (or \"{s}\")")).collect();
+    Some(format!(
+        "{code} is a code of {}'s G-code system {}: write gcode_system = \"{first}\"{others} \
+         in the machine file (--machine FILE, docs/machine.md) if the program is written for it",
+        current.name,
+        systems.join(" and "),
+    ))
+}
+
 /// E201's help when dialect `current` does not know G `value`: the
 /// dialects that do (for a lathe, the lathes that read `;` as it does; for
 /// a mill, the mills when any mill knows it), and — whenever one of them
@@ -165,6 +189,9 @@ fn bounded(bytes: &[u8]) -> &[u8] {
 /// changes the program's units unsaid.
 pub fn g_hint(current: &Dialect, value: f64) -> String {
     let code = format!("G{value}");
+    if let Some(hint) = system_hint(current, &code, value) {
+        return hint;
+    }
     let knows: Vec<&Dialect> = dialects()
         .iter()
         .filter(|d| d.name != current.name && d.g(value).is_some())

@@ -145,7 +145,12 @@ pub struct Interpreter<'a> {
 
 impl<'a> Interpreter<'a> {
     /// An interpreter at power-on state.
+    ///
+    /// A Fanuc lathe's codes are numbered by the machine's G-code system
+    /// (`gcode_system`): the machine decides, whichever system's table
+    /// `dialect` was built with.
     pub fn new(machine: &'a Machine, dialect: &'a Dialect, opts: Options) -> Interpreter<'a> {
+        let dialect = dialect.under_system(machine.gcode_system);
         let mut axis_words: Vec<AxisWord> = machine
             .axes
             .iter()

@@ -369,6 +369,16 @@ impl Board {
         if k.y > 0 {
             self.note("Y moves", 20, mills);
         }
+        if let Some(code) = &k.system_b_cycle {
+            // Only a Fanuc lathe in system B has G77-G79 as cycles; the
+            // system is the machine's (docs/machine.md), which detection
+            // cannot set: the evidence says what to write.
+            self.note(
+                format!("{code} cycle (Fanuc lathe G-code system B: set gcode_system = \"B\" in the machine file)"),
+                30,
+                named(all, &["fanuc-lathe"]),
+            );
+        }
         if k.two_block_g71 {
             self.note("two-block G71 U R", 30, named(all, &["fanuc-lathe"]));
         }

@@ -87,6 +87,9 @@ pub(super) struct Kind {
     pub(super) turret: Option<String>,
     pub(super) g96: bool,
     pub(super) g50_s: Option<String>,
+    /// A single turning cycle of Fanuc's G-code system B (`G77`, `G78`,
+    /// `G79` with an axis word), as written.
+    pub(super) system_b_cycle: Option<String>,
     pub(super) plane_header: Option<u16>,
     pub(super) two_block_g71: bool,
     pub(super) one_block_g71_d: bool,
@@ -612,6 +615,12 @@ impl Scan {
             if k.plane_header.is_none() && k.x + k.z == 0 {
                 k.plane_header = plane;
             }
+        }
+        if let Some(code) = shape.g.iter().find(|g| matches!(g, 770 | 780 | 790))
+            && (get(b'X').is_some() || get(b'Z').is_some() || get(b'U').is_some())
+        {
+            k.system_b_cycle
+                .get_or_insert_with(|| format!("G{}", code / 10));
         }
         if has(710) || has(720) {
             let (p, q) = (get(b'P').is_some(), get(b'Q').is_some());

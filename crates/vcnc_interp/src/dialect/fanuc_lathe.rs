@@ -28,7 +28,7 @@ use super::{
     m_codes::{self, MRow},
 };
 use crate::events::Plane;
-use crate::machine::DEFAULT_FANUC_LATHE_TOML;
+use crate::machine::{DEFAULT_FANUC_LATHE_TOML, GcodeSystem};
 use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 /// Words of the multiple repetitive cycles besides the axis words they
@@ -62,18 +62,13 @@ const FANUC_LATHE_G: &[GRow] = &[
         .reads(bit(b'P') | bit(b'X') | bit(b'U'))
         .refuses_axes(),
     g(180, GOp::Mode(ModeOp::PlaneZx), Group::Plane),
-    g(200, GOp::Mode(ModeOp::Inch), Group::Units),
-    g(210, GOp::Mode(ModeOp::Metric), Group::Units),
     g(280, GOp::Move(MoveOp::RefReturn), Group::NonModal).claims_axes(),
     g(300, GOp::Move(MoveOp::RefReturnN), Group::NonModal)
         .reads(bit(b'P'))
         .claims_axes(),
-    // G32: lead F in program units (mm or inch), like the mill's G33.
-    g(320, GOp::Motion(MotionOp::Thread), Group::Motion),
     g(400, GOp::Comp(CompOp::Cancel), Group::CutterComp),
     g(410, GOp::Comp(CompOp::Left), Group::CutterComp),
     g(420, GOp::Comp(CompOp::Right), Group::CutterComp),
-    g(500, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
     g(530, GOp::Move(MoveOp::MachineCoords), Group::NonModal).claims_absolute_axes(),
     g(540, GOp::Mode(ModeOp::WorkSystem(0)), Group::Wcs),
     g(550, GOp::Mode(ModeOp::WorkSystem(1)), Group::Wcs),
@@ -81,37 +76,119 @@ const FANUC_LATHE_G: &[GRow] = &[
     g(570, GOp::Mode(ModeOp::WorkSystem(3)), Group::Wcs),
     g(580, GOp::Mode(ModeOp::WorkSystem(4)), Group::Wcs),
     g(590, GOp::Mode(ModeOp::WorkSystem(5)), Group::Wcs),
-    g(700, GOp::Turn(TurnOp::FinishCycle), Group::NonModal)
-        .reads(bit(b'P') | bit(b'Q'))
-        .claims_axes(),
-    g(710, GOp::Turn(TurnOp::RoughTurnCycle), Group::NonModal)
+    g(800, GOp::Cycle(CycleOp::Cancel), Group::Cycle),
+    g(960, GOp::Mode(ModeOp::SurfaceSpeed), Group::SpindleMode),
+    g(970, GOp::Mode(ModeOp::SpindleRpm), Group::SpindleMode),
+];
+
+/// The multiple repetitive cycles (finishing, rough turning, rough facing,
+/// pattern repeating, face peck, grooving, threading), numbered from
+/// `first`: G70–G76 in systems A and B, G72–G78 in system C.
+const fn repetitive_cycles(first: u16) -> [GRow; 7] {
+    [
+        g(first, GOp::Turn(TurnOp::FinishCycle), Group::NonModal)
+            .reads(bit(b'P') | bit(b'Q'))
+            .claims_axes(),
+        g(
+            first + 10,
+            GOp::Turn(TurnOp::RoughTurnCycle),
+            Group::NonModal,
+        )
         .reads(MRC | bit(b'D'))
         .claims_axes(),
-    g(720, GOp::Turn(TurnOp::RoughFaceCycle), Group::NonModal)
+        g(
+            first + 20,
+            GOp::Turn(TurnOp::RoughFaceCycle),
+            Group::NonModal,
+        )
         .reads(MRC | bit(b'D'))
         .claims_axes(),
-    g(730, GOp::Turn(TurnOp::PatternCycle), Group::NonModal)
-        .reads(MRC)
-        .claims_axes(),
-    g(740, GOp::Turn(TurnOp::FacePeckCycle), Group::NonModal)
+        g(first + 30, GOp::Turn(TurnOp::PatternCycle), Group::NonModal)
+            .reads(MRC)
+            .claims_axes(),
+        g(
+            first + 40,
+            GOp::Turn(TurnOp::FacePeckCycle),
+            Group::NonModal,
+        )
         .reads(MRC | ONE_BLOCK_PECK)
         .claims_axes(),
-    g(750, GOp::Turn(TurnOp::GrooveCycle), Group::NonModal)
-        .reads(MRC | ONE_BLOCK_PECK)
-        .claims_axes(),
-    // G76's F is the lead, not a feed.
-    g(760, GOp::Turn(TurnOp::ThreadMultiCycle), Group::NonModal)
+        g(first + 50, GOp::Turn(TurnOp::GrooveCycle), Group::NonModal)
+            .reads(MRC | ONE_BLOCK_PECK)
+            .claims_axes(),
+        // G76's F is the lead, not a feed.
+        g(
+            first + 60,
+            GOp::Turn(TurnOp::ThreadMultiCycle),
+            Group::NonModal,
+        )
         .reads(MRC | ONE_BLOCK_THREAD | bit(b'F'))
         .claims_axes(),
-    g(800, GOp::Cycle(CycleOp::Cancel), Group::Cycle),
+    ]
+}
+
+/// System A's own rows (0i-TF "G code list", column A): G32 threading,
+/// the single cycles
+/// at G90/G92/G94, G50 coordinate setting, G98/G99 feed per minute and per
+/// revolution; G20/G21 units; G70–G76.
+const SYSTEM_A: &[GRow] = &[
+    // G32: lead F in program units (mm or inch), like the mill's G33.
+    g(320, GOp::Motion(MotionOp::Thread), Group::Motion),
+    g(200, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(210, GOp::Mode(ModeOp::Metric), Group::Units),
+    g(500, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
     g(900, GOp::Motion(MotionOp::TurnCycle), Group::Motion),
     g(920, GOp::Motion(MotionOp::ThreadingCycle), Group::Motion),
     g(940, GOp::Motion(MotionOp::FaceCycle), Group::Motion),
-    g(960, GOp::Mode(ModeOp::SurfaceSpeed), Group::SpindleMode),
-    g(970, GOp::Mode(ModeOp::SpindleRpm), Group::SpindleMode),
     g(980, GOp::Mode(ModeOp::PerMinute), Group::FeedMode),
     g(990, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
 ];
+
+const CYCLES_AB: [GRow; 7] = repetitive_cycles(700);
+const CYCLES_C: [GRow; 7] = repetitive_cycles(720);
+
+/// Systems B and C alike (columns B and C): G33 threading (A's G32),
+/// G90/G91 absolute and
+/// incremental, G92 coordinate setting and spindle clamp, G94/G95 feed per
+/// minute and per revolution, G98/G99 the drilling cycles' return level.
+const SYSTEM_B_AND_C: &[GRow] = &[
+    g(330, GOp::Motion(MotionOp::Thread), Group::Motion),
+    g(900, GOp::Mode(ModeOp::Absolute), Group::Distance),
+    g(910, GOp::Mode(ModeOp::Incremental), Group::Distance),
+    g(920, GOp::Set(SetOp::PresetOrClamp), Group::NonModal).claims_absolute_axes(),
+    g(940, GOp::Mode(ModeOp::PerMinute), Group::FeedMode),
+    g(950, GOp::Mode(ModeOp::PerRev), Group::FeedMode),
+    g(980, GOp::Mode(ModeOp::ReturnInitial), Group::ReturnLevel),
+    g(990, GOp::Mode(ModeOp::ReturnR), Group::ReturnLevel),
+];
+
+/// System B: G20/G21 units, G70–G76, and the single cycles at G77/G78/G79.
+const SYSTEM_B: &[GRow] = &[
+    g(200, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(210, GOp::Mode(ModeOp::Metric), Group::Units),
+    g(770, GOp::Motion(MotionOp::TurnCycle), Group::Motion),
+    g(780, GOp::Motion(MotionOp::ThreadingCycle), Group::Motion),
+    g(790, GOp::Motion(MotionOp::FaceCycle), Group::Motion),
+];
+
+/// System C: the single cycles at G20/G21/G24, G70/G71 inch and mm, the
+/// multiple repetitive cycles at G72–G78.
+const SYSTEM_C: &[GRow] = &[
+    g(200, GOp::Motion(MotionOp::TurnCycle), Group::Motion),
+    g(210, GOp::Motion(MotionOp::ThreadingCycle), Group::Motion),
+    g(240, GOp::Motion(MotionOp::FaceCycle), Group::Motion),
+    g(700, GOp::Mode(ModeOp::Inch), Group::Units),
+    g(710, GOp::Mode(ModeOp::Metric), Group::Units),
+];
+
+/// The rows of `system`.
+fn system_rows(system: GcodeSystem) -> [&'static [GRow]; 4] {
+    match system {
+        GcodeSystem::A => [FANUC_LATHE_G, SYSTEM_A, &CYCLES_AB, &[]],
+        GcodeSystem::B => [FANUC_LATHE_G, SYSTEM_B_AND_C, SYSTEM_B, &CYCLES_AB],
+        GcodeSystem::C => [FANUC_LATHE_G, SYSTEM_B_AND_C, SYSTEM_C, &CYCLES_C],
+    }
+}
 
 /// Fanuc lathe M codes: the mill's without M06 (a T word indexes the
 /// turret) and without M19 (spindle orientation is the builder's).
@@ -158,12 +235,19 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
 ];
 
-/// The Fanuc lathe dialect.
+/// The Fanuc lathe dialect in G-code system A (the default).
 pub(super) fn fanuc_lathe() -> Dialect {
-    let (g, m) = Dialect::tables(&[FANUC_LATHE_G], FANUC_LATHE_M);
+    fanuc_lathe_in(GcodeSystem::A)
+}
+
+/// The Fanuc lathe dialect with the code numbers of `system` (the machine
+/// file's `gcode_system`).
+pub(super) fn fanuc_lathe_in(system: GcodeSystem) -> Dialect {
+    let rows = system_rows(system);
+    let (g, m) = Dialect::tables(&rows, FANUC_LATHE_M);
     debug_assert!(
-        FANUC_LATHE_G
-            .iter()
+        rows.iter()
+            .flat_map(|r| r.iter())
             .all(|r| r.def.group != Group::Motion || r.def.axes == AxisWords::Free)
     );
     Dialect {
@@ -222,7 +306,8 @@ const HAAS_LATHE_G: &[GRow] = &[g(700, GOp::Turn(TurnOp::FinishCycle), Group::No
 /// is 3 s, and the tool-life variables #5401–#6000 exist (Haas lathe
 /// operator's manual, G04 and macro variables).
 pub(super) fn haas_lathe() -> Dialect {
-    let (g, m) = Dialect::tables(&[FANUC_LATHE_G, HAAS_LATHE_G], FANUC_LATHE_M);
+    let [common, own, cycles, _] = system_rows(GcodeSystem::A);
+    let (g, m) = Dialect::tables(&[common, own, cycles, HAAS_LATHE_G], FANUC_LATHE_M);
     Dialect {
         name: "haas-lathe",
         g,

@@ -762,6 +762,36 @@ impl Dialect {
             .filter_map(|(i, d)| Some((u16::try_from(i).ok()?, (*d)?)))
     }
 
+    /// This dialect with the code numbers of the machine's G-code system
+    /// (`gcode_system` in the machine file): the Fanuc lathe's systems B
+    /// and C are other tables of the same profile, built once. Every other
+    /// dialect has one numbering and is returned as it is.
+    pub fn for_system(&'static self, system: crate::machine::GcodeSystem) -> &'static Dialect {
+        use crate::machine::GcodeSystem;
+        use std::sync::OnceLock;
+        static B: OnceLock<Dialect> = OnceLock::new();
+        static C: OnceLock<Dialect> = OnceLock::new();
+        // Only Fanuc's 0i-TF has the three systems; Haas lathes run A.
+        if self.name != "fanuc-lathe" {
+            return self;
+        }
+        match system {
+            GcodeSystem::A => self,
+            GcodeSystem::B => B.get_or_init(|| fanuc_lathe::fanuc_lathe_in(GcodeSystem::B)),
+            GcodeSystem::C => C.get_or_init(|| fanuc_lathe::fanuc_lathe_in(GcodeSystem::C)),
+        }
+    }
+
+    /// [`for_system`](Self::for_system) for a dialect that may not be one
+    /// of the built-in ones: a Fanuc lathe profile takes the table of
+    /// `system`; any other dialect is returned as it is.
+    pub fn under_system(&self, system: crate::machine::GcodeSystem) -> &Dialect {
+        match crate::detect::dialect(self.name) {
+            Some(base) if base.name == "fanuc-lathe" => base.for_system(system),
+            _ => self,
+        }
+    }
+
     /// The embedded machine this dialect runs on by default.
     pub fn machine(&self) -> crate::machine::Machine {
         match crate::machine::Machine::from_toml(self.default_machine) {
@@ -917,5 +947,49 @@ mod tests {
         assert_eq!(f.m(6.0), None);
         // A Fanuc lathe's G17 (live tooling) is listed as not run.
         assert!(f.unsupported_reason(17.0).is_some());
+    }
+
+    #[test]
+    fn the_fanuc_lathes_systems_b_and_c_renumber_its_codes() {
+        use crate::machine::GcodeSystem;
+        let a = crate::detect::dialect("fanuc-lathe").unwrap();
+        assert!(std::ptr::eq(a.for_system(GcodeSystem::A), a));
+        let op = |d: &Dialect, v: f64| d.g(v).map(|r| r.op);
+        for sys in [GcodeSystem::B, GcodeSystem::C] {
+            let d = a.for_system(sys);
+            assert_eq!(d.name, "fanuc-lathe");
+            assert_eq!(op(d, 90.0), Some(GOp::Mode(ModeOp::Absolute)));
+            assert_eq!(op(d, 91.0), Some(GOp::Mode(ModeOp::Incremental)));
+            assert_eq!(op(d, 92.0), Some(GOp::Set(SetOp::PresetOrClamp)));
+            assert_eq!(op(d, 94.0), Some(GOp::Mode(ModeOp::PerMinute)));
+            assert_eq!(op(d, 95.0), Some(GOp::Mode(ModeOp::PerRev)));
+            assert_eq!(op(d, 33.0), Some(GOp::Motion(MotionOp::Thread)));
+            assert_eq!(op(d, 32.0), None);
+            assert_eq!(op(d, 50.0), None);
+        }
+        let b = a.for_system(GcodeSystem::B);
+        assert_eq!(op(b, 77.0), Some(GOp::Motion(MotionOp::TurnCycle)));
+        assert_eq!(op(b, 71.0), Some(GOp::Turn(TurnOp::RoughTurnCycle)));
+        assert_eq!(op(b, 21.0), Some(GOp::Mode(ModeOp::Metric)));
+        let c = a.for_system(GcodeSystem::C);
+        assert_eq!(op(c, 20.0), Some(GOp::Motion(MotionOp::TurnCycle)));
+        assert_eq!(op(c, 21.0), Some(GOp::Motion(MotionOp::ThreadingCycle)));
+        assert_eq!(op(c, 24.0), Some(GOp::Motion(MotionOp::FaceCycle)));
+        assert_eq!(op(c, 71.0), Some(GOp::Mode(ModeOp::Metric)));
+        assert_eq!(op(c, 72.0), Some(GOp::Turn(TurnOp::FinishCycle)));
+        assert_eq!(op(c, 78.0), Some(GOp::Turn(TurnOp::ThreadMultiCycle)));
+        // E201's help under system A names the key that brings G95 and G91.
+        for v in [95.0, 91.0, 77.0] {
+            let help = crate::detect::g_hint(a, v);
+            assert!(help.contains("gcode_system = \"B\""), "{help}");
+        }
+        // And under B, system A's G50.
+        let help = crate::detect::g_hint(b, 50.0);
+        assert!(help.contains("gcode_system = \"A\""), "{help}");
+        // A code of no system keeps the ordinary help.
+        assert!(!crate::detect::g_hint(a, 17.1).contains("gcode_system"));
+        // Haas lathes have system A only.
+        let haas = crate::detect::dialect("haas-lathe").unwrap();
+        assert!(std::ptr::eq(haas.for_system(GcodeSystem::B), haas));
     }
 }

@@ -146,6 +146,14 @@ fn lathes_by_their_signs() {
         "fanuc-lathe",
         &["two-block G71 U R"],
     );
+    // A Fanuc lathe program in G-code system B: G77 is its turning cycle.
+    chosen(
+        "%\nO0024\nG21 G90 G95\nG92 S2000\nG97 S500 M03\nG00 X30. Z2.\n\
+         G77 X20. Z-20. F0.2\nX16.\nG00 X50. Z50.\nM30\n%\n",
+        "O0024.nc",
+        "fanuc-lathe",
+        &["G77 cycle (Fanuc lathe G-code system B: set gcode_system = \"B\" in the machine file)"],
+    );
     // Haas's one-block G71 with D and its G76 with K and D.
     chosen(
         "%\nO2003\nG00 G18 G20 G40 G80 G99\nT101\nG50 S3000\nG96 S900 M03\nG00 X1.6 Z0.1\n\
