@@ -148,5 +148,6 @@ pub(super) fn eia() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
     }
 }

@@ -202,6 +202,7 @@ pub(super) fn fanuc_lathe() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
         macros: super::MacroRules::FANUC,
     }
 }
@@ -232,6 +233,7 @@ pub(super) fn haas_lathe() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
         macros: super::MacroRules::HAAS,
         ..fanuc_lathe()
     }

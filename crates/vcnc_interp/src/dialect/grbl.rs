@@ -112,7 +112,7 @@ pub(super) const GRBL_G: &[GRow] = &[
 pub(super) const GRBL_M: &[&[MRow]] = m_codes::GRBL;
 
 /// `;` starts a comment; no `//` comments, no full-width `；`.
-const GRBL_LEX: LexRules = LexRules {
+pub(super) const GRBL_LEX: LexRules = LexRules {
     semicolon: Semicolon::Comment,
     slash_comments: false,
     fullwidth_semicolon: false,
@@ -161,5 +161,6 @@ pub(super) fn grbl() -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
     }
 }

@@ -29,6 +29,7 @@ use super::{
 use super::{Diameter, SurfaceSpeedOn};
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_FANUC_LATHE_TOML;
+use vcnc_syntax::{Addr, LexRules};
 
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
@@ -231,6 +232,13 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
 ];
 
+/// grbl's lexing, and the polar words `@` (distance) and `^` (angle)
+/// (LinuxCNC G-code reference, "Polar Coordinates").
+const LINUXCNC_LEX: LexRules = LexRules {
+    extended: &[("@", Addr::AT), ("^", Addr::CARET)],
+    ..super::grbl::GRBL_LEX
+};
+
 /// The LinuxCNC dialect: grbl's reading (`;` comments, whole-unit
 /// integers, its codes and rules) with the codes and policies above.
 pub(super) fn linuxcnc() -> Dialect {
@@ -250,6 +258,8 @@ pub(super) fn linuxcnc() -> Dialect {
         macros: super::MacroRules::NGC,
         arc_end: super::ArcEnd::Rs274,
         g53_without_axes: super::G53WithoutAxes::Alarm,
+        lex: LINUXCNC_LEX,
+        polar_words: true,
         ..grbl()
     }
 }
@@ -297,6 +307,9 @@ pub(super) fn linuxcnc_lathe() -> Dialect {
         surface_speed: SurfaceSpeedOn::WorkDiameter,
         tip_numbering: vcnc_core::tooling::TipNumbering::LinuxCnc,
         g53_incremental: super::G53Incremental::Alarm,
+        // rs274 reads `@`/`^` as X and Y whatever the plane; a lathe has no
+        // Y, so the words alarm as not used here.
+        polar_words: false,
         ..linuxcnc()
     }
 }

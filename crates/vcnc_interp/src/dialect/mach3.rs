@@ -125,6 +125,7 @@ pub(super) fn mach3() -> Dialect {
         o_in_flow: super::OInFlow::SkipsSubprogram,
         // Mach3 programs write a bare `G53 G90 G40` in their headers.
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
         ..linuxcnc()
     }
 }

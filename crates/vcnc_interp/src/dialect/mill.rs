@@ -356,6 +356,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         tip_numbering: vcnc_core::tooling::TipNumbering::Fanuc,
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
     }
 }
 
@@ -374,6 +375,7 @@ pub(super) fn syntec() -> Dialect {
         thread_lead: ThreadLead::FHundredths,
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
+        polar_words: false,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }

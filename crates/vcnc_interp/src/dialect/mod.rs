@@ -552,6 +552,10 @@ pub struct Dialect {
     pub g53_incremental: G53Incremental,
     /// G53 without axis words.
     pub g53_without_axes: G53WithoutAxes,
+    /// LinuxCNC's polar words: `@` a distance and `^` an angle in degrees
+    /// give X and Y, about the origin under G90 and adding to the current
+    /// point's distance and angle under G91 (`block/convert.rs`).
+    pub polar_words: bool,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,
