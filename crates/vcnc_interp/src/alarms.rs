@@ -143,7 +143,11 @@ pub fn extended_not_allowed(span: Span, name: &str) -> Diagnostic {
         Code::E203,
         span,
         format!("{name} is not used by any command in this block"),
-        "CR= and D belong to G02/G03, IX and IZ to G05",
+        if matches!(name, "@" | "^") {
+            "@ and ^ give X and Y of a G0, G1, G2, G3 or canned-cycle move only (LinuxCNC: \"polar coordinates can only be used for motion\")"
+        } else {
+            "CR= and D belong to G02/G03, IX and IZ to G05"
+        },
     )
 }
 
@@ -182,6 +186,46 @@ pub fn absolute_and_incremental(span: Span, abs: u8, inc: u8) -> Diagnostic {
             letter(abs)
         ),
         "write either the absolute or the incremental word",
+    )
+}
+
+/// E204: a LinuxCNC polar word beside the X or Y it stands for.
+#[cold]
+pub fn polar_and_axis(span: Span, polar: String, axis: u8) -> Diagnostic {
+    d(
+        Code::E204,
+        span,
+        format!(
+            "{polar} and {} both give the {} axis in this block",
+            letter(axis),
+            letter(axis)
+        ),
+        "write the point either with @ and ^ (polar) or with X and Y",
+    )
+}
+
+/// E203: LinuxCNC's polar words outside the G17 plane.
+#[cold]
+pub fn polar_outside_xy(span: Span, name: &str) -> Diagnostic {
+    d(
+        Code::E203,
+        span,
+        format!(
+            "{name} is read in the G17 (XY) plane only (LinuxCNC: \"cannot use polar coordinate except in G17 plane\")"
+        ),
+        "select G17 in a block before this one, or write the point with X, Y and Z",
+    )
+}
+
+/// E312: LinuxCNC's polar words under G91 at the program origin, where the
+/// current point has no angle to add to.
+#[cold]
+pub fn polar_incremental_at_origin(span: Span) -> Diagnostic {
+    d(
+        Code::E312,
+        span,
+        "incremental (G91) polar words at the program origin: the point has no angle to add to (LinuxCNC: \"indeterminate when at the origin\")".into(),
+        "move off the origin first, or give the point under G90",
     )
 }
 

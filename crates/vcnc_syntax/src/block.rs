@@ -29,6 +29,10 @@ impl Addr {
     pub const COMMA_C: Addr = Addr(131);
     /// `,R`: corner rounding at the end of a G01 (Fanuc lathe).
     pub const COMMA_R: Addr = Addr(132);
+    /// `@`: polar distance from the XY origin (LinuxCNC).
+    pub const AT: Addr = Addr(133);
+    /// `^`: polar angle in degrees, counter-clockwise from +X (LinuxCNC).
+    pub const CARET: Addr = Addr(134);
 
     /// Most extended addresses (their indices are 0..EXTENDED).
     pub const EXTENDED: usize = 8;
@@ -50,6 +54,8 @@ impl Addr {
             Addr::IZ => "IZ".into(),
             Addr::COMMA_C => ",C".into(),
             Addr::COMMA_R => ",R".into(),
+            Addr::AT => "@".into(),
+            Addr::CARET => "^".into(),
             Addr(l) => char::from(l).to_string(),
         }
     }

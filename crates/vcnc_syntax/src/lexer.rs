@@ -139,9 +139,10 @@ fn lex_rest(
         let Some(&b) = line.get(i) else {
             return finish(out, start, i, line.len());
         };
-        // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) when
-        // the dialect has them, or `:` read as O.
-        if is_letter(b) || (b == b',' && is_extended(line, i, rules)) {
+        // A word: a letter, or `,C`/`,R` (Fanuc chamfer and corner R) or
+        // `@`/`^` (LinuxCNC polar words) when the dialect has them, or `:`
+        // read as O.
+        if is_letter(b) || (matches!(b, b',' | b'@' | b'^') && is_extended(line, i, rules)) {
             i = lex_word(line, start, i, b & !0x20, rules, out)?;
             first = false;
             continue;

@@ -11,12 +11,12 @@ use crate::block::words::Words;
 use crate::dialect::AxisWord;
 use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
-use crate::events::Pos;
+use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::machine::DecimalInput;
 use crate::state::Motion;
 use crate::state::PointStyle;
-use vcnc_syntax::{Diagnostic, Word};
+use vcnc_syntax::{Addr, Diagnostic, Word};
 
 /// mm per inch.
 pub const MM_PER_INCH: f64 = 25.4;
@@ -313,6 +313,13 @@ impl Interpreter<'_> {
             }
             named |= 1 << i;
         }
+        if self.cfg.dialect.polar_words {
+            let polar = self.ngc_polar_target(w, incremental, &mut prog);
+            if polar != 0 {
+                named |= polar;
+                all_incremental = false;
+            }
+        }
         if self.state.modal.polar {
             let polar = self.polar_target(w, incremental, &mut prog);
             if polar != 0 {
@@ -368,6 +375,87 @@ impl Interpreter<'_> {
         to.set(ia, r * c);
         to.set(ib, r * s);
         (1 << ia) | (1 << ib)
+    }
+
+    /// LinuxCNC's polar words: `@` a distance and `^` an angle in degrees,
+    /// counter-clockwise from +X, always in X and Y whatever the plane
+    /// (rs274 checked: G18 and G19 blocks move X and Y). Under G90 both are
+    /// about the program origin; under G91 each adds to the current point's
+    /// own distance or angle from the origin. A missing word keeps the
+    /// current point's. Writes X and Y into `to` and returns the axes set;
+    /// [`Self::check_polar_words`] has refused what rs274 refuses.
+    fn ngc_polar_target(&self, w: &Words<'_>, incremental: bool, to: &mut Pos) -> u32 {
+        let (r_word, a_word) = (w.get_ext(Addr::AT), w.get_ext(Addr::CARET));
+        if r_word.is_none() && a_word.is_none() {
+            return 0;
+        }
+        let (Some(ix), Some(iy)) = (
+            self.cfg.machine.axis_of(b'X'),
+            self.cfg.machine.axis_of(b'Y'),
+        ) else {
+            return 0;
+        };
+        let (x, y) = (self.state.prog.get(ix), self.state.prog.get(iy));
+        let (here_r, here_deg) = (x.hypot(y), y.atan2(x).to_degrees());
+        let r = r_word.map(|word| word.value * self.unit_mm());
+        let deg = a_word.map(|word| word.value);
+        let (r, deg) = if incremental {
+            (here_r + r.unwrap_or(0.0), here_deg + deg.unwrap_or(0.0))
+        } else {
+            (r.unwrap_or(here_r), deg.unwrap_or(here_deg))
+        };
+        let (s, c) = deg.to_radians().sin_cos();
+        to.set(ix, r * c);
+        to.set(iy, r * s);
+        (1 << ix) | (1 << iy)
+    }
+
+    /// What rs274 refuses in a block with `@` or `^`: a plane other than
+    /// G17 before the block (rs274 checks the plane the block starts in:
+    /// `G18 G1 @1 ^2` runs, `G17 G1 @1 ^2` after G18 does not), X or Y
+    /// beside them ("Cannot specify both polar coordinate and X word"),
+    /// `@` without `^`
+    /// at the origin under G90 ("Must specify angle in polar coordinate if
+    /// at the origin"), and either word at the origin under G91 ("motion
+    /// with polar coordinates is indeterminate when at the origin").
+    pub(crate) fn check_polar_words(
+        &self,
+        w: &Words<'_>,
+        plane_before: Plane,
+    ) -> Result<(), Diagnostic> {
+        let (r_word, a_word) = (w.get_ext(Addr::AT), w.get_ext(Addr::CARET));
+        let Some(first) = r_word.or(a_word) else {
+            return Ok(());
+        };
+        if plane_before != Plane::Xy {
+            return Err(alarms::polar_outside_xy(first.span, &first.addr.name()));
+        }
+        for l in [b'X', b'Y'] {
+            if let Some(word) = w.get(l) {
+                return Err(alarms::polar_and_axis(word.span, first.addr.name(), l));
+            }
+        }
+        let (Some(ix), Some(iy)) = (
+            self.cfg.machine.axis_of(b'X'),
+            self.cfg.machine.axis_of(b'Y'),
+        ) else {
+            return Err(alarms::needs_axes(first.span, "a polar word (X and Y)"));
+        };
+        let at_origin = self.state.prog.get(ix) == 0.0 && self.state.prog.get(iy) == 0.0;
+        if !at_origin {
+            return Ok(());
+        }
+        if self.state.modal.incremental {
+            return Err(alarms::polar_incremental_at_origin(first.span));
+        }
+        if let (Some(r), None) = (r_word, a_word) {
+            return Err(alarms::needs_word(
+                r.span,
+                "@ at the program origin",
+                "^, the angle (LinuxCNC: \"must specify angle in polar coordinate if at the origin\")",
+            ));
+        }
+        Ok(())
     }
 
     /// An angle word in degrees (0.001° without a decimal point), whatever

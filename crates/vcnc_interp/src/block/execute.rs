@@ -129,6 +129,9 @@ impl Interpreter<'_> {
         if w.has_arc_words(self.cfg.axis_mask) {
             let (allowed, ext) = self.allowed_letters(w);
             w.check_used(allowed, ext)?;
+            if self.cfg.dialect.polar_words {
+                self.check_polar_words(w, self.state.modal.plane)?;
+            }
         }
         if self.points.active {
             self.note_points(w);
@@ -157,6 +160,7 @@ impl Interpreter<'_> {
             self.check_high_speed(w)?;
         }
         let path_before = self.state.modal.path;
+        let plane_before = self.state.modal.plane;
         let (wcs_before, inch_before) = (self.state.modal.wcs, self.state.modal.inch);
         for at in w.modal_codes() {
             self.apply_modal(at.def.op);
@@ -171,6 +175,9 @@ impl Interpreter<'_> {
         let (allowed, ext) = self.allowed_letters(w);
         w.check_used(allowed, ext)
             .map_err(|d| cancelled_cycle_hint(d, w))?;
+        if self.cfg.dialect.polar_words {
+            self.check_polar_words(w, plane_before)?;
+        }
         if self.points.active {
             self.note_points(w);
         }
@@ -351,6 +358,10 @@ impl Interpreter<'_> {
             Some(_) => allowed |= self.cfg.axis_mask,
             None => {
                 allowed |= self.cfg.axis_mask;
+                if self.cfg.dialect.polar_words {
+                    // LinuxCNC's `@`/`^` stand for X and Y in every motion.
+                    ext |= ext_bit(Addr::AT) | ext_bit(Addr::CARET);
+                }
                 match self.state.modal.motion {
                     Motion::ArcCw | Motion::ArcCcw => {
                         allowed |= bit(b'R')

@@ -374,6 +374,19 @@ impl<'b> Words<'b> {
         self.block.present() & mask != 0
     }
 
+    /// Whether the block names a point: an axis of `mask`, or LinuxCNC's
+    /// polar `@`/`^` (only its lexer makes them).
+    pub fn moves(&self, mask: u32) -> bool {
+        const POLAR: u8 = ext_bit(Addr::AT) | ext_bit(Addr::CARET);
+        self.any(mask) || self.ext_present & POLAR != 0
+    }
+
+    /// Whether the block holds `,C` or `,R` (a corner at a G01's end).
+    pub fn corner_word(&self) -> bool {
+        const CORNER: u8 = ext_bit(Addr::COMMA_C) | ext_bit(Addr::COMMA_R);
+        self.ext_present & CORNER != 0
+    }
+
     /// The one-shot code `op`, if written.
     pub fn once(&self, op: GOp) -> Option<At<GDef>> {
         self.once.iter().flatten().find(|a| a.def.op == op).copied()
@@ -457,5 +470,13 @@ fn unknown_g(word: &Word, dialect: &Dialect) -> Diagnostic {
             dialect.name,
             crate::detect::g_hint(dialect, word.value),
         ),
+    }
+}
+
+/// The bit of an extended address in [`Words::ext_present`].
+const fn ext_bit(a: Addr) -> u8 {
+    match a.0.checked_sub(128) {
+        Some(i) if (i as usize) < Addr::EXTENDED => 1 << i,
+        _ => 0,
     }
 }

@@ -39,7 +39,7 @@ impl Interpreter<'_> {
             Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
                 self.single_cycle(w, cmd, motion)
             }
-            _ if !w.any(self.cfg.axis_mask) => Ok(()),
+            _ if !w.moves(self.cfg.axis_mask) => Ok(()),
             Motion::Rapid => {
                 let goal = self.target(w, self.state.modal.incremental);
                 let to = self.to_target(&goal);
@@ -59,7 +59,7 @@ impl Interpreter<'_> {
                     self.feed(cmd)?
                 };
                 let to = self.to_target(&goal);
-                if w.ext_present != 0 {
+                if w.corner_word() {
                     // `,C`/`,R`: the corner waits for the next block.
                     return self.hold_corner(w, cmd, feed, &goal, None);
                 }

@@ -150,5 +150,6 @@ pub(super) fn eia() -> Dialect {
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        polar_words: false,
     }
 }

@@ -146,5 +146,6 @@ pub(super) fn lathe() -> Dialect {
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        polar_words: false,
     }
 }

@@ -29,6 +29,7 @@ use super::{
 use super::{Diameter, SurfaceSpeedOn};
 use crate::events::{Cycle, Plane};
 use crate::machine::DEFAULT_FANUC_LATHE_TOML;
+use vcnc_syntax::{Addr, LexRules};
 
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
@@ -235,6 +236,16 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
 ];
 
+/// grbl's lexing, and the polar words `@` (distance) and `^` (angle)
+/// (LinuxCNC G-code reference, "Polar Coordinates").
+/// grbl's reading with the polar words `@` and `^`; rs274 refuses any `(`
+/// inside a comment ("Nested comment found").
+const LINUXCNC_LEX: LexRules = LexRules {
+    extended: &[("@", Addr::AT), ("^", Addr::CARET)],
+    paren_in_comment_alarms: true,
+    ..super::grbl::GRBL_LEX
+};
+
 /// The LinuxCNC dialect: grbl's reading (`;` comments, whole-unit
 /// integers, its codes and rules) with the codes and policies above.
 pub(super) fn linuxcnc() -> Dialect {
@@ -242,11 +253,6 @@ pub(super) fn linuxcnc() -> Dialect {
     let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
     Dialect {
         name: "linuxcnc",
-        // rs274 refuses any `(` inside a comment: "Nested comment found".
-        lex: vcnc_syntax::LexRules {
-            paren_in_comment_alarms: true,
-            ..super::grbl::GRBL_LEX
-        },
         g,
         m,
         unsupported: NOT_RUN,
@@ -262,6 +268,8 @@ pub(super) fn linuxcnc() -> Dialect {
         // P, the arc's number of turns, also in a modal G2/G3 block.
         arc_letters: bit(b'P'),
         comp_when_on: super::CompWhenOn::Alarm,
+        lex: LINUXCNC_LEX,
+        polar_words: true,
         ..grbl()
     }
 }
@@ -309,6 +317,9 @@ pub(super) fn linuxcnc_lathe() -> Dialect {
         surface_speed: SurfaceSpeedOn::WorkDiameter,
         tip_numbering: vcnc_core::tooling::TipNumbering::LinuxCnc,
         g53_incremental: super::G53Incremental::Alarm,
+        // rs274 reads `@`/`^` as X and Y whatever the plane; a lathe has no
+        // Y, so the words alarm as not used here.
+        polar_words: false,
         ..linuxcnc()
     }
 }

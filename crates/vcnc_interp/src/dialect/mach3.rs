@@ -126,6 +126,10 @@ pub(super) fn mach3() -> Dialect {
         // Mach3 programs write a bare `G53 G90 G40` in their headers.
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        polar_words: false,
+        // Mach3 reads as grbl does: no polar words, no nested-comment
+        // alarm (those are rs274's).
+        lex: super::grbl::GRBL_LEX,
         ..linuxcnc()
     }
 }

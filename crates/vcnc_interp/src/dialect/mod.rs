@@ -565,6 +565,10 @@ pub struct Dialect {
     pub g53_without_axes: G53WithoutAxes,
     /// G41/G42 (G41.1/G42.1) while cutter compensation is already on.
     pub comp_when_on: CompWhenOn,
+    /// LinuxCNC's polar words: `@` a distance and `^` an angle in degrees
+    /// give X and Y, about the origin under G90 and adding to the current
+    /// point's distance and angle under G91 (`block/convert.rs`).
+    pub polar_words: bool,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,

@@ -225,6 +225,24 @@ pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Li
                     span: Span::new(at, r.i),
                 });
             }
+            p @ (b'@' | b'^') => {
+                // The polar words, with an expression for value (`@[#1]`).
+                r.i += 1;
+                let v = r.value()?;
+                if !v.is_finite() || v.abs() >= MAX_VALUE {
+                    return Err(alarms::macro_range(Span::new(at, r.i), "the word's value"));
+                }
+                let addr = if p == b'@' { Addr::AT } else { Addr::CARET };
+                if line.words.iter().any(|w| w.addr == addr) {
+                    return Err(syntax(Span::new(at, r.i), "one word per letter in a block"));
+                }
+                line.words.push(Word {
+                    addr,
+                    value: v,
+                    point: v.fract() != 0.0,
+                    span: Span::new(at, r.i),
+                });
+            }
             _ => {
                 return Err(syntax(
                     Span::new(at, at + 1),

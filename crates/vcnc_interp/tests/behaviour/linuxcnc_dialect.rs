@@ -829,3 +829,71 @@ fn g70_runs_the_profile_subroutine_in_lathe_mode() {
         "{out:?}"
     );
 }
+
+/// What rs274 2.9 refuses in blocks with the polar words `@` and `^`
+/// (each message is rs274's, from `echo | rs274 -g` on the block; the
+/// moves it runs are in `tests/fixtures/linuxcnc_dialect/polar_words`):
+/// the alarm stands at the word and nothing moves after it.
+#[test]
+fn polar_words_rs274_refuses_alarm_here_too() {
+    let cases: &[(&str, Code, u64, u32)] = &[
+        // "Cannot specify both polar coordinate and X word": at the X.
+        ("G0 X1 Y1\nG1 @10 X2 F100\nM2\n", Code::E204, 2, 8),
+        ("G0 X1 Y1\nG1 ^10 Y2 F100\nM2\n", Code::E204, 2, 8),
+        // "Must specify angle in polar coordinate if at the origin".
+        ("G1 @10 F100\nM2\n", Code::E312, 1, 4),
+        // "Incremental motion with polar coordinates is indeterminate
+        // when at the origin", and "G91 motion with ..." for ^ alone.
+        ("G91 G1 @1 ^90 F100\nM2\n", Code::E312, 1, 8),
+        ("G91 G1 ^90 F100\nM2\n", Code::E312, 1, 8),
+        // "Cannot use polar coordinate except in G17 plane": the plane the
+        // block starts in (G17 in the block itself does not help).
+        ("G0 X1 Y1\nG18\nG1 @1 ^2 F100\nM2\n", Code::E203, 3, 4),
+        ("G0 X1 Y1\nG19\nG17 G1 @1 ^2 F100\nM2\n", Code::E203, 3, 8),
+        // "Polar coordinates can only be used for motion" (G28, G92), and
+        // "Cannot use polar coordinates with G53".
+        ("G0 X1\nG28 @1 ^2\nM2\n", Code::E203, 2, 5),
+        ("G0 X1\nG92 @1 ^2\nM2\n", Code::E203, 2, 5),
+        ("G0 X1\nG53 G0 @1 ^2\nM2\n", Code::E203, 2, 8),
+    ];
+    for (program, code, line, column) in cases {
+        assert_eq!(alarm(program), (*code, *line, *column), "{program}");
+    }
+    // What rs274 runs from the same points: off the origin, G91 adds to
+    // the point's own distance and angle; at the origin under G90 the
+    // angle alone is enough (the distance is the current one, 0: a move
+    // that does not move, which vcnc drops like every such move).
+    let ev = ended("G0 X3 Y4\nG91 G1 @5 F100\nG90 G1 ^90\nG0 X0 Y0\nG1 ^30\nM2\n");
+    let ends: Vec<(f64, f64)> = ev
+        .iter()
+        .filter_map(Event::motion_end)
+        .map(|p| {
+            (
+                (p.get(0) * 1e6).round() / 1e6,
+                (p.get(1) * 1e6).round() / 1e6,
+            )
+        })
+        .collect();
+    assert_eq!(ends, [(3.0, 4.0), (6.0, 8.0), (0.0, 10.0), (0.0, 0.0)]);
+    assert!(matches!(ev.last(), Some(Event::End { .. })), "{ev:?}");
+}
+
+/// `@` and `^` are LinuxCNC's: the other dialects read them as the
+/// illegal characters they are there, and the lathe (no Y) as words no
+/// command uses.
+#[test]
+fn polar_words_are_linuxcnc_mill_only() {
+    for d in [Dialect::grbl(), Dialect::fanuc()] {
+        let (_, out) = run_str(&d, "G0 X1\nG0 @1 ^2\nM2\n");
+        assert!(
+            matches!(&out, Outcome::Alarm(a) if (a.code, a.line, a.column) == (Code::E101, 2, 4)),
+            "{}: {out:?}",
+            d.name
+        );
+    }
+    let (_, out) = run_str(&Dialect::linuxcnc_lathe(), "G0 X1\nG0 @1 ^2\nM2\n");
+    assert!(
+        matches!(&out, Outcome::Alarm(a) if (a.code, a.line) == (Code::E203, 2)),
+        "{out:?}"
+    );
+}
