@@ -163,6 +163,7 @@ pub(super) fn grbl() -> Dialect {
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        gcode_systems: false,
         polar_words: false,
     }
 }

@@ -565,6 +565,10 @@ pub struct Dialect {
     pub g53_without_axes: G53WithoutAxes,
     /// G41/G42 (G41.1/G42.1) while cutter compensation is already on.
     pub comp_when_on: CompWhenOn,
+    /// Whether the code numbers follow the machine's `gcode_system`
+    /// (Fanuc 0i-TF's systems A, B and C, other tables of this profile);
+    /// a dialect without it has one numbering.
+    pub gcode_systems: bool,
     /// LinuxCNC's polar words: `@` a distance and `^` an angle in degrees
     /// give X and Y, about the origin under G90 and adding to the current
     /// point's distance and angle under G91 (`block/convert.rs`).
@@ -775,8 +779,7 @@ impl Dialect {
         use std::sync::OnceLock;
         static B: OnceLock<Dialect> = OnceLock::new();
         static C: OnceLock<Dialect> = OnceLock::new();
-        // Only Fanuc's 0i-TF has the three systems; Haas lathes run A.
-        if self.name != "fanuc-lathe" {
+        if !self.gcode_systems {
             return self;
         }
         match system {
@@ -787,11 +790,12 @@ impl Dialect {
     }
 
     /// [`for_system`](Self::for_system) for a dialect that may not be one
-    /// of the built-in ones: a Fanuc lathe profile takes the table of
-    /// `system`; any other dialect is returned as it is.
+    /// of the built-in ones: a profile with [`gcode_systems`](Self::gcode_systems)
+    /// takes its built-in table of `system`; any other dialect is returned
+    /// as it is.
     pub fn under_system(&self, system: crate::machine::GcodeSystem) -> &Dialect {
         match crate::detect::dialect(self.name) {
-            Some(base) if base.name == "fanuc-lathe" => base.for_system(system),
+            Some(base) if self.gcode_systems => base.for_system(system),
             _ => self,
         }
     }
