@@ -449,6 +449,69 @@ struct RowCtx {
     id: u8,
 }
 
+/// The deepest removal of a span while the fast paths lower its cells
+/// (kept in registers), and the one step each takes on a cell.
+struct SpanCut {
+    deepest: f64,
+    at: Option<usize>,
+}
+
+impl SpanCut {
+    #[inline(always)]
+    fn start(hit: &Hit) -> SpanCut {
+        SpanCut {
+            deepest: f64::from(hit.depth_mm),
+            at: None,
+        }
+    }
+
+    /// Lowers cell `k` to the envelope's height `e` (never under the
+    /// stock's bottom), marking the tool where it removed more than
+    /// 0.1 µm, and a cut through the bottom.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn lower(
+        &mut self,
+        k: usize,
+        cell: &mut f32,
+        tool: &mut u8,
+        e: f64,
+        ctx: &RowCtx,
+        span: &FlatSpan,
+        hit: &mut Hit,
+    ) {
+        let bottom = ctx.bottom;
+        let before = f64::from(*cell);
+        if e < before - 1e-4 {
+            let new = fmax(e, bottom);
+            let depth = before - new;
+            *cell = to_f32(new);
+            *tool = ctx.id;
+            if depth > self.deepest {
+                self.deepest = depth;
+                self.at = Some(k);
+            }
+            if span.through && e < bottom - CUT_EPS_MM && before > bottom {
+                hit.below = true;
+            }
+        } else if e < before {
+            *cell = to_f32(fmax(e, bottom));
+        }
+    }
+
+    /// The span's deepest removal into the move's hit.
+    #[inline(always)]
+    fn finish(self, span: &FlatSpan, hit: &mut Hit) {
+        if let Some(k) = self.at {
+            hit.depth_mm = to_f32(self.deepest);
+            hit.at = (
+                u32::try_from(span.i0 + k).unwrap_or(0),
+                u32::try_from(span.j).unwrap_or(0),
+            );
+        }
+    }
+}
+
 impl ZMap {
     /// A flat stock over `[x0, x1] × [y0, y1]` from `bottom` to `top` with
     /// cells of about `resolution` (at most that), applied by `workers`
@@ -947,37 +1010,15 @@ impl Geometry {
         hit: &mut Hit,
         linear: &Linear,
     ) {
-        let (floor, bottom, step) = (linear.floor, ctx.bottom, linear.step);
+        let (floor, step) = (linear.floor, linear.step);
         let mut lin = linear.start;
-        let mut deepest = f64::from(hit.depth_mm);
-        let mut deepest_at = None;
+        let mut cut = SpanCut::start(hit);
         for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
             let e = fmax(lin, floor);
             lin += step;
-            let before = f64::from(*cell);
-            if e < before - 1e-4 {
-                let new = fmax(e, bottom);
-                let depth = before - new;
-                *cell = to_f32(new);
-                *tool = ctx.id;
-                if depth > deepest {
-                    deepest = depth;
-                    deepest_at = Some(k);
-                }
-                if span.through && e < bottom - CUT_EPS_MM && before > bottom {
-                    hit.below = true;
-                }
-            } else if e < before {
-                *cell = to_f32(fmax(e, bottom));
-            }
+            cut.lower(k, cell, tool, e, ctx, span, hit);
         }
-        if let Some(k) = deepest_at {
-            hit.depth_mm = to_f32(deepest);
-            hit.at = (
-                u32::try_from(span.i0 + k).unwrap_or(0),
-                u32::try_from(span.j).unwrap_or(0),
-            );
-        }
+        cut.finish(span, hit);
     }
 
     /// [`Geometry::cut_span`] for a flat line. Along a row the
@@ -1002,12 +1043,9 @@ impl Geometry {
         let mut dp = (wx * f.dy - wy * f.dx) * f.inv_len;
         let (g, q) = (self.dx * f.dx * f.inv_l2, self.dx * f.dy * f.inv_len);
         let up = f.dz > 0.0;
-        let bottom = ctx.bottom;
         let (r2, inv_l2, az, dz) = (f.r2, f.inv_l2, f.az, f.dz);
         let row_s = span.row_s;
-        // The deepest removal of the span, kept in registers.
-        let mut deepest = f64::from(hit.depth_mm);
-        let mut deepest_at = None;
+        let mut cut = SpanCut::start(hit);
         for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
             let d2 = dp * dp;
             let s = if ALONG_X {
@@ -1024,30 +1062,9 @@ impl Geometry {
                 continue;
             }
             let e = az + dz * if up { t0 } else { t1 };
-            let before = f64::from(*cell);
-            if e < before - 1e-4 {
-                let new = fmax(e, bottom);
-                let depth = before - new;
-                *cell = to_f32(new);
-                *tool = ctx.id;
-                if depth > deepest {
-                    deepest = depth;
-                    deepest_at = Some(k);
-                }
-                if span.through && e < bottom - CUT_EPS_MM && before > bottom {
-                    hit.below = true;
-                }
-            } else if e < before {
-                *cell = to_f32(fmax(e, bottom));
-            }
+            cut.lower(k, cell, tool, e, ctx, span, hit);
         }
-        if let Some(k) = deepest_at {
-            hit.depth_mm = to_f32(deepest);
-            hit.at = (
-                u32::try_from(span.i0 + k).unwrap_or(0),
-                u32::try_from(span.j).unwrap_or(0),
-            );
-        }
+        cut.finish(span, hit);
     }
 
     /// The cell spans (inclusive index ranges) of row `y` that a move with
