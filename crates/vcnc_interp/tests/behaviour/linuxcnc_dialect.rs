@@ -659,26 +659,30 @@ fn a_parenthesis_inside_a_comment_alarms_as_in_rs274() {
 
 /// G2/G3 P, LinuxCNC's number of turns (rs274 -g: `G3 … P2` is
 /// `ARC_FEED(…, 2, …)`; P0, P-1: "P value should be 1 or greater with G2
-/// or G3"; P1.5: "P value not an integer"): P1 is the plain arc, more
-/// turns are E201 saying vcnc does not run them, not E203.
+/// or G3"; P1.5: "P value not an integer"): P1 is the plain arc, P n is
+/// n − 1 full circles and then the arc (the helix's Z spread over the
+/// whole angle: `tests/fixtures/linuxcnc_dialect/multi_turn_arcs`).
 #[test]
-fn arc_turns_p_is_read_and_more_than_one_turn_is_not_run() {
+fn arc_turns_p_runs_full_circles_before_the_arc() {
     let arc = |p: &str| format!("G21 G90 G17\nG0 X100 Y0\nG3 X0 Y100 I-100 J0 {p} F100\nM2\n");
     assert_eq!(ended(&arc("P1")), ended(&arc("")));
-    let (_, out) = run(&arc("P2"));
-    let Outcome::Alarm(d) = out else {
-        panic!("{out:?}")
-    };
-    assert_eq!((d.code, d.line, d.column), (Code::E201, 3, 1));
-    assert!(d.message.contains("not run by vcnc"), "{}", d.message);
-    assert_eq!(alarm(&arc("P2")), (Code::E201, 3, 1));
+    let ends = |p: &str| common::ends(&ended(p), 3);
+    let e = ends(&arc("P2"));
+    assert_eq!(e.len(), 2, "{e:?}");
+    assert!(common::near(e[0], 100.0, 0.0, 0.0), "{e:?}");
+    assert!(common::near(e[1], 0.0, 100.0, 0.0), "{e:?}");
+    // With Z: a quarter after one circle, 2π of 2.5π: Z at 4/5 of the way.
+    let e = ends(&arc("Z-5 P2"));
+    assert!(common::near(e[0], 100.0, 0.0, -4.0), "{e:?}");
+    assert!(common::near(e[1], 0.0, 100.0, -5.0), "{e:?}");
     // In a modal G3 block too (rs274: ARC_FEED(…, 2, …)).
-    let modal = arc("P1").replace("M2\n", "X100 Y0 I100 J0 P2\nM2\n");
-    assert_eq!(alarm(&modal), (Code::E201, 4, 1));
+    let modal = arc("P1").replace("M2\n", "X100 Y0 I0 J-100 P3\nM2\n");
+    assert_eq!(common::ends(&ended(&modal), 4).len(), 3);
     for (bad, code) in [
         ("P0", Code::E109),
         ("P-1", Code::E109),
         ("P1.5", Code::E108),
+        ("P10001", Code::E109),
     ] {
         assert_eq!(alarm(&arc(bad)).0, code, "{bad}");
     }
