@@ -211,20 +211,13 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
     assert!(
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
     );
-    assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
-    // rs274 runs G7/G8 in a mill program (G7 halves X); vcnc runs them in
-    // linuxcnc-lathe only, and the alarm names that dialect.
-    for g in ["G7", "G8"] {
-        let (_, out) = run(&format!("G21\n{g}\nM2\n"));
-        let Outcome::Alarm(d) = out else {
-            panic!("{out:?}")
-        };
-        let text = format!("{} {}", d.message, d.help);
-        assert!(
-            text.contains("--dialect linuxcnc-lathe") && !text.contains("fanuc-lathe"),
-            "{text}"
-        );
-    }
+    // rs274 runs G7/G8 in a mill program too: G7 halves X (`G7 G0 X1`
+    // goes to X0.5), G8 reads radii again (the moves:
+    // `linuxcnc_dialect/g7_g8_in_a_mill_program`).
+    assert_eq!(
+        common::xs(&ended("G21\nG7 G0 X1\nG8 X1\nM2\n")),
+        vec![0.5, 1.0]
+    );
     // G33.1 taps with a turning spindle and K in the block, as rs274
     // wants ("Spindle not turning in G33.1", "K word missing with
     // g33/g33.1"); the taps themselves are checked against rs274
@@ -402,11 +395,11 @@ fn second_review_findings_stay_fixed() {
     };
     assert_eq!(fanuc("G21\nO100IF\nM30\n").0, Code::E104);
     assert_eq!(fanuc("G21\nN10 o100 sub\nM30\n").0, Code::E604);
-    // G7 runs only in LinuxCNC's lathe mode (the seed lathe lists it as
-    // not run, and linuxcnc sends it on to linuxcnc-lathe).
+    // G7 runs in LinuxCNC's mill and lathe modes; a mill program is sent
+    // to the mill dialect.
     let (code, _, _, _, help) = fanuc("G21\nG7\nM30\n");
     assert_eq!(code, Code::E201);
-    assert!(help.contains("--dialect linuxcnc-lathe"), "{help}");
+    assert!(help.contains("--dialect linuxcnc "), "{help}");
     let (_, _, _, _, help) = fanuc("G21\nG33.1 Z-5 K1\nM30\n");
     assert!(
         help.contains("--dialect linuxcnc"),
