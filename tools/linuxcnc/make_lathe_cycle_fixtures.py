@@ -9,7 +9,7 @@ make_lathe_fixtures.Lathe (X a radius, START_SPEED_FEED_SYNC's value the
 thread's lead_mm, moves that do not move dropped) in NAME.expected.jsonl;
 the end is the program's M2. machine.toml is the built-in turning centre
 starting at X0 Z0, as rs274 does. The test is
-`linuxcnc_lathe_cycles_match_rs274` in crates/vcnc/tests/fixtures.rs.
+`linuxcnc_lathe_cycles_match_rs274` in crates/vcnc/tests/behaviour/fixtures.rs.
 
 Usage: make_lathe_cycle_fixtures.py [--rs274 PATH]
 """
