@@ -83,6 +83,9 @@ pub(super) struct Kind {
     pub(super) x: u32,
     pub(super) y: u32,
     pub(super) z: u32,
+    /// Moves with an A word: a mill's fourth (rotary) axis, which no
+    /// lathe dialect has (a lathe's rotary axis is C).
+    pub(super) a: u32,
     pub(super) uw: u32,
     pub(super) turret: Option<String>,
     pub(super) g96: bool,
@@ -580,6 +583,7 @@ impl Scan {
             k.x += u32::from(get(b'X').is_some());
             k.y += u32::from(get(b'Y').is_some());
             k.z += u32::from(get(b'Z').is_some());
+            k.a += u32::from(get(b'A').is_some());
         }
         k.uw += u32::from(get(b'U').is_some() || get(b'W').is_some());
         let m6 = shape.m.contains(&6);

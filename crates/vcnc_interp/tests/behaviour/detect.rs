@@ -163,6 +163,18 @@ fn lathes_by_their_signs() {
         "haas-lathe",
         &["one-block G71 with D"],
     );
+    // X and Z with A: a mill's rotary (4th-axis) program, not a lathe's —
+    // no lathe dialect has an A axis (the built-in lathes would alarm E203
+    // at the first A word).
+    let d = detect(
+        b"G21 G90\nG0 X0 A0 Z5\nG1 Z0 F300\nG1 X10 A90\nG1 X20 A180\nG0 Z5\nM2\n",
+        Some("wrap.gcode"),
+    );
+    assert!(
+        !["lathe", "fanuc-lathe", "haas-lathe", "linuxcnc-lathe"].contains(&d.dialect),
+        "{}",
+        d.describe()
+    );
     // LinuxCNC's lathe mode: G7 (diameters) only it knows.
     chosen(
         "G7 G18 G21 ; diameter mode\nT1 M6\nG0 X20 Z2\nG1 Z-10 F100\nX30\nM2\n",
