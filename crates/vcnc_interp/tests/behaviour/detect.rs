@@ -175,6 +175,20 @@ fn lathes_by_their_signs() {
         "{}",
         d.describe()
     );
+    // Whole degrees beside pointed lengths (`A2` after `X2.3097`): written
+    // for a control that reads A2 as 2°, not 0.002°.
+    let d = detect(
+        b"G90 G20\nM03\nS776\nG00 X1.899 A0 Z1.12\nG01 Z0.2229 F45.0177\nX2.3097 Z0.2014\n\
+          G00 Z1.12\nA2\nG01 Z0.2229\nX2.3283 Z0.2071\nG00 Z1.12\nA4\nG01 Z0.2229\nM30\n",
+        Some("shaft.nc"),
+    );
+    assert!(
+        d.evidence
+            .iter()
+            .any(|e| e.contains("whole-unit integers (A")),
+        "{}",
+        d.describe()
+    );
     // LinuxCNC's lathe mode: G7 (diameters) only it knows.
     chosen(
         "G7 G18 G21 ; diameter mode\nT1 M6\nG0 X20 Z2\nG1 Z-10 F100\nX30\nM2\n",
