@@ -302,9 +302,14 @@ fn e201_hint_names_every_dialect_that_knows_the_code_and_its_reading() {
     assert!(h.starts_with("G18 is a code of "), "{h}");
     assert!(h.contains("fanuc-lathe") && !h.contains("fanuc,"), "{h}");
     assert!(!h.contains("linuxcnc-lathe"), "another `;` family: {h}");
-    // Nobody knows G12.
+    // Haas's and Mach3's circular pocket, read two ways.
     assert_eq!(
         g_hint(&Dialect::fanuc(), 12.0),
+        "G12 is a code of haas (which read X20 as 0.020 mm, as fanuc does) and of mach3 (which read X20 as 20 mm): choose by how the program writes lengths, or leave --dialect out and vcnc chooses from the program"
+    );
+    // Nobody knows G14.
+    assert_eq!(
+        g_hint(&Dialect::fanuc(), 14.0),
         "check the code against the controller's G-code list"
     );
 }
