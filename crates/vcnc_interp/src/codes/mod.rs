@@ -11,6 +11,7 @@ pub(crate) mod cycles;
 pub(crate) mod lathe_cycles;
 pub(crate) mod modal;
 pub(crate) mod mrc;
+pub(crate) mod ngc_rough;
 pub(crate) mod ngc_thread;
 pub(crate) mod nurbs;
 pub(crate) mod offsets;
