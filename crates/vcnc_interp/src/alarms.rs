@@ -503,6 +503,17 @@ pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
     )
 }
 
+/// E349: LinuxCNC's G70–G72 outside the modes rs274 runs them in.
+#[cold]
+pub fn ngc_cycle_mode(span: Span, code: &str, needs: &str) -> Diagnostic {
+    d(
+        Code::E349,
+        span,
+        format!("LinuxCNC's {code} runs only under {needs}"),
+        "change the mode before the cycle block",
+    )
+}
+
 /// E401: program not found.
 #[cold]
 pub fn program_not_found(span: Span, number: u32) -> Diagnostic {

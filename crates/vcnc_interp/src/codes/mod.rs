@@ -12,6 +12,7 @@ pub(crate) mod cycles;
 pub(crate) mod lathe_cycles;
 pub(crate) mod modal;
 pub(crate) mod mrc;
+pub(crate) mod ngc_rough;
 pub(crate) mod ngc_thread;
 pub(crate) mod nurbs;
 pub(crate) mod offsets;

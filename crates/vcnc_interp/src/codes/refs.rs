@@ -150,6 +150,7 @@ impl Interpreter<'_> {
             TurnOp::NgcThreadCycle => self.ngc_thread_cycle(w, cmd),
             TurnOp::FinishCycle
             | TurnOp::NgcFinishCycle
+            | TurnOp::NgcRoughCycle { .. }
             | TurnOp::RoughTurnCycle
             | TurnOp::RoughFaceCycle
             | TurnOp::PatternCycle => Ok(()),

@@ -30,7 +30,7 @@ pub use macro_rules::{
 };
 pub use ops::{
     CircleCutForm, CompOp, CycleOp, FlowOp, FrameOp, GOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp,
-    SetOp, TurnOp,
+    RoughPockets, SetOp, TurnOp,
 };
 
 use crate::events::Plane;

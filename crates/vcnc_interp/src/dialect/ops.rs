@@ -340,6 +340,23 @@ pub enum TurnOp {
     /// LinuxCNC's lathe G70: finishing passes along the profile of the
     /// subroutine Q.
     NgcFinishCycle,
+    /// LinuxCNC's lathe roughing G71 (`facing` false) or G72, and which
+    /// pockets it cuts (G7x, G7x.1, G7x.2).
+    NgcRoughCycle { facing: bool, pockets: RoughPockets },
+}
+
+/// Which pockets (parts of the profile that dip again after rising)
+/// LinuxCNC's roughing cycles cut.
+#[cfg_attr(test, derive(strum::EnumIter))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RoughPockets {
+    /// G71, G72: every pocket.
+    #[default]
+    All,
+    /// G71.1, G72.1: none; the profile is followed up to its end.
+    None,
+    /// G71.2, G72.2: only those after the first descent.
+    AfterFirst,
 }
 
 /// Program flow.
@@ -375,6 +392,7 @@ impl GOp {
                     | TurnOp::RoughFaceCycle
                     | TurnOp::PatternCycle
                     | TurnOp::NgcFinishCycle
+                    | TurnOp::NgcRoughCycle { .. }
             )
         )
     }
@@ -661,6 +679,26 @@ impl TurnOp {
             TurnOp::NgcFinishCycle => {
                 "finishing cycle along the profile of subroutine o<Q> (X Z the start point, P passes)"
             }
+            TurnOp::NgcRoughCycle { facing, pockets } => match (facing, pockets) {
+                (false, RoughPockets::All) => {
+                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), pockets too"
+                }
+                (false, RoughPockets::None) => {
+                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), no pockets"
+                }
+                (false, RoughPockets::AfterFirst) => {
+                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), the pockets after the first descent"
+                }
+                (true, RoughPockets::All) => {
+                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), pockets too"
+                }
+                (true, RoughPockets::None) => {
+                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), no pockets"
+                }
+                (true, RoughPockets::AfterFirst) => {
+                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), the pockets after the first descent"
+                }
+            },
             TurnOp::NgcThreadCycle => {
                 "threading cycle: passes from the drive line to Z (P pitch, I peak, J first depth, K full depth)"
             }

@@ -163,6 +163,32 @@ fn lathes_by_their_signs() {
         "haas-lathe",
         &["one-block G71 with D"],
     );
+    // X and Z with A: a mill's rotary (4th-axis) program, not a lathe's —
+    // no lathe dialect has an A axis (the built-in lathes would alarm E203
+    // at the first A word).
+    let d = detect(
+        b"G21 G90\nG0 X0 A0 Z5\nG1 Z0 F300\nG1 X10 A90\nG1 X20 A180\nG0 Z5\nM2\n",
+        Some("wrap.gcode"),
+    );
+    assert!(
+        !["lathe", "fanuc-lathe", "haas-lathe", "linuxcnc-lathe"].contains(&d.dialect),
+        "{}",
+        d.describe()
+    );
+    // Whole degrees beside pointed lengths (`A2` after `X2.3097`): written
+    // for a control that reads A2 as 2°, not 0.002°.
+    let d = detect(
+        b"G90 G20\nM03\nS776\nG00 X1.899 A0 Z1.12\nG01 Z0.2229 F45.0177\nX2.3097 Z0.2014\n\
+          G00 Z1.12\nA2\nG01 Z0.2229\nX2.3283 Z0.2071\nG00 Z1.12\nA4\nG01 Z0.2229\nM30\n",
+        Some("shaft.nc"),
+    );
+    assert!(
+        d.evidence
+            .iter()
+            .any(|e| e.contains("whole-unit integers (A")),
+        "{}",
+        d.describe()
+    );
     // LinuxCNC's lathe mode: G18, X and Z only (G7, diameters, the mill
     // mode reads too).
     chosen(
