@@ -7,7 +7,9 @@
 //! `VCNC_WEB_PAGE=target/web/vcnc.html VCNC_WEB_PROGRAM=prog.nc cargo
 //! bench -p vcnc --bench web_page`; `tools/bench/web.sh` runs it on the
 //! surfacing program. A benchmark, not a test: it prints figures and
-//! asserts nothing about time.
+//! asserts nothing about time. It also times a page built before the
+//! viewer kept its camera (2026-12-06: each plot a new page in the
+//! iframe), so a before/after comparison needs no other bench.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a benchmark reports by panicking
 
@@ -49,7 +51,19 @@ fn main() {
         "window.vcncApp && vcncApp.applied > 0",
         "the example is checked",
     );
-    b.js("document.getElementById('viewer').contentWindow.__old = true; return 0;");
+    wait(
+        &b,
+        "(() => { const w = document.getElementById('viewer').contentWindow; \
+           return w.vcnc && w.vcnc.stats.frames > 0; })()",
+        "the example is drawn",
+    );
+    // The viewer's first frame of the new plot: the plot it draws
+    // (`stats.drawnLoad`) past the example's; an older page replaced the
+    // viewer's page instead.
+    let before = b.js(
+        "const w = document.getElementById('viewer').contentWindow; w.__old = true; \
+         return w.vcnc && w.vcnc.loads ? w.vcnc.loads() : 0;",
+    );
     let t0 = Instant::now();
     b.post(
         "/execute/sync",
@@ -64,8 +78,11 @@ fn main() {
     let checked = t0.elapsed();
     wait(
         &b,
-        "(() => { const w = document.getElementById('viewer').contentWindow; \
-           return !w.__old && w.vcnc && w.vcnc.stats.frames > 0; })()",
+        &format!(
+            "(() => {{ const w = document.getElementById('viewer').contentWindow; \
+               return w.vcnc && (w.vcnc.loads ? w.vcnc.stats.drawnLoad > {before} \
+                 : !w.__old && w.vcnc.stats.frames > 0); }})()"
+        ),
         "the viewer draws",
     );
     let drawn = t0.elapsed();
