@@ -126,6 +126,8 @@ const app = {
   // A new program (opened, dropped, set): its first plot is framed; an
   // edit keeps the camera.
   frameNext: true,
+  // The warm-up run's ms (or why it did not run); null until it ends.
+  warmed: null,
 };
 const editor = new EditorView({
   parent: $("editor"),
@@ -172,7 +174,11 @@ async function runCheck() {
   app.frameNext = app.frameNext && !frame;
   apply(answer.result, text, frame);
   const now = performance.now();
-  app.checks.push({ lines: editor.state.doc.lines, engineMs: answer.ms, roundTripMs: now - started, sinceEditMs: editedAt ? now - editedAt : null });
+  app.checks.push({
+    lines: editor.state.doc.lines, engineMs: answer.ms, roundTripMs: now - started, sinceEditMs: editedAt ? now - editedAt : null,
+    // The edit, in ms since the epoch (the viewer's frames say when they end in the same clock).
+    editedAt: performance.timeOrigin + editedAt,
+  });
   if (app.checks.length > 50) app.checks.shift();
   app.applied = gen;
   app.lastChecked = text;
@@ -438,6 +444,20 @@ async function start() {
   $("dialect").value = setup.dialect;
   if ($("dialect").value !== setup.dialect) { showError("unknown dialect " + setup.dialect + " in the link: auto"); setup.dialect = "auto"; $("dialect").value = "auto"; }
   setText(text === null ? EXAMPLE : text, null);
+  warmUp();
+}
+// Once the first text is checked, a warm-up run while the page is idle
+// (engine.wjs says why); an edit meanwhile cancels it like any run.
+async function warmUp() {
+  for (let i = 0; !app.applied && i < 200; i++) await new Promise((r) => setTimeout(r, 50));
+  if (!app.applied || engine.busy) { app.warmed = "skipped"; return; }
+  try {
+    const t0 = performance.now();
+    await engine.request("warmup", "", null);
+    app.warmed = performance.now() - t0;
+  } catch (e) {
+    app.warmed = e.cancelled ? "cancelled" : e.message;
+  }
 }
 start();
 window.vcncApp = Object.assign(app, {

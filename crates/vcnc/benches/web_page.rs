@@ -57,6 +57,13 @@ fn main() {
            return w.vcnc && w.vcnc.stats.frames > 0; })()",
         "the example is drawn",
     );
+    // The page's warm-up run (web/src/engine.wjs) has ended, as it has
+    // for a user a second after the page opened.
+    wait(&b, "vcncApp.warmed !== null", "the warm-up ends");
+    println!(
+        "warm-up: {}",
+        b.js("return vcncApp.warmed === undefined ? null : vcncApp.warmed;")
+    );
     // The viewer's first frame of the new plot: the plot it draws
     // (`stats.drawnLoad`) past the example's; an older page replaced the
     // viewer's page instead.
@@ -86,10 +93,16 @@ fn main() {
         "the viewer draws",
     );
     let drawn = t0.elapsed();
+    // In the page's own clock: from the edit (the editor holding the
+    // text) to the end of the viewer's first frame of it.
+    let in_page = b.js(
+        "const w = document.getElementById('viewer').contentWindow; const c = vcncApp.lastLatency(); \
+         return c && c.editedAt && w.vcnc.stats.drawnAt ? Math.round(w.vcnc.stats.drawnAt - c.editedAt) : null;",
+    );
     let check = b.js("return vcncApp.lastLatency();");
     let lines = b.js("return vcncApp.editor.state.doc.lines;");
     println!(
-        "{lines} lines: text handed to the editor in {handed:.2?}; checked and on screen after {checked:.2?} ({check}); the viewer's first frame after {drawn:.2?}"
+        "{lines} lines: text handed to the editor in {handed:.2?}; checked and on screen after {checked:.2?} ({check}); the viewer's first frame after {drawn:.2?} ({in_page} ms after the edit, in the page)"
     );
     // A keystroke at the end: checked again.
     b.js("const v = vcncApp.editor; v.dispatch({changes: {from: v.state.doc.length, insert: ' '}}); return 0;");

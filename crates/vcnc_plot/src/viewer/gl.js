@@ -450,8 +450,9 @@ function toolPairs(i, at) {
 
 // ---- drawing -----------------------------------------------------------
 let cur = 0, sel = null, selBuf = null;
-// `drawnLoad`: the plot (`vcnc.loads()`) the last frame drew.
-const stats = { frames: 0, lastMs: 0, totalMs: 0, drawnLoad: 0 };
+// `drawnLoad`: the plot (`vcnc.loads()`) the last frame drew; `drawnAt`:
+// when it ended (ms since the epoch, comparable across frames).
+const stats = { frames: 0, lastMs: 0, totalMs: 0, drawnLoad: 0, drawnAt: 0 };
 function resize() {
   const r = dpr();
   const w = Math.max(1, Math.round(canvas.clientWidth * r)), h = Math.max(1, Math.round(canvas.clientHeight * r));
@@ -557,6 +558,7 @@ function draw() {
   drawOverlay();
   const ms = performance.now() - t0;
   stats.frames++; stats.lastMs = ms; stats.totalMs += ms; stats.drawnLoad = loadSerial;
+  stats.drawnAt = performance.timeOrigin + performance.now();
 }
 let pending = false;
 function request() {
