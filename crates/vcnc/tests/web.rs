@@ -397,6 +397,21 @@ fn the_page_checks_times_and_draws_as_you_type() {
     );
     assert_eq!(new_vertex, json!(true), "the edited move is in the view");
     shot(&b, "5b-camera-kept");
+    // The summary growing (as it does with simulate) shrinks the view:
+    // the camera stays.
+    let h0 = b.js("return document.getElementById('viewer').contentWindow.innerHeight;");
+    b.js("document.getElementById('summary').style.minHeight = '320px'; return 0;");
+    wait_for(
+        &b,
+        &format!("document.getElementById('viewer').contentWindow.innerHeight < {h0}"),
+        "the view shrinks",
+    );
+    std::thread::sleep(Duration::from_millis(300));
+    let resized = camera(&b);
+    assert_eq!(resized["R"], after["R"], "a resize keeps the rotation");
+    assert_eq!(resized["scale"], after["scale"], "a resize keeps the zoom");
+    assert_eq!(resized["pan"], after["pan"], "a resize keeps the pan");
+    b.js("document.getElementById('summary').style.minHeight = ''; return 0;");
 
     // Bad input: a binary file and an endless loop end in located alarms.
     let binary: Vec<u8> = (0u8..=255).cycle().take(4096).collect();

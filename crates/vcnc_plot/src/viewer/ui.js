@@ -404,7 +404,9 @@ canvas.addEventListener("wheel", (e) => {
   move();
   viewChanged();
 }, { passive: false });
-window.addEventListener("resize", () => { if (!loaded) return; if (resize()) fit(); request(); });
+// A resize fits the view again, but an embedded one keeps its camera (the
+// app's panels change its size as results come; the centre stays put).
+window.addEventListener("resize", () => { if (!loaded) return; if (resize() && !embedded) fit(); viewChanged(); });
 
 // ---- start, and each new plot ----------------------------------------------
 // `frame`: fit the view to the plot (the first one always), else the
@@ -412,7 +414,7 @@ window.addEventListener("resize", () => { if (!loaded) return; if (resize()) fit
 // while one loads waits, and only the latest is loaded.
 let loaded = false, loadSerial = 0, plotSerial = 0;
 async function load(data, texts, frame) {
-  const first = !loaded, oldCenter = D && loaded ? D.center : null;
+  const first = !loaded, oldCenter = D && loaded ? D.center : null, wasLathe = loaded && !!D.lathe;
   stop();
   D = data;
   await decodeData();
@@ -431,7 +433,8 @@ async function load(data, texts, frame) {
   document.body.className = theme;
   gridCache.key = "";
   resize();
-  if (first || frame || !oldCenter) frameView(); else keepCamera(oldCenter);
+  // A lathe's section and a mill's views do not share a camera.
+  if (first || frame || !oldCenter || wasLathe !== !!D.lathe) frameView(); else keepCamera(oldCenter);
   deriveExits();
   plotControls();
   build();
