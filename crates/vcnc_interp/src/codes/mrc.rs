@@ -558,7 +558,15 @@ impl Interpreter<'_> {
             "Q is the profile's subroutine number",
         )?;
         let (src, start, endsub) = self.ngc_sub_lines(&label.to_string(), q.span)?;
-        self.read_sub_profile(src, start, endsub, q.span)
+        // rs274 runs the sub as a call without arguments: #1–#30 and the
+        // named locals are its own (zero) while the profile is read, and
+        // the caller's come back after; #31 and up are the program's.
+        let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(&[]);
+        let profile = self.read_sub_profile(src, start, endsub, q.span);
+        if let Some(params) = self.macros.ngc.as_mut() {
+            params.restore(saved);
+        }
+        profile
     }
 
     /// LinuxCNC's G71/G72 Q [X Z D I R] and their .1 and .2

@@ -317,6 +317,32 @@ impl Interpreter<'_> {
         if self.macros.rules.iso == IsoMacros::None || lexed.code == vcnc_syntax::Code::E604 {
             return Err(lexed);
         }
+        if matches!(self.macros.rules.iso, IsoMacros::Ngc | IsoMacros::NgcParams) {
+            // LinuxCNC's `o<Q> sub` profile: rs274 runs the sub's blocks,
+            // so its expressions read (and its settings write) the
+            // program's parameters, numbered and named.
+            let text = &bytes[start.min(bytes.len())..];
+            if !text.iter().any(|c| matches!(c, b'#' | b'[')) {
+                return Err(lexed);
+            }
+            let params = self.macros.ngc.get_or_insert_with(Box::default);
+            let read = super::ngc::read_line(bytes, start, params)?;
+            if !(read.deleted && self.cfg.opts.block_delete) {
+                params.commit(&read);
+            }
+            self.macros.used = true;
+            block.clear();
+            for w in &read.words {
+                if !block.push(*w) {
+                    return Err(vcnc_syntax::diagnostics::too_many_words(
+                        w.span,
+                        vcnc_syntax::MAX_WORDS,
+                    ));
+                }
+            }
+            block.deleted = read.deleted.then_some(1);
+            return Ok(bytes.len());
+        }
         let syn = self
             .macros
             .rules

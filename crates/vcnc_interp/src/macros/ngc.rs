@@ -743,6 +743,15 @@ impl Params {
         Saved { numbered, named }
     }
 
+    /// Leaves a subroutine without a return: its locals restored and
+    /// `#<_value>` untouched (a G7x profile's `o<Q> sub`, which the cycle
+    /// reads rather than calls).
+    pub(crate) fn restore(&mut self, saved: Saved) {
+        self.numbered[1..=30].copy_from_slice(&saved.numbered);
+        self.named.retain(|k, _| k.starts_with('_'));
+        self.named.extend(saved.named);
+    }
+
     /// Leaves a subroutine: its locals restored, the value it returned
     /// (if any) in `#<_value>`.
     pub(crate) fn leave(&mut self, saved: Saved, value: Option<f64>) {
