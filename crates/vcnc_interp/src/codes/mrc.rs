@@ -505,8 +505,15 @@ impl Interpreter<'_> {
         if let Some(first) = profile.elems.first_mut() {
             first.rapid = true;
         }
+        let corner = profile.elems.split_first().and_then(|(first, rest)| {
+            let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
+            Path::new(a, first.seg.end(), &segs).approach_corner()
+        });
+        self.return_to(a, axes, w, cmd)?;
         for _ in 0..passes {
-            self.return_to(a, axes, w, cmd)?;
+            // rs274 moves the approach's start to the corner: each pass
+            // returns there.
+            self.return_to(corner.unwrap_or(a), axes, w, cmd)?;
             let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
             let out = self.finish_moves(&profile, axes, w);
             self.flow.loc.line = line;

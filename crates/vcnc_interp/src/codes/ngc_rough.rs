@@ -215,6 +215,13 @@ impl Path {
     /// `e` (the last), each a rapid to the start point and to the offset
     /// profile's first point, then the profile.
     pub fn finish(mut self, d: f64, e: f64, passes: u32) -> Result<Vec<Cut>, Fault> {
+        // rs274: a start beyond the first point goes along Z first.
+        let wrong_way = self.wrong_way();
+        if wrong_way && let Some(first) = self.segs.first_mut() {
+            // The approach then runs in X only: the offset meets the
+            // first element at its offset start, not beyond it.
+            *first = Seg::line(P2(first.end().0, first.start().1), first.end());
+        }
         if self.segs.iter().any(|s| !monotonic(s)) {
             self.turn();
         }
@@ -226,19 +233,44 @@ impl Path {
             path.offset(distance)?;
             let mut segs = path.segs.iter();
             if let Some(first) = segs.next() {
-                out.push(Frame::Rapid(first.start()));
-                out.push(Frame::Rapid(first.end()));
+                let (a, b) = (self.out(first.start()), self.out(first.end()));
+                // rs274 moves the approach's start there: each pass
+                // returns to it, not to the start point.
+                out.push(Cut::Rapid(a));
+                out.push(Cut::Rapid(b));
             }
-            out.extend(segs.map(|s| match s.arc_of() {
-                None => Frame::Feed(s.end()),
-                Some((centre, ccw)) => Frame::Arc {
-                    to: s.end(),
-                    centre,
-                    ccw,
-                },
+            out.extend(segs.map(|s| {
+                self.out_cut(match s.arc_of() {
+                    None => Frame::Feed(s.end()),
+                    Some((centre, ccw)) => Frame::Arc {
+                        to: s.end(),
+                        centre,
+                        ccw,
+                    },
+                })
             }));
         }
-        Ok(out.iter().map(|c| self.out_cut(*c)).collect())
+        Ok(out)
+    }
+
+    /// Plain G70's approach as rs274 runs it: when the dive from the
+    /// start point to the profile's first point runs the wrong way along
+    /// the profile, first along Z to the first point's Z (at the start's
+    /// X); that corner, in the program's (X, Z).
+    pub fn approach_corner(&self) -> Option<P2> {
+        let first = self.segs.first()?;
+        self.wrong_way()
+            .then(|| P2(first.end().0, first.start().1).swapped())
+    }
+
+    /// Whether the start point lies beyond the profile's first point in
+    /// Z, on the side the profile runs to (frame of `new`: (Z, X)).
+    fn wrong_way(&self) -> bool {
+        let (Some(first), Some(last)) = (self.segs.first(), self.segs.last()) else {
+            return false;
+        };
+        let run = last.end().0 - first.end().0;
+        (first.end().0 - first.start().0) * run < 0.0
     }
 
     /// rs274's first check: an approach that goes towards +Z starts at the
