@@ -499,6 +499,14 @@ impl Interpreter<'_> {
         let arc_words = if arc {
             match (w.get(b'R'), w.get(b'I'), w.get(b'K')) {
                 (Some(r), _, _) => Some(ArcWords::Radius(self.length_mm(&r), r.span)),
+                // G90.1: I and K are the centre's program coordinates, as
+                // for an arc outside a cycle (rs274 reads the profile so).
+                (None, Some(i), Some(k)) if self.state.modal.arc_absolute => Some(
+                    ArcWords::Offsets(self.length_mm(&i) - at.0, self.length_mm(&k) - at.1),
+                ),
+                (None, _, _) if self.state.modal.arc_absolute => {
+                    return Err(alarms::arc_without_center(span, "zx"));
+                }
                 (None, i, k) if i.is_some() || k.is_some() => Some(ArcWords::Offsets(
                     i.map_or(0.0, |i| self.length_mm(&i)),
                     k.map_or(0.0, |k| self.length_mm(&k)),
