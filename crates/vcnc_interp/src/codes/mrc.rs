@@ -728,9 +728,15 @@ impl Interpreter<'_> {
             self.flow.loc.line = aside.line.number;
             self.stage.cur_line = Some((profile.src, aside.line));
             let mut w = Words::new(&aside.block);
+            let feed = self.state.feed;
             w.fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)
                 .and_then(|()| self.profile_words(&w))
                 .map_err(|d| self.locate(d, profile.src, &aside.line))?;
+            // rs274's G70 reads only the geometry of its `o<Q> sub`: the
+            // profile's F words neither feed the cycle nor outlast it.
+            if self.macros.rules.iso == crate::dialect::IsoMacros::Ngc {
+                self.state.feed = feed;
+            }
         }
         Ok(())
     }

@@ -898,3 +898,25 @@ fn polar_words_are_linuxcnc_mill_only() {
         "{out:?}"
     );
 }
+
+/// rs274's G70 reads only the geometry of its `o<Q> sub` (h01 of the
+/// review, `rs274 -g`: one SET_FEED_RATE(0.2) before the cycle, none in
+/// it): the profile's F words neither feed the cycle nor outlast it.
+#[test]
+fn g70_ignores_the_profiles_feed_words() {
+    let program = "G18 G21 G90 G8 G95\nS500 M3\nO10 sub\nG1 X5 Z0 F0.05\nG1 Z-10 F0.1\n\
+                   G1 X10 Z-15\nO10 endsub\nG0 X12 Z2\nF0.2\nG70 Q10\nG1 X14 Z-20\nM2\n";
+    let (ev, out) = run_str(&Dialect::linuxcnc_lathe(), program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let feeds: Vec<f64> = ev
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed {
+                feed: vcnc_core::events::Feed::PerRev(f),
+                ..
+            } => Some(*f),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds, [0.2, 0.2, 0.2]);
+}
