@@ -101,6 +101,9 @@ pub(crate) struct Config<'a> {
     pub max_feed: f64,
     /// The dialect reads `%@MACRO` files (checked for every block).
     pub macro_files: bool,
+    /// A word without a decimal point is in whole units all the same
+    /// (the dialect's integers, or a calculator-style machine).
+    pub whole_words: bool,
     /// Whether the markers of program coordinates are emitted
     /// ([`Interpreter::with_program_markers`]).
     pub markers: bool,
@@ -171,6 +174,8 @@ impl<'a> Interpreter<'a> {
                 travel_limited: machine.has_travel_limits(),
                 max_feed: machine.max_feed_mm_per_min(),
                 macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
+                whole_words: dialect.integers == crate::dialect::IntegerWords::WholeUnits
+                    || machine.params.decimal_input == crate::machine::DecimalInput::Calculator,
                 markers: false,
             },
             state: State::power_on(machine, dialect),

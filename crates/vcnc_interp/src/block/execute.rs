@@ -723,7 +723,7 @@ impl Interpreter<'_> {
                     "G64's P is a path tolerance, not negative",
                 ));
             }
-            Some(p) => self.length_mm(&p),
+            Some(p) => self.units().length_mm(&p),
             None => 0.0,
         };
         // Only a change reaches the planner (a bare G64 on every safe-start
@@ -774,7 +774,7 @@ impl Interpreter<'_> {
     fn haas_smoothing(&mut self, w: &Words<'_>) {
         let level = w.get(b'P').map(|p| p.value);
         let tolerance_mm = match (w.get(b'E'), level) {
-            (Some(e), _) => self.length_mm(&e),
+            (Some(e), _) => self.units().length_mm(&e),
             (None, Some(p)) if p >= 3.0 => 0.005,
             (None, Some(p)) if p >= 2.0 => 0.02,
             (None, Some(_)) => 0.05,

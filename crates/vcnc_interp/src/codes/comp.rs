@@ -133,7 +133,7 @@ impl Interpreter<'_> {
             self.state.lathe.tip = crate::motion::comp::nose::linuxcnc_tip(tip);
         }
         self.state.d_number = 0;
-        self.state.comp_d_mm = self.length_mm(&d) / 2.0;
+        self.state.comp_d_mm = self.units().length_mm(&d) / 2.0;
         let side = if op == GOp::Comp(CompOp::LeftDiameter) {
             CompSide::Left
         } else {

@@ -70,7 +70,7 @@ impl Interpreter<'_> {
                     && let Some(k) = w.get(b'K')
                 {
                     // LinuxCNC's G33 K: distance per revolution.
-                    self.state.thread_lead_mm = Some(self.length_mm(&k));
+                    self.state.thread_lead_mm = Some(self.units().length_mm(&k));
                 }
                 let lead_mm = self
                     .state
@@ -96,7 +96,7 @@ impl Interpreter<'_> {
         let k = w.get(b'K').ok_or_else(|| {
             alarms::needs_word(cmd, "G33.1", "K (the pitch: distance per revolution)")
         })?;
-        let lead_mm = self.length_mm(&k);
+        let lead_mm = self.units().length_mm(&k);
         if lead_mm <= 0.0 {
             return Err(alarms::value_out_of_range(
                 k.span,

@@ -122,7 +122,7 @@ impl Interpreter<'_> {
     /// G71 U R, G72 W R, G73 U W R.
     fn profile_first_block(&mut self, op: GOp, w: &Words<'_>) -> Result<(), Diagnostic> {
         self.refuse(w, b"XZD")?;
-        let len = |word: Option<Word>| word.map(|x| self.length_mm(&x));
+        let len = |word: Option<Word>| word.map(|x| self.units().length_mm(&x));
         match op {
             GOp::Turn(TurnOp::RoughTurnCycle) | GOp::Turn(TurnOp::RoughFaceCycle) => {
                 let depth_letter = if op == GOp::Turn(TurnOp::RoughTurnCycle) {
@@ -200,8 +200,8 @@ impl Interpreter<'_> {
     /// The finishing allowance of a second block: U (a diameter) and W.
     fn allowance(&self, w: &Words<'_>) -> Xz {
         P2(
-            w.get(b'U').map_or(0.0, |u| self.x_length_mm(&u)),
-            w.get(b'W').map_or(0.0, |v| self.length_mm(&v)),
+            w.get(b'U').map_or(0.0, |u| self.units().x_length_mm(&u)),
+            w.get(b'W').map_or(0.0, |v| self.units().length_mm(&v)),
         )
     }
 
@@ -230,7 +230,7 @@ impl Interpreter<'_> {
             Across::Z
         };
         let depth = match w.get(b'D') {
-            Some(d) => self.length_mm(&d),
+            Some(d) => self.units().length_mm(&d),
             None => self.state.lathe.mrc.depth_mm,
         };
         if depth <= 0.0 {

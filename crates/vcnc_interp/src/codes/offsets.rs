@@ -25,7 +25,10 @@ impl Interpreter<'_> {
             .axes
             .iter()
             .enumerate()
-            .filter_map(|(i, a)| w.get(a.letter).map(|word| (i, self.axis_value(i, &word))))
+            .filter_map(|(i, a)| {
+                w.get(a.letter)
+                    .map(|word| (i, self.units().axis_value(&self.cfg.axis_words, i, &word)))
+            })
             .collect()
     }
 
@@ -117,7 +120,7 @@ impl Interpreter<'_> {
         let r = w
             .get(b'R')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "R (the offset value)"))?;
-        let value = self.length_mm(&r);
+        let value = self.units().length_mm(&r);
         let incremental = self.state.modal.incremental;
         let mut tool = self.tables.tool(n);
         let slot = match l {
@@ -162,10 +165,10 @@ impl Interpreter<'_> {
         }
         let mut tool = self.tables.tool(n);
         if let Some(r) = r {
-            tool.d_mm = self.length_mm(&r);
+            tool.d_mm = self.units().length_mm(&r);
         }
         if let Some(z) = z {
-            tool.h_mm = self.length_mm(&z);
+            tool.h_mm = self.units().length_mm(&z);
         }
         self.tables.set_tool(n, tool);
         Ok(())

@@ -179,7 +179,7 @@ impl Interpreter<'_> {
             }
             (None, Some(x)) => {
                 dwell_not_negative(&x)?;
-                self.seconds(&x)
+                self.units().seconds(&x)
             }
             // Syntec 1.2.5: the dwell is X or P; a bare G04 says nothing.
             (None, None) => {
@@ -215,7 +215,7 @@ impl Interpreter<'_> {
     /// A dwell of P seconds (milliseconds without a point in least-increment
     /// dialects), 0 to 9999.999 s.
     fn dwell_p_seconds(&mut self, p: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
-        let seconds = self.seconds(p);
+        let seconds = self.units().seconds(p);
         if !(0.0..=9_999.999).contains(&seconds) {
             return Err(alarms::value_out_of_range(
                 p.span,
@@ -345,7 +345,7 @@ impl Interpreter<'_> {
                 return Err(alarms::g29_without_g28(cmd, axis.letter));
             }
             let m = self.state.intermediate.get(i);
-            let v = self.axis_value(i, &word);
+            let v = self.units().axis_value(&self.cfg.axis_words, i, &word);
             mid.set(i, m);
             target.set(
                 i,
@@ -381,7 +381,7 @@ impl Interpreter<'_> {
         let mut named = 0;
         for (i, axis) in self.cfg.machine.axes.iter().enumerate() {
             if let Some(word) = w.get(axis.letter) {
-                to.set(i, self.axis_value(i, &word));
+                to.set(i, self.units().axis_value(&self.cfg.axis_words, i, &word));
                 named |= 1 << i;
             }
         }

@@ -153,7 +153,7 @@ impl Interpreter<'_> {
             }
         }
         let mut tool = Pos::default();
-        tool.set(z, self.length_mm(&word));
+        tool.set(z, self.units().length_mm(&word));
         self.state.modal.tool_length = ToolLength::Plus;
         self.state.frame.tool = tool;
         self.state.prog = self.state.frame.program_of(self.state.nominal);

@@ -35,7 +35,7 @@ impl Interpreter<'_> {
                 continue;
             };
             c[k] = match w.get(*letter) {
-                Some(word) => self.axis_value(i, &word),
+                Some(word) => self.units().axis_value(&self.cfg.axis_words, i, &word),
                 None => self.state.prog.get(i),
             };
         }
@@ -44,7 +44,7 @@ impl Interpreter<'_> {
 
     /// A factor word: as written with a point, in 0.001 units without.
     fn factor(&self, word: &Word) -> Result<f64, Diagnostic> {
-        let k = self.angle_deg(word);
+        let k = self.units().angle_deg(word);
         if k == 0.0 || k.abs() > MAX_SCALE {
             return Err(alarms::bad_scale_factor(word.span, word.addr.0, k));
         }
@@ -138,7 +138,7 @@ impl Interpreter<'_> {
             .ok_or_else(|| alarms::needs_word(cmd, "G68", "R (the angle of rotation)"))?;
         let t = Transform::Rotate {
             plane,
-            degrees: self.angle_deg(&r),
+            degrees: self.units().angle_deg(&r),
             centre: self.centre(w),
         };
         self.use_transforms(self.tables.transforms.with(t), cmd)

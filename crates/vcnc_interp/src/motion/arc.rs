@@ -78,10 +78,10 @@ impl Interpreter<'_> {
                 let (Some(i), Some(j)) = (w.get(oa), w.get(ob)) else {
                     return Err(alarms::arc_without_center(cmd, plane.as_str()));
                 };
-                (self.length_mm(&i), self.length_mm(&j))
+                (self.units().length_mm(&i), self.units().length_mm(&j))
             }
             None if has_center => {
-                let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
+                let off = |l: u8| w.get(l).map_or(0.0, |word| self.units().length_mm(&word));
                 (s.0 + off(oa), s.1 + off(ob))
             }
             None => return Err(alarms::arc_without_center(cmd, plane.as_str())),
@@ -130,7 +130,7 @@ impl Interpreter<'_> {
     fn radius_word(&self, w: &Words<'_>) -> Option<Radius> {
         if let Some(r) = w.get(b'R') {
             return Some(Radius {
-                mm: self.length_mm(&r),
+                mm: self.units().length_mm(&r),
                 span: r.span,
                 line_if_short: self.cfg.dialect.long_chord == LongChord::Line,
             });
@@ -140,7 +140,7 @@ impl Interpreter<'_> {
         let line_if_short = self.cfg.dialect.long_chord == LongChord::Line;
         if let Some(cr) = w.get_ext(Addr::CR) {
             return Some(Radius {
-                mm: self.length_mm(&cr),
+                mm: self.units().length_mm(&cr),
                 span: cr.span,
                 line_if_short,
             });
@@ -150,7 +150,7 @@ impl Interpreter<'_> {
             return None;
         }
         w.get(b'D').map(|d| Radius {
-            mm: self.length_mm(&d) / 2.0,
+            mm: self.units().length_mm(&d) / 2.0,
             span: d.span,
             line_if_short,
         })
@@ -227,7 +227,7 @@ impl Interpreter<'_> {
             let (Some(word), Some(i)) = (w.get_ext(addr), self.cfg.machine.axis_of(letter)) else {
                 continue;
             };
-            let v = self.axis_value(i, &word);
+            let v = self.units().axis_value(&self.cfg.axis_words, i, &word);
             mid.set(
                 i,
                 if self.state.modal.incremental {
