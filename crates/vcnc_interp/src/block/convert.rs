@@ -37,6 +37,12 @@ pub(crate) struct Units {
 }
 
 impl Units {
+    /// Program units → mm factor.
+    #[inline]
+    pub fn mm_per_unit(self) -> f64 {
+        if self.inch { MM_PER_INCH } else { 1.0 }
+    }
+
     /// Whether the word is in whole units (else least increments).
     #[inline]
     fn whole(self, w: &Word) -> bool {

@@ -46,7 +46,9 @@ impl Interpreter<'_> {
                 self.straight(MoveKind::Rapid, to, w, cmd)
             }
             Motion::Linear => {
-                self.smoothing_before_linear();
+                if let Some(t) = self.state.smoothing.before_linear(self.state.modal.path) {
+                    self.emit(crate::state::Smoothing::event(t));
+                }
                 let goal = self.target(w, self.state.modal.incremental);
                 let feed = if self.state.modal.inverse_time {
                     let from = self.state.prog;

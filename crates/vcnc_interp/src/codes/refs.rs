@@ -91,7 +91,16 @@ impl Interpreter<'_> {
             PaceOp::DwellOrWait => self.dwell_or_wait(w),
             PaceOp::DwellP => self.dwell_p(w, cmd),
             PaceOp::HighSpeed => self.high_speed(w, cmd),
-            PaceOp::PathSmoothing => self.path_smoothing(w, cmd),
+            PaceOp::PathSmoothing => {
+                let look_ahead = (self.cfg.dialect.g(8.0))
+                    .is_some_and(|d| d.op == GOp::Pace(PaceOp::LookAhead))
+                    .then_some(self.cfg.machine.motion.corner_tolerance_mm);
+                let now = (self.state.modal.path, self.units(), look_ahead);
+                if let Some(t) = self.state.smoothing.path_smoothing(w, cmd, now)? {
+                    self.emit(crate::state::Smoothing::event(t));
+                }
+                Ok(())
+            }
             PaceOp::FeedUp => self.feed_step(1, cmd),
             PaceOp::FeedDown => self.feed_step(-1, cmd),
             PaceOp::OverrideCancel => {
