@@ -22,6 +22,7 @@
 pub mod alarms;
 mod block;
 mod codes;
+mod config;
 pub mod detect;
 pub mod dialect;
 pub mod explain;
@@ -32,9 +33,10 @@ mod motion;
 mod plane;
 pub mod state;
 
+pub use config::Options;
 pub use dialect::Dialect;
 pub use flow::{NoPrograms, ProgramStore};
-pub use interpreter::{HAND_OVER, Interpreter, MAX_ALARMS, Options, Outcome};
+pub use interpreter::{HAND_OVER, Interpreter, MAX_ALARMS, Outcome};
 pub use state::{State, Tables};
 pub use vcnc_core::{
     ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode,

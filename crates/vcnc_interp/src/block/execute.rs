@@ -908,14 +908,8 @@ impl Interpreter<'_> {
     /// Adds an event of the current block; it reaches the sink when the
     /// block has succeeded.
     pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
-        let loc = self.flow.loc.clone();
-        let e = make(loc);
-        if self.stage.comp.holding() {
-            // Behind a move cutter compensation still holds.
-            self.stage.comp.queue_event(e);
-        } else {
-            self.stage.pending.push(e);
-        }
+        let e = make(self.flow.loc.clone());
+        self.stage.emit(e);
     }
 }
 

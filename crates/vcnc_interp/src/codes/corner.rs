@@ -283,7 +283,7 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        let axes = self.plane_axes(self.state.modal.plane, mv.cmd)?;
+        let axes = self.cfg.plane_axes(self.state.modal.plane, mv.cmd)?;
         let ab = (axes.a, axes.b);
         let p = |q: Pos| P2::of(&q, ab);
         let off_plane = (0..crate::events::MAX_AXES)

@@ -95,7 +95,7 @@ pub(crate) struct CycleAxes {
 
 impl Interpreter<'_> {
     pub(crate) fn cycle_axes(&self, cmd: Span) -> Result<CycleAxes, Diagnostic> {
-        let axes = self.plane_axes(self.state.modal.plane, cmd)?;
+        let axes = self.cfg.plane_axes(self.state.modal.plane, cmd)?;
         let z = axes
             .n
             .ok_or_else(|| alarms::needs_axes(cmd, "a canned cycle"))?;

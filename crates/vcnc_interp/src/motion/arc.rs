@@ -118,7 +118,7 @@ impl Interpreter<'_> {
 
     /// Program indices of a plane's axes (E305 if the machine lacks one).
     fn plane_idx(&self, plane: Plane, cmd: Span) -> Result<PlaneIdx, Diagnostic> {
-        let axes = self.plane_axes(plane, cmd)?;
+        let axes = self.cfg.plane_axes(plane, cmd)?;
         Ok(PlaneIdx {
             a: axes.a,
             b: axes.b,
@@ -175,7 +175,7 @@ impl Interpreter<'_> {
         offset.set(idx.a, center.0 - s.0);
         offset.set(idx.b, center.1 - s.1);
         let feed = if self.state.modal.inverse_time {
-            let axes = self.plane_axes(plane, cmd)?;
+            let axes = self.cfg.plane_axes(plane, cmd)?;
             let mut c = from;
             c.set(idx.a, center.0);
             c.set(idx.b, center.1);
