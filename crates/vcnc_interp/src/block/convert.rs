@@ -13,36 +13,30 @@ use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
 use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
-use crate::state::Motion;
 use crate::state::PointStyle;
+use crate::state::{Modal, Motion};
 use vcnc_syntax::{Addr, Diagnostic, Word};
 
 /// mm per inch.
 pub const MM_PER_INCH: f64 = 25.4;
 
-/// How the words of a block read as numbers: the program's units, diameter
-/// programming, and whether a word without a decimal point is in whole
-/// units (the dialect's integers, a calculator-style machine). A small
-/// value taken from the state when a word is read
-/// ([`Interpreter::units`]): the conversions need neither the state nor
-/// the interpreter.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Units {
-    /// G20: inch input.
-    pub inch: bool,
-    /// Lathe G23: X words are diameters.
-    pub diameter: bool,
+/// How the words of a block read as numbers: the program's units and
+/// diameter programming (the modal codes in force), and whether a word
+/// without a decimal point is in whole units (the dialect's integers, a
+/// calculator-style machine). A view taken when a word is read
+/// ([`Interpreter::units`]): the conversions need neither the rest of the
+/// state nor the interpreter. It reads the modal codes only when a word
+/// needs them, as a plain pointed length does not ask whether X is a
+/// diameter.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Units<'a> {
+    /// G20/G21, lathe G22/G23.
+    modal: &'a Modal,
     /// A word without a point is in whole units all the same.
-    pub whole_words: bool,
+    whole_words: bool,
 }
 
-impl Units {
-    /// Program units → mm factor.
-    #[inline]
-    pub fn mm_per_unit(self) -> f64 {
-        if self.inch { MM_PER_INCH } else { 1.0 }
-    }
-
+impl Units<'_> {
     /// Whether the word is in whole units (else least increments).
     #[inline]
     fn whole(self, w: &Word) -> bool {
@@ -55,16 +49,17 @@ impl Units {
         let v = if self.whole(w) {
             w.value
         } else {
-            w.value * if self.inch { 0.0001 } else { 0.001 }
+            w.value * if self.modal.inch { 0.0001 } else { 0.001 }
         };
-        if self.inch { v * MM_PER_INCH } else { v }
+        if self.modal.inch { v * MM_PER_INCH } else { v }
     }
 
     /// An X-direction length that follows diameter programming (lathe G23
     /// halves it): axis words, and the cycles' X depths.
+    #[inline]
     pub fn x_length_mm(self, w: &Word) -> f64 {
         let v = self.length_mm(w);
-        if self.diameter { v / 2.0 } else { v }
+        if self.modal.diameter { v / 2.0 } else { v }
     }
 
     /// The value of an axis word: mm (a radius for a diameter axis), or
@@ -122,10 +117,9 @@ impl Interpreter<'_> {
     /// How this block's words read (the units in force now: a G20/G21 of
     /// the block has already been executed).
     #[inline]
-    pub(crate) fn units(&self) -> Units {
+    pub(crate) fn units(&self) -> Units<'_> {
         Units {
-            inch: self.state.modal.inch,
-            diameter: self.state.modal.diameter,
+            modal: &self.state.modal,
             whole_words: self.cfg.whole_words,
         }
     }
@@ -180,8 +174,7 @@ impl Interpreter<'_> {
         } else {
             None
         };
-        let units = self.units();
-        let inch = units.inch;
+        let inch = self.state.modal.inch;
         let length = |mm: f64| {
             if inch {
                 (mm / MM_PER_INCH, " in")
@@ -197,9 +190,9 @@ impl Interpreter<'_> {
                 continue;
             };
             let shown = if a.rotary || polar_angle == Some(i) {
-                (units.angle_deg(&word), "°")
+                (self.units().angle_deg(&word), "°")
             } else {
-                length(units.axis_mm(&a, &word))
+                length(self.units().axis_mm(&a, &word))
             };
             self.note_point(word, shown);
         }
@@ -207,7 +200,7 @@ impl Interpreter<'_> {
             if extra & bit(l) != 0
                 && let Some(word) = w.get(l)
             {
-                self.note_point(word, length(units.length_mm(&word)));
+                self.note_point(word, length(self.units().length_mm(&word)));
             }
         }
     }

@@ -692,7 +692,7 @@ impl Interpreter<'_> {
                 GOp::Pace(PaceOp::LookAhead) => {
                     let corner_mm = self.cfg.machine.motion.corner_tolerance_mm;
                     if let Some(t) = self.state.smoothing.look_ahead(w, at.span, corner_mm)? {
-                        self.emit(crate::state::Smoothing::event(t));
+                        self.report_smoothing(t);
                     }
                 }
                 // A G4 that leaves the axis words to the motion (LinuxCNC:
@@ -903,6 +903,13 @@ impl Interpreter<'_> {
         if m.inch != inch_before {
             self.emit(|loc| Event::Units { loc, inch: m.inch });
         }
+    }
+
+    /// The `smoothing` event of what the smoothing state decided
+    /// (`codes/smoothing.rs`), out of line: a G01 asks for it rarely.
+    #[inline(never)]
+    pub(crate) fn report_smoothing(&mut self, tolerance_mm: f64) {
+        self.emit(crate::state::Smoothing::event(tolerance_mm));
     }
 
     /// Adds an event of the current block; it reaches the sink when the

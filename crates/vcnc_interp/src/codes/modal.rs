@@ -47,7 +47,7 @@ impl Interpreter<'_> {
             }
             Motion::Linear => {
                 if let Some(t) = self.state.smoothing.before_linear(self.state.modal.path) {
-                    self.emit(crate::state::Smoothing::event(t));
+                    self.report_smoothing(t);
                 }
                 let goal = self.target(w, self.state.modal.incremental);
                 let feed = if self.state.modal.inverse_time {
@@ -150,6 +150,17 @@ impl Interpreter<'_> {
     /// [`commit`](Self::commit) takes it.
     #[inline]
     pub(crate) fn send(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.state.lathe.corner.is_some() || self.state.modal.css {
+            return self.send_turning(mv, w);
+        }
+        // Handed on as it came: a plain move is not copied on its way.
+        self.commit(mv, w)
+    }
+
+    /// [`send`](Self::send) on a lathe with a corner held or under G96,
+    /// out of line.
+    #[inline(never)]
+    fn send_turning(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
         let mv = if self.state.lathe.corner.is_some() {
             // A G01's or an arc's chamfer or corner R is cut before this
             // move, which then starts where the chamfer or round ends.

@@ -95,9 +95,9 @@ impl Interpreter<'_> {
                 let look_ahead = (self.cfg.dialect.g(8.0))
                     .is_some_and(|d| d.op == GOp::Pace(PaceOp::LookAhead))
                     .then_some(self.cfg.machine.motion.corner_tolerance_mm);
-                let now = (self.state.modal.path, self.units(), look_ahead);
+                let now = (self.state.modal.path, self.unit_mm(), look_ahead);
                 if let Some(t) = self.state.smoothing.path_smoothing(w, cmd, now)? {
-                    self.emit(crate::state::Smoothing::event(t));
+                    self.report_smoothing(t);
                 }
                 Ok(())
             }

@@ -42,12 +42,13 @@ use vcnc_syntax::{Diagnostic, Span};
 impl Smoothing {
     /// G05.1 Q1 E / Q0. `look_ahead` is the machine's corner tolerance
     /// where the dialect's G05.1 Q1 and G08 P1 are one mode (Fanuc, Haas:
-    /// it has G08 look-ahead), `path` the path mode in force.
+    /// it has G08 look-ahead), `path` the path mode in force, and
+    /// `mm_per_unit` the program's units.
     pub fn path_smoothing(
         &mut self,
         w: &Words<'_>,
         cmd: Span,
-        (path, units, look_ahead): (PathMode, Units, Option<f64>),
+        (path, mm_per_unit, look_ahead): (PathMode, f64, Option<f64>),
     ) -> Result<Option<f64>, Diagnostic> {
         let Some(q) = w.get(b'Q') else {
             return Ok(None); // ineffective (rule 1)
@@ -71,7 +72,7 @@ impl Smoothing {
         if matches!(path, PathMode::ExactStop | PathMode::Tapping) {
             return Err(alarms::smoothing_in_exact_stop(cmd));
         }
-        let tol = e.value * units.mm_per_unit();
+        let tol = e.value * mm_per_unit;
         if !(tol.is_finite() && tol > 0.0 && tol <= 10.0) {
             return Err(alarms::value_out_of_range(
                 e.span,
@@ -178,7 +179,7 @@ impl Smoothing {
     /// (else the level's: 0.05, 0.02, 0.005 mm); G187 alone returns to the
     /// machine's own setting (smoothing off). Its `smoothing` event: whether
     /// it is on, and the tolerance. It leaves G05.1's state alone.
-    pub fn haas_level(w: &Words<'_>, units: Units) -> (bool, f64) {
+    pub fn haas_level(w: &Words<'_>, units: Units<'_>) -> (bool, f64) {
         let level = w.get(b'P').map(|p| p.value);
         let tolerance_mm = match (w.get(b'E'), level) {
             (Some(e), _) => units.length_mm(&e),

@@ -454,7 +454,7 @@ impl Stage {
 
     /// Stage 4 of a checked move: its events, and the tool at its end
     /// (or where the skip signal stopped it).
-    #[inline]
+    #[inline(always)]
     fn emit_released(&mut self, cfg: &Config<'_>, s: &mut State, mm: &MachineMove, loc: Loc) {
         match self.emit_motion(cfg, &mut s.skip_pos, mm, loc) {
             None => s.pos = mm.to,
