@@ -36,7 +36,14 @@ pub(crate) struct Units<'a> {
     whole_words: bool,
 }
 
-impl Units<'_> {
+impl<'a> Units<'a> {
+    /// The units of the modal codes `modal`; `whole_words` as
+    /// [`Config::whole_words`](crate::config::Config::whole_words).
+    #[inline]
+    pub fn new(modal: &'a Modal, whole_words: bool) -> Units<'a> {
+        Units { modal, whole_words }
+    }
+
     /// Whether the word is in whole units (else least increments).
     #[inline]
     fn whole(self, w: &Word) -> bool {
@@ -118,10 +125,7 @@ impl Interpreter<'_> {
     /// the block has already been executed).
     #[inline]
     pub(crate) fn units(&self) -> Units<'_> {
-        Units {
-            modal: &self.state.modal,
-            whole_words: self.cfg.whole_words,
-        }
+        Units::new(&self.state.modal, self.cfg.whole_words)
     }
 
     /// Warning W101: a length word without a decimal point in a program

@@ -43,13 +43,13 @@ impl Interpreter<'_> {
             return self.dynamic_comp(w, c.def.op, c.span);
         }
         let d_number = match w.get(b'D').filter(|_| self.reads_d(w)) {
-            Some(d) => Some(self.offset_word(&d)?),
+            Some(d) => Some(self.cfg.offset_word(&d, self.state.tool_active)?),
             None => match code {
                 Some(c)
                     if c.def.op != GOp::Comp(CompOp::Cancel)
                         && self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle =>
                 {
-                    Some(self.tool_in_spindle(c.span)?)
+                    Some(self.cfg.tool_in_spindle(self.state.tool_active, c.span)?)
                 }
                 _ => None,
             },

@@ -74,9 +74,22 @@ impl Interpreter<'_> {
     /// take no axis words (step 6b).
     fn set_code(&mut self, op: SetOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
         match op {
-            SetOp::Data => self.set_data(w, cmd),
-            SetOp::PresetOrClamp => self.preset(w, cmd),
-            SetOp::LocalSystem => self.local_system(w, cmd),
+            SetOp::Data => {
+                if self.tables.set_data(&self.cfg, &self.state, w, cmd)? {
+                    self.state.refresh_origin(&self.tables);
+                }
+                Ok(())
+            }
+            SetOp::PresetOrClamp => {
+                self.tables.preset(&self.cfg, &self.state, w, cmd)?;
+                self.state.refresh_origin(&self.tables);
+                Ok(())
+            }
+            SetOp::LocalSystem => {
+                self.tables.local_system(&self.cfg, &self.state, w, cmd)?;
+                self.state.refresh_origin(&self.tables);
+                Ok(())
+            }
             SetOp::ProgramZero => self.program_zero(w, cmd),
             SetOp::RefStore(_) | SetOp::ShiftCancel | SetOp::ShiftSuspend(_) => Ok(()),
         }

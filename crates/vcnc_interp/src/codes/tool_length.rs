@@ -88,12 +88,13 @@ impl Interpreter<'_> {
             None => self.state.modal.tool_length,
         };
         if let Some(h) = h {
-            self.state.h_number = self.offset_word(&h)?;
+            self.state.h_number = self.cfg.offset_word(&h, self.state.tool_active)?;
         } else if mode != ToolLength::Off
             && code.is_some()
             && self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle
         {
-            self.state.h_number = self.tool_in_spindle(code.map_or(w.first, |c| c.span))?;
+            let at = code.map_or(w.first, |c| c.span);
+            self.state.h_number = self.cfg.tool_in_spindle(self.state.tool_active, at)?;
         }
         let sign = match mode {
             ToolLength::Plus => 1.0,
