@@ -220,6 +220,14 @@ impl Interpreter<'_> {
         if self.state.cycle.code.is_some() {
             m |= bit(b'R') | bit(b'Q');
         }
+        if w.axis_user.is_some_and(|u| {
+            matches!(
+                u.def.op,
+                crate::dialect::GOp::Cycle(crate::dialect::CycleOp::CircleCut(..))
+            )
+        }) {
+            m |= bit(b'I') | bit(b'K') | bit(b'Q');
+        }
         if w.once(crate::dialect::GOp::Set(SetOp::Data)).is_some()
             && w.get(b'L')
                 .is_some_and(|l| (10.0..=13.0).contains(&l.value))

@@ -13,9 +13,8 @@
 //!
 //! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
 //! so are the O-word subroutines and loops (`macros/oword.rs`). Lathe
-//! mode adds G7/G8, the finishing cycle G70 and the threading cycle G76.
-//! Not read: G71/G72,
-//! splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
+//! mode adds G7/G8, the finishing cycle G70, the roughing cycles G71/G72
+//! (and .1, .2) and the threading cycle G76. Not read: splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
@@ -23,7 +22,7 @@ use super::{
     ThreadLead, ToolChangeSpindle, bit, g,
 };
 use super::{
-    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, SetOp, TurnOp,
+    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, RoughPockets, SetOp, TurnOp,
     m_codes::{MRow, m},
 };
 use super::{Diameter, SurfaceSpeedOn};
@@ -216,11 +215,27 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (
         710,
-        "LinuxCNC's lathe roughing cycle G71 is not run by vcnc",
+        "LinuxCNC's lathe roughing cycle G71 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        711,
+        "LinuxCNC's lathe roughing cycle G71.1 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        712,
+        "LinuxCNC's lathe roughing cycle G71.2 runs in lathe mode: use --dialect linuxcnc-lathe",
     ),
     (
         720,
-        "LinuxCNC's lathe roughing cycle G72 is not run by vcnc",
+        "LinuxCNC's lathe roughing cycle G72 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        721,
+        "LinuxCNC's lathe roughing cycle G72.1 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        722,
+        "LinuxCNC's lathe roughing cycle G72.2 runs in lathe mode: use --dialect linuxcnc-lathe",
     ),
     (
         760,
@@ -282,6 +297,14 @@ const LINUXCNC_LATHE_G: &[GRow] = &[
     g(700, GOp::Turn(TurnOp::NgcFinishCycle), Group::NonModal)
         .reads(bit(b'Q') | bit(b'D') | bit(b'E') | bit(b'P'))
         .claims_axes(),
+    // G71/G72 Q [X Z D I R]: roughing to the profile of subroutine Q
+    // (codes/ngc_rough.rs); .1 cuts no pocket, .2 those after the first.
+    rough(710, false, RoughPockets::All),
+    rough(711, false, RoughPockets::None),
+    rough(712, false, RoughPockets::AfterFirst),
+    rough(720, true, RoughPockets::All),
+    rough(721, true, RoughPockets::None),
+    rough(722, true, RoughPockets::AfterFirst),
     // G76 P Z I J K [R Q H E L]: the threading cycle (codes/ngc_thread.rs).
     g(760, GOp::Turn(TurnOp::NgcThreadCycle), Group::NonModal)
         .reads(
@@ -297,6 +320,18 @@ const LINUXCNC_LATHE_G: &[GRow] = &[
         )
         .claims_axes(),
 ];
+
+/// A roughing cycle's row: G `code` (× 10) reads Q, D, I, R and its start
+/// point X Z.
+const fn rough(code: u16, facing: bool, pockets: RoughPockets) -> GRow {
+    g(
+        code,
+        GOp::Turn(TurnOp::NgcRoughCycle { facing, pockets }),
+        Group::NonModal,
+    )
+    .reads(bit(b'Q') | bit(b'D') | bit(b'I') | bit(b'R'))
+    .claims_axes()
+}
 
 /// LinuxCNC in lathe mode (a lathe configuration: X and Z, the XZ plane,
 /// G7/G8): the mill dialect's reading and codes, X in radii until G7, G96

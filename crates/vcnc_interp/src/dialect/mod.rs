@@ -29,7 +29,8 @@ pub use macro_rules::{
     ExtendedG, IsoMacros, MachineVars, MacroFiles, MacroRules, ModalLocals, VarTable,
 };
 pub use ops::{
-    CompOp, CycleOp, FlowOp, FrameOp, GOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp,
+    CircleCutForm, CompOp, CycleOp, FlowOp, FrameOp, GOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp,
+    RoughPockets, SetOp, TurnOp,
 };
 
 use crate::events::Plane;

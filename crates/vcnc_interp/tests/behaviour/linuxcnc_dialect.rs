@@ -791,8 +791,6 @@ fn h0_beside_g49_and_a_bare_g53_alarm_as_in_rs274() {
 /// stays at its end. rs274 on this program: traverse (11, 2), (5, 0),
 /// feed (5, −10), (8, −15), (10, −15), twice (radii). The 40 programs of
 /// `tests/fixtures/linuxcnc_lathe` check the single pass against rs274.
-/// Offset passes (D, E not 0) are refused: vcnc does not offset the
-/// profile.
 #[test]
 fn g70_runs_the_profile_subroutine_in_lathe_mode() {
     let program = "G18 G21 G90 G7 G95\nS800 M3\nO100 sub\nG1 X10 Z0\nG1 Z-10\nG1 X16 Z-15\nG1 X20\nO100 endsub\nG0 X22 Z2\nG70 Q100 P2 F0.05\nM2\n";
@@ -812,14 +810,20 @@ fn g70_runs_the_profile_subroutine_in_lathe_mode() {
     ];
     let want: Vec<(f64, f64)> = pass.iter().chain(&pass[..]).copied().collect();
     assert_eq!(ends, want);
-    let (_, out) = run_str(
+    // One pass runs at E (0 here): D alone leaves the profile as it is,
+    // as rs274 does (`tests/fixtures/linuxcnc_lathe_cycles` checks the
+    // offset passes).
+    let (ev, out) = run_str(
         &Dialect::linuxcnc_lathe(),
         &program.replace("G70 Q100 P2", "G70 Q100 D0.5"),
     );
-    assert!(
-        matches!(&out, Outcome::Alarm(d) if (d.code, d.line) == (Code::E109, 10)),
-        "{out:?}"
-    );
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let ends: Vec<(f64, f64)> = ev
+        .iter()
+        .filter_map(Event::motion_end)
+        .map(|p| (p.get(0), p.get(2)))
+        .collect();
+    assert_eq!(ends, pass);
     let (_, out) = run_str(
         &Dialect::linuxcnc_lathe(),
         &program.replace("G70 Q100 P2", "G70 Q200"),
