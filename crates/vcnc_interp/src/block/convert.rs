@@ -309,11 +309,11 @@ impl Interpreter<'_> {
         if span_mm >= 1.0 {
             return None;
         }
-        let lathe = self.cfg.dialect.diameter.axis.is_some();
+        let lathe = self.cfg.dialect.diameter.lathe;
         let whole: Vec<&str> = crate::detect::dialects()
             .iter()
             .filter(|d| d.integers == IntegerWords::WholeUnits)
-            .filter(|d| d.diameter.axis.is_some() == lathe)
+            .filter(|d| d.diameter.lathe == lathe)
             .map(|d| d.name)
             .collect();
         let w = alarms::whole_units_likely(first, longest, &whole);

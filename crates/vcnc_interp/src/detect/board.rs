@@ -110,7 +110,7 @@ fn named(all: &[Dialect], names: &[&str]) -> u32 {
 }
 
 pub(super) fn is_lathe(d: &Dialect) -> bool {
-    d.diameter.axis.is_some()
+    d.diameter.lathe
 }
 
 impl Board {

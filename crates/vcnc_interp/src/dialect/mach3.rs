@@ -143,6 +143,12 @@ pub(super) fn mach3() -> Dialect {
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
         polar_words: false,
+        // Mach3Mill has no G7/G8 (diameter mode is Mach3 Turn's).
+        diameter: super::Diameter {
+            axis: None,
+            at_power_on: false,
+            lathe: false,
+        },
         // Mach3 reads as grbl does: no polar words, no nested-comment
         // alarm (those are rs274's).
         lex: super::grbl::GRBL_LEX,

@@ -350,6 +350,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         diameter: Diameter {
             axis: None,
             at_power_on: false,
+            lathe: false,
         },
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,

@@ -302,6 +302,10 @@ pub struct Diameter {
     pub axis: Option<u8>,
     /// Whether diameter programming is on at power-on.
     pub at_power_on: bool,
+    /// A lathe's dialect: X is the work's radius, G41/G42 take a tool's
+    /// nose radius and tip. LinuxCNC's mill reads G7/G8 on its X axis
+    /// (`axis`) without being one.
+    pub lathe: bool,
 }
 
 /// The path of a G00 that moves several axes.

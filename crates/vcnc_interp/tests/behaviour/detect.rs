@@ -189,12 +189,13 @@ fn lathes_by_their_signs() {
         "{}",
         d.describe()
     );
-    // LinuxCNC's lathe mode: G7 (diameters) only it knows.
+    // LinuxCNC's lathe mode: G18, X and Z only (G7, diameters, the mill
+    // mode reads too).
     chosen(
         "G7 G18 G21 ; diameter mode\nT1 M6\nG0 X20 Z2\nG1 Z-10 F100\nX30\nM2\n",
         "turn.nc",
         "linuxcnc-lathe",
-        &["G7"],
+        &["X and Z only"],
     );
     // The seed lathe: CR= arcs, whole-unit integers, G70/G71 units.
     chosen(
