@@ -8,11 +8,10 @@
 //! need no interpreter to ask them.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::{AxisWord, Dialect};
-use crate::events::Plane;
-use crate::machine::Machine;
+use vcnc_core::events::Plane;
 use vcnc_core::geometry::PlaneAxes;
+use vcnc_core::machine::Machine;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// Operator switches.
@@ -49,7 +48,7 @@ pub(crate) struct Config<'a> {
     /// (the dialect's integers, or a calculator-style machine).
     pub whole_words: bool,
     /// Whether the markers of program coordinates are emitted
-    /// ([`crate::Interpreter::with_program_markers`]).
+    /// (`Interpreter::with_program_markers`).
     pub markers: bool,
 }
 
@@ -76,17 +75,9 @@ impl<'a> Config<'a> {
             max_feed: machine.max_feed_mm_per_min(),
             macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
             whole_words: dialect.integers == crate::dialect::IntegerWords::WholeUnits
-                || machine.params.decimal_input == crate::machine::DecimalInput::Calculator,
+                || machine.params.decimal_input == vcnc_core::machine::DecimalInput::Calculator,
             markers: false,
         }
-    }
-
-    /// The word that positioned machine axis `i` in this block, if any.
-    pub fn axis_span(&self, w: &Words<'_>, i: usize) -> Option<Span> {
-        let a = self.axis_words.get(i)?;
-        w.get(a.letter)
-            .or_else(|| a.inc.and_then(|l| w.get(l)))
-            .map(|word| word.span)
     }
 
     /// The machine axes of a plane (E305 when the machine lacks one).

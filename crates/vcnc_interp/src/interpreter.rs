@@ -16,7 +16,8 @@
 use crate::Sink;
 use crate::alarms;
 use crate::block::words::Words;
-use crate::config::{Config, Options};
+use crate::config::Config;
+pub use crate::config::Options;
 use crate::dialect::Dialect;
 use crate::events::{EndCode, Event};
 use crate::flow::{Flow, ProgramStore, first_value};

@@ -33,10 +33,9 @@ mod motion;
 mod plane;
 pub mod state;
 
-pub use config::Options;
 pub use dialect::Dialect;
 pub use flow::{NoPrograms, ProgramStore};
-pub use interpreter::{HAND_OVER, Interpreter, MAX_ALARMS, Outcome};
+pub use interpreter::{HAND_OVER, Interpreter, MAX_ALARMS, Options, Outcome};
 pub use state::{State, Tables};
 pub use vcnc_core::{
     ArcDir, Cycle, EndCode, Event, Feed, FrameInfo, Loc, MAX_AXES, Machine, NullSink, PathMode,

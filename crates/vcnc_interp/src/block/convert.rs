@@ -37,8 +37,8 @@ pub(crate) struct Units<'a> {
 }
 
 impl<'a> Units<'a> {
-    /// The units of the modal codes `modal`; `whole_words` as
-    /// [`Config::whole_words`](crate::config::Config::whole_words).
+    /// The units of the modal codes `modal`; `whole_words` as the run's
+    /// configuration says (`Config::whole_words`).
     #[inline]
     pub fn new(modal: &'a Modal, whole_words: bool) -> Units<'a> {
         Units { modal, whole_words }

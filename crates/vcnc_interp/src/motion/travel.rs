@@ -39,6 +39,14 @@ impl OverTravel {
 }
 
 impl Config<'_> {
+    /// The word that positioned machine axis `i` in this block, if any.
+    fn axis_span(&self, w: &Words<'_>, i: usize) -> Option<Span> {
+        let a = self.axis_words.get(i)?;
+        w.get(a.letter)
+            .or_else(|| a.inc.and_then(|l| w.get(l)))
+            .map(|word| word.span)
+    }
+
     /// Stage 3 for a move of the current block: the alarm points at the
     /// axis word of `w`, else at `cmd`.
     pub fn travel_alarm(
