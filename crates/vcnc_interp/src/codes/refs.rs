@@ -131,10 +131,20 @@ impl Interpreter<'_> {
     /// their data; the other frame codes take none (step 6).
     fn frame_axis_code(&mut self, op: FrameOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
         match op {
-            FrameOp::ScaleOn => self.scale_on(w, cmd),
-            FrameOp::MirrorOn => self.mirror(w, cmd, true),
-            FrameOp::MirrorOff => self.mirror(w, cmd, false),
-            FrameOp::RotateOn => self.rotate_on(w, cmd),
+            FrameOp::ScaleOn => {
+                let next = (self.tables.transforms).scaled((&self.cfg, &self.state), w, cmd)?;
+                self.use_transforms(next, cmd)
+            }
+            FrameOp::MirrorOn | FrameOp::MirrorOff => {
+                let on = matches!(op, FrameOp::MirrorOn);
+                let read = (&self.cfg, &self.state);
+                let next = (self.tables.transforms).mirrored(read, w, (cmd, on))?;
+                self.use_transforms(next, cmd)
+            }
+            FrameOp::RotateOn => {
+                let next = (self.tables.transforms).rotated((&self.cfg, &self.state), w, cmd)?;
+                self.use_transforms(next, cmd)
+            }
             FrameOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
             FrameOp::ToolLengthPlus
             | FrameOp::ToolLengthMinus
