@@ -61,7 +61,7 @@ fn long(x: Option<i64>, span: Span) -> Result<Value, Diagnostic> {
 
 fn truth(b: bool, lang: Lang) -> Value {
     match lang {
-        Lang::MacroB => Value::Double(f64::from(u8::from(b))),
+        Lang::MacroB | Lang::Ngc => Value::Double(f64::from(u8::from(b))),
         Lang::Syntec => Value::Long(i64::from(b)),
     }
 }
@@ -122,6 +122,9 @@ pub(crate) fn binary(
     b: Value,
     span: Span,
 ) -> Result<Value, Diagnostic> {
+    if lang == Lang::Ngc {
+        return super::ngc::ngc_binary(op, num(a), num(b), span);
+    }
     match op {
         BinOp::Eq | BinOp::Ne => {
             let equal = match (a, b) {
@@ -145,7 +148,7 @@ pub(crate) fn binary(
     }
     let (a, b) = (operand(a), operand(b));
     match lang {
-        Lang::MacroB => macro_b_arith(op, num(a), num(b), span),
+        Lang::MacroB | Lang::Ngc => macro_b_arith(op, num(a), num(b), span),
         Lang::Syntec => syntec_arith(op, a, b, span),
     }
 }
@@ -225,7 +228,7 @@ pub(crate) fn negate(v: Value, span: Span) -> Result<Value, Diagnostic> {
 /// A number result of `lang`'s type for a whole-number function.
 fn whole_result(x: f64, lang: Lang, span: Span) -> Result<Value, Diagnostic> {
     match lang {
-        Lang::MacroB => real(x, span),
+        Lang::MacroB | Lang::Ngc => real(x, span),
         Lang::Syntec if x.abs() < I64_LIMIT => {
             // Whole (rounded above) and in range: exact.
             #[allow(clippy::cast_possible_truncation)]
@@ -244,6 +247,9 @@ pub(crate) fn function(
 ) -> Result<Value, Diagnostic> {
     let x = args.first().copied().map_or(0.0, num);
     let y = args.get(1).copied().map_or(0.0, num);
+    if lang == Lang::Ngc {
+        return super::ngc::ngc_function(f, x, y, span);
+    }
     let domain = |what: &str| Err(alarms::macro_domain(span, what));
     match f {
         Func::Sin => real(sin_cos_deg(x).0, span),
@@ -359,14 +365,26 @@ impl Interpreter<'_> {
             match &op.code {
                 OpCode::Num(v) => st.push(*v),
                 OpCode::Var(kind, n) => {
-                    let v = self.read_var(*kind, *n, span)?;
+                    let v = if lang == Lang::Ngc {
+                        Value::Double(self.ngc_numbered(f64::from(*n), span)?)
+                    } else {
+                        self.read_var(*kind, *n, span)?
+                    };
                     st.push(v);
                 }
                 OpCode::VarAt(kind) => {
                     let index = st.pop().unwrap_or_default();
-                    let n = self.var_number(*kind, index, span)?;
-                    let v = self.read_var(*kind, n, span)?;
+                    let v = if lang == Lang::Ngc {
+                        Value::Double(self.ngc_numbered(num(index), span)?)
+                    } else {
+                        let n = self.var_number(*kind, index, span)?;
+                        self.read_var(*kind, n, span)?
+                    };
                     st.push(v);
+                }
+                OpCode::Named(i) => {
+                    let v = self.ngc_named(text_name(e, *i), span)?;
+                    st.push(Value::Double(v));
                 }
                 OpCode::Neg => {
                     let v = negate(st.pop().unwrap_or_default(), span)?;
@@ -479,6 +497,17 @@ impl Interpreter<'_> {
                 Ok(Value::Null)
             }
             Func::Wait | Func::Sleep | Func::Draw | Func::Param => Ok(Value::Null),
+            // `EXISTS[#<name>]`; `EXISTS[#n]` is 1 for any parameter number.
+            Func::Exists => match texts.first() {
+                Some(Arg::Name(name)) => {
+                    Ok(Value::Double(f64::from(u8::from(self.ngc_exists(name)))))
+                }
+                _ => {
+                    let n = args.first().copied().map_or(0.0, num);
+                    super::ngc::param_number(n, span)?;
+                    Ok(Value::Double(1.0))
+                }
+            },
             Func::Round => match self.macros.round_per_unit {
                 Some(per_unit) => {
                     let x = args.first().copied().map_or(0.0, num);
@@ -627,6 +656,14 @@ fn to_long(v: Value, span: Span) -> Result<Value, Diagnostic> {
     match v {
         Value::Double(x) => Ok(Value::Long(integer_part(x, span)?)),
         v => Ok(v),
+    }
+}
+
+/// The name of `OpCode::Named(i)` in `e`.
+fn text_name(e: &Expr, i: u16) -> &str {
+    match e.texts.get(usize::from(i)).and_then(|t| t.first()) {
+        Some(Arg::Name(name)) => name,
+        _ => "",
     }
 }
 

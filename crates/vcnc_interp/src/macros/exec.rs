@@ -134,7 +134,9 @@ impl Interpreter<'_> {
                 Ok(Step::Next)
             }
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
-            StmtKind::Words(_) | StmtKind::Percent => Ok(Step::Next),
+            // A LinuxCNC line runs through `ngc_block` (front.rs) and is
+            // never cached as a statement.
+            StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
         }
     }
 
@@ -151,6 +153,11 @@ impl Interpreter<'_> {
                 let v = self.eval(e, lang)?;
                 Ok((*kind, self.var_number(*kind, v, *span)?))
             }
+            // Only LinuxCNC's lines name parameters, and `ngc.rs` writes them.
+            Target::Named(_, span) => Err(vcnc_syntax::macros::ngc_expected(
+                *span,
+                "a numbered variable (named parameters are LinuxCNC's)",
+            )),
         }
     }
 

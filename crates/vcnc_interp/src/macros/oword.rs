@@ -21,7 +21,7 @@
 //! (LinuxCNC's subroutine path), once, through the `ProgramStore`; the name
 //! must be a plain file name, so no call reads outside those directories.
 
-use super::ngc::{Kw, OStmt, o_statement, operands};
+use super::ngc::{Kw, OStmt, o_statement};
 use crate::alarms;
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
@@ -173,8 +173,7 @@ impl Interpreter<'_> {
             .ok_or_else(|| unpaired(span, &st, "place in the program"))?;
         let here = entries[here_at].clone();
         let sc = here.scope;
-        let params = self.macros.ngc.get_or_insert_with(Box::default);
-        let values = operands(&bytes, st.rest, params)?;
+        let values = self.ngc_operands(&bytes, st.rest)?;
         let value = values.first().copied();
         let cond = || value.ok_or_else(|| unpaired(span, &st, "[condition]"));
         let next = here_at + 1;

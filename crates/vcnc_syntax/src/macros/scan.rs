@@ -47,6 +47,10 @@ impl<'a> Scan<'a> {
 
     /// Skips blanks and comments; `Err` for a comment left open.
     pub fn trivia(&mut self) -> Result<(), Diagnostic> {
+        if self.syn.lang == Lang::Ngc {
+            self.ngc_trivia();
+            return Ok(());
+        }
         loop {
             match self.at(0) {
                 b' ' | b'\t' | b'\r' | b'\n' | 0x0c => self.pos += 1,
@@ -96,6 +100,22 @@ impl<'a> Scan<'a> {
         }
     }
 
+    /// LinuxCNC's blanks: spaces, tabs, `( )` comments (one left open
+    /// runs to the end) and a `;` comment to the end of the line.
+    fn ngc_trivia(&mut self) {
+        loop {
+            match self.at(0) {
+                b' ' | b'\t' | b'\r' => self.pos += 1,
+                b'(' => match memchr::memchr(b')', &self.text[self.pos..self.end]) {
+                    Some(k) => self.pos += k + 1,
+                    None => self.pos = self.end,
+                },
+                b';' | b'\n' => self.pos = self.end,
+                _ => return,
+            }
+        }
+    }
+
     /// The next byte after blanks and comments (0 at the end).
     pub fn peek(&mut self) -> Result<u8, Diagnostic> {
         self.trivia()?;
@@ -124,7 +144,7 @@ impl<'a> Scan<'a> {
     fn ident_byte(&self, b: u8, first: bool) -> bool {
         match self.syn.lang {
             // Macro B keywords are letters only: `#1EQ2`, `GOTO10`.
-            Lang::MacroB => b.is_ascii_alphabetic(),
+            Lang::MacroB | Lang::Ngc => b.is_ascii_alphabetic(),
             Lang::Syntec => {
                 b.is_ascii_alphabetic() || (!first && (b.is_ascii_digit() || b == b'_'))
             }
@@ -193,6 +213,9 @@ impl<'a> Scan<'a> {
             return Ok(None);
         }
         let span = Span::new(start, start + k);
+        if self.syn.lang == Lang::Ngc {
+            return self.ngc_number(span).map(Some);
+        }
         let n = parse_number(&self.text[..start + k], start).map_err(|e| {
             use crate::number::NumberError;
             match e {
@@ -210,6 +233,25 @@ impl<'a> Scan<'a> {
             point: n.point,
             span,
         }))
+    }
+
+    /// LinuxCNC reads any run of digits and points as one number; the
+    /// text holds nothing but digits and points, so the float parser can
+    /// only fail (`1.2.3`, `.`) or give a large finite value (or infinity
+    /// for 309 digits, which the word's and the setting's range checks
+    /// stop).
+    fn ngc_number(&mut self, span: Span) -> Result<Num, Diagnostic> {
+        let digits = &self.text[span.start as usize..span.end as usize];
+        let value = std::str::from_utf8(digits)
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .ok_or_else(|| super::ngc::ngc_expected(span, "a number"))?;
+        self.pos = span.end as usize;
+        Ok(Num {
+            value,
+            point: false,
+            span,
+        })
     }
 
     fn hex(&mut self, start: usize) -> Result<Num, Diagnostic> {
