@@ -33,7 +33,7 @@ mod ngc;
 mod scan;
 mod stmt;
 
-pub use ngc::{ngc_expected, ngc_operands, parse_ngc_line};
+pub use ngc::{Kw, OStmt, ngc_expected, ngc_operands, o_statement, parse_ngc_line};
 pub use stmt::{Extent, parse_iso_block, parse_syntec_statement, syntec_extent};
 
 use crate::block::Addr;

@@ -13,9 +13,9 @@
 //! number, parameter, `[expression]` or function, never a bare
 //! expression (`#1 = 2 G1 X3` sets 2). The interpreter evaluates the
 //! items in order with the parameters as they were before the line, then
-//! applies the settings. O-word statements keep their own reader in the
-//! interpreter; their operands (`[c]`, a call's `[1] [#2 * 3]`) are
-//! parsed here by [`ngc_operands`].
+//! applies the settings. An O-word statement's label and keyword are read
+//! by [`o_statement`] and its operands (`[c]`, a call's `[1] [#2 * 3]`)
+//! by [`ngc_operands`]; the interpreter's `oword.rs` runs them.
 
 use super::expr::ExprParser;
 use super::scan::Scan;
@@ -200,6 +200,120 @@ pub fn ngc_operands(text: &[u8], at: usize) -> Result<Vec<Expr>, Diagnostic> {
             _ => return Err(ngc_expected(Span::new(s.pos, s.pos + 1), "a value in [ ]")),
         }
     }
+}
+
+/// An O-word statement's keyword.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[allow(missing_docs)] // named after the keyword
+pub enum Kw {
+    Sub,
+    EndSub,
+    Call,
+    Return,
+    If,
+    ElseIf,
+    Else,
+    EndIf,
+    While,
+    EndWhile,
+    Do,
+    Repeat,
+    EndRepeat,
+    Break,
+    Continue,
+}
+
+const KEYWORDS: &[(&str, Kw)] = &[
+    ("endsub", Kw::EndSub),
+    ("sub", Kw::Sub),
+    ("call", Kw::Call),
+    ("return", Kw::Return),
+    ("elseif", Kw::ElseIf),
+    ("else", Kw::Else),
+    ("endif", Kw::EndIf),
+    ("if", Kw::If),
+    ("endwhile", Kw::EndWhile),
+    ("while", Kw::While),
+    ("do", Kw::Do),
+    ("endrepeat", Kw::EndRepeat),
+    ("repeat", Kw::Repeat),
+    ("break", Kw::Break),
+    ("continue", Kw::Continue),
+];
+
+/// `[N…] o<label> keyword …`: the label (`100`, or a name in lower case),
+/// the keyword and where its operands start.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OStmt {
+    /// `100` for `o100` (leading zeros dropped), a name in lower case.
+    pub label: String,
+    /// The keyword.
+    pub kw: Kw,
+    /// Byte index after the keyword.
+    pub rest: usize,
+}
+
+/// The O-word statement of `text` (from `start`), if the line is one.
+pub fn o_statement(text: &[u8], start: usize) -> Option<OStmt> {
+    let mut i = start;
+    let skip = |i: &mut usize| {
+        while matches!(text.get(*i), Some(b' ' | b'\t' | b'\r')) {
+            *i += 1;
+        }
+    };
+    skip(&mut i);
+    // Block delete, then a sequence number before it.
+    if text.get(i) == Some(&b'/') {
+        i += 1;
+        skip(&mut i);
+    }
+    if matches!(text.get(i), Some(b'N' | b'n')) {
+        i += 1;
+        while matches!(text.get(i), Some(b'0'..=b'9' | b' ' | b'\t')) {
+            i += 1;
+        }
+    }
+    if !matches!(text.get(i), Some(b'O' | b'o')) {
+        return None;
+    }
+    i += 1;
+    skip(&mut i);
+    let label = if text.get(i) == Some(&b'<') {
+        let close = text[i..].iter().position(|c| *c == b'>')?;
+        let name: String = text[i + 1..i + close]
+            .iter()
+            .filter(|c| !c.is_ascii_whitespace())
+            .map(|c| char::from(c.to_ascii_lowercase()))
+            .collect();
+        i += close + 1;
+        name
+    } else {
+        let digits = text[i..].iter().take_while(|c| c.is_ascii_digit()).count();
+        if digits == 0 {
+            return None;
+        }
+        // `o0100` is `o100`.
+        let label = String::from_utf8_lossy(&text[i..i + digits])
+            .trim_start_matches('0')
+            .to_string();
+        i += digits;
+        label
+    };
+    skip(&mut i);
+    let len = text[i..]
+        .iter()
+        .take_while(|c| c.is_ascii_alphabetic())
+        .count();
+    let word = &text[i..i + len];
+    let kw = KEYWORDS
+        .iter()
+        .find(|(k, _)| word.eq_ignore_ascii_case(k.as_bytes()))?
+        .1;
+    Some(OStmt {
+        label,
+        kw,
+        rest: i + len,
+    })
 }
 
 #[cfg(test)]
