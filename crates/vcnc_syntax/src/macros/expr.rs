@@ -221,6 +221,13 @@ type OpRow = (&'static str, BinOp);
 /// What the expression parser needs to know about a language: data, so
 /// that the one parser reads all three.
 pub(super) struct Grammar {
+    /// What is a comment between tokens.
+    pub comments: Comments,
+    /// Digits and `_` continue an identifier (Syntec's `END_IF`,
+    /// `ATAN2`); elsewhere keywords are letters only (`#1EQ2`, `GOTO10`).
+    pub ident_tail: bool,
+    /// `0x1F` hexadecimal numbers (Syntec).
+    pub hex_numbers: bool,
     /// Binary operators by level, loosest first; operators of one level
     /// associate to the left.
     levels: &'static [&'static [OpRow]],
@@ -231,13 +238,13 @@ pub(super) struct Grammar {
     funcs: &'static [(&'static str, Sig)],
     unavailable: &'static [&'static str],
     /// Two-letter abbreviations of words (Fanuc's).
-    abbreviations: &'static [(&'static str, &'static str)],
+    pub abbreviations: &'static [(&'static str, &'static str)],
     /// `( )` groups as well as `[ ]` (Syntec).
-    paren_groups: bool,
+    pub paren_groups: bool,
     /// The brackets of a function's arguments.
     call: (u8, u8),
     /// `@n` variables (Syntec globals).
-    at_vars: bool,
+    pub at_vars: bool,
     /// `NOT` is a unary operator (Syntec).
     not: bool,
     /// A number written without a point is a Long (Syntec).
@@ -251,12 +258,27 @@ pub(super) struct Grammar {
     /// (rs274's recursion); `#` takes any value (`##1`, `#<name>`); an
     /// operator's span runs to the end of its right operand; messages say
     /// what was expected.
-    ngc_values: bool,
+    pub ngc_values: bool,
     /// The help of "expected a value".
     operand_help: &'static str,
 }
 
+/// Comments between tokens.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Comments {
+    /// `( )`, whose text is kept (Macro B's #3000 messages); an unclosed
+    /// one alarms.
+    ParenMessages,
+    /// `(* *)` and, with `MacroSyntax::slash_comments`, `//` (Syntec).
+    StarParen,
+    /// `( )` (unclosed: to the end) and `;` to the end (rs274).
+    ParenSemicolon,
+}
+
 const MACRO_B: Grammar = Grammar {
+    comments: Comments::ParenMessages,
+    ident_tail: false,
+    hex_numbers: false,
     levels: &[
         &[
             ("EQ", BinOp::Eq),
@@ -296,6 +318,9 @@ const MACRO_B: Grammar = Grammar {
 };
 
 const SYNTEC: Grammar = Grammar {
+    comments: Comments::StarParen,
+    ident_tail: true,
+    hex_numbers: true,
     levels: &[
         &[("OR", BinOp::Or)],
         &[("XOR", BinOp::Xor)],
@@ -329,6 +354,9 @@ const SYNTEC: Grammar = Grammar {
 /// rs274's precedence (`interp_read.cc`'s levels): `**` binds tightest,
 /// then `* / MOD`, `+ -`, the comparisons, and `AND OR XOR` loosest.
 const NGC: Grammar = Grammar {
+    comments: Comments::ParenSemicolon,
+    ident_tail: false,
+    hex_numbers: false,
     levels: &[
         &[("AND", BinOp::And), ("OR", BinOp::Or), ("XOR", BinOp::Xor)],
         &[
@@ -373,11 +401,19 @@ pub(super) fn grammar(lang: Lang) -> &'static Grammar {
 
 /// The word `name` (upper case) stands for in `g`: the whole word of an
 /// abbreviation, else `name` itself.
-fn full_word<'n>(g: &Grammar, name: &'n str) -> &'n str {
+pub(super) fn full_word<'n>(g: &Grammar, name: &'n str) -> &'n str {
     g.abbreviations
         .iter()
         .find(|(short, _)| *short == name)
         .map_or(name, |(_, full)| full)
+}
+
+/// The abbreviation of word `full` in `g`, if it has one.
+pub(super) fn abbreviation(g: &Grammar, full: &str) -> Option<&'static str> {
+    g.abbreviations
+        .iter()
+        .find(|(_, f)| *f == full)
+        .map(|(short, _)| *short)
 }
 
 /// Whether `name` is a function of `lang` (known or unavailable).

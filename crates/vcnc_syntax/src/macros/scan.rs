@@ -5,7 +5,8 @@
 //! that context decides what a letter is: an address in a word block
 //! (`X10`), a keyword or a function in an expression (`SIN`, `END_IF`).
 
-use super::{Lang, MacroSyntax};
+use super::MacroSyntax;
+use super::expr::{Comments, Grammar, grammar};
 use crate::diagnostics as diag;
 use crate::number::parse_number;
 use vcnc_core::{Diagnostic, Span};
@@ -46,8 +47,14 @@ impl<'a> Scan<'a> {
     }
 
     /// Skips blanks and comments; `Err` for a comment left open.
+    /// The grammar of the text's language.
+    pub fn g(&self) -> &'static Grammar {
+        grammar(self.syn.lang)
+    }
+
     pub fn trivia(&mut self) -> Result<(), Diagnostic> {
-        if self.syn.lang == Lang::Ngc {
+        let comments = self.g().comments;
+        if comments == Comments::ParenSemicolon {
             self.ngc_trivia();
             return Ok(());
         }
@@ -61,7 +68,7 @@ impl<'a> Scan<'a> {
                         self.pos += 1;
                     }
                 }
-                b'(' if self.syn.lang == Lang::Syntec && self.at(1) == b'*' => {
+                b'(' if comments == Comments::StarParen && self.at(1) == b'*' => {
                     let open = self.pos;
                     self.pos += 2;
                     loop {
@@ -81,7 +88,7 @@ impl<'a> Scan<'a> {
                         self.pos += 1;
                     }
                 }
-                b'(' if self.syn.lang == Lang::MacroB => {
+                b'(' if comments == Comments::ParenMessages => {
                     let open = self.pos;
                     let rest = &self.text[self.pos + 1..self.end];
                     let Some(k) = memchr::memchr(b')', rest) else {
@@ -142,13 +149,8 @@ impl<'a> Scan<'a> {
 
     /// Whether byte `b` continues an identifier.
     fn ident_byte(&self, b: u8, first: bool) -> bool {
-        match self.syn.lang {
-            // Macro B keywords are letters only: `#1EQ2`, `GOTO10`.
-            Lang::MacroB | Lang::Ngc => b.is_ascii_alphabetic(),
-            Lang::Syntec => {
-                b.is_ascii_alphabetic() || (!first && (b.is_ascii_digit() || b == b'_'))
-            }
-        }
+        b.is_ascii_alphabetic()
+            || (self.g().ident_tail && !first && (b.is_ascii_digit() || b == b'_'))
     }
 
     /// Length of the identifier at `pos` (after blanks), 0 if none.
@@ -198,7 +200,7 @@ impl<'a> Scan<'a> {
     pub fn number(&mut self) -> Result<Option<Num>, Diagnostic> {
         self.trivia()?;
         let start = self.pos;
-        if self.syn.lang == Lang::Syntec
+        if self.g().hex_numbers
             && self.at(0) == b'0'
             && matches!(self.at(1), b'x' | b'X')
             && self.at(2).is_ascii_hexdigit()
@@ -213,7 +215,7 @@ impl<'a> Scan<'a> {
             return Ok(None);
         }
         let span = Span::new(start, start + k);
-        if self.syn.lang == Lang::Ngc {
+        if self.g().ngc_values {
             return self.ngc_number(span).map(Some);
         }
         let n = parse_number(&self.text[..start + k], start).map_err(|e| {
