@@ -202,7 +202,7 @@ impl Interpreter<'_> {
             .flow
             .find_sequence(frame.source, frame.program, n, &lex)
             .ok_or_else(|| alarms::sequence_not_found(span, n))?;
-        if c.lang == Lang::MacroB {
+        if super::eval::arith(c.lang).goto_into_loop_alarms {
             self.not_into_a_loop(c, src, word, n, to)?;
         }
         self.count_jump(span)?;

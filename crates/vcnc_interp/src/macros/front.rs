@@ -454,7 +454,7 @@ impl Interpreter<'_> {
                 MValue::Expr(e) => {
                     // Fanuc 0i: ROUND in an NC address rounds to the
                     // address's least input increment.
-                    if lang == Lang::MacroB {
+                    if super::eval::arith(lang).round_in_increments {
                         self.macros.round_per_unit = self.increments_per_unit(w.addr.0);
                     }
                     let v = self.eval(e, lang);
@@ -708,7 +708,7 @@ pub(crate) fn word_value(
     let whole = WHOLE_LETTERS.contains(&letter);
     Ok(match (lang, v) {
         (_, _) if letter == b'G' => (x, false),
-        (Lang::Syntec, Value::Long(_)) => (x, false),
+        (_, Value::Long(_)) if super::eval::arith(lang).longs => (x, false),
         (_, _) if whole => (x.round(), false),
         _ => (x, true),
     })
