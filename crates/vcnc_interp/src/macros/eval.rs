@@ -163,8 +163,8 @@ fn long(x: Option<i64>, span: Span) -> Result<Value, Diagnostic> {
         .ok_or_else(|| alarms::macro_range(span, "the result overflows a Long"))
 }
 
-fn truth(b: bool, lang: Lang) -> Value {
-    if arith(lang).longs {
+fn truth(b: bool, rules: &Arith) -> Value {
+    if rules.longs {
         Value::Long(i64::from(b))
     } else {
         Value::Double(f64::from(u8::from(b)))
@@ -231,6 +231,19 @@ pub(crate) fn binary(
     if rules.operators == Operators::Rs274 {
         return super::ngc::ngc_binary(op, num(a), num(b), span);
     }
+    fanuc_or_typed(rules, op, a, b, span)
+}
+
+/// [`binary`] under `IntegerPortions` or `Typed` operators (the
+/// evaluator's loop has sent rs274's elsewhere).
+#[inline]
+fn fanuc_or_typed(
+    rules: &Arith,
+    op: BinOp,
+    a: Value,
+    b: Value,
+    span: Span,
+) -> Result<Value, Diagnostic> {
     match op {
         BinOp::Eq | BinOp::Ne => {
             let equal = match (a, b) {
@@ -238,7 +251,7 @@ pub(crate) fn binary(
                 (Value::Null, _) | (_, Value::Null) => false,
                 (x, y) => num(x) == num(y),
             };
-            return Ok(truth(equal == (op == BinOp::Eq), lang));
+            return Ok(truth(equal == (op == BinOp::Eq), rules));
         }
         BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => {
             let (x, y) = (num(a), num(b));
@@ -248,7 +261,7 @@ pub(crate) fn binary(
                 BinOp::Gt => x > y,
                 _ => x >= y,
             };
-            return Ok(truth(holds, lang));
+            return Ok(truth(holds, rules));
         }
         _ => {}
     }
@@ -467,12 +480,15 @@ impl Interpreter<'_> {
     }
 
     fn eval_ops(&mut self, e: &Expr, lang: Lang, st: &mut Vec<Value>) -> Result<Value, Diagnostic> {
+        let rules = arith(lang);
+        let rs274 = rules.operators == Operators::Rs274;
+        let parameters = rules.table == Table::Parameters;
         for op in &e.ops {
             let span = op.span;
             match &op.code {
                 OpCode::Num(v) => st.push(*v),
                 OpCode::Var(kind, n) => {
-                    let v = if arith(lang).table == Table::Parameters {
+                    let v = if parameters {
                         Value::Double(self.ngc_numbered(f64::from(*n), span)?)
                     } else {
                         self.read_var(*kind, *n, span)?
@@ -481,7 +497,7 @@ impl Interpreter<'_> {
                 }
                 OpCode::VarAt(kind) => {
                     let index = st.pop().unwrap_or_default();
-                    let v = if arith(lang).table == Table::Parameters {
+                    let v = if parameters {
                         Value::Double(self.ngc_numbered(num(index), span)?)
                     } else {
                         let n = self.var_number(*kind, index, span)?;
@@ -509,7 +525,12 @@ impl Interpreter<'_> {
                 OpCode::Bin(b) => {
                     let y = st.pop().unwrap_or_default();
                     let x = st.pop().unwrap_or_default();
-                    st.push(binary(lang, *b, x, y, span)?);
+                    let v = if rs274 {
+                        super::ngc::ngc_binary(*b, num(x), num(y), span)?
+                    } else {
+                        fanuc_or_typed(rules, *b, x, y, span)?
+                    };
+                    st.push(v);
                 }
                 OpCode::Call(f, argc) => {
                     let at = st.len().saturating_sub(usize::from(*argc));

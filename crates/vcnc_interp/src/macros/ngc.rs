@@ -341,6 +341,7 @@ fn ngc_word(words: &[Word], addr: Addr, v: f64, span: Span) -> Result<Word, Diag
 }
 
 /// A value of LinuxCNC's arithmetic (`eval.rs` asks): rs274's rules.
+#[inline(never)]
 pub(crate) fn ngc_binary(
     op: vcnc_syntax::macros::BinOp,
     a: f64,
@@ -380,6 +381,7 @@ const EQUAL: f64 = 1e-4;
 /// ROUND half away from zero, `ATAN[y]/[x]` the full-circle angle (±180°);
 /// results are not checked here (a word or a setting that gets an
 /// infinite value alarms).
+#[inline(never)]
 pub(crate) fn ngc_function(
     f: vcnc_syntax::macros::Func,
     x: f64,
