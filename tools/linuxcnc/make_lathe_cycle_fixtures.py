@@ -14,7 +14,7 @@ line (`Cycles`), as vcnc gives them (these programs' subroutines are not
 O100, which make_lathe_fixtures.Lathe reads as a Fanuc G70's profile, one
 move per block). machine.toml is the built-in turning centre
 starting at X0 Z0, as rs274 does. The test is
-`linuxcnc_lathe_cycles_match_rs274` in crates/vcnc/tests/fixtures.rs.
+`linuxcnc_lathe_cycles_match_rs274` in crates/vcnc/tests/behaviour/fixtures.rs.
 
 Usage: make_lathe_cycle_fixtures.py [--rs274 PATH]
 """

@@ -5,6 +5,7 @@
 //! reach the motion stage through `modal.rs`'s `send`.
 
 pub(crate) mod calls;
+pub(crate) mod circle_cut;
 pub(crate) mod comp;
 pub(crate) mod corner;
 pub(crate) mod cycles;

@@ -133,6 +133,7 @@ impl Interpreter<'_> {
             | CycleOp::PatternArc
             | CycleOp::PatternGrid => self.pattern(op, w, cmd),
             CycleOp::PocketRect | CycleOp::PocketCircle => self.pocket(op, w, cmd),
+            CycleOp::CircleCut(dir, form) => self.circle_cut(dir, form, w, cmd),
             CycleOp::Drill(..) | CycleOp::Cancel => Ok(()),
         }
     }

@@ -190,14 +190,6 @@ const NOT_RUN: &[(u16, &str)] = &[
     (50, "LinuxCNC's cubic spline G5 is not run by vcnc"),
     (51, "LinuxCNC's quadratic B-spline G5.1 is not run by vcnc"),
     (52, "LinuxCNC's NURBS block G5.2/G5.3 is not run by vcnc"),
-    (
-        70,
-        "LinuxCNC's lathe diameter mode G7 (X in diameters) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
-    ),
-    (
-        80,
-        "LinuxCNC's lathe radius mode G8 (X in radii) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
-    ),
     (171, "the UVW planes G17.1-G19.1 are not run by vcnc"),
     (181, "the UVW planes G17.1-G19.1 are not run by vcnc"),
     (191, "the UVW planes G17.1-G19.1 are not run by vcnc"),
@@ -265,9 +257,15 @@ const LINUXCNC_LEX: LexRules = LexRules {
 /// integers, its codes and rules) with the codes and policies above.
 pub(super) fn linuxcnc() -> Dialect {
     let m: Vec<&[MRow]> = GRBL_M.iter().copied().chain([LINUXCNC_M]).collect();
-    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
+    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, LINUXCNC_DIAMETER_G], &m);
     Dialect {
         name: "linuxcnc",
+        // G7/G8 on X, in radii at power-on; not a lathe.
+        diameter: Diameter {
+            axis: Some(b'X'),
+            at_power_on: false,
+            lathe: false,
+        },
         g,
         m,
         unsupported: NOT_RUN,
@@ -289,10 +287,15 @@ pub(super) fn linuxcnc() -> Dialect {
     }
 }
 
-/// Lathe mode's G7 (X in diameters) and G8 (in radii).
-const LINUXCNC_LATHE_G: &[GRow] = &[
+/// G7 (X in diameters) and G8 (in radii): lathe mode's, which rs274 runs
+/// in a mill program too (`G7 G0 X1` goes to X0.5).
+const LINUXCNC_DIAMETER_G: &[GRow] = &[
     g(70, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode),
     g(80, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode),
+];
+
+/// Lathe mode's cycles.
+const LINUXCNC_LATHE_G: &[GRow] = &[
     // G70 Q [X Z D E P]: finishing along the profile of subroutine Q.
     g(700, GOp::Turn(TurnOp::NgcFinishCycle), Group::NonModal)
         .reads(bit(b'Q') | bit(b'D') | bit(b'E') | bit(b'P'))
@@ -338,7 +341,10 @@ const fn rough(code: u16, facing: bool, pockets: RoughPockets) -> GRow {
 /// on the work diameter, the built-in turning centre.
 pub(super) fn linuxcnc_lathe() -> Dialect {
     let m: Vec<&[MRow]> = GRBL_M.iter().copied().chain([LINUXCNC_M]).collect();
-    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, LINUXCNC_LATHE_G], &m);
+    let (g, m) = Dialect::tables(
+        &[GRBL_G, LINUXCNC_G, LINUXCNC_DIAMETER_G, LINUXCNC_LATHE_G],
+        &m,
+    );
     Dialect {
         name: "linuxcnc-lathe",
         g,
@@ -346,6 +352,7 @@ pub(super) fn linuxcnc_lathe() -> Dialect {
         diameter: Diameter {
             axis: Some(b'X'),
             at_power_on: false,
+            lathe: true,
         },
         plane: Plane::Zx,
         default_machine: DEFAULT_FANUC_LATHE_TOML,

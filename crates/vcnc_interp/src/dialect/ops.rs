@@ -17,7 +17,7 @@
 //! The same meanings feed `vcnc explain`, E201's help, the dialect matrix
 //! in docs/dialects.md and the editor's hover: there is no second list.
 
-use crate::events::Cycle;
+use crate::events::{ArcDir, Cycle};
 
 /// What a G code does: its role, then the operation within the role.
 #[cfg_attr(
@@ -255,6 +255,23 @@ pub enum CycleOp {
     PocketRect,
     /// EIA G79: a circular pocket.
     PocketCircle,
+    /// G12/G13 (Haas, Mach3): a circle cut about where the tool stands,
+    /// clockwise or not, in the form the dialect reads.
+    CircleCut(ArcDir, CircleCutForm),
+}
+
+/// How a dialect's G12/G13 reads its words and leaves the centre
+/// (`codes/circle_cut.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CircleCutForm {
+    /// Haas: I the first radius (the finish radius without K), K the
+    /// finish radius, Q the step between them, D the cutter's radius
+    /// register, L repeats, Z the depth (an increment under G91); in and
+    /// out of each depth along half circles from and to the centre.
+    Spiral,
+    /// Mach3: I the radius of the tool centre's circle, straight out along
+    /// X by I and straight back to the centre, at the level it stands.
+    StraightInOut,
 }
 
 /// What a drilling cycle does at each hole (after the approach to R).
@@ -597,6 +614,20 @@ impl CycleOp {
             CycleOp::PatternGrid => "a grid of holes: intervals I and J, P holes a row, K rows",
             CycleOp::PocketRect => "rectangular pocket milling",
             CycleOp::PocketCircle => "circular pocket milling",
+            CycleOp::CircleCut(dir, form) => match (dir, form) {
+                (ArcDir::Cw, CircleCutForm::Spiral) => {
+                    "circular pocket milling clockwise: from the centre to radius I, out by Q to K, less D's radius, L times to Z, back to the centre"
+                }
+                (ArcDir::Ccw, CircleCutForm::Spiral) => {
+                    "circular pocket milling counter-clockwise: from the centre to radius I, out by Q to K, less D's radius, L times to Z, back to the centre"
+                }
+                (ArcDir::Cw, CircleCutForm::StraightInOut) => {
+                    "circular pocket clockwise: out along X by I, a circle about the starting point, back to it"
+                }
+                (ArcDir::Ccw, CircleCutForm::StraightInOut) => {
+                    "circular pocket counter-clockwise: out along X by I, a circle about the starting point, back to it"
+                }
+            },
         }
     }
 }

@@ -12,8 +12,6 @@
 //! passes options: `--dialect D`, `--machine FILE`, `--optional-stop`,
 //! `--block-delete`.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use vcnc_interp::{Dialect, Interpreter, Machine, Options, VecSink};
