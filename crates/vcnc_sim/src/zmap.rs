@@ -27,7 +27,7 @@
 use crate::kernel::{Arc, Line, arc_envelope, line_envelope};
 use crate::tool::{Cutter, Profile};
 use rayon::prelude::*;
-use rows::{Prep, RowCut, RunRows};
+use rows::{Gather, Run};
 
 mod rows;
 
@@ -170,7 +170,7 @@ struct Band {
     /// This worker's findings for the current batch.
     hits: Vec<Hit>,
     /// The run of cuts being applied row by row (reused).
-    run: Vec<RowCut>,
+    run: Run,
 }
 
 /// The height field over a rectangle of stock.
@@ -423,14 +423,6 @@ impl FlatLine {
     }
 }
 
-/// An envelope linear along a row, floored: max(start + k·step, floor)
-/// at the span's k-th cell.
-struct Linear {
-    start: f64,
-    step: f64,
-    floor: f64,
-}
-
 /// Where a span of a flat line's row lies.
 #[derive(Debug, Clone, Copy)]
 struct FlatSpan {
@@ -544,7 +536,7 @@ impl ZMap {
                     h: vec![to_f32(top); rows * nx],
                     tool: vec![0; rows * nx],
                     hits: Vec::new(),
-                    run: Vec::new(),
+                    run: Run::default(),
                 }
             })
             .collect();
@@ -694,7 +686,6 @@ impl Geometry {
             // A run: the cuts from here that only lower cells and have
             // their rows' form, while their rows stay close.
             run.clear();
-            let mut rows = RunRows::new();
             while let Some(cut) = cuts.get(k) {
                 let Some(cutter) = cutters.get(usize::from(cut.cutter)) else {
                     k += 1;
@@ -703,12 +694,10 @@ impl Geometry {
                 if !Self::lowers_only(cut, cutter) {
                     break;
                 }
-                match self.prepare(k, cut, cutter) {
-                    Prep::Rows(c) if rows.admit(&c, run.len()) => run.push(c),
-                    Prep::Rows(_) | Prep::Other => break,
-                    Prep::Nothing => {}
+                match self.gather(&mut run, k, cut, cutter) {
+                    Gather::Added | Gather::Nothing => k += 1,
+                    Gather::Full | Gather::Other => break,
                 }
-                k += 1;
             }
             if !run.is_empty() {
                 self.run_rows(w, (&mut band.h, &mut band.tool), &run, &mut band.hits);
@@ -718,11 +707,13 @@ impl Geometry {
             if let Some(cut) = cuts.get(k)
                 && let Some(cutter) = cutters.get(usize::from(cut.cutter))
             {
+                band.run = std::mem::take(&mut run);
                 let mut hit = Hit::default();
                 self.apply_cut(w, band, cut, cutter, &mut hit);
                 if let Some(slot) = band.hits.get_mut(k) {
                     *slot = hit;
                 }
+                run = std::mem::take(&mut band.run);
             }
             k += 1;
         }
@@ -781,14 +772,16 @@ impl Geometry {
             bottom: self.bottom,
             id: cut.cutter.saturating_add(1),
         };
-        match self.prepare(0, cut, cutter) {
-            Prep::Rows(c) => {
-                let hits = std::slice::from_mut(hit);
-                self.run_rows(w, (&mut band.h, &mut band.tool), &[c], hits);
-                return;
-            }
-            Prep::Nothing => return,
-            Prep::Other => {}
+        let mut run = std::mem::take(&mut band.run);
+        run.clear();
+        let gathered = self.gather(&mut run, 0, cut, cutter);
+        if matches!(gathered, Gather::Added) {
+            let hits = std::slice::from_mut(hit);
+            self.run_rows(w, (&mut band.h, &mut band.tool), &run, hits);
+        }
+        band.run = run;
+        if !matches!(gathered, Gather::Other) {
+            return;
         }
         let r = cutter.radius;
         let (bx0, by0, bx1, by1) = cut.shape.bounds_xy();
@@ -853,28 +846,6 @@ impl Geometry {
             hi = hi.max(s_hi);
         }
         (lo <= hi).then_some((lo, hi, h_lo, h_hi))
-    }
-
-    /// Lowers the cells of a span to the envelope max(start + k·step,
-    /// floor) (and not under the bottom), marking the tool and the
-    /// deepest removal.
-    fn lower_linear(
-        ctx: &RowCtx,
-        span: &FlatSpan,
-        h: &mut [f32],
-        tools: &mut [u8],
-        hit: &mut Hit,
-        linear: &Linear,
-    ) {
-        let (floor, step) = (linear.floor, linear.step);
-        let mut lin = linear.start;
-        let mut cut = SpanCut::start(hit);
-        for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
-            let e = fmax(lin, floor);
-            lin += step;
-            cut.lower(k, cell, tool, e, ctx, span, hit);
-        }
-        cut.finish(span, hit);
     }
 
     /// [`Geometry::cut_span`] for a flat line. Along a row the

@@ -28,51 +28,64 @@
 use crate::tool::Cutter;
 
 use super::{
-    CapsuleRows, Cut, FlatLine, FlatSpan, Geometry, Hit, Linear, RowCtx, ceil_index, cells,
-    floor_index, fmax, fmin, isize_of,
+    CUT_EPS_MM, CapsuleRows, Cut, FlatLine, FlatSpan, Geometry, Hit, RowCtx, ceil_index, cells,
+    floor_index, fmax, fmin, isize_of, to_f32,
 };
 
 /// A run's union of rows may be at most this many times the rows its
 /// cuts really cross (each cut tests each row of the union once).
 const RUN_SLACK: usize = 2;
 
-/// What [`Geometry::prepare`] makes of a cut.
-#[allow(clippy::large_enum_variant)] // made once per cut and moved into the run
-pub(super) enum Prep {
-    /// A cut for a run.
-    Rows(RowCut),
-    /// A cut that lowers nothing (it stays above the stock).
+/// What [`Geometry::gather`] did with a cut.
+pub(super) enum Gather {
+    /// It joined the run.
+    Added,
+    /// It lowers nothing (it stays above the stock).
     Nothing,
-    /// A cut for the general path (`Geometry::apply_cut`).
+    /// It would spread the run's rows too far: the run is full.
+    Full,
+    /// It is for the general path (`Geometry::apply_cut`).
     Other,
+}
+
+/// A run of cuts being gathered, then applied row by row. Its vectors
+/// are reused batch after batch (no allocation a move).
+#[derive(Debug, Default, Clone)]
+pub(super) struct Run {
+    /// Each cut's first and last row, apart from the rest: every row of
+    /// the run tests every cut's, so they are kept small and together.
+    rows: Vec<[u32; 2]>,
+    cuts: Vec<RowCut>,
+    slanted: Vec<Slanted>,
+    /// The union of the rows and how many rows the cuts cross in all.
+    lo: u32,
+    hi: u32,
+    sum: usize,
 }
 
 /// One cut of a run, its constants computed once.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct RowCut {
+struct RowCut {
     /// Its place in the batch (the hit it adds to).
-    pub k: usize,
-    /// The first and last row its footprint crosses.
-    pub j0: usize,
-    pub j1: usize,
+    k: usize,
     /// Index stored in the tool map.
-    pub id: u8,
+    id: u8,
     /// Whether its tip goes under the stock's bottom at all.
-    pub through: bool,
-    pub kind: Kind,
+    through: bool,
+    /// Its [`Slanted`] in the run's list, or `u32::MAX`: a [`Straight`].
+    slanted: u32,
+    /// Cuts with the same line number share their line (its y and the
+    /// tool's radius), so a row's half-width is computed once for them.
+    line: u32,
+    s: Straight,
 }
 
+/// Any other straight move with some XY travel.
 #[derive(Debug, Clone, Copy)]
-pub(super) enum Kind {
-    /// A move along X, or a tool standing (a disc): every cell of a row is
-    /// at one distance from the line.
-    Straight(Straight),
-    /// Any other straight move with some XY travel.
-    Slanted {
-        cut: Cut,
-        f: FlatLine,
-        rows: CapsuleRows,
-    },
+struct Slanted {
+    cut: Cut,
+    f: FlatLine,
+    rows: CapsuleRows,
 }
 
 /// A move along X (or a disc) in cell-index space: a cell i's centre is at
@@ -124,58 +137,63 @@ impl Split {
     }
 }
 
-/// The half-width of the last row-line distance asked, kept while the
-/// cuts of a row share their line.
+/// The half-width a row's last line gave, kept while the cuts of a row
+/// share their line.
 struct Half {
-    cy: f64,
-    r2: f64,
+    line: u32,
     /// mm, and in cells; `None`: the row misses the tool.
     half: Option<(f64, Split)>,
 }
 
-/// What a run has gathered: the union of its rows and how many rows its
-/// cuts cross in all.
-pub(super) struct RunRows {
-    lo: usize,
-    hi: usize,
-    sum: usize,
-}
-
-impl RunRows {
-    pub(super) fn new() -> RunRows {
-        RunRows {
-            lo: usize::MAX,
-            hi: 0,
-            sum: 0,
-        }
+impl Run {
+    /// Empties the run for the next.
+    pub(super) fn clear(&mut self) {
+        self.rows.clear();
+        self.cuts.clear();
+        self.slanted.clear();
+        (self.lo, self.hi, self.sum) = (u32::MAX, 0, 0);
     }
 
-    /// Takes `c` into the run unless testing every cut on every row of
-    /// the grown union would cost more than [`RUN_SLACK`] times the rows
-    /// the cuts cross (a run always takes its first cut).
-    pub(super) fn admit(&mut self, c: &RowCut, count: usize) -> bool {
-        let (lo, hi) = (self.lo.min(c.j0), self.hi.max(c.j1));
-        let sum = self.sum + (c.j1 - c.j0 + 1);
-        if count > 0 && (count + 1) * (hi - lo + 1) > RUN_SLACK * sum {
+    /// Takes a cut crossing rows `j0..=j1` unless testing every cut on
+    /// every row of the grown union would cost more than [`RUN_SLACK`]
+    /// times the rows the cuts cross (a run always takes its first cut).
+    fn admit(&mut self, j0: u32, j1: u32) -> bool {
+        let (lo, hi) = (self.lo.min(j0), self.hi.max(j1));
+        let sum = self.sum + (j1 - j0) as usize + 1;
+        let count = self.cuts.len();
+        if count > 0 && (count + 1) * ((hi - lo) as usize + 1) > RUN_SLACK * sum {
             return false;
         }
         (self.lo, self.hi, self.sum) = (lo, hi, sum);
         true
     }
+
+    /// The line number of a straight cut about `cy` with radius² `r2`.
+    fn line_of(&self, cy: f64, r2: f64) -> u32 {
+        let last = self.cuts.iter().rev().find(|c| c.slanted == u32::MAX);
+        match last {
+            Some(c) if c.s.cy == cy && c.s.r2 == r2 => c.line,
+            Some(c) => c.line.wrapping_add(1),
+            None => 0,
+        }
+    }
+
+    pub(super) fn is_empty(&self) -> bool {
+        self.cuts.is_empty()
+    }
 }
 
 impl Geometry {
-    /// `cut` prepared for [`Geometry::run_rows`] when it is a straight
-    /// move of a flat end mill (`Prep::Other` otherwise: the general
-    /// path), or `Prep::Nothing` when it stays above the stock.
-    pub(super) fn prepare(&self, k: usize, cut: &Cut, cutter: &Cutter) -> Prep {
+    /// Adds cut `k` to `run` when it is a straight move of a flat end
+    /// mill that lowers something and the run has room for its rows.
+    pub(super) fn gather(&self, run: &mut Run, k: usize, cut: &Cut, cutter: &Cutter) -> Gather {
         let (super::Shape::Line(l), true) = (&cut.shape, super::is_flat(cutter)) else {
-            return Prep::Other;
+            return Gather::Other;
         };
         let (a, b, r) = (l.a, l.b, cutter.radius);
         let min_z = fmin(a[2], b[2]);
         if min_z >= self.top {
-            return Prep::Nothing;
+            return Gather::Nothing;
         }
         let (j0, j1) = cells(
             fmin(a[1], b[1]) - r,
@@ -184,32 +202,49 @@ impl Geometry {
             self.dy,
             self.ny,
         );
-        let (Ok(j0), Ok(j1)) = (usize::try_from(j0.max(0)), usize::try_from(j1)) else {
-            return Prep::Nothing;
+        // Rows are below the grid's bound of 50 M cells, so they fit u32.
+        let (Ok(j0), Ok(j1)) = (u32::try_from(j0.max(0)), u32::try_from(j1)) else {
+            return Gather::Nothing;
         };
         if j0 > j1 {
-            return Prep::Nothing;
+            return Gather::Nothing;
         }
         let standing = a[0] == b[0] && a[1] == b[1];
-        let kind = match FlatLine::new(l, r) {
-            _ if standing => Kind::Straight(self.straight(cut, a, b, r)),
+        let f = FlatLine::new(l, r);
+        if !standing && f.is_none() {
             // A few nanometres of travel: the general path's exact form.
-            None => return Prep::Other,
-            Some(_) if a[1] == b[1] => Kind::Straight(self.straight(cut, a, b, r)),
-            Some(f) => Kind::Slanted {
-                cut: *cut,
-                f,
-                rows: CapsuleRows::new(a, b, r),
-            },
+            return Gather::Other;
+        }
+        if !run.admit(j0, j1) {
+            return Gather::Full;
+        }
+        let s = self.straight(cut, a, b, r);
+        let slanted = match f {
+            Some(f) if !standing && a[1] != b[1] => {
+                run.slanted.push(Slanted {
+                    cut: *cut,
+                    f,
+                    rows: CapsuleRows::new(a, b, r),
+                });
+                u32::try_from(run.slanted.len() - 1).unwrap_or(u32::MAX)
+            }
+            _ => u32::MAX,
         };
-        Prep::Rows(RowCut {
+        let line = if slanted == u32::MAX {
+            run.line_of(s.cy, s.r2)
+        } else {
+            u32::MAX
+        };
+        run.rows.push([j0, j1]);
+        run.cuts.push(RowCut {
             k,
-            j0,
-            j1,
             id: cut.cutter.saturating_add(1),
             through: min_z < self.bottom - super::CUT_EPS_MM,
-            kind,
-        })
+            slanted,
+            line,
+            s,
+        });
+        Gather::Added
     }
 
     /// A move along X (or standing, or straight up or down) in cell-index
@@ -256,24 +291,19 @@ impl Geometry {
         }
     }
 
-    /// Applies a run of prepared cuts to worker `w`'s rows, row by row,
-    /// each row's cuts in program order; `hits[c.k]` gets cut c's
-    /// findings.
+    /// Applies a run to worker `w`'s rows, row by row, each row's cuts in
+    /// program order; `hits[c.k]` gets cut c's findings.
     pub(super) fn run_rows(
         &self,
         w: usize,
         (h, tool): (&mut [f32], &mut [u8]),
-        run: &[RowCut],
+        run: &Run,
         hits: &mut [Hit],
     ) {
-        let (mut lo, mut hi) = (usize::MAX, 0);
-        for c in run {
-            lo = lo.min(c.j0);
-            hi = hi.max(c.j1);
-        }
-        if lo > hi {
+        if run.lo > run.hi {
             return;
         }
+        let (lo, hi) = (run.lo as usize, run.hi as usize);
         let (n, nx) = (self.n, self.nx);
         let mut j = lo + (w + n - lo % n) % n;
         let mut base = (j / n) * nx;
@@ -284,39 +314,37 @@ impl Geometry {
             };
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let mut half = Half {
-                cy: f64::NAN,
-                r2: f64::NAN,
+                line: u32::MAX,
                 half: None,
             };
-            for c in run {
-                if j < c.j0 || j > c.j1 {
+            // j fits u32: it is a row of the grid.
+            let j32 = u32::try_from(j).unwrap_or(u32::MAX);
+            for (rows, c) in run.rows.iter().zip(&run.cuts) {
+                if j32 < rows[0] || j32 > rows[1] {
                     continue;
                 }
                 let Some(hit) = hits.get_mut(c.k) else {
                     continue;
                 };
-                let ctx = RowCtx {
-                    bottom: self.bottom,
-                    id: c.id,
-                };
-                let span = FlatSpan {
-                    i0: 0,
-                    j,
-                    y,
-                    through: c.through,
-                };
-                match &c.kind {
-                    Kind::Straight(s) => {
-                        if s.cy != half.cy || s.r2 != half.r2 {
-                            half = Half::of(s, y, self.inv_dx);
-                        }
-                        if let Some(hw) = half.half {
-                            self.straight_row(&ctx, span, s, hw, hr, tr, hit);
-                        }
+                if c.slanted == u32::MAX {
+                    if c.line != half.line {
+                        half = Half::of(c, y, self.inv_dx);
                     }
-                    Kind::Slanted { cut, f, rows } => {
-                        self.slanted_row(&ctx, span, cut, f, rows, hr, tr, hit);
+                    if let Some(hw) = half.half {
+                        self.straight_row(c, hw, hr, tr, hit, j);
                     }
+                } else if let Some(sl) = run.slanted.get(c.slanted as usize) {
+                    let ctx = RowCtx {
+                        bottom: self.bottom,
+                        id: c.id,
+                    };
+                    let span = FlatSpan {
+                        i0: 0,
+                        j,
+                        y,
+                        through: c.through,
+                    };
+                    self.slanted_row(&ctx, span, sl, hr, tr, hit);
                 }
             }
             j += n;
@@ -324,60 +352,53 @@ impl Geometry {
         }
     }
 
-    /// One row of a [`Straight`] cut whose tool covers the half-width
-    /// `half` (mm, cells) there.
+    /// One row (`j`) of a [`Straight`] cut whose tool covers the
+    /// half-width `half` (mm, and in cells) there.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn straight_row(
         &self,
-        ctx: &RowCtx,
-        span: FlatSpan,
-        s: &Straight,
+        c: &RowCut,
         (half, hu): (f64, Split),
         hr: &mut [f32],
         tr: &mut [u8],
         hit: &mut Hit,
+        j: usize,
     ) {
+        let s = &c.s;
         // ⌈lo − h_u⌉ and ⌊hi + h_u⌋ from the parts: the fractions' sum
         // or difference lies within (−1, 2), so each is a comparison.
         let (m, g) = (hu.int, hu.frac);
-        let i0 = s.lo.int - m + isize::from(s.lo.frac > g);
+        let i0 = (s.lo.int - m + isize::from(s.lo.frac > g)).max(0);
         let i1 = (s.hi.int + m + isize::from(s.hi.frac + g >= 1.0)).min(isize_of(self.nx) - 1);
-        let (e0, e1) = match s.hole {
-            Some(c) => {
-                let (x, y) = (c.frac - g + s.margin, c.frac + g - s.margin);
-                (
-                    c.int - m + isize::from(x > 0.0) + isize::from(x > 1.0),
-                    c.int + m + isize::from(y >= 1.0) - isize::from(y < 0.0),
-                )
-            }
-            None => (1, 0),
+        let cells = Cells {
+            lift: s.base - s.kz * half,
+            slope: s.slope,
+            floor: s.floor,
+            bottom: self.bottom,
+            id: c.id,
+            through: c.through,
         };
-        let lift = s.base - s.kz * half;
-        for (p0, p1) in pieces(i0, i1, e0, e1) {
-            let (Some(h), Some(t)) = (hr.get_mut(p0..=p1), tr.get_mut(p0..=p1)) else {
-                continue;
-            };
-            let linear = Linear {
-                start: lift + s.slope * p0 as f64,
-                step: s.slope,
-                floor: s.floor,
-            };
-            let span = FlatSpan { i0: p0, ..span };
-            Self::lower_linear(ctx, &span, h, t, hit, &linear);
-        }
+        let Some(hole) = s.hole else {
+            cells.lower(i0, i1, hr, tr, hit, j);
+            return;
+        };
+        // The skipped disc's cells: ⌈c − h_u + margin⌉ ..= ⌊c + h_u − margin⌋.
+        let (x, y) = (hole.frac - g + s.margin, hole.frac + g - s.margin);
+        let e0 = hole.int - m + isize::from(x > 0.0) + isize::from(x > 1.0);
+        let e1 = hole.int + m + isize::from(y >= 1.0) - isize::from(y < 0.0);
+        cells.lower(i0, i1.min(e0 - 1), hr, tr, hit, j);
+        cells.lower(i0.max(e1 + 1), i1, hr, tr, hit, j);
     }
 
-    /// One row of a [`Kind::Slanted`] cut: the capsule's span less the
+    /// One row of a [`Slanted`] cut: the capsule's span less the
     /// skipped disc, each cell's envelope from its own covered interval.
     #[allow(clippy::too_many_arguments)]
     fn slanted_row(
         &self,
         ctx: &RowCtx,
         span: FlatSpan,
-        cut: &Cut,
-        f: &FlatLine,
-        rows: &CapsuleRows,
+        Slanted { cut, f, rows }: &Slanted,
         hr: &mut [f32],
         tr: &mut [u8],
         hit: &mut Hit,
@@ -401,19 +422,95 @@ impl Geometry {
     }
 }
 
+/// A straight cut's envelope on one row: cell i is lowered to
+/// max(lift + slope·i, floor), never under the bottom.
+struct Cells {
+    lift: f64,
+    slope: f64,
+    floor: f64,
+    bottom: f64,
+    id: u8,
+    through: bool,
+}
+
+impl Cells {
+    /// Lowers cells `a..=b` of a row (`j`) — none when a > b; a ≥ 0 and b
+    /// inside the row by the callers' clamps — marking the tool where a
+    /// cell loses more than 0.1 µm, and the span's deepest removal and a
+    /// cut through the bottom into `hit`.
+    #[inline(always)]
+    fn lower(&self, a: isize, b: isize, hr: &mut [f32], tr: &mut [u8], hit: &mut Hit, j: usize) {
+        // Most moves stay above the bottom: their loop has no test for it.
+        if self.through {
+            self.lower_cells::<true>(a, b, hr, tr, hit, j);
+        } else {
+            self.lower_cells::<false>(a, b, hr, tr, hit, j);
+        }
+    }
+
+    #[inline(always)]
+    fn lower_cells<const THROUGH: bool>(
+        &self,
+        a: isize,
+        b: isize,
+        hr: &mut [f32],
+        tr: &mut [u8],
+        hit: &mut Hit,
+        j: usize,
+    ) {
+        let (Ok(a), Ok(b)) = (usize::try_from(a), usize::try_from(b)) else {
+            return;
+        };
+        let (Some(h), Some(t)) = (hr.get_mut(a..=b), tr.get_mut(a..=b)) else {
+            return;
+        };
+        let t = &mut t[..h.len()];
+        let (floor, step, bottom, id) = (self.floor, self.slope, self.bottom, self.id);
+        let mut lin = self.lift + step * a as f64;
+        let mut deepest = f64::from(hit.depth_mm);
+        let mut at = usize::MAX;
+        let mut below = false;
+        for k in 0..h.len() {
+            let e = fmax(lin, floor);
+            lin += step;
+            let before = f64::from(h[k]);
+            if e < before {
+                let new = fmax(e, bottom);
+                h[k] = to_f32(new);
+                if e < before - 1e-4 {
+                    t[k] = id;
+                    let depth = before - new;
+                    if depth > deepest {
+                        deepest = depth;
+                        at = k;
+                    }
+                    if THROUGH && e < bottom - CUT_EPS_MM && before > bottom {
+                        below = true;
+                    }
+                }
+            }
+        }
+        hit.below |= below;
+        if at != usize::MAX {
+            hit.depth_mm = to_f32(deepest);
+            hit.at = (
+                u32::try_from(a + at).unwrap_or(0),
+                u32::try_from(j).unwrap_or(0),
+            );
+        }
+    }
+}
+
 impl Half {
-    fn of(s: &Straight, y: f64, inv_dx: f64) -> Half {
+    fn of(c: &RowCut, y: f64, inv_dx: f64) -> Half {
+        let s = &c.s;
         let wy = y - s.cy;
         let w2 = s.r2 - wy * wy;
         let half = (w2 >= 0.0).then(|| {
             let h = w2.sqrt();
             (h, Split::of(h * inv_dx))
         });
-        Half {
-            cy: s.cy,
-            r2: s.r2,
-            half,
-        }
+        Half { line: c.line, half }
     }
 }
 
