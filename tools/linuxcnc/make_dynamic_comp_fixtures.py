@@ -10,7 +10,7 @@ both) and this script stops unless their canonical motion calls are the
 same text: rs274 itself says that G41.1 D<2r> is G41 with a tool of radius
 r, so the points the original programs must reach (checked against rs274
 by make_ext_fixtures.py --set comp) are the new programs' too. The test
-(`crates/vcnc/tests/fixtures.rs`,
+(`crates/vcnc/tests/behaviour/fixtures.rs`,
 `linuxcnc_dynamic_compensation_points_are_reached`) runs them under
 `--dialect linuxcnc`.
 

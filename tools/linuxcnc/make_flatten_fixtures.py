@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The flattening round trip's LinuxCNC expectations
-(tests/fixtures/flatten/, checked by crates/vcnc/tests/flatten.rs).
+(tests/fixtures/flatten/, checked by crates/vcnc/tests/behaviour/flatten.rs).
 
 For each program of programs.txt (path, dialect, options), on machine.toml
 (G54 and G55 not zero):

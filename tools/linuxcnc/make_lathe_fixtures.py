@@ -8,7 +8,7 @@ For each program this script runs `rs274 -g` on the LinuxCNC spelling
 vcnc motion events in machine mm (X a radius: rs274 in G7 diameter mode
 prints radii) and writes NNN.expected.jsonl with the moves (rapid, feed,
 arc, thread) and the end; the test compares vcnc's moves of NNN.nc with
-them (`linuxcnc_lathe_moves_match_rs274` in crates/vcnc/tests/fixtures.rs).
+them (`linuxcnc_lathe_moves_match_rs274` in crates/vcnc/tests/behaviour/fixtures.rs).
 Spindle events are not compared: under G96 rs274 hands the speed to the
 motion controller (SET_SPINDLE_MODE with the D clamp), it prints no rpm.
 

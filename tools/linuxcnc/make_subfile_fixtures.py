@@ -12,7 +12,7 @@ prefixed with N numbers so that rs274 names the file and line of each
 call: the program's line k is N<k>, line k of the i-th subroutine file
 (in name order) N<100000*i + k>. An event of a subroutine file's block
 gets `"file": "<name>.ngc"` and that file's line, as vcnc reports it
-(`crates/vcnc/tests/fixtures.rs`, `linuxcnc_subroutine_files_match_rs274`
+(`crates/vcnc/tests/behaviour/fixtures.rs`, `linuxcnc_subroutine_files_match_rs274`
 compares the file's name only). The tool table and machine are those of
 make_dialect_fixtures.py.
 

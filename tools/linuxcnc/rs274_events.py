@@ -71,6 +71,7 @@ Anything else unexpected is an error (ConvertError), never skipped.
 """
 
 import json
+import math
 import os
 import re
 import subprocess
@@ -335,14 +336,41 @@ class Converter:
         center = {fa: self.mm(args[2], False) + off[fa],
                   sa: self.mm(args[3], False) + off[sa], na: self.pos[na]}
         rotation = int(args[4])
-        if rotation == 0 or abs(rotation) > 1:
-            self.err("arc rotation %d" % rotation)
+        if rotation == 0:
+            self.err("arc rotation 0")
         self.check_feed("arc")
-        self.emit({"type": "arc", "line": self.line, "to": point(to),
-                   "center": point(center), "plane": pname,
-                   "dir": "ccw" if rotation > 0 else "cw",
-                   "feed": out_num(self.feed)})
-        self.pos = to
+        for to_k in self.turns(to, center, fa, sa, rotation):
+            self.emit({"type": "arc", "line": self.line, "to": point(to_k),
+                       "center": point(center), "plane": pname,
+                       "dir": "ccw" if rotation > 0 else "cw",
+                       "feed": out_num(self.feed)})
+            center = dict(center, **{na: to_k[na]})
+            self.pos = to_k
+
+    def turns(self, to, center, fa, sa, rotation):
+        """The end points of an ARC_FEED of |rotation| turns (G2/G3 P, a
+        multi-turn arc): |rotation| - 1 full circles back to the start in
+        the plane, then the arc to `to`. The axes off the plane move
+        linearly with the angle turned over the whole path, as LinuxCNC's
+        motion runs its one helix of that total angle. One turn: `to`."""
+        n = abs(rotation)
+        if n == 1:
+            return [to]
+        c = (center[fa], center[sa])
+        a0 = math.atan2(self.pos[sa] - c[1], self.pos[fa] - c[0])
+        a1 = math.atan2(to[sa] - c[1], to[fa] - c[0])
+        same = math.hypot(to[fa] - self.pos[fa], to[sa] - self.pos[sa]) < 1e-9
+        sweep = 2 * math.pi if same else (a1 - a0) % (2 * math.pi)
+        if rotation < 0 and not same:
+            sweep = 2 * math.pi - sweep
+        total = (n - 1) * 2 * math.pi + sweep
+        out = []
+        for k in range(1, n):
+            f = Decimal(k * 2 * math.pi / total)
+            p = {a: self.pos[a] + (to[a] - self.pos[a]) * f for a in AXES}
+            p[fa], p[sa] = self.pos[fa], self.pos[sa]
+            out.append(p)
+        return out + [to]
 
     def rigid_tap(self, args):
         """G33.1: LinuxCNC's RIGID_TAP(x, y, z) is the whole tap, as its

@@ -222,7 +222,7 @@ impl Setup<'_> {
     /// table or a comment.
     pub fn tool_library(&self, head: &str) -> ToolLibrary {
         let comments = tooling::from_comments(head);
-        let registers = registers_library(self.machine, self.dialect.diameter.axis.is_some());
+        let registers = registers_library(self.machine, self.dialect.diameter.lathe);
         let described = match self.table {
             Some((table, _)) => table.clone().or_else(&comments),
             None => comments,

@@ -308,7 +308,7 @@ pub fn plot(args: &PlotArgs) -> Result<ExitCode, String> {
     let input = Input::from_arg(&args.file)?;
     drop(input.open()?);
     let s = choice.setup(&input)?;
-    let set = settings(args, s.machine, s.dialect.diameter.axis.is_some())?;
+    let set = settings(args, s.machine, s.dialect.diameter.lathe)?;
     if args.stock.is_some() && set.format != Format::Html {
         return Err(
             "--stock shows the stock and the finished part on the page: write .html (a picture of the part is `vcnc sim FILE --stock … -o part.png`)"

@@ -137,7 +137,7 @@ fn plan(
     (stock, resolution): (Option<&str>, Option<f64>),
     replay: bool,
 ) -> Result<Plan, String> {
-    let lathe = s.dialect.diameter.axis.is_some();
+    let lathe = s.dialect.diameter.lathe;
     let text = head(input);
     let library = s.tool_library(&text);
     let (mut spec, mut origin) = match stock {
@@ -416,7 +416,7 @@ fn text(
         )?;
     }
     let tools: Vec<String> = f.tools.cutters.iter().map(|c| c.label.clone()).collect();
-    let tools = if s.dialect.diameter.axis.is_some() {
+    let tools = if s.dialect.diameter.lathe {
         f.tools
             .inserts
             .iter()

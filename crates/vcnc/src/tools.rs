@@ -114,7 +114,7 @@ impl Report<'_> {
     }
 
     fn lathe(&self) -> bool {
-        self.s.dialect.diameter.axis.is_some()
+        self.s.dialect.diameter.lathe
     }
 
     /// Where register `n`'s values come from.

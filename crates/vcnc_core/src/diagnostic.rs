@@ -104,6 +104,7 @@ codes! {
     E346 => "zero depth of cut, step or pass count",
     E347 => "chamfer or corner R cannot be made",
     E348 => "G96 at the spindle axis without a speed clamp",
+    E349 => "cycle not allowed in the modes in force",
     E401 => "program number not found",
     E402 => "sequence number not found",
     E403 => "subprogram nesting too deep",

@@ -503,6 +503,17 @@ pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
     )
 }
 
+/// E349: LinuxCNC's G70–G72 outside the modes rs274 runs them in.
+#[cold]
+pub fn ngc_cycle_mode(span: Span, code: &str, needs: &str) -> Diagnostic {
+    d(
+        Code::E349,
+        span,
+        format!("LinuxCNC's {code} runs only under {needs}"),
+        "change the mode before the cycle block",
+    )
+}
+
 /// E401: program not found.
 #[cold]
 pub fn program_not_found(span: Span, number: u32) -> Diagnostic {
@@ -957,6 +968,43 @@ pub fn too_many_pecks(span: Span, max: u64) -> Diagnostic {
         span,
         format!("this block pecks more than {max} times over its holes"),
         "use a larger peck depth (Q; on a Haas the least peck K) or fewer holes per block",
+    )
+}
+
+/// E210: G12/G13 outside the XY plane.
+#[cold]
+pub fn circle_cut_plane(span: Span, code: &str) -> Diagnostic {
+    d(
+        Code::E210,
+        span,
+        format!(
+            "{code} cuts its circle in the XY plane (G17) only (Haas: \"both G codes use the default XY circular plane\"; Mach3: \"its effect is undefined if the current plane is not XY\")"
+        ),
+        "select G17 before the circular pocket",
+    )
+}
+
+/// E325: a G12/G13 radius I not larger than the cutter's radius D.
+#[cold]
+pub fn circle_cut_too_small(span: Span, radius_mm: f64, tool_mm: f64) -> Diagnostic {
+    d(
+        Code::E325,
+        span,
+        format!(
+            "the circle's radius I ({radius_mm:.4} mm) is not larger than the cutter's radius D ({tool_mm:.4} mm)"
+        ),
+        "give an I larger than the tool's radius (Haas: \"I value must be greater than tool radius\"), or D0 to program the tool centre",
+    )
+}
+
+/// E326: a G12/G13 with more full circles than the bound.
+#[cold]
+pub fn too_many_circles(span: Span, max: u64) -> Diagnostic {
+    d(
+        Code::E326,
+        span,
+        format!("this circular pocket cuts more than {max} circles over its repeats"),
+        "use a larger step Q or fewer repeats L",
     )
 }
 

@@ -234,7 +234,7 @@ pub(crate) fn run<S: Sink>(
 /// the planned time, and (`with_page`) the viewer page.
 pub fn check(text: &str, settings: &Settings, with_page: bool) -> Result<Checked, String> {
     let s = Setup::new(text, settings)?;
-    let lathe = s.dialect.diameter.axis.is_some();
+    let lathe = s.dialect.diameter.lathe;
     let options = PlotOptions {
         space: Space::Volume {
             resolution: PAGE_RESOLUTION,

@@ -48,7 +48,7 @@ pub struct Simulated {
 /// syntax; none: the header comment, else automatic).
 pub fn sim(text: &str, settings: &Settings, stock: Option<&str>) -> Result<Simulated, String> {
     let s = Setup::new(text, settings)?;
-    let lathe = s.dialect.diameter.axis.is_some();
+    let lathe = s.dialect.diameter.lathe;
     let (mut spec, mut origin) = match stock.map(str::trim).filter(|t| !t.is_empty()) {
         Some(t) => (StockSpec::parse(t)?, StockOrigin::Option),
         None => vcnc_sim::from_header(text).unwrap_or((StockSpec::Auto, StockOrigin::Auto)),

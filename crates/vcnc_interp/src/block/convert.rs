@@ -185,6 +185,14 @@ impl Interpreter<'_> {
         if self.state.cycle.code.is_some() {
             m |= bit(b'R') | bit(b'Q');
         }
+        if w.axis_user.is_some_and(|u| {
+            matches!(
+                u.def.op,
+                crate::dialect::GOp::Cycle(crate::dialect::CycleOp::CircleCut(..))
+            )
+        }) {
+            m |= bit(b'I') | bit(b'K') | bit(b'Q');
+        }
         if w.once(crate::dialect::GOp::Set(SetOp::Data)).is_some()
             && w.get(b'L')
                 .is_some_and(|l| (10.0..=13.0).contains(&l.value))
@@ -266,11 +274,11 @@ impl Interpreter<'_> {
         if span_mm >= 1.0 {
             return None;
         }
-        let lathe = self.cfg.dialect.diameter.axis.is_some();
+        let lathe = self.cfg.dialect.diameter.lathe;
         let whole: Vec<&str> = crate::detect::dialects()
             .iter()
             .filter(|d| d.integers == IntegerWords::WholeUnits)
-            .filter(|d| d.diameter.axis.is_some() == lathe)
+            .filter(|d| d.diameter.lathe == lathe)
             .map(|d| d.name)
             .collect();
         let w = alarms::whole_units_likely(first, longest, &whole);

@@ -57,7 +57,7 @@ impl Interpreter<'_> {
         if let Some(n) = d_number {
             let t = self.tables.tool(n);
             self.state.d_number = n;
-            if self.cfg.dialect.diameter.axis.is_some() {
+            if self.cfg.dialect.diameter.lathe {
                 // A lathe's tool number (LinuxCNC lathe mode): its nose
                 // radius and orientation (LinuxCNC's numbering).
                 self.state.comp_d_mm = t.nose_radius_mm + t.nose_radius_wear_mm;
@@ -152,7 +152,7 @@ impl Interpreter<'_> {
             return;
         }
         let g = if side == CompSide::Left { "G41" } else { "G42" };
-        let what = if self.cfg.dialect.diameter.axis.is_some() {
+        let what = if self.cfg.dialect.diameter.lathe {
             format!("{g} and a tool nose radius of 0 (offset {n})")
         } else {
             format!("{g} D{n} = 0")

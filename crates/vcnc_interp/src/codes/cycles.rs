@@ -1052,7 +1052,11 @@ impl Interpreter<'_> {
                 }
             }
             // Not patterns: `axis_code` sends them elsewhere.
-            CycleOp::Drill(..) | CycleOp::Cancel | CycleOp::PocketRect | CycleOp::PocketCircle => {}
+            CycleOp::Drill(..)
+            | CycleOp::Cancel
+            | CycleOp::PocketRect
+            | CycleOp::PocketCircle
+            | CycleOp::CircleCut(..) => {}
             CycleOp::PatternGrid => {
                 let (iw, jw) = (
                     need(b'I', "I (the X interval)")?,

@@ -5,12 +5,14 @@
 //! reach the motion stage through `modal.rs`'s `send`.
 
 pub(crate) mod calls;
+pub(crate) mod circle_cut;
 pub(crate) mod comp;
 pub(crate) mod corner;
 pub(crate) mod cycles;
 pub(crate) mod lathe_cycles;
 pub(crate) mod modal;
 pub(crate) mod mrc;
+pub(crate) mod ngc_rough;
 pub(crate) mod ngc_thread;
 pub(crate) mod nurbs;
 pub(crate) mod offsets;

@@ -35,11 +35,12 @@
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::codes::ngc_rough::{Cut, Fault, Path, Roughing};
 use crate::codes::profile::{Elem, Profile};
 use crate::codes::rough::{self, Across, Frame, Rough, Step};
 use crate::codes::turning_cycles::How;
 use crate::dialect::GOp;
-use crate::dialect::TurnOp;
+use crate::dialect::{MotionOp, RoughPockets, TurnOp};
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::motion::{MoveKind, Target};
@@ -62,6 +63,10 @@ impl Interpreter<'_> {
             // LinuxCNC's G70: the profile is a subroutine; the program goes
             // on after the cycle block.
             self.ngc_finish_cycle(w, cmd)?;
+            return Ok(Some(next));
+        }
+        if let GOp::Turn(TurnOp::NgcRoughCycle { facing, pockets }) = op {
+            self.ngc_rough_cycle(facing, pockets, w, cmd)?;
             return Ok(Some(next));
         }
         let pq = (w.get(b'P'), w.get(b'Q'));
@@ -478,39 +483,23 @@ impl Interpreter<'_> {
     /// LinuxCNC's G70 Q [X Z D E P]: P passes (default 1) along the
     /// profile `o<Q> sub`, each a rapid to the start point (X Z, else
     /// where the tool is) and to the profile's first point, then its
-    /// blocks; the tool stays at the profile's end. D and E, passes kept
-    /// D … E away from the profile, are refused unless 0 (vcnc does not
-    /// offset the profile).
+    /// blocks; the tool stays at the profile's end. With D or E the passes
+    /// follow the profile offset from D … to E (`ngc_rough.rs`) and carry
+    /// the cycle block's line.
     pub(crate) fn ngc_finish_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
-        let q = w
-            .get(b'Q')
-            .ok_or_else(|| alarms::needs_word(cmd, "G70", "Q (the profile's subroutine number)"))?;
-        let label = crate::block::convert::whole(
-            &q,
-            b'Q',
-            1.0,
-            99_999_999.0,
-            "Q is the profile's subroutine number",
-        )?;
-        for l in [b'D', b'E'] {
-            if let Some(d) = w.get(l).filter(|d| d.value != 0.0) {
-                return Err(alarms::value_out_of_range(
-                    d.span,
-                    l,
-                    d.value,
-                    "vcnc runs G70's passes on the profile itself: D0 and E0 (offset passes are not modelled)",
-                ));
-            }
-        }
         let passes = match w.get(b'P') {
             Some(p) => self.count(&p, "P is G70's number of passes")?,
             None => 1,
         };
         let goal = self.target(w, self.state.modal.incremental);
         let a = P2::of(&goal.prog, axes);
-        let (src, start, endsub) = self.ngc_sub_lines(&label.to_string(), q.span)?;
-        let mut profile = self.read_sub_profile(src, start, endsub, q.span)?;
+        let mut profile = self.ngc_cycle_profile(w, cmd, "G70")?;
+        let len = |l: u8| w.get(l).map_or(0.0, |x| self.length_mm(&x));
+        let (d, e) = (len(b'D'), len(b'E'));
+        if d != 0.0 || e != 0.0 {
+            return self.ngc_offset_finish(&profile, a, (d, e, passes), w, cmd);
+        }
         // rs274 goes to the profile's first point at rapid, whatever its
         // block says.
         if let Some(first) = profile.elems.first_mut() {
@@ -523,6 +512,160 @@ impl Interpreter<'_> {
             self.flow.loc.line = line;
             self.stage.cur_line = cur_line;
             out?;
+        }
+        Ok(())
+    }
+
+    /// G70 D E P: `passes` passes along the profile offset from D to E.
+    fn ngc_offset_finish(
+        &mut self,
+        profile: &Profile,
+        a: Xz,
+        (d, e, passes): (f64, f64, u32),
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        let Some((first, rest)) = profile.elems.split_first() else {
+            return Err(self.profile_alarm(profile, 0, "the profile has no moves"));
+        };
+        let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
+        let cuts = Path::new(a, first.seg.end(), &segs)
+            .finish(d, e, passes)
+            .map_err(|f| self.ngc_fault(f, profile, cmd))?;
+        if cuts.len() > rough::MAX_MOVES {
+            return Err(alarms::too_many_cycle_moves(cmd));
+        }
+        self.return_to(a, axes, w, cmd)?;
+        self.ngc_cuts(&cuts, axes, w, cmd)
+    }
+
+    /// The profile of LinuxCNC's G70–G72: the body of subroutine `o<Q>`.
+    fn ngc_cycle_profile(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        code: &str,
+    ) -> Result<Profile, Diagnostic> {
+        let q = w
+            .get(b'Q')
+            .ok_or_else(|| alarms::needs_word(cmd, code, "Q (the profile's subroutine number)"))?;
+        let label = crate::block::convert::whole(
+            &q,
+            b'Q',
+            1.0,
+            99_999_999.0,
+            "Q is the profile's subroutine number",
+        )?;
+        let (src, start, endsub) = self.ngc_sub_lines(&label.to_string(), q.span)?;
+        self.read_sub_profile(src, start, endsub, q.span)
+    }
+
+    /// LinuxCNC's G71/G72 Q [X Z D I R] and their .1 and .2
+    /// (`ngc_rough.rs`): levels I apart from the start point (X Z, else
+    /// where the tool is) down to the profile `o<Q>` kept D away, each
+    /// pass retracted R; the tool stays where the last move ends, and
+    /// the modal motion is that move's, as in rs274.
+    fn ngc_rough_cycle(
+        &mut self,
+        facing: bool,
+        pockets: RoughPockets,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let axes = self.lathe_axes(cmd)?;
+        let code = if facing { "G72" } else { "G71" };
+        self.ngc_cycle_modes(cmd, code)?;
+        let len = |l: u8, default: f64| w.get(l).map_or(default, |x| self.length_mm(&x));
+        let (step, allowance, retract) = (len(b'I', 1.0), len(b'D', 0.0), len(b'R', 0.5));
+        if step <= 0.0 {
+            let span = w.get(b'I').map_or(cmd, |i| i.span);
+            return Err(alarms::zero_amount(span, "the depth of cut I"));
+        }
+        let goal = self.target(w, false);
+        let a = P2::of(&goal.prog, axes);
+        let profile = self.ngc_cycle_profile(w, cmd, code)?;
+        let Some((first, rest)) = profile.elems.split_first() else {
+            return Err(self.profile_alarm(&profile, 0, "the profile has no moves"));
+        };
+        let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
+        let r = Roughing {
+            pockets,
+            allowance,
+            step,
+            retract,
+            facing,
+        };
+        let cuts = Path::new(a, first.seg.end(), &segs)
+            .rough(&r, rough::MAX_MOVES)
+            .map_err(|f| self.ngc_fault(f, &profile, cmd))?;
+        self.return_to(a, axes, w, cmd)?;
+        self.ngc_cuts(&cuts, axes, w, cmd)
+    }
+
+    /// rs274 runs G70–G72 only under G90, and G71/G72 only without cutter
+    /// compensation.
+    fn ngc_cycle_modes(&self, cmd: Span, code: &str) -> Result<(), Diagnostic> {
+        if self.state.modal.incremental {
+            return Err(alarms::ngc_cycle_mode(
+                cmd,
+                code,
+                "G90 (absolute distances)",
+            ));
+        }
+        if code != "G70" && self.state.modal.comp != crate::state::CompSide::Off {
+            return Err(alarms::ngc_cycle_mode(
+                cmd,
+                code,
+                "G40 (no cutter compensation)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// A fault of `ngc_rough.rs` as an alarm.
+    fn ngc_fault(&mut self, f: Fault, profile: &Profile, cmd: Span) -> Diagnostic {
+        match f {
+            Fault::TooMany => alarms::too_many_cycle_moves(cmd),
+            Fault::Profile(why) => self.profile_alarm(profile, 0, why),
+        }
+    }
+
+    /// The moves of LinuxCNC's G70–G72 at the cycle block's feed; the
+    /// modal motion becomes the last one's.
+    fn ngc_cuts(
+        &mut self,
+        cuts: &[Cut],
+        axes: (usize, usize),
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let mut last = None;
+        for cut in cuts {
+            last = Some(match *cut {
+                Cut::Rapid(p) => {
+                    self.cycle_moves(&[(How::Rapid, p)], axes, w, cmd)?;
+                    MotionOp::Rapid
+                }
+                Cut::Feed(p) => {
+                    let feed = self.feed(cmd)?;
+                    self.cycle_moves(&[(How::Cut(feed), p)], axes, w, cmd)?;
+                    MotionOp::Linear
+                }
+                Cut::Arc { to, centre, ccw_xz } => {
+                    let feed = self.feed(cmd)?;
+                    let seg = Seg::arc(self.here_xz(axes), to, centre, ccw_xz);
+                    self.along(&seg, axes, feed, w, cmd)?;
+                    if ccw_xz {
+                        MotionOp::ArcCw
+                    } else {
+                        MotionOp::ArcCcw
+                    }
+                }
+            });
+        }
+        if let Some(m) = last {
+            self.state.modal.motion = m;
         }
         Ok(())
     }

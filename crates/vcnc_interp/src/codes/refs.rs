@@ -133,6 +133,7 @@ impl Interpreter<'_> {
             | CycleOp::PatternArc
             | CycleOp::PatternGrid => self.pattern(op, w, cmd),
             CycleOp::PocketRect | CycleOp::PocketCircle => self.pocket(op, w, cmd),
+            CycleOp::CircleCut(dir, form) => self.circle_cut(dir, form, w, cmd),
             CycleOp::Drill(..) | CycleOp::Cancel => Ok(()),
         }
     }
@@ -149,6 +150,7 @@ impl Interpreter<'_> {
             TurnOp::NgcThreadCycle => self.ngc_thread_cycle(w, cmd),
             TurnOp::FinishCycle
             | TurnOp::NgcFinishCycle
+            | TurnOp::NgcRoughCycle { .. }
             | TurnOp::RoughTurnCycle
             | TurnOp::RoughFaceCycle
             | TurnOp::PatternCycle => Ok(()),

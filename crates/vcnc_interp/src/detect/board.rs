@@ -110,7 +110,7 @@ fn named(all: &[Dialect], names: &[&str]) -> u32 {
 }
 
 pub(super) fn is_lathe(d: &Dialect) -> bool {
-    d.diameter.axis.is_some()
+    d.diameter.lathe
 }
 
 impl Board {
@@ -352,7 +352,10 @@ impl Board {
         if k.uw > 0 {
             self.note("U/W words", 15, lathes);
         }
-        if k.x > 0 && k.z > 0 && k.y == 0 && k.x + k.z >= 4 {
+        // A rotary-axis program (`G1 X10 A90`: a 4th axis wrapping X
+        // around A) moves X and Z alone too, but it is a mill's.
+        let rotary = k.a_values.len() >= 3;
+        if k.x > 0 && k.z > 0 && k.y == 0 && !rotary && k.x + k.z >= 4 {
             self.note("X and Z only", 20, lathes);
         }
         if k.plane_header == Some(180) {

@@ -83,6 +83,11 @@ pub(super) struct Kind {
     pub(super) x: u32,
     pub(super) y: u32,
     pub(super) z: u32,
+    /// Distinct values of A on moves, up to three: an A axis turning
+    /// through many angles is a mill's fourth (rotary) axis, which no lathe
+    /// dialect has (a lathe's rotary axis is C); one or two values are the
+    /// angle of a contour (Philips' `A0 B90`, Fanuc's direct drawing input).
+    pub(super) a_values: Vec<f64>,
     pub(super) uw: u32,
     pub(super) turret: Option<String>,
     pub(super) g96: bool,
@@ -547,7 +552,9 @@ impl Scan {
     fn length(&mut self, w: &Word) {
         if !matches!(
             w.letter,
-            b'X' | b'Y' | b'Z' | b'U' | b'W' | b'I' | b'J' | b'K' | b'R'
+            // A: a rotary axis's degrees read as the lengths are (`A2` is
+            // 0.002° to a control counting least increments).
+            b'X' | b'Y' | b'Z' | b'U' | b'W' | b'I' | b'J' | b'K' | b'R' | b'A'
         ) || w.value == 0.0
         {
             return;
@@ -580,6 +587,12 @@ impl Scan {
             k.x += u32::from(get(b'X').is_some());
             k.y += u32::from(get(b'Y').is_some());
             k.z += u32::from(get(b'Z').is_some());
+            if let Some(a) = get(b'A')
+                && k.a_values.len() < 3
+                && !k.a_values.contains(&a.value)
+            {
+                k.a_values.push(a.value);
+            }
         }
         k.uw += u32::from(get(b'U').is_some() || get(b'W').is_some());
         let m6 = shape.m.contains(&6);

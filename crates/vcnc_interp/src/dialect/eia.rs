@@ -122,6 +122,7 @@ pub(super) fn eia() -> Dialect {
         diameter: Diameter {
             axis: None,
             at_power_on: false,
+            lathe: false,
         },
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,

@@ -259,6 +259,7 @@ pub(super) fn fanuc_lathe_in(system: GcodeSystem) -> Dialect {
         diameter: Diameter {
             axis: Some(b'X'),
             at_power_on: true,
+            lathe: true,
         },
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Zx,

@@ -134,6 +134,7 @@ pub(super) fn grbl() -> Dialect {
         diameter: Diameter {
             axis: None,
             at_power_on: false,
+            lathe: false,
         },
         // `X5` is 5 mm: grbl has no least-increment input.
         integers: IntegerWords::WholeUnits,

@@ -118,6 +118,7 @@ pub(super) fn lathe() -> Dialect {
         diameter: Diameter {
             axis: Some(b'X'),
             at_power_on: true,
+            lathe: true,
         },
         integers: IntegerWords::WholeUnits,
         plane: Plane::Zx,

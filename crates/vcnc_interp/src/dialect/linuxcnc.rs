@@ -13,9 +13,8 @@
 //!
 //! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
 //! so are the O-word subroutines and loops (`macros/oword.rs`). Lathe
-//! mode adds G7/G8, the finishing cycle G70 and the threading cycle G76.
-//! Not read: G71/G72,
-//! splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
+//! mode adds G7/G8, the finishing cycle G70, the roughing cycles G71/G72
+//! (and .1, .2) and the threading cycle G76. Not read: splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
 
 use super::grbl::{GRBL_G, GRBL_M, grbl};
 use super::{
@@ -23,7 +22,7 @@ use super::{
     ThreadLead, ToolChangeSpindle, bit, g,
 };
 use super::{
-    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, SetOp, TurnOp,
+    CompOp, CycleOp, FrameOp, Hole, ModeOp, MotionOp, PaceOp, RoughPockets, SetOp, TurnOp,
     m_codes::{MRow, m},
 };
 use super::{Diameter, SurfaceSpeedOn};
@@ -191,14 +190,6 @@ const NOT_RUN: &[(u16, &str)] = &[
     (50, "LinuxCNC's cubic spline G5 is not run by vcnc"),
     (51, "LinuxCNC's quadratic B-spline G5.1 is not run by vcnc"),
     (52, "LinuxCNC's NURBS block G5.2/G5.3 is not run by vcnc"),
-    (
-        70,
-        "LinuxCNC's lathe diameter mode G7 (X in diameters) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
-    ),
-    (
-        80,
-        "LinuxCNC's lathe radius mode G8 (X in radii) is not run by vcnc in the mill dialect (rs274 runs it in a mill program too): use --dialect linuxcnc-lathe",
-    ),
     (171, "the UVW planes G17.1-G19.1 are not run by vcnc"),
     (181, "the UVW planes G17.1-G19.1 are not run by vcnc"),
     (191, "the UVW planes G17.1-G19.1 are not run by vcnc"),
@@ -216,11 +207,27 @@ const NOT_RUN: &[(u16, &str)] = &[
     ),
     (
         710,
-        "LinuxCNC's lathe roughing cycle G71 is not run by vcnc",
+        "LinuxCNC's lathe roughing cycle G71 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        711,
+        "LinuxCNC's lathe roughing cycle G71.1 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        712,
+        "LinuxCNC's lathe roughing cycle G71.2 runs in lathe mode: use --dialect linuxcnc-lathe",
     ),
     (
         720,
-        "LinuxCNC's lathe roughing cycle G72 is not run by vcnc",
+        "LinuxCNC's lathe roughing cycle G72 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        721,
+        "LinuxCNC's lathe roughing cycle G72.1 runs in lathe mode: use --dialect linuxcnc-lathe",
+    ),
+    (
+        722,
+        "LinuxCNC's lathe roughing cycle G72.2 runs in lathe mode: use --dialect linuxcnc-lathe",
     ),
     (
         760,
@@ -250,9 +257,15 @@ const LINUXCNC_LEX: LexRules = LexRules {
 /// integers, its codes and rules) with the codes and policies above.
 pub(super) fn linuxcnc() -> Dialect {
     let m: Vec<&[MRow]> = GRBL_M.iter().copied().chain([LINUXCNC_M]).collect();
-    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G], &m);
+    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, LINUXCNC_DIAMETER_G], &m);
     Dialect {
         name: "linuxcnc",
+        // G7/G8 on X, in radii at power-on; not a lathe.
+        diameter: Diameter {
+            axis: Some(b'X'),
+            at_power_on: false,
+            lathe: false,
+        },
         g,
         m,
         unsupported: NOT_RUN,
@@ -274,14 +287,27 @@ pub(super) fn linuxcnc() -> Dialect {
     }
 }
 
-/// Lathe mode's G7 (X in diameters) and G8 (in radii).
-const LINUXCNC_LATHE_G: &[GRow] = &[
+/// G7 (X in diameters) and G8 (in radii): lathe mode's, which rs274 runs
+/// in a mill program too (`G7 G0 X1` goes to X0.5).
+const LINUXCNC_DIAMETER_G: &[GRow] = &[
     g(70, GOp::Mode(ModeOp::DiameterMode), Group::DiameterMode),
     g(80, GOp::Mode(ModeOp::RadiusMode), Group::DiameterMode),
+];
+
+/// Lathe mode's cycles.
+const LINUXCNC_LATHE_G: &[GRow] = &[
     // G70 Q [X Z D E P]: finishing along the profile of subroutine Q.
     g(700, GOp::Turn(TurnOp::NgcFinishCycle), Group::NonModal)
         .reads(bit(b'Q') | bit(b'D') | bit(b'E') | bit(b'P'))
         .claims_axes(),
+    // G71/G72 Q [X Z D I R]: roughing to the profile of subroutine Q
+    // (codes/ngc_rough.rs); .1 cuts no pocket, .2 those after the first.
+    rough(710, false, RoughPockets::All),
+    rough(711, false, RoughPockets::None),
+    rough(712, false, RoughPockets::AfterFirst),
+    rough(720, true, RoughPockets::All),
+    rough(721, true, RoughPockets::None),
+    rough(722, true, RoughPockets::AfterFirst),
     // G76 P Z I J K [R Q H E L]: the threading cycle (codes/ngc_thread.rs).
     g(760, GOp::Turn(TurnOp::NgcThreadCycle), Group::NonModal)
         .reads(
@@ -298,12 +324,27 @@ const LINUXCNC_LATHE_G: &[GRow] = &[
         .claims_axes(),
 ];
 
+/// A roughing cycle's row: G `code` (× 10) reads Q, D, I, R and its start
+/// point X Z.
+const fn rough(code: u16, facing: bool, pockets: RoughPockets) -> GRow {
+    g(
+        code,
+        GOp::Turn(TurnOp::NgcRoughCycle { facing, pockets }),
+        Group::NonModal,
+    )
+    .reads(bit(b'Q') | bit(b'D') | bit(b'I') | bit(b'R'))
+    .claims_axes()
+}
+
 /// LinuxCNC in lathe mode (a lathe configuration: X and Z, the XZ plane,
 /// G7/G8): the mill dialect's reading and codes, X in radii until G7, G96
 /// on the work diameter, the built-in turning centre.
 pub(super) fn linuxcnc_lathe() -> Dialect {
     let m: Vec<&[MRow]> = GRBL_M.iter().copied().chain([LINUXCNC_M]).collect();
-    let (g, m) = Dialect::tables(&[GRBL_G, LINUXCNC_G, LINUXCNC_LATHE_G], &m);
+    let (g, m) = Dialect::tables(
+        &[GRBL_G, LINUXCNC_G, LINUXCNC_DIAMETER_G, LINUXCNC_LATHE_G],
+        &m,
+    );
     Dialect {
         name: "linuxcnc-lathe",
         g,
@@ -311,6 +352,7 @@ pub(super) fn linuxcnc_lathe() -> Dialect {
         diameter: Diameter {
             axis: Some(b'X'),
             at_power_on: false,
+            lathe: true,
         },
         plane: Plane::Zx,
         default_machine: DEFAULT_FANUC_LATHE_TOML,

@@ -22,12 +22,36 @@
 use super::grbl::GRBL_G;
 use super::linuxcnc::{LINUXCNC_G, linuxcnc};
 use super::m_codes::{self, MRow};
-use super::{AuxM, Dialect, GOp, GRow, Group, MOp, MacroRules, MoveOp, bit, g};
+use super::{
+    AuxM, CircleCutForm, CycleOp, Dialect, GOp, GRow, Group, MOp, MacroRules, MoveOp, bit, g,
+};
+use crate::events::ArcDir;
 
 /// Mach3's codes beyond LinuxCNC's: G31, its straight probe, moves towards
 /// the point named and stops where the probe touches (Fanuc's skip: without
 /// a probe signal the whole move).
-const MACH3_G: &[GRow] = &[g(310, GOp::Move(MoveOp::Skip), Group::NonModal).claims_axes()];
+/// G12/G13 (manual, "Clockwise/counterclockwise circular pocket"): a
+/// circle of radius I about where the tool stands (`codes/circle_cut.rs`).
+const MACH3_G: &[GRow] = &[
+    g(310, GOp::Move(MoveOp::Skip), Group::NonModal).claims_axes(),
+    g(
+        120,
+        GOp::Cycle(CycleOp::CircleCut(ArcDir::Cw, CircleCutForm::StraightInOut)),
+        Group::NonModal,
+    )
+    .reads(bit(b'I'))
+    .claims_axes(),
+    g(
+        130,
+        GOp::Cycle(CycleOp::CircleCut(
+            ArcDir::Ccw,
+            CircleCutForm::StraightInOut,
+        )),
+        Group::NonModal,
+    )
+    .reads(bit(b'I'))
+    .claims_axes(),
+];
 
 /// Mach3's built-in M codes: program stops and ends, spindle, tool change,
 /// coolant, M98/M99 subprograms; the rest are macros (below).
@@ -80,14 +104,6 @@ const fn aux(first: u16, last: u16, what: &'static str) -> AuxM {
 /// Codes of Mach3's G-code list that vcnc does not run, and why (E201).
 const NOT_RUN: &[(u16, &str)] = &[
     (
-        120,
-        "Mach3's circular pocket G12/G13 is not run by vcnc's mach3 dialect yet",
-    ),
-    (
-        130,
-        "Mach3's circular pocket G12/G13 is not run by vcnc's mach3 dialect yet",
-    ),
-    (
         150,
         "Mach3's polar mode G15/G16 (about the point where G16 was given) is not run by vcnc",
     ),
@@ -127,6 +143,12 @@ pub(super) fn mach3() -> Dialect {
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
         polar_words: false,
+        // Mach3Mill has no G7/G8 (diameter mode is Mach3 Turn's).
+        diameter: super::Diameter {
+            axis: None,
+            at_power_on: false,
+            lathe: false,
+        },
         // Mach3 reads as grbl does: no polar words, no nested-comment
         // alarm (those are rs274's).
         lex: super::grbl::GRBL_LEX,

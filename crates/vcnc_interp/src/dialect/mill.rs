@@ -9,10 +9,10 @@ use super::{
     ToolWords, bit, g,
 };
 use super::{
-    CompOp, CycleOp, FlowOp, FrameOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp, SetOp,
+    CircleCutForm, CompOp, CycleOp, FlowOp, FrameOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp, SetOp,
     m_codes::{self, MRow, m},
 };
-use crate::events::{Cycle, Plane};
+use crate::events::{ArcDir, Cycle, Plane};
 use crate::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{Addr, LexRules, Semicolon};
 
@@ -230,12 +230,32 @@ const MILL_LEX: LexRules = LexRules {
 /// Codes of the Syntec G-code list (manual 1.1) that later work will run.
 const SYNTEC_LATER: &[(u16, &str)] = &[];
 
+/// The words of Haas's G12/G13: radii I, K and the step Q, the cutter's
+/// D, the repeats L.
+const CIRCLE_CUT_WORDS: u32 = bit(b'I') | bit(b'K') | bit(b'Q') | bit(b'D') | bit(b'L');
+
 /// Haas's codes beyond Fanuc's that its programs use (Haas mill operator's
 /// manual, G- and M-code chapters).
 const HAAS_G: &[GRow] = &[
     // G187 P1–P3 (rough, medium, finish) E corner tolerance: a setting for
     // the planner.
     g(1870, GOp::Pace(PaceOp::Smoothing), Group::NonModal).reads(bit(b'P') | bit(b'E')),
+    // G12/G13 circular pocket milling: I, K, Q radii, D, L repeats, Z
+    // depth (`codes/circle_cut.rs`).
+    g(
+        120,
+        GOp::Cycle(CycleOp::CircleCut(ArcDir::Cw, CircleCutForm::Spiral)),
+        Group::NonModal,
+    )
+    .reads(CIRCLE_CUT_WORDS)
+    .claims_axes(),
+    g(
+        130,
+        GOp::Cycle(CycleOp::CircleCut(ArcDir::Ccw, CircleCutForm::Spiral)),
+        Group::NonModal,
+    )
+    .reads(CIRCLE_CUT_WORDS)
+    .claims_axes(),
     // The cycles repeat by L; G73/G83 also peck by I, J, K.
     g(
         730,
@@ -330,6 +350,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         diameter: Diameter {
             axis: None,
             at_power_on: false,
+            lathe: false,
         },
         integers: IntegerWords::LeastIncrement,
         plane: Plane::Xy,

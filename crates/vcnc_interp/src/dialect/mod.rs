@@ -29,7 +29,8 @@ pub use macro_rules::{
     ExtendedG, IsoMacros, MachineVars, MacroFiles, MacroRules, ModalLocals, VarTable,
 };
 pub use ops::{
-    CompOp, CycleOp, FlowOp, FrameOp, GOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp,
+    CircleCutForm, CompOp, CycleOp, FlowOp, FrameOp, GOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp,
+    RoughPockets, SetOp, TurnOp,
 };
 
 use crate::events::Plane;
@@ -301,6 +302,10 @@ pub struct Diameter {
     pub axis: Option<u8>,
     /// Whether diameter programming is on at power-on.
     pub at_power_on: bool,
+    /// A lathe's dialect: X is the work's radius, G41/G42 take a tool's
+    /// nose radius and tip. LinuxCNC's mill reads G7/G8 on its X axis
+    /// (`axis`) without being one.
+    pub lathe: bool,
 }
 
 /// The path of a G00 that moves several axes.

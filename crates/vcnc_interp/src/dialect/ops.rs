@@ -17,7 +17,7 @@
 //! The same meanings feed `vcnc explain`, E201's help, the dialect matrix
 //! in docs/dialects.md and the editor's hover: there is no second list.
 
-use crate::events::Cycle;
+use crate::events::{ArcDir, Cycle};
 
 /// What a G code does: its role, then the operation within the role.
 #[cfg_attr(
@@ -255,6 +255,23 @@ pub enum CycleOp {
     PocketRect,
     /// EIA G79: a circular pocket.
     PocketCircle,
+    /// G12/G13 (Haas, Mach3): a circle cut about where the tool stands,
+    /// clockwise or not, in the form the dialect reads.
+    CircleCut(ArcDir, CircleCutForm),
+}
+
+/// How a dialect's G12/G13 reads its words and leaves the centre
+/// (`codes/circle_cut.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CircleCutForm {
+    /// Haas: I the first radius (the finish radius without K), K the
+    /// finish radius, Q the step between them, D the cutter's radius
+    /// register, L repeats, Z the depth (an increment under G91); in and
+    /// out of each depth along half circles from and to the centre.
+    Spiral,
+    /// Mach3: I the radius of the tool centre's circle, straight out along
+    /// X by I and straight back to the centre, at the level it stands.
+    StraightInOut,
 }
 
 /// What a drilling cycle does at each hole (after the approach to R).
@@ -323,6 +340,23 @@ pub enum TurnOp {
     /// LinuxCNC's lathe G70: finishing passes along the profile of the
     /// subroutine Q.
     NgcFinishCycle,
+    /// LinuxCNC's lathe roughing G71 (`facing` false) or G72, and which
+    /// pockets it cuts (G7x, G7x.1, G7x.2).
+    NgcRoughCycle { facing: bool, pockets: RoughPockets },
+}
+
+/// Which pockets (parts of the profile that dip again after rising)
+/// LinuxCNC's roughing cycles cut.
+#[cfg_attr(test, derive(strum::EnumIter))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RoughPockets {
+    /// G71, G72: every pocket.
+    #[default]
+    All,
+    /// G71.1, G72.1: none; the profile is followed up to its end.
+    None,
+    /// G71.2, G72.2: only those after the first descent.
+    AfterFirst,
 }
 
 /// Program flow.
@@ -358,6 +392,7 @@ impl GOp {
                     | TurnOp::RoughFaceCycle
                     | TurnOp::PatternCycle
                     | TurnOp::NgcFinishCycle
+                    | TurnOp::NgcRoughCycle { .. }
             )
         )
     }
@@ -579,6 +614,20 @@ impl CycleOp {
             CycleOp::PatternGrid => "a grid of holes: intervals I and J, P holes a row, K rows",
             CycleOp::PocketRect => "rectangular pocket milling",
             CycleOp::PocketCircle => "circular pocket milling",
+            CycleOp::CircleCut(dir, form) => match (dir, form) {
+                (ArcDir::Cw, CircleCutForm::Spiral) => {
+                    "circular pocket milling clockwise: from the centre to radius I, out by Q to K, less D's radius, L times to Z, back to the centre"
+                }
+                (ArcDir::Ccw, CircleCutForm::Spiral) => {
+                    "circular pocket milling counter-clockwise: from the centre to radius I, out by Q to K, less D's radius, L times to Z, back to the centre"
+                }
+                (ArcDir::Cw, CircleCutForm::StraightInOut) => {
+                    "circular pocket clockwise: out along X by I, a circle about the starting point, back to it"
+                }
+                (ArcDir::Ccw, CircleCutForm::StraightInOut) => {
+                    "circular pocket counter-clockwise: out along X by I, a circle about the starting point, back to it"
+                }
+            },
         }
     }
 }
@@ -630,6 +679,26 @@ impl TurnOp {
             TurnOp::NgcFinishCycle => {
                 "finishing cycle along the profile of subroutine o<Q> (X Z the start point, P passes)"
             }
+            TurnOp::NgcRoughCycle { facing, pockets } => match (facing, pockets) {
+                (false, RoughPockets::All) => {
+                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), pockets too"
+                }
+                (false, RoughPockets::None) => {
+                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), no pockets"
+                }
+                (false, RoughPockets::AfterFirst) => {
+                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), the pockets after the first descent"
+                }
+                (true, RoughPockets::All) => {
+                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), pockets too"
+                }
+                (true, RoughPockets::None) => {
+                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), no pockets"
+                }
+                (true, RoughPockets::AfterFirst) => {
+                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), the pockets after the first descent"
+                }
+            },
             TurnOp::NgcThreadCycle => {
                 "threading cycle: passes from the drive line to Z (P pitch, I peak, J first depth, K full depth)"
             }

@@ -18,7 +18,7 @@
 //! (Fanuc 0i). I/J/K are offsets in program coordinates (never polar);
 //! the frame then maps the centre like any other point.
 
-use super::MoveKind;
+use super::{MoveKind, Target};
 use crate::alarms;
 use crate::block::convert::Goal;
 use crate::block::words::Words;
@@ -26,8 +26,13 @@ use crate::dialect::{ArcEnd, LongChord, bit};
 use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::frame::plane_rows;
+use std::f64::consts::TAU;
 use vcnc_core::geometry::ZERO_MM;
 use vcnc_syntax::{Addr, Diagnostic, Span};
+
+/// Most turns one G2/G3 P may ask for (each is an event of its block,
+/// held until the block succeeds).
+const MAX_TURNS: f64 = 10_000.0;
 
 /// The radius an arc block gives.
 #[derive(Debug, Clone, Copy)]
@@ -60,7 +65,7 @@ impl Interpreter<'_> {
         if named == 0 && !has_center && radius.is_none() {
             return Ok(());
         }
-        self.arc_turns(w, cmd)?;
+        let turns = self.arc_turns(w)?;
         let idx = self.plane_idx(plane, cmd)?;
         let feed = self.feed(cmd)?;
         let from = self.state.prog;
@@ -86,34 +91,97 @@ impl Interpreter<'_> {
             }
             None => return Err(alarms::arc_without_center(cmd, plane.as_str())),
         };
+        if turns > 1 {
+            return self.multi_turn_arc(goal, center, cw, turns, w, cmd);
+        }
         self.commit_arc(goal, center, cw, w, cmd)
     }
 
-    /// LinuxCNC's G2/G3 P, the number of turns (a whole number from 1, as
-    /// rs274 wants: "P value should be 1 or greater with G2 or G3"): P1
-    /// is the plain arc; more turns are E201, not run by vcnc.
-    fn arc_turns(&self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+    /// LinuxCNC's G2/G3 P, the number of turns: a whole number from 1 (as
+    /// rs274 wants: "P value should be 1 or greater with G2 or G3", "P
+    /// value not an integer"), at most `MAX_TURNS`; 1 without P.
+    fn arc_turns(&self, w: &Words<'_>) -> Result<u32, Diagnostic> {
         let reads_p = self.cfg.dialect.arc_letters & bit(b'P') != 0;
         let Some(p) = w.get(b'P').filter(|_| reads_p) else {
-            return Ok(());
+            return Ok(1);
         };
-        let turns = crate::block::convert::whole(
+        crate::block::convert::whole(
             &p,
             b'P',
             1.0,
-            1e6,
-            "P is the arc's number of turns, a whole number from 1",
-        )?;
-        if turns > 1 {
-            return Err(alarms::unsupported_g(
-                cmd,
-                &format!(
-                    "a multi-turn arc (G2/G3 P{turns}: {} more full turns before the arc's end) is not run by vcnc",
-                    turns - 1
-                ),
-            ));
+            MAX_TURNS,
+            "P is the arc's number of turns, a whole number from 1 to 10000",
+        )
+    }
+
+    /// G2/G3 P n (n > 1, LinuxCNC): n − 1 full circles, then the arc to its
+    /// end point, as rs274's one `ARC_FEED(…, turns, …)` runs:
+    ///
+    /// ```text
+    ///   P3, Z from z0 to z1:   circle   circle   last arc (sweep θ)
+    ///   normal axis at each    z0+Δ·2π/T  z0+Δ·4π/T   z1      T = 2·2π + θ
+    /// ```
+    ///
+    /// The axes off the plane (the helix's normal axis and any other) move
+    /// linearly with the angle turned, over the whole path, as LinuxCNC's
+    /// helix does (its motion plans one circle segment of T radians, the
+    /// normal axis proportional to the angle). Each circle ends where the
+    /// arc started in the plane; every piece is an `arc` event, so the
+    /// planner, the flattened G-code and the plots see plain arcs.
+    fn multi_turn_arc(
+        &mut self,
+        goal: Goal,
+        center: (f64, f64),
+        cw: bool,
+        turns: u32,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let plane = self.state.modal.plane;
+        let idx = self.plane_idx(plane, cmd)?;
+        let (from, to) = (self.state.prog, goal.prog);
+        let s = (from.get(idx.a), from.get(idx.b));
+        let e = (to.get(idx.a), to.get(idx.b));
+        self.check_on_circle(s, e, center, cmd)?;
+        let axes = self.plane_axes(plane, cmd)?;
+        let mut c = from;
+        c.set(idx.a, center.0);
+        c.set(idx.b, center.1);
+        let dir = if cw {
+            crate::events::ArcDir::Cw
+        } else {
+            crate::events::ArcDir::Ccw
+        };
+        let last = vcnc_core::geometry::ArcPath::new(from, to, c, axes, dir);
+        let circles = f64::from(turns - 1);
+        let total = circles * TAU + last.sweep.abs();
+        let feed = if self.state.modal.inverse_time {
+            // F is the inverse of the whole move's minutes.
+            let len = (last.radius * total).hypot(last.rise());
+            self.inverse_time_feed(w, cmd, len)?
+        } else {
+            self.feed(cmd)?
+        };
+        let mut offset = Pos::default();
+        offset.set(idx.a, center.0 - s.0);
+        offset.set(idx.b, center.1 - s.1);
+        let kind = MoveKind::Arc {
+            offset,
+            plane,
+            cw,
+            feed,
+        };
+        for k in 1..turns {
+            let f = f64::from(k) * TAU / total;
+            let mut p = from;
+            for i in (0..crate::events::MAX_AXES).filter(|&i| i != idx.a && i != idx.b) {
+                p.set(i, from.get(i) + (to.get(i) - from.get(i)) * f);
+            }
+            self.straight(kind, Target::Program(p), w, cmd)?;
         }
-        Ok(())
+        // The program point, not an increment: the circles have moved the
+        // tool (no LinuxCNC code detaches the program point from it).
+        self.straight(kind, Target::Program(to), w, cmd)
     }
 
     /// Program indices of a plane's axes (E305 if the machine lacks one).

@@ -163,12 +163,39 @@ fn lathes_by_their_signs() {
         "haas-lathe",
         &["one-block G71 with D"],
     );
-    // LinuxCNC's lathe mode: G7 (diameters) only it knows.
+    // X and Z with A: a mill's rotary (4th-axis) program, not a lathe's —
+    // no lathe dialect has an A axis (the built-in lathes would alarm E203
+    // at the first A word).
+    let d = detect(
+        b"G21 G90\nG0 X0 A0 Z5\nG1 Z0 F300\nG1 X10 A90\nG1 X20 A180\nG0 Z5\nM2\n",
+        Some("wrap.gcode"),
+    );
+    assert!(
+        !["lathe", "fanuc-lathe", "haas-lathe", "linuxcnc-lathe"].contains(&d.dialect),
+        "{}",
+        d.describe()
+    );
+    // Whole degrees beside pointed lengths (`A2` after `X2.3097`): written
+    // for a control that reads A2 as 2°, not 0.002°.
+    let d = detect(
+        b"G90 G20\nM03\nS776\nG00 X1.899 A0 Z1.12\nG01 Z0.2229 F45.0177\nX2.3097 Z0.2014\n\
+          G00 Z1.12\nA2\nG01 Z0.2229\nX2.3283 Z0.2071\nG00 Z1.12\nA4\nG01 Z0.2229\nM30\n",
+        Some("shaft.nc"),
+    );
+    assert!(
+        d.evidence
+            .iter()
+            .any(|e| e.contains("whole-unit integers (A")),
+        "{}",
+        d.describe()
+    );
+    // LinuxCNC's lathe mode: G18, X and Z only (G7, diameters, the mill
+    // mode reads too).
     chosen(
         "G7 G18 G21 ; diameter mode\nT1 M6\nG0 X20 Z2\nG1 Z-10 F100\nX30\nM2\n",
         "turn.nc",
         "linuxcnc-lathe",
-        &["G7"],
+        &["X and Z only"],
     );
     // The seed lathe: CR= arcs, whole-unit integers, G70/G71 units.
     chosen(
@@ -276,9 +303,14 @@ fn e201_hint_names_every_dialect_that_knows_the_code_and_its_reading() {
     assert!(h.starts_with("G18 is a code of "), "{h}");
     assert!(h.contains("fanuc-lathe") && !h.contains("fanuc,"), "{h}");
     assert!(!h.contains("linuxcnc-lathe"), "another `;` family: {h}");
-    // Nobody knows G12.
+    // Haas's and Mach3's circular pocket, read two ways.
     assert_eq!(
         g_hint(&Dialect::fanuc(), 12.0),
+        "G12 is a code of haas (which read X20 as 0.020 mm, as fanuc does) and of mach3 (which read X20 as 20 mm): choose by how the program writes lengths, or leave --dialect out and vcnc chooses from the program"
+    );
+    // Nobody knows G14.
+    assert_eq!(
+        g_hint(&Dialect::fanuc(), 14.0),
         "check the code against the controller's G-code list"
     );
 }

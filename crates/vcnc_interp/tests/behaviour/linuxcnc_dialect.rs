@@ -211,20 +211,13 @@ fn o_words_named_parameters_and_lathe_codes_alarm_where_they_stand() {
     assert!(
         matches!(out, Outcome::Alarm(d) if d.code == Code::E604 && d.help.contains("linuxcnc"))
     );
-    assert_eq!(alarm("G21\nG7\nM2\n"), (Code::E201, 2, 1));
-    // rs274 runs G7/G8 in a mill program (G7 halves X); vcnc runs them in
-    // linuxcnc-lathe only, and the alarm names that dialect.
-    for g in ["G7", "G8"] {
-        let (_, out) = run(&format!("G21\n{g}\nM2\n"));
-        let Outcome::Alarm(d) = out else {
-            panic!("{out:?}")
-        };
-        let text = format!("{} {}", d.message, d.help);
-        assert!(
-            text.contains("--dialect linuxcnc-lathe") && !text.contains("fanuc-lathe"),
-            "{text}"
-        );
-    }
+    // rs274 runs G7/G8 in a mill program too: G7 halves X (`G7 G0 X1`
+    // goes to X0.5), G8 reads radii again (the moves:
+    // `linuxcnc_dialect/g7_g8_in_a_mill_program`).
+    assert_eq!(
+        common::xs(&ended("G21\nG7 G0 X1\nG8 X1\nM2\n")),
+        vec![0.5, 1.0]
+    );
     // G33.1 taps with a turning spindle and K in the block, as rs274
     // wants ("Spindle not turning in G33.1", "K word missing with
     // g33/g33.1"); the taps themselves are checked against rs274
@@ -402,11 +395,11 @@ fn second_review_findings_stay_fixed() {
     };
     assert_eq!(fanuc("G21\nO100IF\nM30\n").0, Code::E104);
     assert_eq!(fanuc("G21\nN10 o100 sub\nM30\n").0, Code::E604);
-    // G7 runs only in LinuxCNC's lathe mode (the seed lathe lists it as
-    // not run, and linuxcnc sends it on to linuxcnc-lathe).
+    // G7 runs in LinuxCNC's mill and lathe modes; a mill program is sent
+    // to the mill dialect.
     let (code, _, _, _, help) = fanuc("G21\nG7\nM30\n");
     assert_eq!(code, Code::E201);
-    assert!(help.contains("--dialect linuxcnc-lathe"), "{help}");
+    assert!(help.contains("--dialect linuxcnc "), "{help}");
     let (_, _, _, _, help) = fanuc("G21\nG33.1 Z-5 K1\nM30\n");
     assert!(
         help.contains("--dialect linuxcnc"),
@@ -659,26 +652,30 @@ fn a_parenthesis_inside_a_comment_alarms_as_in_rs274() {
 
 /// G2/G3 P, LinuxCNC's number of turns (rs274 -g: `G3 … P2` is
 /// `ARC_FEED(…, 2, …)`; P0, P-1: "P value should be 1 or greater with G2
-/// or G3"; P1.5: "P value not an integer"): P1 is the plain arc, more
-/// turns are E201 saying vcnc does not run them, not E203.
+/// or G3"; P1.5: "P value not an integer"): P1 is the plain arc, P n is
+/// n − 1 full circles and then the arc (the helix's Z spread over the
+/// whole angle: `tests/fixtures/linuxcnc_dialect/multi_turn_arcs`).
 #[test]
-fn arc_turns_p_is_read_and_more_than_one_turn_is_not_run() {
+fn arc_turns_p_runs_full_circles_before_the_arc() {
     let arc = |p: &str| format!("G21 G90 G17\nG0 X100 Y0\nG3 X0 Y100 I-100 J0 {p} F100\nM2\n");
     assert_eq!(ended(&arc("P1")), ended(&arc("")));
-    let (_, out) = run(&arc("P2"));
-    let Outcome::Alarm(d) = out else {
-        panic!("{out:?}")
-    };
-    assert_eq!((d.code, d.line, d.column), (Code::E201, 3, 1));
-    assert!(d.message.contains("not run by vcnc"), "{}", d.message);
-    assert_eq!(alarm(&arc("P2")), (Code::E201, 3, 1));
+    let ends = |p: &str| common::ends(&ended(p), 3);
+    let e = ends(&arc("P2"));
+    assert_eq!(e.len(), 2, "{e:?}");
+    assert!(common::near(e[0], 100.0, 0.0, 0.0), "{e:?}");
+    assert!(common::near(e[1], 0.0, 100.0, 0.0), "{e:?}");
+    // With Z: a quarter after one circle, 2π of 2.5π: Z at 4/5 of the way.
+    let e = ends(&arc("Z-5 P2"));
+    assert!(common::near(e[0], 100.0, 0.0, -4.0), "{e:?}");
+    assert!(common::near(e[1], 0.0, 100.0, -5.0), "{e:?}");
     // In a modal G3 block too (rs274: ARC_FEED(…, 2, …)).
-    let modal = arc("P1").replace("M2\n", "X100 Y0 I100 J0 P2\nM2\n");
-    assert_eq!(alarm(&modal), (Code::E201, 4, 1));
+    let modal = arc("P1").replace("M2\n", "X100 Y0 I0 J-100 P3\nM2\n");
+    assert_eq!(common::ends(&ended(&modal), 4).len(), 3);
     for (bad, code) in [
         ("P0", Code::E109),
         ("P-1", Code::E109),
         ("P1.5", Code::E108),
+        ("P10001", Code::E109),
     ] {
         assert_eq!(alarm(&arc(bad)).0, code, "{bad}");
     }
@@ -791,8 +788,6 @@ fn h0_beside_g49_and_a_bare_g53_alarm_as_in_rs274() {
 /// stays at its end. rs274 on this program: traverse (11, 2), (5, 0),
 /// feed (5, −10), (8, −15), (10, −15), twice (radii). The 40 programs of
 /// `tests/fixtures/linuxcnc_lathe` check the single pass against rs274.
-/// Offset passes (D, E not 0) are refused: vcnc does not offset the
-/// profile.
 #[test]
 fn g70_runs_the_profile_subroutine_in_lathe_mode() {
     let program = "G18 G21 G90 G7 G95\nS800 M3\nO100 sub\nG1 X10 Z0\nG1 Z-10\nG1 X16 Z-15\nG1 X20\nO100 endsub\nG0 X22 Z2\nG70 Q100 P2 F0.05\nM2\n";
@@ -812,14 +807,20 @@ fn g70_runs_the_profile_subroutine_in_lathe_mode() {
     ];
     let want: Vec<(f64, f64)> = pass.iter().chain(&pass[..]).copied().collect();
     assert_eq!(ends, want);
-    let (_, out) = run_str(
+    // One pass runs at E (0 here): D alone leaves the profile as it is,
+    // as rs274 does (`tests/fixtures/linuxcnc_lathe_cycles` checks the
+    // offset passes).
+    let (ev, out) = run_str(
         &Dialect::linuxcnc_lathe(),
         &program.replace("G70 Q100 P2", "G70 Q100 D0.5"),
     );
-    assert!(
-        matches!(&out, Outcome::Alarm(d) if (d.code, d.line) == (Code::E109, 10)),
-        "{out:?}"
-    );
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let ends: Vec<(f64, f64)> = ev
+        .iter()
+        .filter_map(Event::motion_end)
+        .map(|p| (p.get(0), p.get(2)))
+        .collect();
+    assert_eq!(ends, pass);
     let (_, out) = run_str(
         &Dialect::linuxcnc_lathe(),
         &program.replace("G70 Q100 P2", "G70 Q200"),

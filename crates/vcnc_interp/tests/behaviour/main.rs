@@ -5,6 +5,7 @@
 
 mod alarms;
 mod atomicity;
+mod circle_pockets;
 mod common;
 mod compensation;
 mod compensation_frames;

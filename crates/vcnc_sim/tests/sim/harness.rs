@@ -34,7 +34,7 @@ pub fn run_with(
 ) -> Finished {
     let d = Dialect::by_name(dialect).unwrap();
     let machine = d.machine();
-    let lathe = d.diameter.axis.is_some();
+    let lathe = d.diameter.lathe;
     let options = SimOptions {
         stock: StockSpec::parse(stock).unwrap(),
         stock_origin: StockOrigin::Option,

@@ -1,43 +1,30 @@
 //! Snapshots of what a person reads: rendered alarms (stderr) and `check`
-//! summaries (stdout), kept in `tests/snapshots/` so that a change to the
+//! summaries (stdout), kept in `tests/behaviour/snapshots/` so that a change to the
 //! wording or layout shows in review. Each snapshot was read against the
 //! program it comes from when it was accepted.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+use crate::common::{TempDir, vcnc};
+use std::process::Output;
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("workspace root")
+/// What a person reads of a run: exit code, stdout, stderr.
+fn shown(o: &Output) -> String {
+    format!(
+        "exit {}\n--- stdout\n{}--- stderr\n{}",
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
 }
 
 /// Runs `vcnc args…` on a program written to a temporary file; returns
 /// exit code, stdout and stderr with the temporary path replaced.
 fn vcnc_on(name: &str, program: &str, args: &[&str]) -> String {
-    let dir = std::env::temp_dir().join(format!("vcnc_snap_{}_{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("{name}.nc"));
-    std::fs::write(&file, program).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .arg(&file)
-        .current_dir(workspace())
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("vcnc runs");
-    let shown = file.display().to_string();
-    let text = format!(
-        "exit {}\n--- stdout\n{}--- stderr\n{}",
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-    std::fs::remove_dir_all(&dir).ok();
-    text.replace(&shown, &format!("{name}.nc"))
+    let dir = TempDir::new("snap");
+    let file = dir.write(&format!("{name}.nc"), program);
+    let path = file.display().to_string();
+    let mut all = args.to_vec();
+    all.push(&path);
+    shown(&vcnc(&all)).replace(&path, &format!("{name}.nc"))
 }
 
 #[test]
@@ -125,18 +112,7 @@ fn whole_units_under_least_increments_warn() {
 
 /// Runs `vcnc args…` in the repository root on its own files.
 fn vcnc_args(args: &[&str]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(workspace())
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("vcnc runs");
-    format!(
-        "exit {}\n--- stdout\n{}--- stderr\n{}",
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
+    shown(&vcnc(args))
 }
 
 /// `vcnc tools` on a Fusion program of the corpus: the shape from its
@@ -184,14 +160,9 @@ fn tools_json_of_carbide_create_output() {
 /// `vcnc check` with `option` naming a file that holds `content`, shown
 /// as `shown` (a malformed table or dump: the run never starts).
 fn check_with_file(option: &str, shown: &str, content: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("vcnc_snap_{}_{shown}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(shown);
-    std::fs::write(&file, content).unwrap();
-    let path = file.display().to_string();
-    let out = vcnc_on(shown, "T1 M6\nG0 X1.\nM30\n", &["check", option, &path]);
-    std::fs::remove_dir_all(&dir).ok();
-    out.replace(&path, shown)
+    let dir = TempDir::new("snap-file");
+    let path = dir.write(shown, content).display().to_string();
+    vcnc_on(shown, "T1 M6\nG0 X1.\nM30\n", &["check", option, &path]).replace(&path, shown)
 }
 
 /// A malformed tool table stops before anything runs: exit 2, the file,

@@ -2,26 +2,8 @@
 //! to the total, the plan is never faster than distance/feed, the trace has
 //! one row per period and ends at rest, and alarms set the exit code.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
+use crate::common::{TempDir, vcnc};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("workspace root")
-}
-
-fn vcnc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(workspace())
-        .output()
-        .expect("vcnc runs")
-}
 
 fn f(v: &Value, key: &str) -> f64 {
     v[key].as_f64().unwrap_or_else(|| panic!("{key} in {v}"))
@@ -150,18 +132,14 @@ fn time_takes_each_profile_and_the_mill_filters_by_default() {
 /// ends at rest at X10 after its 2 s run-out.
 #[test]
 fn a_trace_period_too_short_for_the_filter_is_refused() {
-    let dir = std::env::temp_dir().join(format!("vcnc_filter_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let machine = dir.join("slow.toml");
-    std::fs::write(
-        &machine,
+    let dir = TempDir::new("filter");
+    let machine = dir.write(
+        "slow.toml",
         "name = \"slow jerk\"\n[[axes]]\nletter = \"x\"\nrapid_mm_per_min = 6000.0\n\
          max_feed_mm_per_min = 6000.0\naccel_mm_s2 = 2000.0\njerk_mm_s3 = 1000.0\n\
          [motion]\nprofile = \"filter\"\n",
-    )
-    .unwrap();
-    let program = dir.join("one.nc");
-    std::fs::write(&program, "G1 X10. F6000\nM30\n").unwrap();
+    );
+    let program = dir.write("one.nc", "G1 X10. F6000\nM30\n");
     let run = |period: &str| {
         vcnc(&[
             "run",
@@ -193,7 +171,6 @@ fn a_trace_period_too_short_for_the_filter_is_refused() {
         .collect();
     // X10 at rest, after the 2 s run-out.
     assert_eq!((last[1], last[2], last[3]), (10.0, 0.0, 0.0));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `time DIR` walks the directory as `check` does, each program on the

@@ -2,7 +2,7 @@
 //! part programs, see `corpus/README.md`) run through `vcnc check` with the
 //! dialect its manifest names, and again with none (`--dialect auto`), one
 //! line per program and a count per dialect. The snapshot
-//! (`tests/snapshots/conformance__corpus.snap`) changes whenever a change
+//! (`tests/behaviour/snapshots/behaviour__conformance__corpus.snap`) changes whenever a change
 //! moves the numbers, so review shows it (the model is oxc's coverage
 //! snapshots).
 //!
@@ -10,8 +10,6 @@
 //! event stream for the program is the same (alarms compared by code, line
 //! and column: their messages name the dialect) — for at least 95 % of the
 //! programs, and run at least as many of them to the end.
-
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

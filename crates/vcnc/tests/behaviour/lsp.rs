@@ -9,8 +9,6 @@
 //! from `M98 P100` to `O100`; list the symbols, the tool change among
 //! them; shut down and exit.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
 use serde_json::{Value, json};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::process::{Child, ChildStdin, Command, Stdio};

@@ -7,92 +7,9 @@
 //! follow `docs/events.md`, the alarm rendering follows the README's example
 //! and the exit codes follow the README (0 clean, 1 alarm, 2 usage error).
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
+use crate::common::{TempDir, code, jsonl, stderr, stdout, vcnc, vcnc_fed, vcnc_in, workspace};
 use serde_json::{Value, json};
-use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("workspace root")
-}
-
-/// Runs `vcnc args…` in `dir`, without colours.
-fn vcnc_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("vcnc runs")
-}
-
-/// Runs `vcnc args…` in the workspace root.
-fn vcnc(args: &[&str]) -> Output {
-    vcnc_in(&workspace(), args)
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).expect("stdout is UTF-8")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).expect("stderr is UTF-8")
-}
-
-fn code(o: &Output) -> i32 {
-    o.status.code().expect("exit code")
-}
-
-/// Parses JSON-lines output; every line must be one JSON object.
-fn jsonl(o: &Output) -> Vec<Value> {
-    stdout(o)
-        .lines()
-        .map(|l| {
-            let v: Value =
-                serde_json::from_str(l).unwrap_or_else(|e| panic!("not JSON ({e}): {l}"));
-            assert!(v.is_object(), "not an object: {l}");
-            v
-        })
-        .collect()
-}
-
-/// A fresh directory under the system temp dir, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> TempDir {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("vcnc-cli-{}-{n}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("temp dir");
-        TempDir(dir)
-    }
-
-    fn write(&self, name: &str, text: &str) -> PathBuf {
-        let p = self.0.join(name);
-        if let Some(parent) = p.parent() {
-            std::fs::create_dir_all(parent).expect("parent dir");
-        }
-        std::fs::write(&p, text).expect("write temp file");
-        p
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 // ---------------------------------------------------------------------------
 // check
@@ -573,22 +490,11 @@ fn check_sarif_has_what_ci_annotations_need() {
 
 #[test]
 fn check_reads_a_program_from_stdin() {
-    use std::io::Write as _;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(["check", "-"])
-        .current_dir(workspace())
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"G00 X1.\nG02 X5. Y0 I-3. J-1. F100.\nM30\n")
-        .unwrap();
-    let o = child.wait_with_output().unwrap();
+    let o = vcnc_fed(
+        &workspace(),
+        &["check", "-"],
+        b"G00 X1.\nG02 X5. Y0 I-3. J-1. F100.\nM30\n",
+    );
     assert_eq!(code(&o), 1);
     // Detected from the text alone (no file name): `X1.` is the Fanuc
     // posts' style.
@@ -962,7 +868,7 @@ fn subroutine_files_are_read_from_the_program_directory_only() {
         calls.push(("o<leak> call".to_string(), "E408"));
     }
     for (call, alarm) in calls {
-        dir.write("subs/probe.ngc", &format!("G21\n{call}\nG0 X1\nM2\n"));
+        dir.write("subs/probe.ngc", format!("G21\n{call}\nG0 X1\nM2\n"));
         let o = vcnc_in(&subs, &["run", "probe.ngc", "--dialect", "linuxcnc"]);
         assert_eq!(code(&o), 1, "{call}");
         let events = jsonl(&o);
@@ -1076,15 +982,9 @@ fn block_delete_switch() {
 /// reports X extents as diameters (events carry radii).
 #[test]
 fn check_reports_lathe_diameters() {
-    let dir = std::env::temp_dir().join(format!("vcnc-cli-lathe-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("turn.nc");
-    std::fs::write(&file, "G00 X40 Z5\nG01 Z-20 F100\nG00 X60\nM30\n").unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(["check", "--dialect", "lathe"])
-        .arg(&file)
-        .output()
-        .unwrap();
+    let dir = TempDir::new("lathe");
+    let file = dir.write("turn.nc", "G00 X40 Z5\nG01 Z-20 F100\nG00 X60\nM30\n");
+    let out = vcnc(&["check", "--dialect", "lathe", file.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{stdout}");
     assert!(
@@ -1104,7 +1004,6 @@ fn check_reports_lathe_diameters() {
         ),
         "{stdout}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Regression: an alarm on a line that is not UTF-8 (a GBK comment, common
@@ -1112,16 +1011,10 @@ fn check_reports_lathe_diameters() {
 /// and the JSON column now agree.
 #[test]
 fn an_alarm_on_a_gbk_line_is_rendered_without_panic() {
-    let dir = std::env::temp_dir().join(format!("vcnc-cli-gbk-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("gbk.nc");
+    let dir = TempDir::new("gbk");
     // "(中文注释) G01 X1." in GBK; the G01 has no feed: E301 at the G01.
-    std::fs::write(&file, b"(\xd6\xd0\xce\xc4\xd7\xa2\xca\xcd) G01 X1.\n").unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(["run"])
-        .arg(&file)
-        .output()
-        .unwrap();
+    let file = dir.write("gbk.nc", b"(\xd6\xd0\xce\xc4\xd7\xa2\xca\xcd) G01 X1.\n");
+    let out = vcnc(&["run", file.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
@@ -1130,7 +1023,6 @@ fn an_alarm_on_a_gbk_line_is_rendered_without_panic() {
     // '(' + 8 + ')' + ' ' puts the G at column 11.
     assert!(stdout.contains("\"column\":11"), "{stdout}");
     assert!(stderr.contains(":1:11"), "{stderr}");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Feed per revolution with the spindle stopped cannot move (E342); with
@@ -1181,14 +1073,11 @@ fn feed_per_rev_flattens_at_the_spindle_speed_and_alarms_when_stopped() {
 fn run_stops_when_its_reader_goes_away() {
     use std::io::{BufRead, BufReader};
     use std::process::Stdio;
-    let dir = std::env::temp_dir().join(format!("vcnc_head_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("forever.nc");
-    std::fs::write(
-        &file,
+    let dir = TempDir::new("head");
+    let file = dir.write(
+        "forever.nc",
         "S1000 M03\nM98 P2 L99999999\nM30\nO0002\nG91 G01 X0.001 F1000.\nG01 X-0.001\nM99\n",
-    )
-    .unwrap();
+    );
     let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
         .args(["run", file.to_str().unwrap()])
         .stdout(Stdio::piped())
@@ -1201,7 +1090,6 @@ fn run_stops_when_its_reader_goes_away() {
     assert!(first.starts_with("{\"type\":\"spindle\""), "{first}");
     drop(out);
     let status = child.wait().unwrap();
-    std::fs::remove_dir_all(&dir).ok();
     assert_eq!(
         status.code(),
         Some(0),

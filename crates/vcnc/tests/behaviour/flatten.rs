@@ -11,35 +11,18 @@
 //! that goes nowhere moves nothing), arcs with their centres and sense,
 //! feeds where both give one; within rs274's four printed decimals.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
+use crate::common::{vcnc_fed, workspace};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn set() -> PathBuf {
-    root().join("tests/fixtures/flatten")
+    workspace().join("tests/fixtures/flatten")
 }
 
-/// Runs vcnc in the repository root, `stdin` as standard input.
+/// Runs vcnc in the repository root, `stdin` as standard input: exit code,
+/// stdout, stderr.
 fn vcnc(args: &[&str], stdin: Option<&str>) -> (i32, String, String) {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(root())
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("vcnc runs");
-    let mut input = child.stdin.take().expect("stdin");
-    input.write_all(stdin.unwrap_or("").as_bytes()).ok();
-    drop(input);
-    let o = child.wait_with_output().expect("vcnc ends");
+    let o = vcnc_fed(&workspace(), args, stdin.unwrap_or("").as_bytes());
     (
         o.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&o.stdout).into_owned(),

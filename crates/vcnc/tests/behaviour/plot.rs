@@ -12,55 +12,9 @@
 //! review; the PNG renders of the same programs were looked at when the
 //! snapshots were accepted.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
+use crate::common::{TempDir, vcnc, vcnc_fed, workspace};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("workspace root")
-}
-
-/// A fresh directory, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> TempDir {
-        static N: AtomicUsize = AtomicUsize::new(0);
-        let n = N.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("vcnc-plot-{}-{n}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        TempDir(dir)
-    }
-    fn file(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-    fn write(&self, name: &str, text: &str) -> PathBuf {
-        let p = self.0.join(name);
-        std::fs::write(&p, text).unwrap();
-        p
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn vcnc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(workspace())
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("vcnc runs")
-}
+use std::process::Output;
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -683,43 +637,27 @@ fn a_pocket_far_from_its_tool_change_fills_the_picture() {
     assert!(shares[2] < 0.01 && shares[3] < 0.01, "all: {shares:?}");
 }
 
-/// `vcnc` run in `dir`, with `stdin` as its standard input.
-fn vcnc_in(dir: &Path, args: &[&str], stdin: &[u8]) -> Output {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child.stdin.take().unwrap().write_all(stdin).unwrap();
-    child.wait_with_output().unwrap()
-}
-
 /// Quick look: `vcnc plot FILE` writes FILE's name with `.html` here and
 /// says so; `vcnc plot -` reads the program from standard input.
 #[test]
 fn without_output_the_page_is_written_here_and_standard_input_plots() {
     let dir = TempDir::new("quick");
     let prog = dir.write("far.nc", FAR_POCKET);
-    let here = dir.0.join("here");
+    let here = dir.file("here");
     std::fs::create_dir_all(&here).unwrap();
-    let o = vcnc_in(&here, &["plot", prog.to_str().unwrap()], b"");
+    let o = vcnc_fed(&here, &["plot", prog.to_str().unwrap()], b"");
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(String::from_utf8_lossy(&o.stdout), "wrote far.html\n");
     let html = std::fs::read_to_string(here.join("far.html")).unwrap();
     assert!(html.contains("\"files\":[") && html.contains("far.nc"));
 
-    let o = vcnc_in(&here, &["plot", "-"], FAR_POCKET.as_bytes());
+    let o = vcnc_fed(&here, &["plot", "-"], FAR_POCKET.as_bytes());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert_eq!(String::from_utf8_lossy(&o.stdout), "wrote stdin.html\n");
     let html = std::fs::read_to_string(here.join("stdin.html")).unwrap();
     // The text from standard input is in the page.
     assert!(html.contains(&base64_of(FAR_POCKET.as_bytes())));
-    let o = vcnc_in(&here, &["plot", "-", "-o", "in.svg"], FAR_POCKET.as_bytes());
+    let o = vcnc_fed(&here, &["plot", "-", "-o", "in.svg"], FAR_POCKET.as_bytes());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     // The legend names the program read from standard input and the
     // dialect detected for it (decimal points, G53: a Fanuc-family mill).

@@ -4,33 +4,13 @@
 //! Expected text is written from the documents (`docs/cli.md`,
 //! `docs/macros.md`), not captured from a run.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
+use crate::common::{vcnc_fed, workspace};
+use std::path::Path;
+use std::process::Output;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .unwrap()
-}
-
+/// Runs `vcnc args…` in the workspace root, `stdin` as its standard input.
 fn vcnc(args: &[&str], stdin: Option<&str>) -> Output {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(workspace())
-        .env("NO_COLOR", "1")
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut input = child.stdin.take().unwrap();
-    input.write_all(stdin.unwrap_or("").as_bytes()).unwrap();
-    drop(input);
-    child.wait_with_output().unwrap()
+    vcnc_fed(&workspace(), args, stdin.unwrap_or("").as_bytes())
 }
 
 fn text(o: &[u8]) -> String {

@@ -5,28 +5,11 @@
 //! closed forms in `crates/vcnc_sim/tests`; here the expected numbers are
 //! the same hand-worked ones (a 50 × 10 × 2 slot with round ends).
 
-#![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
-
+use crate::common::vcnc;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::sync::atomic::{AtomicUsize, Ordering};
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .canonicalize()
-        .expect("workspace root")
-}
-
-fn vcnc(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_vcnc"))
-        .args(args)
-        .current_dir(workspace())
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("vcnc runs")
-}
 
 /// A fresh directory with `program` written as `name`.
 fn program(name: &str, text: &str) -> (PathBuf, String) {
