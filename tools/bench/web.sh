@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The browser's engine against the native CLI on the surfacing program
 # (docs/performance.md, "The browser's engine"): the same wasm the page
-# inlines (crates/vcnc_web, release, wasm-bindgen's Node.js wrapper) run
+# inlines (crates/vcnc_web, release, wasm-opt -O3, wasm-bindgen's Node.js wrapper) run
 # by node, against `vcnc time` and `vcnc check` (release). Three runs each;
 # the wasm figures are inside one node process (no start-up), the CLI's
 # are whole commands (start-up and file reading included).
@@ -22,6 +22,8 @@ cargo build --release -p vcnc --quiet
 cargo build --release --target wasm32-unknown-unknown -p vcnc_web --quiet
 target/web-tools/bin/wasm-bindgen --target nodejs --no-typescript \
     --out-dir "$DIR/node" target/wasm32-unknown-unknown/release/vcnc_web.wasm
+# Optimised as the page's (wasm-opt -O3).
+tools/build-web.sh --wasm-opt "$DIR/node/vcnc_web_bg.wasm" "$DIR/node/vcnc_web_bg.wasm"
 echo "generating $N blocks -> $DIR/surfacing.nc"
 python3 tools/bench/gen_surfacing.py "$N" "$DIR/surfacing.nc"
 

@@ -1,11 +1,13 @@
 // The vcnc page (docs/web.md): a CodeMirror 6 editor on the left; on the
-// right the viewer page `vcnc plot` writes (crates/vcnc_plot, made by the
-// engine for each version of the text and shown in an iframe) above the
-// summary panel. The engine (crates/vcnc_web, wasm) runs in a worker:
+// right the viewer of `vcnc plot` (crates/vcnc_plot, loaded once in an
+// iframe and sent each new plot, so its camera stays) above the summary
+// panel. The engine (crates/vcnc_web, wasm) runs in a worker:
 //
 //   edit ─▶ 30 ms quiet ─▶ worker busy? terminate it, start another
 //        ─▶ check(text, settings) ─▶ diagnostics (lint), summary, dialect
-//                                     and its evidence, the viewer page
+//                                     and its evidence, the viewer's data
+//        ─▶ (simulate) sim ─▶ removed volume, collisions, the finished
+//                             part's mesh to the viewer
 //
 // A result is applied only when it answers the latest request. A worker
 // that traps (a Rust panic) is replaced and the page says so. Nothing here
@@ -121,6 +123,11 @@ const language = new Compartment();
 const app = {
   gen: 0, applied: 0, result: null, checks: [], restarts: () => engine.restarts,
   selectedFromView: null,
+  // A new program (opened, dropped, set): its first plot is framed; an
+  // edit keeps the camera.
+  frameNext: true,
+  // The warm-up run's ms (or why it did not run); null until it ends.
+  warmed: null,
 };
 const editor = new EditorView({
   parent: $("editor"),
@@ -151,6 +158,7 @@ function scheduleCheck() {
 async function runCheck() {
   const gen = ++app.gen;
   const text = editor.state.doc.toString();
+  const frame = app.frameNext;
   const started = performance.now();
   $("status").textContent = "checking…";
   let answer;
@@ -163,14 +171,20 @@ async function runCheck() {
     return;
   }
   if (gen !== app.gen) return;
-  apply(answer.result, text);
+  app.frameNext = app.frameNext && !frame;
+  apply(answer.result, text, frame);
   const now = performance.now();
-  app.checks.push({ lines: editor.state.doc.lines, engineMs: answer.ms, roundTripMs: now - started, sinceEditMs: editedAt ? now - editedAt : null });
+  app.checks.push({
+    lines: editor.state.doc.lines, engineMs: answer.ms, roundTripMs: now - started, sinceEditMs: editedAt ? now - editedAt : null,
+    // The edit, in ms since the epoch (the viewer's frames say when they end in the same clock).
+    editedAt: performance.timeOrigin + editedAt,
+  });
   if (app.checks.length > 50) app.checks.shift();
   app.applied = gen;
   app.lastChecked = text;
   updateLink(text);
   if ($("simOn").checked) simulate(gen, text);
+  else if (app.meshesShown) { postViewer({ vcnc: "meshes", data: null }); app.meshesShown = false; }
 }
 
 // Material removal after the check, when asked for (it costs more than a
@@ -191,6 +205,9 @@ async function simulate(gen, text) {
   const r = answer.result;
   app.sim = r;
   app.simmed = gen;
+  // The stock and the finished part, drawn in the view.
+  postViewer({ vcnc: "meshes", data: r.meshes || null });
+  app.meshesShown = !!r.meshes;
   const pct = r.stock_mm3 > 0 ? (100 * r.removed_mm3 / r.stock_mm3).toFixed(1) : "0";
   let h = '<span id="removed" data-mm3="' + r.removed_mm3 + '">removed ' + r.removed_mm3.toFixed(3) + " mm³ of " + r.stock_mm3.toFixed(3) + " mm³ (" + pct + " %)</span>\n" +
     esc(r.stock) + "\n" + (r.collision_total ? '<span class="bad">' + r.collision_total + " collision(s)</span>" : "no collision");
@@ -200,7 +217,7 @@ async function simulate(gen, text) {
 }
 
 // ---- results -------------------------------------------------------------------
-function apply(r, text) {
+function apply(r, text, frame) {
   app.result = r;
   showError("");
   const doc = editor.state.doc;
@@ -223,7 +240,7 @@ function apply(r, text) {
   $("evidence").title = r.dialect.why;
   $("evidence").dataset.dialect = name;
   summary(r);
-  viewer(r.page);
+  showPlot(r.view, text, frame);
   const a = r.summary.alarms, w = r.summary.warnings;
   $("status").textContent = doc.lines + " lines, " + name + ": " + (a ? a + " alarm(s)" : "no alarm") + ", " + w + " warning(s); planned " + r.summary.planned;
 }
@@ -255,13 +272,37 @@ function summary(r) {
 }
 
 // ---- the viewer, linked with the editor ------------------------------------------
-// The viewer page without its own text pane (the editor is the text).
-const EMBED = "<style>#side{display:none!important}#app{grid-template-columns:minmax(0,1fr)!important}</style>";
-let shownPage = null;
-function viewer(page) {
-  if (!page || page === shownPage) return;
-  shownPage = page;
-  $("viewer").srcdoc = page.replace("</head>", EMBED + "</head>");
+// The viewer page (vcnc_plot::write_viewer, without its text pane: the
+// editor is the text) is loaded once; each plot is posted to it as data
+// with the text (for its readout), and it keeps its camera unless the
+// plot is a new program's. A plot that comes while the viewer loads waits
+// for it; only the latest is kept.
+let viewerLoaded = false, viewerWaiting = [];
+function postViewer(m) {
+  if (!viewerLoaded) {
+    if (m.vcnc === "data") viewerWaiting = viewerWaiting.filter((w) => w.vcnc !== "data");
+    if (m.vcnc === "meshes") viewerWaiting = viewerWaiting.filter((w) => w.vcnc !== "meshes");
+    viewerWaiting.push(m);
+    return;
+  }
+  $("viewer").contentWindow.postMessage(m, "*");
+}
+function showPlot(data, text, frame) {
+  if (!data) return;
+  app.plotSerial = (app.plotSerial || 0) + 1;
+  postViewer({ vcnc: "data", data, text, frame: frame || app.plotSerial === 1, serial: app.plotSerial });
+}
+// Asked for before the first check (an edit cancels what the worker runs).
+async function loadViewer() {
+  const { result } = await engine.request("viewer", "", null);
+  $("viewer").addEventListener("load", () => {
+    viewerLoaded = true;
+    const w = $("viewer").contentWindow;
+    if (lastCursorLine) w.postMessage({ vcnc: "select", file: 0, line: lastCursorLine }, "*");
+    for (const m of viewerWaiting) w.postMessage(m, "*");
+    viewerWaiting = [];
+  }, { once: true });
+  $("viewer").srcdoc = result;
 }
 // A click on a path segment selects its line in the editor.
 window.addEventListener("message", (e) => {
@@ -282,15 +323,13 @@ function cursorMoved() {
   if (line === app.selectedFromView) return;
   app.selectedFromView = null;
   const w = $("viewer").contentWindow;
-  if (w) w.postMessage({ vcnc: "select", file: 0, line }, "*");
+  if (w && viewerLoaded) w.postMessage({ vcnc: "select", file: 0, line }, "*");
 }
-$("viewer").addEventListener("load", () => {
-  if (lastCursorLine) $("viewer").contentWindow.postMessage({ vcnc: "select", file: 0, line: lastCursorLine }, "*");
-});
 
 // ---- files: open, drop, machine, tools, save ----------------------------------------
 function setText(text, fileName) {
   setup.file_name = fileName || null;
+  app.frameNext = true;
   editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: text } });
 }
 // A program's bytes as text: UTF-8 where it is, else Latin-1 (old
@@ -401,9 +440,24 @@ async function start() {
   } catch (e) {
     showError(e.message);
   }
+  try { await loadViewer(); } catch (e) { showError("The viewer did not start: " + e.message); }
   $("dialect").value = setup.dialect;
   if ($("dialect").value !== setup.dialect) { showError("unknown dialect " + setup.dialect + " in the link: auto"); setup.dialect = "auto"; $("dialect").value = "auto"; }
   setText(text === null ? EXAMPLE : text, null);
+  warmUp();
+}
+// Once the first text is checked, a warm-up run while the page is idle
+// (engine.wjs says why); an edit meanwhile cancels it like any run.
+async function warmUp() {
+  for (let i = 0; !app.applied && i < 200; i++) await new Promise((r) => setTimeout(r, 50));
+  if (!app.applied || engine.busy) { app.warmed = "skipped"; return; }
+  try {
+    const t0 = performance.now();
+    await engine.request("warmup", "", null);
+    app.warmed = performance.now() - t0;
+  } catch (e) {
+    app.warmed = e.cancelled ? "cancelled" : e.message;
+  }
 }
 start();
 window.vcncApp = Object.assign(app, {

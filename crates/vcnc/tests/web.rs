@@ -17,7 +17,12 @@
 //! - a click on a segment of the 3D view selects its line in the editor,
 //!   and the editor's line lights its segments in the view;
 //! - the summary's planned time is `vcnc time`'s, and the volume the
-//!   simulation removes is `vcnc sim`'s;
+//!   simulation removes is `vcnc sim`'s; the finished part shows in the
+//!   view as a mesh, the stock as a hidden one with its toggle, and they
+//!   go when simulate is unticked;
+//! - the view keeps its camera across edits (a drag turns it, an edit
+//!   draws the new path under the same camera: a machine point stays at
+//!   its pixel), and a new program is framed again;
 //! - a binary file and an endless loop end in located alarms, the page
 //!   stays up;
 //! - a `#p=` link brings the program and its dialect back;
@@ -129,13 +134,20 @@ fn shot(b: &Browser, name: &str) {
     b.screenshot(&out_dir().join(format!("{name}.png")));
 }
 
+/// Waits until the viewer has drawn the plot of the latest check.
 fn viewer_ready(b: &Browser) {
     wait_for(
         b,
-        "document.getElementById('viewer').contentWindow.vcnc && \
-         document.getElementById('viewer').contentWindow.vcnc.stats.frames > 0",
-        "the viewer draws",
+        "(() => { const w = document.getElementById('viewer').contentWindow; \
+           return w.vcnc && w.vcnc.plotSerial() === vcncApp.plotSerial \
+             && w.vcnc.stats.drawnLoad === w.vcnc.loads(); })()",
+        "the viewer draws the latest plot",
     );
+}
+
+/// The viewer's camera, as its test hook gives it.
+fn camera(b: &Browser) -> Value {
+    b.js("return document.getElementById('viewer').contentWindow.vcnc.camera();")
 }
 
 #[test]
@@ -266,8 +278,31 @@ fn the_page_checks_times_and_draws_as_you_type() {
         (page_mm3 - cli_mm3).abs() <= 1e-9 * cli_mm3,
         "page {page_mm3} mm³, vcnc sim {cli_mm3} mm³"
     );
+    // The finished part in the view (the stock hidden, with its toggle).
+    wait_for(
+        &b,
+        "JSON.stringify(document.getElementById('viewer').contentWindow.vcnc.meshes().map((m) => [m.name, m.visible])) \
+           === '[[\"stock\",false],[\"finished part\",true]]'",
+        "the stock and the finished part are in the view",
+    );
+    let meshes = b.js("return document.getElementById('viewer').contentWindow.vcnc.meshes();");
+    assert!(meshes[1]["triangles"].as_u64().unwrap() > 12, "{meshes}");
+    shot(&b, "4a-part");
+    b.js(
+        "document.getElementById('viewer').contentWindow.document.querySelector('[data-mesh=\"stock\"]').click(); return 0;",
+    );
+    assert_eq!(
+        b.js("return document.getElementById('viewer').contentWindow.vcnc.meshes()[0].visible;"),
+        json!(true),
+        "the stock's toggle shows it"
+    );
     b.js("document.getElementById('simOn').click(); return 0;");
     viewer_ready(&b);
+    wait_for(
+        &b,
+        "document.getElementById('viewer').contentWindow.vcnc.meshes().length === 0",
+        "unticked, the meshes go",
+    );
     b.js("document.getElementById('viewer').contentWindow.vcnc.setIndex(0); return 0;");
     std::thread::sleep(Duration::from_millis(400));
     shot(&b, "4-haas");
@@ -305,6 +340,79 @@ fn the_page_checks_times_and_draws_as_you_type() {
     );
     shot(&b, "5-linked");
 
+    // The camera stays across an edit. A drag turns the view.
+    let view = b.js(
+        "const f = document.getElementById('viewer'); const r = f.getBoundingClientRect(); \
+         const v = f.contentWindow.document.getElementById('view').getBoundingClientRect(); \
+         return [Math.round(r.left + v.left + v.width / 2), Math.round(r.top + v.top + v.height / 3)];",
+    );
+    let (cx, cy) = (view[0].as_i64().unwrap(), view[1].as_i64().unwrap());
+    let fitted = camera(&b);
+    b.mouse(json!([
+        {"type": "pointerMove", "origin": "viewport", "x": cx, "y": cy},
+        {"type": "pointerDown", "button": 0},
+        {"type": "pointerMove", "origin": "viewport", "x": cx + 60, "y": cy + 25, "duration": 100},
+        {"type": "pointerUp", "button": 0},
+    ]));
+    let turned = camera(&b);
+    assert_ne!(turned["R"], fitted["R"], "the drag turns the view");
+    // The same machine point (the corner X2. Y1.5 Z-0.1 in inches) on
+    // the screen before and after the edit.
+    let corner = "return document.getElementById('viewer').contentWindow.vcnc.screenOf(2 * 25.4, 1.5 * 25.4, -0.1 * 25.4);";
+    let at_before = b.js(corner);
+    let loads = b.js("return document.getElementById('viewer').contentWindow.vcnc.loads();");
+    // The edit: line 11 "Y0" becomes "Y-1." (backspace, then typed).
+    type_at_end_of_line(&b, 11, "\u{E003}-1.");
+    wait_for(
+        &b,
+        "vcncApp.text().includes('\\nY-1.\\n') && vcncApp.lastChecked === vcncApp.text()",
+        "the edit is checked",
+    );
+    viewer_ready(&b);
+    let after = camera(&b);
+    assert!(
+        b.js("return document.getElementById('viewer').contentWindow.vcnc.loads();")
+            .as_u64()
+            > loads.as_u64(),
+        "the edit's plot is loaded"
+    );
+    assert_eq!(after["R"], turned["R"], "the view's rotation stays");
+    assert_eq!(after["scale"], turned["scale"], "the zoom stays");
+    let at_after = b.js(corner);
+    for k in 0..2 {
+        let (a, z) = (
+            at_before[k].as_f64().unwrap(),
+            at_after[k].as_f64().unwrap(),
+        );
+        assert!(
+            (a - z).abs() < 0.01,
+            "the corner moved on screen: {at_before} → {at_after}"
+        );
+    }
+    // The new path is drawn: a vertex at Y-1. (inches) ends the edited line.
+    let new_vertex = b.js(
+        "const w = document.getElementById('viewer').contentWindow.vcnc; \
+         for (let i = 0; i < w.count(); i++) { const v = w.vertex(i); \
+           if (v.line === 11 && Math.abs(v.at[1] + 25.4) < 1e-6) return true; } return false;",
+    );
+    assert_eq!(new_vertex, json!(true), "the edited move is in the view");
+    shot(&b, "5b-camera-kept");
+    // The summary growing (as it does with simulate) shrinks the view:
+    // the camera stays.
+    let h0 = b.js("return document.getElementById('viewer').contentWindow.innerHeight;");
+    b.js("document.getElementById('summary').style.minHeight = '320px'; return 0;");
+    wait_for(
+        &b,
+        &format!("document.getElementById('viewer').contentWindow.innerHeight < {h0}"),
+        "the view shrinks",
+    );
+    std::thread::sleep(Duration::from_millis(300));
+    let resized = camera(&b);
+    assert_eq!(resized["R"], after["R"], "a resize keeps the rotation");
+    assert_eq!(resized["scale"], after["scale"], "a resize keeps the zoom");
+    assert_eq!(resized["pan"], after["pan"], "a resize keeps the pan");
+    b.js("document.getElementById('summary').style.minHeight = ''; return 0;");
+
     // Bad input: a binary file and an endless loop end in located alarms.
     let binary: Vec<u8> = (0u8..=255).cycle().take(4096).collect();
     let bin_file = dir.join("binary.nc");
@@ -320,6 +428,9 @@ fn the_page_checks_times_and_draws_as_you_type() {
         "a binary file alarms at a line",
     );
     set_text(&b, "#1=0\nWHILE [#1 LT 1] DO1\nG00 X1.\nEND1\nM30\n");
+    // A new program is framed again: the view is back to its first turn.
+    viewer_ready(&b);
+    assert_eq!(camera(&b)["R"], fitted["R"], "a new program is framed");
     let endless = b.js("return vcncApp.result.diagnostics.filter((d) => d.severity === 'error').map((d) => [d.code, d.line]);");
     assert!(!endless.as_array().unwrap().is_empty(), "{endless}");
     assert_eq!(

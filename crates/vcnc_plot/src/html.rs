@@ -524,6 +524,70 @@ fn data(plot: &Plot, compare: Option<(&Plot, &str)>, page: &Page<'_>) -> String 
     o
 }
 
+/// The page's data object alone (the JSON `write_html` puts in the page),
+/// without program texts: what an embedded viewer loaded by
+/// [`write_viewer`] is sent for each new plot (`docs/web.md`), so that it
+/// keeps its camera and draws the new path without a new page.
+pub fn page_data(plot: &Plot, compare: Option<(&Plot, &str)>, page: &Page<'_>) -> String {
+    data(plot, compare, page)
+}
+
+/// Meshes alone, as JSON for an embedded viewer (`{vcnc: "meshes"}`):
+/// `{"center":[…],"quantum":…,"meshes":[…]}`, each mesh's positions
+/// relative to `center` (the middle of the meshes' box on the quantum
+/// grid), so that the viewer places them whatever its path's centre.
+pub fn meshes_data(meshes: &[Mesh]) -> String {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in meshes.iter().flat_map(|m| &m.positions) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let origin_q = [0, 1, 2].map(|k| {
+        if lo[k] <= hi[k] {
+            quanta(f64::midpoint(lo[k], hi[k]), QUANTUM_MM)
+        } else {
+            0
+        }
+    });
+    let center = origin_q.map(|q| q as f64 * QUANTUM_MM);
+    let mut o = String::with_capacity(1 << 16);
+    o.push_str("{\"center\":");
+    json_p3(&mut o, center);
+    let _ = write!(o, ",\"quantum\":{QUANTUM_MM}");
+    json_meshes(&mut o, meshes, origin_q);
+    o.push('}');
+    o
+}
+
+/// The viewer page with no plot in it: it draws nothing until its parent
+/// posts `{vcnc: "data", data, text, frame}` (`data`: [`page_data`]'s
+/// JSON; `text`: the program, for the readout; `frame`: fit the view to
+/// the new plot, else the camera stays where it is), then again for each
+/// new plot; `{vcnc: "meshes", data}` ([`meshes_data`]) replaces the
+/// meshes it draws besides the page's own. Its program text pane is
+/// hidden (the parent shows the text).
+pub fn write_viewer(out: &mut impl Write) -> io::Result<()> {
+    let (head, rest) = PAGE.split_once("__DATA__").unwrap_or((PAGE, ""));
+    let (mid, tail) = rest.split_once("__SCRIPT__").unwrap_or((rest, ""));
+    let head = head
+        .replace("__TITLE__", "viewer")
+        .replace("__THEME__", "light")
+        .replace("</head>", EMBED_STYLE);
+    out.write_all(head.as_bytes())?;
+    out.write_all(b"null")?;
+    out.write_all(mid.replace("__SOURCES__", "").as_bytes())?;
+    for script in SCRIPTS {
+        out.write_all(script.as_bytes())?;
+    }
+    out.write_all(tail.as_bytes())
+}
+
+/// The embedded viewer without its text pane.
+const EMBED_STYLE: &str = "<style>#side{display:none!important}#app{grid-template-columns:minmax(0,1fr)!important}</style>\n</head>";
+
 /// Writes the page for `plot` (and `compare`, overlaid).
 pub fn write_html(
     plot: &Plot,

@@ -37,7 +37,7 @@ pub use collect::{
     AlarmMark, Clock, ColorBy, FitTo, FrameMark, HoleMark, NoClock, OriginMark, Plot, PlotOptions,
     PlotSink, Space, ToolMark,
 };
-pub use html::{Mesh, Page, Source, write_html};
+pub use html::{Mesh, Page, Source, meshes_data, page_data, write_html, write_viewer};
 pub use png::{render as render_png, write_png};
 pub use scene::{Legend, Look, Scene, plot_area, scene};
 pub use svg::write_svg;

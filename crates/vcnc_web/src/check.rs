@@ -5,8 +5,10 @@
 //! editor's: every alarm, the run going on with the state as before the
 //! block) into the plot sink, the `check` summary and the planner at once,
 //! so one run gives the diagnostics, the summary panel, the planned time
-//! and the viewer page (`vcnc_plot::write_html`, the page `vcnc plot`
-//! writes, retimed on the planner's seconds as `vcnc plot` retimes it).
+//! and the viewer's data (`vcnc_plot::page_data`: the data of the page
+//! `vcnc plot` writes, retimed on the planner's seconds as `vcnc plot`
+//! retimes it, without the program text, which the page already has), for
+//! the viewer the page loads once (`viewer`, `vcnc_plot::write_viewer`).
 //! Diagnostics carry their line and the UTF-16 columns of their span
 //! within the line, which is what the editor (CodeMirror) counts in.
 
@@ -117,8 +119,9 @@ pub struct Checked {
     pub diagnostics: Vec<Diag>,
     /// The summary panel.
     pub summary: Summary,
-    /// The viewer page (`vcnc plot`'s), when `with_page`.
-    pub page: Option<String>,
+    /// The viewer's data (`vcnc_plot::page_data`'s JSON), when
+    /// `with_view`.
+    pub view: Option<String>,
 }
 
 /// The planned time and its split (`vcnc time`).
@@ -231,8 +234,8 @@ pub(crate) fn run<S: Sink>(
 }
 
 /// Checks `text`: every alarm and warning (keep-going), the summary with
-/// the planned time, and (`with_page`) the viewer page.
-pub fn check(text: &str, settings: &Settings, with_page: bool) -> Result<Checked, String> {
+/// the planned time, and (`with_view`) the viewer's data.
+pub fn check(text: &str, settings: &Settings, with_view: bool) -> Result<Checked, String> {
     let s = Setup::new(text, settings)?;
     let lathe = s.dialect.diameter.lathe;
     let options = PlotOptions {
@@ -270,9 +273,10 @@ pub fn check(text: &str, settings: &Settings, with_page: bool) -> Result<Checked
     }
     let diagnostics = diagnostics(text, &alarms, &summary.warnings);
     let sum = summary_of(summary, &outcome, planned_s, &s);
-    let page = with_page.then(|| {
+    let view = with_view.then(|| {
         let legend = legend(&sum, &s);
-        let sources = [Source::new("program".into(), text.as_bytes().to_vec())];
+        // The name only: the page has the text.
+        let sources = [Source::new("program".into(), Vec::new())];
         let page = Page {
             theme: Theme::Light,
             // One colour per tool says little about a one-tool program.
@@ -292,17 +296,13 @@ pub fn check(text: &str, settings: &Settings, with_page: bool) -> Result<Checked
             tools: Some(&s.tools),
             meshes: &[],
         };
-        let mut out = Vec::with_capacity(1 << 16);
-        match vcnc_plot::write_html(&plot, None, &page, &mut out) {
-            Ok(()) => String::from_utf8_lossy(&out).into_owned(),
-            Err(e) => format!("<p>the viewer page could not be written: {e}</p>"),
-        }
+        vcnc_plot::page_data(&plot, None, &page)
     });
     Ok(Checked {
         dialect: s.choice.clone(),
         diagnostics,
         summary: sum,
-        page,
+        view,
     })
 }
 
@@ -589,7 +589,7 @@ mod tests {
         assert!(c.diagnostics[1].after_alarm);
         assert_eq!(c.summary.alarms, 2);
         assert!(!c.summary.ended);
-        assert!(c.page.is_none());
+        assert!(c.view.is_none());
     }
 
     #[test]
@@ -614,8 +614,11 @@ mod tests {
         );
         let ext = c.summary.extents.as_ref().unwrap();
         assert_eq!(ext.max["x"], 30.0);
-        let page = c.page.unwrap();
-        assert!(page.starts_with("<!DOCTYPE html>") && page.contains("vcnc-data"));
+        // The viewer's data: the path from X0 to X30, no program text.
+        let view: serde_json::Value = serde_json::from_str(&c.view.unwrap()).unwrap();
+        assert_eq!(view["files"], serde_json::json!(["program"]));
+        assert_eq!(view["center"][0], 15.0);
+        assert!(view["path"]["n"].as_u64().unwrap() >= 4, "{}", view["path"]);
     }
 
     #[test]

@@ -8,13 +8,14 @@
 //! ```text
 //!   text + Settings ─▶ setup (detect or the named dialect, machine TOML
 //!                      or grbl $$, the tool table into the registers)
-//!     ─▶ check:   keep-going run ─┬─▶ PlotSink (clock: Summary + Blocks) ─▶ viewer page
+//!     ─▶ check:   keep-going run ─┬─▶ PlotSink (clock: Summary + Blocks) ─▶ viewer data
 //!                                 └─▶ Numbered ─▶ Planner ─▶ Stamps (planned time, retime)
-//!                 ─▶ Checked: diagnostics at UTF-16 columns, summary, page
+//!                 ─▶ Checked: diagnostics at UTF-16 columns, summary, view
 //!     ─▶ time:    Planner ─▶ CycleTime      (as `vcnc time`)
 //!     ─▶ flatten: GcodeSink with markers    (as `vcnc run --format gcode`)
 //!     ─▶ events:  write_event per event     (as `vcnc run --format jsonl`)
-//!     ─▶ sim:     Survey? ─▶ Simulation     (as `vcnc sim`'s report)
+//!     ─▶ sim:     Survey? ─▶ Simulation     (as `vcnc sim`'s report; meshes)
+//!   viewer():     the viewer page, loaded once; each `view` is posted to it
 //! ```
 //!
 //! The page runs these in a Web Worker; a run ends by the interpreter's
@@ -34,3 +35,13 @@ pub use check::{
 };
 pub use setup::{DialectChoice, Settings, Setup, detect, dialects};
 pub use sim::{SimCollision, Simulated, sim};
+
+/// The viewer page the app loads once (`vcnc_plot::write_viewer`): it
+/// draws each plot [`check`] returns in `view`, keeping its camera.
+pub fn viewer() -> String {
+    let mut out = Vec::with_capacity(1 << 17);
+    match vcnc_plot::write_viewer(&mut out) {
+        Ok(()) => String::from_utf8_lossy(&out).into_owned(),
+        Err(e) => format!("<p>the viewer could not be written: {e}</p>"),
+    }
+}

@@ -3,7 +3,9 @@
 //! header comment, else the automatic stock of a survey pass — the order
 //! `vcnc sim` resolves it in — then one run into `vcnc_sim::Simulation`
 //! on one worker (a page's worker is one thread), giving the removed
-//! volume and the collisions at their lines.
+//! volume and the collisions at their lines, and (when asked) the stock
+//! and the finished part as meshes for the page's viewer — the two
+//! `vcnc plot --stock` draws (`vcnc_sim::mesh::stock_and_part`).
 
 use crate::check::run;
 use crate::setup::{DialectChoice, Settings, Setup};
@@ -42,11 +44,39 @@ pub struct Simulated {
     pub collision_total: u64,
     /// Notes (assumed tools, the grid).
     pub notes: Vec<String>,
+    /// The stock (hidden at first) and the finished part, as
+    /// `vcnc_plot::meshes_data`'s JSON for the viewer, when asked for and
+    /// something was simulated.
+    pub meshes: Option<String>,
+}
+
+/// The viewer's meshes of a finished simulation: the stock, hidden at
+/// first (it would hide the part), and the finished part — the colours
+/// and order of `vcnc plot --stock`'s page.
+fn meshes(part: &vcnc_sim::Part) -> Option<String> {
+    let (stock, part) = vcnc_sim::mesh::stock_and_part(part)?;
+    let mesh = |name: &str, color, visible, m: vcnc_sim::mesh::Indexed| vcnc_plot::Mesh {
+        name: name.to_string(),
+        color,
+        visible,
+        positions: m.positions,
+        triangles: m.triangles,
+    };
+    Some(vcnc_plot::meshes_data(&[
+        mesh("stock", vcnc_plot::Rgb(150, 165, 185), false, stock),
+        mesh("finished part", vcnc_plot::Rgb(215, 150, 70), true, part),
+    ]))
 }
 
 /// Simulates the material removal of `text` on `stock` (`--stock`'s
-/// syntax; none: the header comment, else automatic).
-pub fn sim(text: &str, settings: &Settings, stock: Option<&str>) -> Result<Simulated, String> {
+/// syntax; none: the header comment, else automatic); `with_meshes`: the
+/// stock and the finished part for the viewer too.
+pub fn sim(
+    text: &str,
+    settings: &Settings,
+    stock: Option<&str>,
+    with_meshes: bool,
+) -> Result<Simulated, String> {
     let s = Setup::new(text, settings)?;
     let lathe = s.dialect.diameter.lathe;
     let (mut spec, mut origin) = match stock.map(str::trim).filter(|t| !t.is_empty()) {
@@ -77,7 +107,13 @@ pub fn sim(text: &str, settings: &Settings, stock: Option<&str>) -> Result<Simul
     };
     let mut simulation = Simulation::new(&s.machine, &s.tools, s.machine.table_z_mm, options)?;
     run(text, &s, false, false, &mut simulation);
-    let r = simulation.finish_run()?.report;
+    let finished = simulation.finish_run()?;
+    let meshes = if with_meshes {
+        meshes(&finished.part)
+    } else {
+        None
+    };
+    let r = finished.report;
     Ok(Simulated {
         dialect: s.choice.clone(),
         stock: r.stock,
@@ -96,6 +132,7 @@ pub fn sim(text: &str, settings: &Settings, stock: Option<&str>) -> Result<Simul
             .collect(),
         collision_total: r.collision_total,
         notes: r.notes,
+        meshes,
     })
 }
 
@@ -118,7 +155,7 @@ mod tests {
         };
         let text =
             "T1 M06\nG90 G54 G00 X0 Y50. Z5. S5000 M03\nG01 Z-2. F100.\nX50.\nG00 Z5.\nM30\n";
-        let r = sim(text, &tools, Some("box:0,0,-20,100,100,0")).unwrap();
+        let r = sim(text, &tools, Some("box:0,0,-20,100,100,0"), true).unwrap();
         let slot = 50.0 * 10.0 * 2.0 + std::f64::consts::PI * 25.0;
         assert!(
             (r.removed_mm3 - slot).abs() / slot < 0.01,
@@ -127,8 +164,18 @@ mod tests {
         );
         assert_eq!(r.stock_mm3, 200_000.0);
         assert_eq!(r.collision_total, 0, "{:?}", r.collisions);
+        // The stock and the part for the viewer, about the block's middle.
+        let m: serde_json::Value = serde_json::from_str(r.meshes.as_deref().unwrap()).unwrap();
+        assert_eq!(m["meshes"][0]["name"], "stock");
+        assert_eq!(m["meshes"][0]["visible"], false);
+        assert_eq!(m["meshes"][1]["name"], "finished part");
+        assert!(m["meshes"][1]["tris"].as_u64().unwrap() > 12);
+        for (k, c) in [50.0, 50.0, -10.0].into_iter().enumerate() {
+            assert_eq!(m["center"][k], c, "{}", m["center"]);
+        }
         let crash = "T1 M06\nG90 G54 G00 X0 Y50. Z5. S5000 M03\nG00 Z-2.\nM30\n";
-        let r = sim(crash, &tools, Some("box:0,0,-20,100,100,0")).unwrap();
+        let r = sim(crash, &tools, Some("box:0,0,-20,100,100,0"), false).unwrap();
+        assert!(r.meshes.is_none());
         assert_eq!(r.collisions.first().map(|c| c.line), Some(3), "{r:?}");
     }
 }

@@ -354,8 +354,7 @@ impl Board {
         }
         // A rotary-axis program (`G1 X10 A90`: a 4th axis wrapping X
         // around A) moves X and Z alone too, but it is a mill's.
-        let rotary = k.a_values.len() >= 3;
-        if k.x > 0 && k.z > 0 && k.y == 0 && !rotary && k.x + k.z >= 4 {
+        if k.x > 0 && k.z > 0 && k.y == 0 && !k.rotary() && k.x + k.z >= 4 {
             self.note("X and Z only", 20, lathes);
         }
         if k.plane_header == Some(180) {

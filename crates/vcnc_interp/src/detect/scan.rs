@@ -83,11 +83,15 @@ pub(super) struct Kind {
     pub(super) x: u32,
     pub(super) y: u32,
     pub(super) z: u32,
-    /// Distinct values of A on moves, up to three: an A axis turning
-    /// through many angles is a mill's fourth (rotary) axis, which no lathe
-    /// dialect has (a lathe's rotary axis is C); one or two values are the
-    /// angle of a contour (Philips' `A0 B90`, Fanuc's direct drawing input).
+    /// Distinct values of A on moves, up to [`ROTARY_VALUES`]: an A axis
+    /// turning through many angles is a mill's fourth (rotary) axis, which
+    /// no lathe dialect has (a lathe's rotary axis is C); a few values are
+    /// the angles of a contour (Philips' `A0 B90`, Fanuc's direct drawing
+    /// input `X30. A150`).
     pub(super) a_values: Vec<f64>,
+    /// A move of A alone (`G0 A180.`): a rotary axis indexing, which no
+    /// contour angle is.
+    pub(super) a_index: bool,
     pub(super) uw: u32,
     pub(super) turret: Option<String>,
     pub(super) g96: bool,
@@ -103,6 +107,30 @@ pub(super) struct Kind {
     pub(super) two_block_g76: bool,
     pub(super) laser_m4: bool,
     pub(super) s_on_moves: u32,
+}
+
+/// Distinct A values that make an A axis a rotary one.
+const ROTARY_VALUES: usize = 8;
+
+impl Kind {
+    /// A turns as a mill's rotary axis: it indexes alone, or takes many
+    /// angles.
+    pub(super) fn rotary(&self) -> bool {
+        self.a_index || self.a_values.len() >= ROTARY_VALUES
+    }
+}
+
+impl Lengths {
+    /// `self` with `other`'s words added after its own.
+    fn absorb(&mut self, other: Lengths) {
+        self.pointed += other.pointed;
+        self.trailing += other.trailing;
+        self.first_trailing = self.first_trailing.take().or(other.first_trailing);
+        self.plain_count += other.plain_count;
+        let room = 512usize.saturating_sub(self.plain.len());
+        self.plain.extend(other.plain.into_iter().take(room));
+        self.first_plain = self.first_plain.take().or(other.first_plain);
+    }
 }
 
 /// What the prefix shows.
@@ -158,6 +186,10 @@ pub(super) struct Scan {
     /// A G04 P with a decimal point (seconds, or an alarm).
     pub(super) dwell_p_point: bool,
     pub(super) lengths: Lengths,
+    /// A's words, which count among the lengths once A shows itself a
+    /// rotary axis (`A2` is 0.002° to a control counting least
+    /// increments); a contour's angles do not.
+    a_lengths: Lengths,
     pub(super) kind: Kind,
     pub(super) blocks: u32,
 }
@@ -222,6 +254,10 @@ impl Scan {
                 continue;
             }
             scan.line(line, line_no, &mut modal);
+        }
+        if scan.kind.rotary() {
+            let a = std::mem::take(&mut scan.a_lengths);
+            scan.lengths.absorb(a);
         }
         scan
     }
@@ -552,14 +588,16 @@ impl Scan {
     fn length(&mut self, w: &Word) {
         if !matches!(
             w.letter,
-            // A: a rotary axis's degrees read as the lengths are (`A2` is
-            // 0.002° to a control counting least increments).
             b'X' | b'Y' | b'Z' | b'U' | b'W' | b'I' | b'J' | b'K' | b'R' | b'A'
         ) || w.value == 0.0
         {
             return;
         }
-        let l = &mut self.lengths;
+        let l = if w.letter == b'A' {
+            &mut self.a_lengths
+        } else {
+            &mut self.lengths
+        };
         if w.point {
             l.pointed += 1;
             l.trailing += u32::from(w.trailing_point);
@@ -587,11 +625,11 @@ impl Scan {
             k.x += u32::from(get(b'X').is_some());
             k.y += u32::from(get(b'Y').is_some());
             k.z += u32::from(get(b'Z').is_some());
-            if let Some(a) = get(b'A')
-                && k.a_values.len() < 3
-                && !k.a_values.contains(&a.value)
-            {
-                k.a_values.push(a.value);
+            if let Some(a) = get(b'A') {
+                if k.a_values.len() < ROTARY_VALUES && !k.a_values.contains(&a.value) {
+                    k.a_values.push(a.value);
+                }
+                k.a_index |= [b'X', b'Y', b'Z'].iter().all(|l| get(*l).is_none());
             }
         }
         k.uw += u32::from(get(b'U').is_some() || get(b'W').is_some());

@@ -163,15 +163,30 @@ fn lathes_by_their_signs() {
         "haas-lathe",
         &["one-block G71 with D"],
     );
-    // X and Z with A: a mill's rotary (4th-axis) program, not a lathe's —
-    // no lathe dialect has an A axis (the built-in lathes would alarm E203
-    // at the first A word).
+    // X and Z with A indexing alone (`G0 A180.`), or turning through many
+    // angles: a mill's rotary (4th-axis) program, not a lathe's — no lathe
+    // dialect has an A axis (the built-in lathes would alarm E203 at the
+    // first A word).
+    let lathes = ["lathe", "fanuc-lathe", "haas-lathe", "linuxcnc-lathe"];
+    for program in [
+        &b"G21 G90 G94\nT1 M6\nS6000 M3\nG0 A0.\nG0 X0. Z5.\nG1 Z-2. F200.\nG1 X40.\n\
+           G0 Z5.\nG0 A180.\nG0 X0.\nG1 Z-2.\nG1 X40.\nG0 Z25.\nM30\n"[..],
+        &b"G21 G90\nG0 X0 A0 Z5\nG1 Z0 F300\nG1 X10 A30\nG1 X20 A60\nG1 X30 A90\n\
+           G1 X40 A120\nG1 X50 A150\nG1 X60 A180\nG1 X70 A210\nG0 Z5\nM2\n"[..],
+    ] {
+        let d = detect(program, Some("wrap.nc"));
+        assert!(!lathes.contains(&d.dialect), "{}", d.describe());
+    }
+    // A few angles beside X or Z are a contour's (Fanuc's direct drawing
+    // input): still a lathe program, and the angles are not lengths.
     let d = detect(
-        b"G21 G90\nG0 X0 A0 Z5\nG1 Z0 F300\nG1 X10 A90\nG1 X20 A180\nG0 Z5\nM2\n",
-        Some("wrap.gcode"),
+        b"O0011\nG00 X42. Z2.\nG01 Z0 F0.2\nX20.\nX30. A150\nZ-30. A180\nX40. A120\nZ-50.\n\
+          G00 X100. Z100.\nM30\n",
+        Some("dd.nc"),
     );
+    assert!(lathes.contains(&d.dialect), "{}", d.describe());
     assert!(
-        !["lathe", "fanuc-lathe", "haas-lathe", "linuxcnc-lathe"].contains(&d.dialect),
+        !d.evidence.iter().any(|e| e.contains("(A")),
         "{}",
         d.describe()
     );

@@ -9,8 +9,14 @@
 // relative to D.center: decoded once into a Float32Array relative to the
 // centre (for WebGL) and a Float64Array of machine coordinates (for the
 // readouts).
+//
+// Embedded (the web app, docs/web.md) the page starts with no data
+// (`null`) and its parent posts the data of each new plot; everything
+// below that depends on the data is (re)made by `decodeData` and the
+// `derive*` functions of the other parts, so the page, its camera and its
+// controls stay while the plot changes.
 const $ = (id) => document.getElementById(id);
-const D = JSON.parse($("vcnc-data").textContent);
+let D = JSON.parse($("vcnc-data").textContent);
 
 function bytes(s) {
   const bin = atob(s || "");
@@ -61,8 +67,7 @@ function deltaCol(tb, name, scale, T) {
   return eachVarint(tb, name, (v) => { acc += unzig(v); if (k < tb.n) out[k++] = acc * scale; }) ? out : null;
 }
 // Positions: relative to the centre (f32, for WebGL) and absolute (f64).
-const Q = D.quantum;
-const centerQ = D.center.map((c) => Math.round(c / Q));
+let Q = 1e-4, centerQ = [0, 0, 0];
 function positions(tb) {
   const rel = new Float32Array(3 * tb.n), abs = new Float64Array(3 * tb.n);
   const acc = [0, 0, 0];
@@ -91,23 +96,51 @@ async function path(t, attrs) {
   }
   return out;
 }
-const [P, C, K, H, TC] = await Promise.all([
-  path(D.path, true), path(D.contour, false), path(D.compare, false), table(D.holes), table(D.toolChanges),
-]);
-// Times travel as f32 seconds: the last vertex may round a hair past the
-// total, which must still reach it.
-if (P.time && P.n) D.totalTime = Math.max(D.totalTime, P.time[P.n - 1]);
-const holes = H ? positions(H).rel : new Float32Array(0);
-const toolChanges = [];
-if (TC) {
-  const at = positions(TC).rel, tool = unsignedCol(TC, "tool", Float64Array), line = deltaCol(TC, "line", 1, Float64Array);
-  for (let i = 0; i < TC.n; i++) toolChanges.push([at[3 * i], at[3 * i + 1], at[3 * i + 2], tool[i], line[i]]);
+let P = null, C = null, K = null, H = null, TC = null, holes = new Float32Array(0);
+let toolChanges = [], meshes = [], frames = [];
+// Meshes posted apart from the data ({vcnc: "meshes"}: the web app's
+// simulated stock and part), each with positions relative to its own
+// centre; placed relative to D.center by `placeMeshes`.
+let extraMeshes = [];
+// Which meshes show, by name, as the user left the toggles.
+const meshShown = new Map();
+async function decodeMeshes(list, center) {
+  const out = [];
+  for (const m of list || []) {
+    const tb = await table(m.table);
+    const tri = unsignedCol({ n: 3 * m.tris, u8: tb.u8, cols: tb.cols }, "tri", Uint32Array);
+    out.push({ name: m.name, color: m.color, visible: m.visible, rel: positions(tb).rel, center, tri, n: tb.n });
+  }
+  return out;
 }
-const meshes = [];
-for (const m of D.meshes) {
-  const tb = await table(m.table);
-  const tri = unsignedCol({ n: 3 * m.tris, u8: tb.u8, cols: tb.cols }, "tri", Uint32Array);
-  meshes.push({ name: m.name, color: m.color, visible: m.visible, pos: positions(tb).rel, tri, n: tb.n });
+// Every mesh relative to D.center (f32), with the visibility the user chose.
+function placeMeshes() {
+  meshes = [...D.meshesDecoded, ...extraMeshes].map((m) => {
+    const d = m.center.map((c, k) => c - D.center[k]);
+    const pos = new Float32Array(m.rel.length);
+    for (let i = 0; i < pos.length; i += 3) { pos[i] = m.rel[i] + d[0]; pos[i + 1] = m.rel[i + 1] + d[1]; pos[i + 2] = m.rel[i + 2] + d[2]; }
+    const visible = meshShown.has(m.name) ? meshShown.get(m.name) : m.visible;
+    return { name: m.name, color: m.color, visible, pos, tri: m.tri, n: m.n };
+  });
+}
+async function decodeData() {
+  Q = D.quantum;
+  centerQ = D.center.map((c) => Math.round(c / Q));
+  [P, C, K, H, TC] = await Promise.all([
+    path(D.path, true), path(D.contour, false), path(D.compare, false), table(D.holes), table(D.toolChanges),
+  ]);
+  // Times travel as f32 seconds: the last vertex may round a hair past the
+  // total, which must still reach it.
+  if (P.time && P.n) D.totalTime = Math.max(D.totalTime, P.time[P.n - 1]);
+  holes = H ? positions(H).rel : new Float32Array(0);
+  toolChanges = [];
+  if (TC) {
+    const at = positions(TC).rel, tool = unsignedCol(TC, "tool", Float64Array), line = deltaCol(TC, "line", 1, Float64Array);
+    for (let i = 0; i < TC.n; i++) toolChanges.push([at[3 * i], at[3 * i + 1], at[3 * i + 2], tool[i], line[i]]);
+  }
+  D.meshesDecoded = await decodeMeshes(D.meshes, D.center);
+  placeMeshes();
+  deriveFrames();
 }
 
 // ---- figures as people read them ------------------------------------------
@@ -123,7 +156,8 @@ function fmtTime(s) {
   return ss + "s";
 }
 // Lengths in the page's unit (--units; vcnc_core::display::DisplayUnits).
-const UNIT = D.units === "in" ? { name: "in", per: 1 / 25.4, dec: 4 } : { name: "mm", per: 1, dec: 3 };
+let UNIT = { name: "mm", per: 1, dec: 3 };
+function deriveUnits() { UNIT = D.units === "in" ? { name: "in", per: 1 / 25.4, dec: 4 } : { name: "mm", per: 1, dec: 3 }; }
 const fmtLen = (mm) => (mm * UNIT.per).toFixed(UNIT.dec);
 const fmtFeed = (mmMin) => (mmMin * UNIT.per).toFixed(UNIT.name === "in" ? 1 : 0) + " " + UNIT.name + "/min";
 const AXES = ["X", "Y", "Z"];
@@ -154,9 +188,11 @@ function inverse3(m) {
   };
   return [0, 1, 2].map((i) => [0, 1, 2].map((j) => r(i, j)));
 }
-const frames = D.frames.map(([o, lin, tlo]) => ({
-  origin: o.map((v, k) => v + D.center[k]), inv: lin ? inverse3(lin) : null, singular: !!lin && !inverse3(lin), tlo,
-}));
+function deriveFrames() {
+  frames = D.frames.map(([o, lin, tlo]) => ({
+    origin: o.map((v, k) => v + D.center[k]), inv: lin ? inverse3(lin) : null, singular: !!lin && !inverse3(lin), tlo,
+  }));
+}
 // The frame in force at vertex i (runs in vertex order).
 function frameAt(i) {
   const runs = D.frameRuns;

@@ -8,9 +8,16 @@
 // measure tool's line.
 
 // ---- colours -----------------------------------------------------------
-let theme = D.theme, colorBy = D.color, showCompare = true, showGrid = true;
-// A program of rapids alone shows them whatever --no-rapids says.
-let showRapid = D.rapids || D.cutMoves === 0;
+// Set from the first data (`firstLook`); the user's choices after that.
+let theme = "light", colorBy = "tool", showCompare = true, showGrid = true, showRapid = true;
+// Whether the user picked the colouring (else each new plot's holds).
+let colorChosen = false;
+function firstLook() {
+  theme = D.theme;
+  colorBy = D.color;
+  // A program of rapids alone shows them whatever --no-rapids says.
+  showRapid = D.rapids || D.cutMoves === 0;
+}
 const pal = () => D.palette[theme];
 function ramp(stops, t, steps) {
   if (!isFinite(t)) t = 0.5;
@@ -19,14 +26,18 @@ function ramp(stops, t, steps) {
   const x = q * (stops.length - 1), i = Math.min(stops.length - 2, Math.floor(x)), f = x - i;
   return [0, 1, 2].map((k) => Math.round(stops[i][k] + (stops[i + 1][k] - stops[i][k]) * f));
 }
-const depthAxis = D.lathe ? 0 : 2;
+let depthAxis = 2, depthRange = [0, 0], feedRange = [0, 0];
 function range(f) {
   let lo = Infinity, hi = -Infinity;
   for (let i = 1; i < P.n; i++) if (P.kind[i] === 2) { const v = f(i); if (v < lo) lo = v; if (v > hi) hi = v; }
   return lo <= hi ? [lo, hi] : [0, 0];
 }
-const depthRange = range((i) => P.pos[3 * i + depthAxis]);
-const feedRange = range((i) => P.feed[i]);
+// What the colours of a plot span.
+function deriveRanges() {
+  depthAxis = D.lathe ? 0 : 2;
+  depthRange = range((i) => P.pos[3 * i + depthAxis]);
+  feedRange = range((i) => P.feed[i]);
+}
 const frac = (v, r) => (r[1] - r[0] > 1e-9 ? (v - r[0]) / (r[1] - r[0]) : 0.5);
 // Before the first tool change a program that names tools is grey; one
 // that never names a tool gets the palette's first colour.
@@ -198,7 +209,13 @@ function boxPairs(lo, hi) {
   return out;
 }
 let main = null, preview = null, cmp = null, contour = null, marks = null, origins = null, limits = null;
-const meshBufs = meshes.map(meshBuffer);
+let meshBufs = [];
+function buildMeshes() {
+  for (const g of meshBufs) drop(g);
+  meshBufs = meshes.map(meshBuffer);
+  extent = D.size / 2;
+  for (const m of meshes) for (let k = 0; k < m.pos.length; k += 3) extent = Math.max(extent, Math.hypot(m.pos[k], m.pos[k + 1], m.pos[k + 2]));
+}
 let moving = false, still = 0;
 function move() {
   moving = true;
@@ -206,6 +223,7 @@ function move() {
   still = setTimeout(() => { moving = false; request(); }, 150);
 }
 function build() {
+  if (!P) return;
   const p = pal();
   for (const g of [main, preview, cmp, contour, marks, origins, limits]) drop(g);
   main = lineBuffer(P, segColor, true);
@@ -238,21 +256,41 @@ function build() {
 // R: rows are screen right, up and towards the viewer in machine axes.
 const VIEWS = {
   top: [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
-  front: D.lathe ? [[0, 0, 1], [1, 0, 0], [0, 1, 0]] : [[1, 0, 0], [0, 0, 1], [0, -1, 0]],
+  front: [[1, 0, 0], [0, 0, 1], [0, -1, 0]],
   side: [[0, 1, 0], [0, 0, 1], [1, 0, 0]],
   iso: [[Math.SQRT1_2, Math.SQRT1_2, 0], [-1 / Math.sqrt(6), 1 / Math.sqrt(6), 2 / Math.sqrt(6)], [1 / Math.sqrt(3), -1 / Math.sqrt(3), 1 / Math.sqrt(3)]],
 };
-const UP = D.lathe ? [1, 0, 0] : [0, 0, 1];
-let R = VIEWS[D.lathe ? "front" : D.view].map((r) => r.slice());
+let UP = [0, 0, 1];
+let R = VIEWS.iso.map((r) => r.slice());
 let scale = 1, pan = [0, 0];
+// A lathe's front view is its half-section, and it turns about X.
+function deriveViews() {
+  VIEWS.front = D.lathe ? [[0, 0, 1], [1, 0, 0], [0, 1, 0]] : [[1, 0, 0], [0, 0, 1], [0, -1, 0]];
+  UP = D.lathe ? [1, 0, 0] : [0, 0, 1];
+}
+// The plot's own view, fitted to it (at the start, and when asked).
+function frameView() {
+  R = VIEWS[D.lathe ? "front" : D.view].map((r) => r.slice());
+  fitTo = D.fit === "all" || !D.cuts ? "all" : "cuts";
+  fit();
+}
+// A new plot under the same camera: its points are relative to its own
+// centre, so the pan moves by the centre's shift, and every machine point
+// stays where it was on the screen.
+function keepCamera(oldCenter) {
+  const d = [0, 1, 2].map((k) => D.center[k] - oldCenter[k]);
+  pan = [pan[0] + scale * dot(R[0], d), pan[1] + scale * dot(R[1], d)];
+  if (fitTo === "cuts" && !D.cuts) fitTo = "all";
+  viewChanged();
+}
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const dpr = () => window.devicePixelRatio || 1;
-// How far anything drawn is from the centre: the depth range of the view.
-let extent = D.size / 2;
-for (const m of meshes) for (let k = 0; k < m.pos.length; k += 3) extent = Math.max(extent, Math.hypot(m.pos[k], m.pos[k + 1], m.pos[k + 2]));
+// How far anything drawn is from the centre: the depth range of the view
+// (set with the meshes' buffers).
+let extent = 1;
 // The box Fit frames: the cuts (--fit cuts), or everything; a lathe's
 // half-section from the spindle axis up.
-let fitTo = D.fit === "all" || !D.cuts ? "all" : "cuts";
+let fitTo = "cuts";
 function fitBox(what) {
   let lo = (what === "cuts" && D.cuts ? D.cuts[0] : D.lo).slice(), hi = (what === "cuts" && D.cuts ? D.cuts[1] : D.hi).slice();
   if (what === "all" && D.limits) { lo = lo.map((v, k) => Math.min(v, D.limits[0][k])); hi = hi.map((v, k) => Math.max(v, D.limits[1][k])); }
@@ -266,6 +304,7 @@ function fitBox(what) {
   return [lo, hi];
 }
 function fit() {
+  if (!P) return;
   const w = canvas.width, h = canvas.height, [lo, hi] = fitBox(fitTo);
   let ulo = Infinity, uhi = -Infinity, vlo = Infinity, vhi = -Infinity;
   for (let k = 0; k < 8; k++) {
@@ -411,7 +450,9 @@ function toolPairs(i, at) {
 
 // ---- drawing -----------------------------------------------------------
 let cur = 0, sel = null, selBuf = null;
-const stats = { frames: 0, lastMs: 0, totalMs: 0 };
+// `drawnLoad`: the plot (`vcnc.loads()`) the last frame drew; `drawnAt`:
+// when it ended (ms since the epoch, comparable across frames).
+const stats = { frames: 0, lastMs: 0, totalMs: 0, drawnLoad: 0, drawnAt: 0 };
 function resize() {
   const r = dpr();
   const w = Math.max(1, Math.round(canvas.clientWidth * r)), h = Math.max(1, Math.round(canvas.clientHeight * r));
@@ -471,6 +512,7 @@ function drawMeshes(m4) {
   gl.useProgram(prog);
 }
 function draw() {
+  if (!P) return;
   const t0 = performance.now();
   resize();
   if (gl) {
@@ -515,7 +557,8 @@ function draw() {
   }
   drawOverlay();
   const ms = performance.now() - t0;
-  stats.frames++; stats.lastMs = ms; stats.totalMs += ms;
+  stats.frames++; stats.lastMs = ms; stats.totalMs += ms; stats.drawnLoad = loadSerial;
+  stats.drawnAt = performance.timeOrigin + performance.now();
 }
 let pending = false;
 function request() {

@@ -26,6 +26,7 @@ function screenXY() {
 // The drawn segment nearest to (x, y) (CSS px of the view) within
 // `maxPx`: its vertex index, the parameter along it and the distance.
 function nearest(x, y, maxPx) {
+  if (!P) return null;
   const xy = screenXY();
   let best = -1, bd = maxPx * maxPx, bt = 0;
   for (let i = 1; i < P.n; i++) {
@@ -145,7 +146,8 @@ function drawPicks() {
 // ---- moves that leave the frame ------------------------------------------
 // Segments with one end in the frame of the cuts and the other outside
 // (at most 4096, rapids first): where the view cuts them, an arrowhead.
-const exitSegs = (() => {
+let exitSegs = [];
+function deriveExits() {
   const out = [], [lo, hi] = fitBox("cuts"), pad = 0.02 * D.size;
   const inside = (i) => [0, 1, 2].every((k) => P.pos[3 * i + k] >= lo[k] - pad && P.pos[3 * i + k] <= hi[k] + pad);
   for (const want of [1, 2]) {
@@ -153,5 +155,5 @@ const exitSegs = (() => {
       if (P.kind[i] === want && inside(i - 1) !== inside(i)) out.push(i);
     }
   }
-  return out;
-})();
+  exitSegs = out;
+}

@@ -12,13 +12,26 @@ async function decodeSource(i) {
   if (!el) return null;
   let raw = bytes(el.textContent.trim());
   if (el.dataset.z === "1") raw = await inflate(raw);
-  const text = new TextDecoder("utf-8").decode(raw);
-  const starts = [0];
-  for (let k = text.indexOf("\n"); k !== -1; k = text.indexOf("\n", k + 1)) starts.push(k + 1);
-  if (starts.length > 1 && starts[starts.length - 1] === text.length) starts.pop();
-  return { text, starts, lower: null };
+  return textSource(new TextDecoder("utf-8").decode(raw));
 }
-const sources = await Promise.all(D.files.map((_, i) => decodeSource(i)));
+// A program text; where its lines start is found when first needed (a
+// hidden text pane never needs it until the readout shows a line).
+function textSource(text) {
+  let starts = null;
+  return {
+    text,
+    lower: null,
+    get starts() {
+      if (!starts) {
+        starts = [0];
+        for (let k = text.indexOf("\n"); k !== -1; k = text.indexOf("\n", k + 1)) starts.push(k + 1);
+        if (starts.length > 1 && starts[starts.length - 1] === text.length) starts.pop();
+      }
+      return starts;
+    },
+  };
+}
+let sources = [];
 const source = (i) => sources[i] || null;
 function lineText(s, i) {
   const a = s.starts[i], b = i + 1 < s.starts.length ? s.starts[i + 1] : s.text.length;
@@ -27,7 +40,10 @@ function lineText(s, i) {
 let curFile = -1, curLine = 0;
 function renderLines() {
   const s = source(curFile);
-  if (!s) { lines.textContent = ""; return; }
+  // Hidden (embedded: the parent shows the text), nothing to draw.
+  if (!s || !pane.clientHeight) { lines.textContent = ""; return; }
+  const height = s.starts.length * LH + "px";
+  if (lines.style.height !== height) lines.style.height = height;
   const first = Math.max(0, Math.floor(pane.scrollTop / LH) - 5);
   const last = Math.min(s.starts.length, first + Math.ceil(pane.clientHeight / LH) + 10);
   const frag = document.createDocumentFragment();
@@ -49,8 +65,7 @@ function renderLines() {
 function showFile(i) {
   if (i === curFile) return;
   curFile = i;
-  const s = source(i);
-  lines.style.height = (s ? s.starts.length : 0) * LH + "px";
+  if (!source(i)) lines.style.height = "0px";
   $("srcname").textContent = D.files[i] !== undefined ? D.files[i] : "(program text not included)";
 }
 function scrollTo(line) {
@@ -81,7 +96,10 @@ function selectLine(file, line, quiet) {
 if (embedded) {
   window.addEventListener("message", (e) => {
     const m = e.data;
-    if (e.source === window.parent && m && m.vcnc === "select") selectLine(m.file | 0, m.line | 0, true);
+    if (e.source !== window.parent || !m || m.vcnc !== "select") return;
+    // Before the first plot: kept for it.
+    if (!loaded) sel = m.line > 0 ? { file: m.file | 0, line: m.line | 0 } : null;
+    else selectLine(m.file | 0, m.line | 0, true);
   });
 }
 pane.addEventListener("scroll", () => requestAnimationFrame(renderLines));
@@ -140,6 +158,7 @@ $("findPrev").addEventListener("click", () => findStep(-1));
 function esc(s) { const d = document.createElement("div"); d.textContent = s; return d.innerHTML; }
 function sw(c) { return '<span class="sw" style="background:rgb(' + c.join(",") + ')"></span>'; }
 function legend() {
+  if (!P) return;
   const p = pal();
   let h = "";
   const frameNote = D.cuts ? "the view fits the cuts (Fit: " + fitTo + ")" : "no cuts: the view fits all moves";
@@ -178,7 +197,7 @@ function legend() {
 // it at ×1, ×10 or ×100 the machine's speed, so ×10 takes a tenth of the
 // planned time. Without times (none known) it steps through the vertices.
 const scrub = $("scrub"), speedSel = $("speed");
-const timed = !!P.time && D.totalTime > 0;
+let timed = false;
 const STEPS = 10000;
 let curT = 0;
 // The last vertex reached at time t.
@@ -218,7 +237,6 @@ function setIndex(i) {
   if (timed) { curT = P.time[cur]; scrub.value = String(Math.round((STEPS * curT) / D.totalTime)); } else scrub.value = String(cur);
   update();
 }
-scrub.max = String(timed ? STEPS : Math.max(0, P.n - 1));
 scrub.addEventListener("input", () => {
   stop();
   const v = Number(scrub.value);
@@ -255,6 +273,7 @@ function frame(now) {
   if (playing) requestAnimationFrame(frame);
 }
 function play() {
+  if (!loaded) return;
   if (playing) { stop(); return; }
   if (timed ? curT >= D.totalTime : cur >= P.n - 1) setIndex(0);
   playing = true;
@@ -292,32 +311,44 @@ $("prevTool").addEventListener("click", () => stepTool(-1));
 $("nextTool").addEventListener("click", () => stepTool(1));
 
 // ---- controls ------------------------------------------------------------
-if (D.lathe) { $("views").hidden = true; $("latheViews").hidden = false; }
 for (const b of document.querySelectorAll("[data-view]")) {
   b.addEventListener("click", () => { R = VIEWS[b.dataset.view].map((r) => r.slice()); fit(); });
 }
 $("fit").addEventListener("click", fit);
 const fitSel = $("fitTo");
-fitSel.value = fitTo;
-if (!D.cuts) fitSel.disabled = true;
 fitSel.addEventListener("change", () => { fitTo = fitSel.value; fit(); legend(); });
 const colorSel = $("color");
-colorSel.value = colorBy;
-colorSel.addEventListener("change", () => { colorBy = colorSel.value; build(); legend(); request(); });
+colorSel.addEventListener("change", () => { colorBy = colorSel.value; colorChosen = true; build(); legend(); request(); });
 const rapidBox = $("showRapid");
-rapidBox.checked = showRapid;
-if (D.cutMoves === 0) rapidBox.disabled = true;
 rapidBox.addEventListener("change", (e) => { showRapid = e.target.checked; build(); if (sel) setSelection(sel); legend(); viewChanged(); });
 $("showGrid").addEventListener("change", (e) => { showGrid = e.target.checked; request(); });
-if (K) $("cmpLabel").hidden = false;
 $("showCompare").addEventListener("change", (e) => { showCompare = e.target.checked; request(); });
-meshes.forEach((m) => {
-  const l = document.createElement("label"), c = document.createElement("input");
-  c.type = "checkbox"; c.checked = m.visible;
-  c.addEventListener("change", () => { m.visible = c.checked; request(); });
-  l.append(c, " " + m.name);
-  $("meshToggles").append(l, " ");
-});
+// One toggle a mesh; what the user chose stays for the next plot's mesh
+// of the same name.
+function meshControls() {
+  const box = $("meshToggles");
+  box.replaceChildren();
+  meshes.forEach((m) => {
+    const l = document.createElement("label"), c = document.createElement("input");
+    c.type = "checkbox"; c.checked = m.visible; c.dataset.mesh = m.name;
+    c.addEventListener("change", () => { m.visible = c.checked; meshShown.set(m.name, c.checked); request(); });
+    l.append(c, " " + m.name);
+    box.append(l, " ");
+  });
+}
+// The controls that follow the plot.
+function plotControls() {
+  $("views").hidden = !!D.lathe;
+  $("latheViews").hidden = !D.lathe;
+  fitSel.value = fitTo;
+  fitSel.disabled = !D.cuts;
+  colorSel.value = colorBy;
+  if (D.cutMoves === 0) showRapid = true;
+  rapidBox.checked = showRapid;
+  rapidBox.disabled = D.cutMoves === 0;
+  $("cmpLabel").hidden = !K;
+  meshControls();
+}
 $("measure").addEventListener("click", () => setMeasuring(!measuring));
 $("theme").addEventListener("click", () => {
   theme = theme === "dark" ? "light" : "dark";
@@ -373,23 +404,96 @@ canvas.addEventListener("wheel", (e) => {
   move();
   viewChanged();
 }, { passive: false });
-window.addEventListener("resize", () => { if (resize()) fit(); request(); });
+// A resize fits the view again, but an embedded one keeps its camera (the
+// app's panels change its size as results come; the centre stays put).
+window.addEventListener("resize", () => { if (!loaded) return; if (resize() && !embedded) fit(); viewChanged(); });
 
-// ---- start ---------------------------------------------------------------
-$("title").textContent = D.title;
-document.body.className = theme;
-build();
-legend();
-resize();
-fit();
-showFile(0);
-setIndex(P.n - 1);
-if (timed) setTime(D.totalTime);
+// ---- start, and each new plot ----------------------------------------------
+// `frame`: fit the view to the plot (the first one always), else the
+// camera stays where it is. Loads run one at a time; a plot that arrives
+// while one loads waits, and only the latest is loaded.
+let loaded = false, loadSerial = 0, plotSerial = 0;
+async function load(data, texts, frame) {
+  const first = !loaded, oldCenter = D && loaded ? D.center : null, wasLathe = loaded && !!D.lathe;
+  stop();
+  D = data;
+  await decodeData();
+  sources = texts ? texts.map((t) => (t === null ? null : textSource(t))) : await Promise.all(D.files.map((_, i) => decodeSource(i)));
+  curFile = -1;
+  findState.file = -1;
+  deriveUnits();
+  deriveViews();
+  if (first) firstLook();
+  else if (!colorChosen) colorBy = D.color;
+  deriveRanges();
+  buildMeshes();
+  timed = !!P.time && D.totalTime > 0;
+  scrub.max = String(timed ? STEPS : Math.max(0, P.n - 1));
+  $("title").textContent = D.title;
+  document.body.className = theme;
+  gridCache.key = "";
+  resize();
+  // A lathe's section and a mill's views do not share a camera.
+  if (first || frame || !oldCenter || wasLathe !== !!D.lathe) frameView(); else keepCamera(oldCenter);
+  deriveExits();
+  plotControls();
+  build();
+  if (sel) setSelection(sel.line > 0 ? sel : null);
+  if (measuring) setMeasuring(true);
+  legend();
+  showFile(0);
+  setIndex(P.n - 1);
+  if (timed) setTime(D.totalTime);
+  loaded = true;
+  loadSerial++;
+}
+// Meshes posted apart (the web app's simulated part): placed and drawn.
+async function loadMeshes(data) {
+  const m = data ? JSON.parse(data) : null;
+  extraMeshes = m ? await decodeMeshes(m.meshes, m.center) : [];
+  if (!loaded) return;
+  placeMeshes();
+  buildMeshes();
+  meshControls();
+  legend();
+  request();
+}
+let queue = Promise.resolve(), latest = 0;
+function enqueue(f) {
+  queue = queue.then(f).catch((e) => { $("nogl").hidden = false; $("nogl").textContent = "The viewer could not draw this plot: " + e.message; });
+  return queue;
+}
+if (embedded) {
+  window.addEventListener("message", (e) => {
+    const m = e.data;
+    if (e.source !== window.parent || !m) return;
+    if (m.vcnc === "data") {
+      const mine = ++latest;
+      enqueue(async () => {
+        if (mine !== latest) return;
+        await load(JSON.parse(m.data), [m.text === undefined ? null : m.text], !!m.frame);
+        plotSerial = m.serial | 0;
+      });
+    } else if (m.vcnc === "meshes") {
+      enqueue(() => loadMeshes(m.data));
+    }
+  });
+}
+if (D) await load(D, null, true);
 // For tests and benchmarks: state, and a synchronous frame timer.
 window.vcnc = {
   stats,
   playStats,
-  totalTime: D.totalTime,
+  get totalTime() { return D ? D.totalTime : 0; },
+  // Plots loaded so far (embedded: one per posted plot).
+  loads: () => loadSerial,
+  // Embedded: the serial the parent gave the plot shown.
+  plotSerial: () => plotSerial,
+  // The camera: rows of R, scale (device px per mm) and pan (device px).
+  camera: () => ({ R: R.map((r) => r.slice()), scale, pan: pan.slice() }),
+  setCamera(c) { R = c.R.map((r) => r.slice()); scale = c.scale; pan = c.pan.slice(); viewChanged(); },
+  // Meshes drawn: name, visible, triangles.
+  meshes: () => meshes.map((m) => ({ name: m.name, visible: m.visible, triangles: Math.floor(m.tri.length / 3) })),
   index: () => cur,
   count: () => P.n,
   currentLine: () => curLine,
