@@ -578,7 +578,15 @@ impl Interpreter<'_> {
         self.ngc_cycle_modes(cmd, code)?;
         let len = |l: u8, default: f64| w.get(l).map_or(default, |x| self.units().length_mm(&x));
         let (step, allowance, retract) = (len(b'I', 1.0), len(b'D', 0.0), len(b'R', 0.5));
-        if step <= 0.0 {
+        if let Some(i) = w.get(b'I').filter(|_| step < 0.0) {
+            return Err(alarms::value_out_of_range(
+                i.span,
+                b'I',
+                i.value,
+                "the depth of cut is positive (rs274: \"I must be greater than zero\")",
+            ));
+        }
+        if step == 0.0 {
             let span = w.get(b'I').map_or(cmd, |i| i.span);
             return Err(alarms::zero_amount(span, "the depth of cut I"));
         }
@@ -603,8 +611,9 @@ impl Interpreter<'_> {
         self.ngc_cuts(&cuts, axes, w, cmd)
     }
 
-    /// rs274 runs G70–G72 only under G90, and G71/G72 only without cutter
-    /// compensation.
+    /// rs274 refuses G71/G72 under cutter compensation; under G91 its
+    /// 2.9.0 reads the block's X Z as absolute and the profile as
+    /// increments, which vcnc refuses rather than copies.
     fn ngc_cycle_modes(&self, cmd: Span, code: &str) -> Result<(), Diagnostic> {
         if self.state.modal.incremental {
             return Err(alarms::ngc_cycle_mode(
@@ -613,7 +622,7 @@ impl Interpreter<'_> {
                 "G90 (absolute distances)",
             ));
         }
-        if code != "G70" && self.state.modal.comp != crate::state::CompSide::Off {
+        if self.state.modal.comp != crate::state::CompSide::Off {
             return Err(alarms::ngc_cycle_mode(
                 cmd,
                 code,
@@ -628,6 +637,7 @@ impl Interpreter<'_> {
         match f {
             Fault::TooMany => alarms::too_many_cycle_moves(cmd),
             Fault::Profile(why) => self.profile_alarm(profile, 0, why),
+            Fault::Element(k, why) => self.profile_alarm(profile, k, why),
         }
     }
 

@@ -109,6 +109,11 @@ struct Reading {
     pending: Option<(CornerKind, Span, Line)>,
     /// Blocks read.
     blocks: usize,
+    /// Letters a block may carry that the profile ignores: a LinuxCNC
+    /// subroutine's rotary axis words (rs274's G70–G72 read only X, Z, I,
+    /// K and R of its blocks; LinuxCNC's own demo `lathe_g70_71_demo.ngc`
+    /// writes `G1 X10 A0.2` there).
+    ignored: u32,
 }
 
 /// What a profile block says, after validation.
@@ -233,6 +238,10 @@ impl Interpreter<'_> {
             carry_comp: None,
             pending: None,
             blocks: 0,
+            ignored: match end {
+                ProfileEnd::Before(_) => bit(b'A') | bit(b'B') | bit(b'C'),
+                ProfileEnd::Sequence(_) => 0,
+            },
         };
         let mut block = Block::default();
         if let Some(s) = self.flow.source(src) {
@@ -315,7 +324,7 @@ impl Interpreter<'_> {
         let src = r.profile.src;
         let first = r.blocks == 1;
         let mv = self
-            .profile_block(block, axes, r.at, &mut r.motion, first)
+            .profile_block(block, axes, (r.at, r.ignored), &mut r.motion, first)
             .map_err(|d| self.locate(d, src, &line))?;
         if first {
             r.profile.first_names = mv.named;
@@ -375,7 +384,7 @@ impl Interpreter<'_> {
         &self,
         block: &Block,
         (ix, iz): (usize, usize),
-        at: Xz,
+        (at, ignored): (Xz, u32),
         motion: &mut Option<GOp>,
         first: bool,
     ) -> Result<Move, Diagnostic> {
@@ -427,7 +436,7 @@ impl Interpreter<'_> {
             b'N', b'X', b'Z', b'U', b'W', b'I', b'K', b'R', b'F', b'S', b'T',
         ]
         .iter()
-        .fold(0, |m, l| m | bit(*l));
+        .fold(ignored, |m, l| m | bit(*l));
         if dwell {
             allowed |= bit(b'P');
         }
