@@ -503,7 +503,8 @@ pub fn needs_word(span: Span, code: &str, words: &str) -> Diagnostic {
     )
 }
 
-/// E349: LinuxCNC's G70–G72 outside the modes rs274 runs them in.
+/// E349: LinuxCNC's G71/G72 under a mode rs274 refuses them in (G41/G42)
+/// or runs them strangely in (G91).
 #[cold]
 pub fn ngc_cycle_mode(span: Span, code: &str, needs: &str) -> Diagnostic {
     d(

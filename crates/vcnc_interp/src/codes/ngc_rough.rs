@@ -55,6 +55,8 @@ const GAP_MM: f64 = 1e-2;
 pub(crate) enum Fault {
     /// The profile, with rs274's own words where it has them.
     Profile(&'static str),
+    /// The profile's element `k` (0 the approach to its first point).
+    Element(usize, &'static str),
     /// More moves or levels than one block may make.
     TooMany,
 }
@@ -281,12 +283,12 @@ impl Path {
         {
             *first = Seg::line(P2(first.end().0, first.start().1), first.end());
         }
-        if self.segs.iter().all(monotonic) {
-            Ok(())
-        } else {
-            Err(Fault::Profile(
+        match self.segs.iter().position(|s| !monotonic(s)) {
+            None => Ok(()),
+            Some(k) => Err(Fault::Element(
+                k,
                 "the profile is not monotonic (rs274: \"Not monotonic\"): each element must run one way along the cuts, away from the start point",
-            ))
+            )),
         }
     }
 
@@ -817,5 +819,116 @@ fn top(s: &Seg, c: P2) -> P2 {
         P2(c.0, c.1 + s.start().dist(c))
     } else {
         e
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rough(start: P2, first: P2, segs: &[Seg], d: f64) -> Vec<Cut> {
+        let r = Roughing {
+            pockets: Pockets::All,
+            allowance: d,
+            step: 1.5,
+            retract: 0.5,
+            facing: false,
+        };
+        Path::new(start, first, segs).rough(&r, 1000).expect("cuts")
+    }
+
+    /// Worked by hand (X radius, Z): from (8, 2) straight down to the
+    /// profile's first point (5, 2), along Z to −10 and up the face to
+    /// X8. Levels X8 and X6.5 are cut to the face and retracted 0.5 at
+    /// 45°; at X5 the level is the profile itself, which the tool follows.
+    #[test]
+    fn levels_run_from_the_start_down_to_the_profile_then_follow_it() {
+        let segs = [
+            Seg::line(P2(5.0, 2.0), P2(5.0, -10.0)),
+            Seg::line(P2(5.0, -10.0), P2(8.0, -10.0)),
+        ];
+        use Cut::{Feed as F, Rapid as R};
+        let want = [
+            R(P2(8.0, 2.0)),
+            R(P2(8.0, 2.0)),
+            F(P2(8.0, -10.0)),
+            R(P2(8.5, -9.5)),
+            R(P2(8.5, 1.5)),
+            R(P2(8.0, 2.0)),
+            R(P2(6.5, 2.0)),
+            F(P2(6.5, -10.0)),
+            R(P2(7.0, -9.5)),
+            R(P2(7.0, 1.5)),
+            R(P2(6.5, 2.0)),
+            R(P2(5.0, 2.0)),
+            F(P2(5.0, -10.0)),
+            F(P2(8.0, -10.0)),
+        ];
+        assert_eq!(rough(P2(8.0, 2.0), P2(5.0, 2.0), &segs, 0.0), want);
+    }
+
+    /// D moves the profile towards the start point's side: the line along
+    /// Z goes up by D, the face towards +Z by D, and they meet at
+    /// (5 + D, −10 + D); the approach still starts at the start point, and
+    /// the profile, ending below it, climbs back to its level.
+    #[test]
+    fn the_allowance_moves_the_profile_towards_the_start_point() {
+        let segs = [
+            Seg::line(P2(5.0, 2.0), P2(5.0, -10.0)),
+            Seg::line(P2(5.0, -10.0), P2(8.0, -10.0)),
+        ];
+        let cuts = rough(P2(9.0, 2.0), P2(5.0, 2.0), &segs, 0.25);
+        let tail: Vec<Cut> = cuts.iter().rev().take(3).rev().copied().collect();
+        assert_eq!(
+            tail,
+            [
+                Cut::Feed(P2(5.25, -9.75)),
+                Cut::Feed(P2(8.0, -9.75)),
+                Cut::Feed(P2(9.0, -9.75))
+            ]
+        );
+        assert_eq!(cuts.first(), Some(&Cut::Rapid(P2(9.0, 2.0))));
+    }
+
+    /// An element that turns back along the cuts is refused with its
+    /// index (the approach is element 0).
+    #[test]
+    fn a_profile_that_turns_back_is_refused_at_its_element() {
+        let segs = [
+            Seg::line(P2(5.0, 0.0), P2(5.0, -5.0)),
+            Seg::line(P2(5.0, -5.0), P2(7.0, -3.0)),
+            Seg::line(P2(7.0, -3.0), P2(9.0, -14.0)),
+        ];
+        let r = Roughing {
+            pockets: Pockets::All,
+            allowance: 0.0,
+            step: 1.0,
+            retract: 0.5,
+            facing: false,
+        };
+        let fault = Path::new(P2(11.0, 2.0), P2(5.0, 0.0), &segs).rough(&r, 1000);
+        assert!(matches!(fault, Err(Fault::Element(2, _))), "{fault:?}");
+    }
+
+    /// G70 E: one pass along the profile moved E towards the start
+    /// point, reached at rapid from it.
+    #[test]
+    fn a_finishing_pass_follows_the_offset_profile() {
+        let segs = [
+            Seg::line(P2(5.0, 2.0), P2(5.0, -10.0)),
+            Seg::line(P2(5.0, -10.0), P2(8.0, -10.0)),
+        ];
+        let cuts = Path::new(P2(9.0, 3.0), P2(5.0, 2.0), &segs)
+            .finish(0.5, 0.1, 1)
+            .expect("cuts");
+        assert_eq!(
+            cuts,
+            [
+                Cut::Rapid(P2(9.0, 3.0)),
+                Cut::Rapid(P2(5.1, 2.0)),
+                Cut::Feed(P2(5.1, -9.9)),
+                Cut::Feed(P2(8.0, -9.9)),
+            ]
+        );
     }
 }

@@ -109,6 +109,11 @@ struct Reading {
     pending: Option<(CornerKind, Span, Line)>,
     /// Blocks read.
     blocks: usize,
+    /// Letters a block may carry that the profile ignores: a LinuxCNC
+    /// subroutine's rotary axis words (rs274's G70–G72 read only X, Z, I,
+    /// K and R of its blocks; LinuxCNC's own demo `lathe_g70_71_demo.ngc`
+    /// writes `G1 X10 A0.2` there).
+    ignored: u32,
 }
 
 /// What a profile block says, after validation.
@@ -233,6 +238,10 @@ impl Interpreter<'_> {
             carry_comp: None,
             pending: None,
             blocks: 0,
+            ignored: match end {
+                ProfileEnd::Before(_) => bit(b'A') | bit(b'B') | bit(b'C'),
+                ProfileEnd::Sequence(_) => 0,
+            },
         };
         let mut block = Block::default();
         if let Some(s) = self.flow.source(src) {
@@ -315,7 +324,7 @@ impl Interpreter<'_> {
         let src = r.profile.src;
         let first = r.blocks == 1;
         let mv = self
-            .profile_block(block, axes, r.at, &mut r.motion, first)
+            .profile_block(block, axes, (r.at, r.ignored), &mut r.motion, first)
             .map_err(|d| self.locate(d, src, &line))?;
         if first {
             r.profile.first_names = mv.named;
@@ -375,7 +384,7 @@ impl Interpreter<'_> {
         &self,
         block: &Block,
         (ix, iz): (usize, usize),
-        at: Xz,
+        (at, ignored): (Xz, u32),
         motion: &mut Option<GOp>,
         first: bool,
     ) -> Result<Move, Diagnostic> {
@@ -427,7 +436,7 @@ impl Interpreter<'_> {
             b'N', b'X', b'Z', b'U', b'W', b'I', b'K', b'R', b'F', b'S', b'T',
         ]
         .iter()
-        .fold(0, |m, l| m | bit(*l));
+        .fold(ignored, |m, l| m | bit(*l));
         if dwell {
             allowed |= bit(b'P');
         }
@@ -490,26 +499,35 @@ impl Interpreter<'_> {
             ));
         }
         let coord = |abs: u8, inc: u8, i: usize, from: f64| match (w.get(abs), w.get(inc)) {
-            (Some(word), _) => (self.axis_value(i, &word), true),
-            (None, Some(word)) => (from + self.axis_value(i, &word), true),
+            (Some(word), _) => (
+                self.units().axis_value(&self.cfg.axis_words, i, &word),
+                true,
+            ),
+            (None, Some(word)) => (
+                from + self.units().axis_value(&self.cfg.axis_words, i, &word),
+                true,
+            ),
             (None, None) => (from, false),
         };
         let (x, nx) = coord(b'X', b'U', ix, at.0);
         let (z, nz) = coord(b'Z', b'W', iz, at.1);
         let arc_words = if arc {
             match (w.get(b'R'), w.get(b'I'), w.get(b'K')) {
-                (Some(r), _, _) => Some(ArcWords::Radius(self.length_mm(&r), r.span)),
+                (Some(r), _, _) => Some(ArcWords::Radius(self.units().length_mm(&r), r.span)),
                 // G90.1: I and K are the centre's program coordinates, as
                 // for an arc outside a cycle (rs274 reads the profile so).
-                (None, Some(i), Some(k)) if self.state.modal.arc_absolute => Some(
-                    ArcWords::Offsets(self.length_mm(&i) - at.0, self.length_mm(&k) - at.1),
-                ),
+                (None, Some(i), Some(k)) if self.state.modal.arc_absolute => {
+                    Some(ArcWords::Offsets(
+                        self.units().length_mm(&i) - at.0,
+                        self.units().length_mm(&k) - at.1,
+                    ))
+                }
                 (None, _, _) if self.state.modal.arc_absolute => {
                     return Err(alarms::arc_without_center(span, "zx"));
                 }
                 (None, i, k) if i.is_some() || k.is_some() => Some(ArcWords::Offsets(
-                    i.map_or(0.0, |i| self.length_mm(&i)),
-                    k.map_or(0.0, |k| self.length_mm(&k)),
+                    i.map_or(0.0, |i| self.units().length_mm(&i)),
+                    k.map_or(0.0, |k| self.units().length_mm(&k)),
                 )),
                 _ => return Err(alarms::arc_without_center(span, "zx")),
             }
@@ -523,8 +541,8 @@ impl Interpreter<'_> {
         };
         let corner = match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
             (Some(_), Some(r)) => return Err(alarms::corner_fault(r.span, "both ,C and ,R")),
-            (Some(c), None) => Some((CornerKind::Chamfer(self.length_mm(&c)), c.span)),
-            (None, Some(r)) => Some((CornerKind::Round(self.length_mm(&r)), r.span)),
+            (Some(c), None) => Some((CornerKind::Chamfer(self.units().length_mm(&c)), c.span)),
+            (None, Some(r)) => Some((CornerKind::Round(self.units().length_mm(&r)), r.span)),
             (None, None) => None,
         };
         if let Some((_, word)) = corner.filter(|_| op != GOp::Motion(MotionOp::Linear)) {

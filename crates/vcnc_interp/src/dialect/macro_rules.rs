@@ -165,6 +165,14 @@ impl MacroRules {
                 slash_comments: true,
                 extended: &[],
             },
+            // rs274's recursion limit (`vcnc_syntax::macros::parse_ngc_line`
+            // brings its own settings).
+            Lang::Ngc => MacroSyntax {
+                lang,
+                max_nesting: 64,
+                slash_comments: false,
+                extended: &[],
+            },
         }
     }
 }

@@ -681,22 +681,22 @@ impl TurnOp {
             }
             TurnOp::NgcRoughCycle { facing, pockets } => match (facing, pockets) {
                 (false, RoughPockets::All) => {
-                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), pockets too"
+                    "roughing cycle along Z cutting every pocket (profile o<Q>, D allowance, I depth of cut, R retract)"
                 }
                 (false, RoughPockets::None) => {
-                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), no pockets"
+                    "roughing cycle along Z cutting no pocket (profile o<Q>, D allowance, I depth of cut, R retract)"
                 }
                 (false, RoughPockets::AfterFirst) => {
-                    "roughing cycle along Z to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), the pockets after the first descent"
+                    "roughing cycle along Z cutting the pockets after the first descent (profile o<Q>, D allowance, I depth of cut, R retract)"
                 }
                 (true, RoughPockets::All) => {
-                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), pockets too"
+                    "facing roughing cycle cutting every pocket (profile o<Q>, D allowance, I depth of cut, R retract)"
                 }
                 (true, RoughPockets::None) => {
-                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), no pockets"
+                    "facing roughing cycle cutting no pocket (profile o<Q>, D allowance, I depth of cut, R retract)"
                 }
                 (true, RoughPockets::AfterFirst) => {
-                    "roughing cycle along X (facing) to the profile of subroutine o<Q> (D allowance, I depth of cut, R retract), the pockets after the first descent"
+                    "facing roughing cycle cutting the pockets after the first descent (profile o<Q>, D allowance, I depth of cut, R retract)"
                 }
             },
             TurnOp::NgcThreadCycle => {

@@ -14,6 +14,9 @@
 //!                 overflow, SQRT/LN/ASIN/ACOS/POW out of their domain E609
 //! ```
 //!
+//! What differs between the languages is data, [`Arith`], read through
+//! [`arith`]: the evaluator never tests a language's name.
+//!
 //! Angles are degrees. Reads and writes of variables go through
 //! [`Interpreter::read_var`] and [`Interpreter::write_var`], which know the
 //! controller's variable table.
@@ -24,6 +27,107 @@ use crate::alarms;
 use crate::interpreter::Interpreter;
 use vcnc_syntax::macros::{Arg, BinOp, Expr, Func, Lang, OpCode, Value, VarKind};
 use vcnc_syntax::{Diagnostic, Span};
+
+/// What an operator does beyond `+ - * /` and the comparisons.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Operators {
+    /// MOD, AND, OR, XOR on the integer portions of reals; EQ exact, a
+    /// vacant operand told from 0 (Fanuc 0i, Haas's manual).
+    IntegerPortions,
+    /// Long op Long is Long; MOD and the bit operators need Longs (E610)
+    /// (Syntec §3.4–3.5).
+    Typed,
+    /// rs274's: `**`, MOD in [0, |divisor|), AND OR XOR logical, EQ and NE
+    /// within 0.0001, results unchecked until a word or setting takes them.
+    Rs274,
+}
+
+/// Which functions a language's names stand for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Functions {
+    /// Checked domains, exact at multiples of 90°, FIX/FUP toward and away
+    /// from zero (Fanuc 0i, Syntec).
+    Checked,
+    /// rs274's: FIX/FUP floor and ceiling, `ATAN[y]/[x]` ±180°, results
+    /// unchecked (`ngc.rs`).
+    Rs274,
+}
+
+/// Where a `#n` lives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Table {
+    /// The controller's variable table (`vars.rs`, `system.rs`).
+    Variables,
+    /// LinuxCNC's parameters (#1–#5601, unset 0, and `#<name>`: `ngc.rs`).
+    Parameters,
+}
+
+/// A language's arithmetic, as data: the evaluator asks these, never the
+/// language's name (`docs/macros.md`, "Expressions").
+#[derive(Debug)]
+pub(crate) struct Arith {
+    /// A number written without a point, a truth value and a whole-number
+    /// function's result are Longs (Syntec); elsewhere every number is
+    /// real.
+    pub longs: bool,
+    pub operators: Operators,
+    pub functions: Functions,
+    /// ASIN and the two-argument ATAN answer 0°…360° (Fanuc 0i with
+    /// parameter NAT = 0) rather than ±.
+    pub positive_angles: bool,
+    /// POW of a negative base alarms even with a whole exponent (Syntec).
+    pub negative_base_alarms: bool,
+    pub table: Table,
+    /// ROUND in an NC address rounds to the address's least input
+    /// increment (Fanuc 0i).
+    pub round_in_increments: bool,
+    /// A GOTO into a DO–END range from outside it alarms E614 (Fanuc 0i;
+    /// Syntec §4.8 only advises against it).
+    pub goto_into_loop_alarms: bool,
+}
+
+const MACRO_B: Arith = Arith {
+    longs: false,
+    operators: Operators::IntegerPortions,
+    functions: Functions::Checked,
+    positive_angles: true,
+    negative_base_alarms: false,
+    table: Table::Variables,
+    round_in_increments: true,
+    goto_into_loop_alarms: true,
+};
+
+const SYNTEC: Arith = Arith {
+    longs: true,
+    operators: Operators::Typed,
+    functions: Functions::Checked,
+    positive_angles: false,
+    negative_base_alarms: true,
+    table: Table::Variables,
+    round_in_increments: false,
+    goto_into_loop_alarms: false,
+};
+
+const NGC: Arith = Arith {
+    longs: false,
+    operators: Operators::Rs274,
+    functions: Functions::Rs274,
+    positive_angles: false,
+    negative_base_alarms: false,
+    table: Table::Parameters,
+    round_in_increments: false,
+    goto_into_loop_alarms: false,
+};
+
+/// The arithmetic of `lang`: the one place a language's name is read.
+#[inline]
+pub(crate) fn arith(lang: Lang) -> &'static Arith {
+    match lang {
+        Lang::MacroB => &MACRO_B,
+        Lang::Syntec => &SYNTEC,
+        Lang::Ngc => &NGC,
+    }
+}
 
 /// Values an i64 holds exactly enough for bit operations and Longs.
 const I64_LIMIT: f64 = 9.2e18;
@@ -59,10 +163,11 @@ fn long(x: Option<i64>, span: Span) -> Result<Value, Diagnostic> {
         .ok_or_else(|| alarms::macro_range(span, "the result overflows a Long"))
 }
 
-fn truth(b: bool, lang: Lang) -> Value {
-    match lang {
-        Lang::MacroB => Value::Double(f64::from(u8::from(b))),
-        Lang::Syntec => Value::Long(i64::from(b)),
+fn truth(b: bool, rules: &Arith) -> Value {
+    if rules.longs {
+        Value::Long(i64::from(b))
+    } else {
+        Value::Double(f64::from(u8::from(b)))
     }
 }
 
@@ -122,6 +227,23 @@ pub(crate) fn binary(
     b: Value,
     span: Span,
 ) -> Result<Value, Diagnostic> {
+    let rules = arith(lang);
+    if rules.operators == Operators::Rs274 {
+        return super::ngc::ngc_binary(op, num(a), num(b), span);
+    }
+    fanuc_or_typed(rules, op, a, b, span)
+}
+
+/// [`binary`] under `IntegerPortions` or `Typed` operators (the
+/// evaluator's loop has sent rs274's elsewhere).
+#[inline]
+fn fanuc_or_typed(
+    rules: &Arith,
+    op: BinOp,
+    a: Value,
+    b: Value,
+    span: Span,
+) -> Result<Value, Diagnostic> {
     match op {
         BinOp::Eq | BinOp::Ne => {
             let equal = match (a, b) {
@@ -129,7 +251,7 @@ pub(crate) fn binary(
                 (Value::Null, _) | (_, Value::Null) => false,
                 (x, y) => num(x) == num(y),
             };
-            return Ok(truth(equal == (op == BinOp::Eq), lang));
+            return Ok(truth(equal == (op == BinOp::Eq), rules));
         }
         BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => {
             let (x, y) = (num(a), num(b));
@@ -139,14 +261,14 @@ pub(crate) fn binary(
                 BinOp::Gt => x > y,
                 _ => x >= y,
             };
-            return Ok(truth(holds, lang));
+            return Ok(truth(holds, rules));
         }
         _ => {}
     }
     let (a, b) = (operand(a), operand(b));
-    match lang {
-        Lang::MacroB => macro_b_arith(op, num(a), num(b), span),
-        Lang::Syntec => syntec_arith(op, a, b, span),
+    match rules.operators {
+        Operators::Typed => syntec_arith(op, a, b, span),
+        Operators::IntegerPortions | Operators::Rs274 => macro_b_arith(op, num(a), num(b), span),
     }
 }
 
@@ -224,14 +346,14 @@ pub(crate) fn negate(v: Value, span: Span) -> Result<Value, Diagnostic> {
 
 /// A number result of `lang`'s type for a whole-number function.
 fn whole_result(x: f64, lang: Lang, span: Span) -> Result<Value, Diagnostic> {
-    match lang {
-        Lang::MacroB => real(x, span),
-        Lang::Syntec if x.abs() < I64_LIMIT => {
-            // Whole (rounded above) and in range: exact.
-            #[allow(clippy::cast_possible_truncation)]
-            Ok(Value::Long(x as i64))
-        }
-        Lang::Syntec => Err(alarms::macro_range(span, "the result overflows a Long")),
+    if !arith(lang).longs {
+        real(x, span)
+    } else if x.abs() < I64_LIMIT {
+        // Whole (rounded above) and in range: exact.
+        #[allow(clippy::cast_possible_truncation)]
+        Ok(Value::Long(x as i64))
+    } else {
+        Err(alarms::macro_range(span, "the result overflows a Long"))
     }
 }
 
@@ -244,6 +366,10 @@ pub(crate) fn function(
 ) -> Result<Value, Diagnostic> {
     let x = args.first().copied().map_or(0.0, num);
     let y = args.get(1).copied().map_or(0.0, num);
+    let rules = arith(lang);
+    if rules.functions == Functions::Rs274 {
+        return super::ngc::ngc_function(f, x, y, span);
+    }
     let domain = |what: &str| Err(alarms::macro_domain(span, what));
     match f {
         Func::Sin => real(sin_cos_deg(x).0, span),
@@ -262,7 +388,7 @@ pub(crate) fn function(
             let d = x.asin().to_degrees();
             // Fanuc 0i (parameter NAT = 0) answers 270°…90°.
             real(
-                if lang == Lang::MacroB && d < 0.0 {
+                if rules.positive_angles && d < 0.0 {
                     d + 360.0
                 } else {
                     d
@@ -278,7 +404,7 @@ pub(crate) fn function(
             let d = x.atan2(y).to_degrees();
             // Fanuc 0i (NAT = 0): 0°…360°; Syntec ATAN2: ±180°.
             real(
-                if lang == Lang::MacroB && d < 0.0 {
+                if rules.positive_angles && d < 0.0 {
                     d + 360.0
                 } else {
                     d
@@ -289,8 +415,8 @@ pub(crate) fn function(
         Func::Atan | Func::Atan2 => real(x.atan().to_degrees(), span),
         Func::Sqrt if x < 0.0 => domain("SQRT of a negative number"),
         Func::Sqrt => real(x.sqrt(), span),
-        Func::Abs => match (lang, args.first()) {
-            (Lang::Syntec, Some(Value::Long(i))) => long(i.checked_abs(), span),
+        Func::Abs => match args.first() {
+            Some(Value::Long(i)) if rules.longs => long(i.checked_abs(), span),
             _ => real(x.abs(), span),
         },
         Func::Round => whole_result(round_half_away(x), lang, span),
@@ -320,7 +446,7 @@ pub(crate) fn function(
         Func::Ln if x <= 0.0 => domain("LN of a number that is not positive"),
         Func::Ln => real(x.ln(), span),
         Func::Exp => real(x.exp(), span),
-        Func::Pow if x < 0.0 && (lang == Lang::Syntec || y.fract() != 0.0) => {
+        Func::Pow if x < 0.0 && (rules.negative_base_alarms || y.fract() != 0.0) => {
             domain("POW of a negative base")
         }
         Func::Pow => real(x.powf(y), span),
@@ -354,19 +480,34 @@ impl Interpreter<'_> {
     }
 
     fn eval_ops(&mut self, e: &Expr, lang: Lang, st: &mut Vec<Value>) -> Result<Value, Diagnostic> {
+        let rules = arith(lang);
+        let rs274 = rules.operators == Operators::Rs274;
+        let parameters = rules.table == Table::Parameters;
         for op in &e.ops {
             let span = op.span;
             match &op.code {
                 OpCode::Num(v) => st.push(*v),
                 OpCode::Var(kind, n) => {
-                    let v = self.read_var(*kind, *n, span)?;
+                    let v = if parameters {
+                        Value::Double(self.ngc_numbered(f64::from(*n), span)?)
+                    } else {
+                        self.read_var(*kind, *n, span)?
+                    };
                     st.push(v);
                 }
                 OpCode::VarAt(kind) => {
                     let index = st.pop().unwrap_or_default();
-                    let n = self.var_number(*kind, index, span)?;
-                    let v = self.read_var(*kind, n, span)?;
+                    let v = if parameters {
+                        Value::Double(self.ngc_numbered(num(index), span)?)
+                    } else {
+                        let n = self.var_number(*kind, index, span)?;
+                        self.read_var(*kind, n, span)?
+                    };
                     st.push(v);
+                }
+                OpCode::Named(i) => {
+                    let v = self.ngc_named(text_name(e, *i), span)?;
+                    st.push(Value::Double(v));
                 }
                 OpCode::Neg => {
                     let v = negate(st.pop().unwrap_or_default(), span)?;
@@ -384,7 +525,12 @@ impl Interpreter<'_> {
                 OpCode::Bin(b) => {
                     let y = st.pop().unwrap_or_default();
                     let x = st.pop().unwrap_or_default();
-                    st.push(binary(lang, *b, x, y, span)?);
+                    let v = if rs274 {
+                        super::ngc::ngc_binary(*b, num(x), num(y), span)?
+                    } else {
+                        fanuc_or_typed(rules, *b, x, y, span)?
+                    };
+                    st.push(v);
                 }
                 OpCode::Call(f, argc) => {
                     let at = st.len().saturating_sub(usize::from(*argc));
@@ -479,6 +625,17 @@ impl Interpreter<'_> {
                 Ok(Value::Null)
             }
             Func::Wait | Func::Sleep | Func::Draw | Func::Param => Ok(Value::Null),
+            // `EXISTS[#<name>]`; `EXISTS[#n]` is 1 for any parameter number.
+            Func::Exists => match texts.first() {
+                Some(Arg::Name(name)) => {
+                    Ok(Value::Double(f64::from(u8::from(self.ngc_exists(name)))))
+                }
+                _ => {
+                    let n = args.first().copied().map_or(0.0, num);
+                    super::ngc::param_number(n, span)?;
+                    Ok(Value::Double(1.0))
+                }
+            },
             Func::Round => match self.macros.round_per_unit {
                 Some(per_unit) => {
                     let x = args.first().copied().map_or(0.0, num);
@@ -627,6 +784,14 @@ fn to_long(v: Value, span: Span) -> Result<Value, Diagnostic> {
     match v {
         Value::Double(x) => Ok(Value::Long(integer_part(x, span)?)),
         v => Ok(v),
+    }
+}
+
+/// The name of `OpCode::Named(i)` in `e`.
+fn text_name(e: &Expr, i: u16) -> &str {
+    match e.texts.get(usize::from(i)).and_then(|t| t.first()) {
+        Some(Arg::Name(name)) => name,
+        _ => "",
     }
 }
 

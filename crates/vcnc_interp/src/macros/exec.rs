@@ -134,7 +134,9 @@ impl Interpreter<'_> {
                 Ok(Step::Next)
             }
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
-            StmtKind::Words(_) | StmtKind::Percent => Ok(Step::Next),
+            // A LinuxCNC line runs through `ngc_block` (front.rs) and is
+            // never cached as a statement.
+            StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
         }
     }
 
@@ -151,6 +153,11 @@ impl Interpreter<'_> {
                 let v = self.eval(e, lang)?;
                 Ok((*kind, self.var_number(*kind, v, *span)?))
             }
+            // Only LinuxCNC's lines name parameters, and `ngc.rs` writes them.
+            Target::Named(_, span) => Err(vcnc_syntax::macros::ngc_expected(
+                *span,
+                "a numbered variable (named parameters are LinuxCNC's)",
+            )),
         }
     }
 
@@ -195,7 +202,7 @@ impl Interpreter<'_> {
             .flow
             .find_sequence(frame.source, frame.program, n, &lex)
             .ok_or_else(|| alarms::sequence_not_found(span, n))?;
-        if c.lang == Lang::MacroB {
+        if super::eval::arith(c.lang).goto_into_loop_alarms {
             self.not_into_a_loop(c, src, word, n, to)?;
         }
         self.count_jump(span)?;

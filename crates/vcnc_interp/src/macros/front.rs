@@ -239,11 +239,16 @@ impl Interpreter<'_> {
         if !text.iter().any(|c| matches!(c, b'#' | b'[')) {
             return Err(lexed);
         }
-        let params = self.macros.ngc.get_or_insert_with(Box::default);
-        let read = super::ngc::read_line(bytes, start, params)?;
         let end = bytes.len();
+        let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
+        let StmtKind::Line(items) = &st.kind else {
+            return Err(lexed);
+        };
+        let deleted = st.deleted.is_some();
+        let read = self.ngc_line(items)?;
         // Block delete skips the settings of a `/` line too.
-        if !(read.deleted && self.cfg.opts.block_delete) {
+        if !(deleted && self.cfg.opts.block_delete) {
+            let params = self.macros.ngc.get_or_insert_with(Box::default);
             params.commit(&read);
         }
         self.macros.used = true;
@@ -257,7 +262,7 @@ impl Interpreter<'_> {
                 ));
             }
         }
-        block.deleted = read.deleted.then_some(1);
+        block.deleted = deleted.then_some(1);
         let span = Span::new(start, end);
         if block.is_empty() {
             return Ok((Step::Next, span));
@@ -325,9 +330,14 @@ impl Interpreter<'_> {
             if !text.iter().any(|c| matches!(c, b'#' | b'[')) {
                 return Err(lexed);
             }
-            let params = self.macros.ngc.get_or_insert_with(Box::default);
-            let read = super::ngc::read_line(bytes, start, params)?;
-            if !(read.deleted && self.cfg.opts.block_delete) {
+            let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
+            let StmtKind::Line(items) = &st.kind else {
+                return Err(lexed);
+            };
+            let deleted = st.deleted.is_some();
+            let read = self.ngc_line(items)?;
+            if !(deleted && self.cfg.opts.block_delete) {
+                let params = self.macros.ngc.get_or_insert_with(Box::default);
                 params.commit(&read);
             }
             self.macros.used = true;
@@ -340,7 +350,7 @@ impl Interpreter<'_> {
                     ));
                 }
             }
-            block.deleted = read.deleted.then_some(1);
+            block.deleted = deleted.then_some(1);
             return Ok(bytes.len());
         }
         let syn = self
@@ -475,7 +485,7 @@ impl Interpreter<'_> {
                 MValue::Expr(e) => {
                     // Fanuc 0i: ROUND in an NC address rounds to the
                     // address's least input increment.
-                    if lang == Lang::MacroB {
+                    if super::eval::arith(lang).round_in_increments {
                         self.macros.round_per_unit = self.increments_per_unit(w.addr.0);
                     }
                     let v = self.eval(e, lang);
@@ -729,7 +739,7 @@ pub(crate) fn word_value(
     let whole = WHOLE_LETTERS.contains(&letter);
     Ok(match (lang, v) {
         (_, _) if letter == b'G' => (x, false),
-        (Lang::Syntec, Value::Long(_)) => (x, false),
+        (_, Value::Long(_)) if super::eval::arith(lang).longs => (x, false),
         (_, _) if whole => (x.round(), false),
         _ => (x, true),
     })

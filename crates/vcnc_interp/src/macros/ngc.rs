@@ -1,7 +1,9 @@
-//! LinuxCNC's parameters and expressions (`--dialect linuxcnc`): the
-//! lines the lexer rejects for a `#` or a `[`, read and evaluated the way
-//! its RS274/NGC interpreter does, then run as the plain block they stand
-//! for.
+//! LinuxCNC's parameters (`--dialect linuxcnc`): the table a program's
+//! `#1` and `#<name>` live in, and what a line with parameters does.
+//! `vcnc_syntax::macros::parse_ngc_line` parses such a line into the
+//! compiled form of every macro language; the one evaluator (`eval.rs`)
+//! reads its values under LinuxCNC's arithmetic; here the line's words
+//! and settings are checked and its settings applied.
 //!
 //! ```text
 //!   #1 = 2   #<depth> = [#1 * 1.5]           (settings: after the line)
@@ -9,22 +11,17 @@
 //!        └─ G1 X12 Z-3 F… ──▶ the block pipeline
 //! ```
 //!
-//! What differs from Custom Macro B, and why this is its own reader:
-//! every parameter holds a number (an unset numbered one reads 0, an unset
-//! named one alarms), settings on a line take effect after the whole line
-//! is read, `ROUND` rounds half away from zero, `FIX`/`FUP` are floor and
-//! ceiling, `AND`/`OR`/`XOR` are logical,
-//! `**` is a power, `ATAN[y]/[x]` is the full-circle angle, EQ and NE
-//! compare within 0.0001, MOD lands in [0, |divisor|), and the
-//! precedence is `**` > `* / MOD` > `+ -` > comparisons > `AND OR XOR`.
-//! Named parameters without a leading `_` are local to an O-word
-//! subroutine (`oword.rs` saves them at its call, restores them at its
-//! return); the others live for the whole program. System parameters
-//! (#5061–#5428: probe results, offsets, the position) read what the
-//! program wrote, 0 otherwise.
+//! Every parameter holds a number (an unset numbered one reads 0, an
+//! unset named one alarms). Named parameters without a leading `_` are
+//! local to an O-word subroutine (`oword.rs` saves them at its call,
+//! restores them at its return); the others live for the whole program.
+//! System parameters (#5061–#5428: probe results, offsets, the position)
+//! read what the program wrote, 0 otherwise.
 
 use crate::alarms;
+use crate::interpreter::Interpreter;
 use std::collections::HashMap;
+use vcnc_syntax::macros::{Expr, Lang, LineItem, MValue, Target, Value, ngc_expected};
 use vcnc_syntax::{Addr, Diagnostic, Span, Word};
 
 /// The highest numbered parameter (LinuxCNC's 5601).
@@ -33,9 +30,6 @@ const LAST: usize = 5601;
 /// A word's value that the lexer would take (at most 9 digits before the
 /// point): beyond, E103, as written literally.
 const MAX_VALUE: f64 = 1e9;
-
-/// rs274's tolerance of EQ and NE.
-const EQUAL: f64 = 1e-4;
 
 /// Parameters of one run.
 #[derive(Debug, Clone)]
@@ -61,7 +55,7 @@ impl Default for Params {
 
 /// A parameter a line sets.
 #[derive(Debug, Clone, PartialEq)]
-enum Key {
+pub(crate) enum Key {
     Numbered(usize),
     Named(String),
 }
@@ -70,12 +64,20 @@ enum Key {
 #[derive(Debug, Default)]
 pub(crate) struct Line {
     pub words: Vec<Word>,
-    sets: Vec<(Key, f64)>,
-    /// A `/` block delete at its start.
-    pub deleted: bool,
+    pub sets: Vec<(Key, f64)>,
 }
 
 impl Params {
+    /// Numbered parameter `n` (1..=5601, checked by the caller).
+    pub(crate) fn numbered(&self, n: usize) -> f64 {
+        self.numbered.get(n).copied().unwrap_or(0.0)
+    }
+
+    /// Named parameter `name`, `None` when never set.
+    pub(crate) fn named(&self, name: &str) -> Option<f64> {
+        self.named.get(name).copied()
+    }
+
     /// Applies a line's settings, in their order (the last of a
     /// parameter set twice wins).
     pub(crate) fn commit(&mut self, line: &Line) {
@@ -154,568 +156,6 @@ const READ_ONLY: &[&str] = &[
     "_remap_level",
 ];
 
-/// Reads `text[start..]`, one LinuxCNC line, with the parameters as they
-/// were before it.
-pub(crate) fn read_line(text: &[u8], start: usize, params: &Params) -> Result<Line, Diagnostic> {
-    let mut r = Reader {
-        s: text,
-        i: start,
-        params,
-        depth: 0,
-    };
-    paren_in_comment(&text[start.min(text.len())..], start)?;
-    let mut line = Line::default();
-    r.blank();
-    if r.peek() == b'/' {
-        line.deleted = true;
-        r.i += 1;
-    }
-    loop {
-        r.blank();
-        let at = r.i;
-        match r.peek().to_ascii_uppercase() {
-            0 => return Ok(line),
-            b'#' => {
-                let key = r.target()?;
-                if let Key::Named(name) = &key
-                    && READ_ONLY.contains(&name.as_str())
-                {
-                    return Err(alarms::read_only_named(Span::new(at, r.i), name));
-                }
-                r.blank();
-                if r.peek() != b'=' {
-                    return Err(syntax(Span::new(r.i, r.i + 1), "`=` after the parameter"));
-                }
-                r.i += 1;
-                // A value, not a bare expression: `#1 = 2 G1 X3` sets 2.
-                let v = r.value()?;
-                if !v.is_finite() {
-                    return Err(alarms::macro_range(
-                        Span::new(at, r.i),
-                        "the parameter's value",
-                    ));
-                }
-                line.sets.push((key, v));
-            }
-            l @ b'A'..=b'Z' => {
-                r.i += 1;
-                let v = r.value()?;
-                if !v.is_finite() {
-                    return Err(alarms::macro_range(Span::new(at, r.i), "the word's value"));
-                }
-                if v.abs() >= MAX_VALUE {
-                    return Err(vcnc_syntax::diagnostics::number_out_of_range(
-                        Span::new(at, r.i),
-                        char::from(l),
-                    ));
-                }
-                // G and M codes may repeat (`G1 G91 Z-#1`); other letters
-                // once, as the lexer wants.
-                if !matches!(l, b'G' | b'M')
-                    && line.words.iter().any(|w| w.addr.as_letter() == Some(l))
-                {
-                    return Err(syntax(Span::new(at, r.i), "one word per letter in a block"));
-                }
-                line.words.push(Word {
-                    addr: Addr::letter(l),
-                    value: v,
-                    // Whole units either way; a fraction in an M or T
-                    // word still alarms as written with a point.
-                    point: v.fract() != 0.0,
-                    span: Span::new(at, r.i),
-                });
-            }
-            p @ (b'@' | b'^') => {
-                // The polar words, with an expression for value (`@[#1]`).
-                r.i += 1;
-                let v = r.value()?;
-                if !v.is_finite() || v.abs() >= MAX_VALUE {
-                    return Err(alarms::macro_range(Span::new(at, r.i), "the word's value"));
-                }
-                let addr = if p == b'@' { Addr::AT } else { Addr::CARET };
-                if line.words.iter().any(|w| w.addr == addr) {
-                    return Err(syntax(Span::new(at, r.i), "one word per letter in a block"));
-                }
-                line.words.push(Word {
-                    addr,
-                    value: v,
-                    point: v.fract() != 0.0,
-                    span: Span::new(at, r.i),
-                });
-            }
-            _ => {
-                return Err(syntax(
-                    Span::new(at, at + 1),
-                    "a word, a parameter setting or a comment",
-                ));
-            }
-        }
-    }
-}
-
-/// E101 at a `(` inside a `( )` comment of `text` (which starts at byte
-/// `start` of its line): rs274 stops with "Nested comment found".
-fn paren_in_comment(text: &[u8], start: usize) -> Result<(), Diagnostic> {
-    let mut open = None;
-    for (k, c) in text.iter().enumerate() {
-        match (c, open) {
-            (b';', None) => return Ok(()),
-            (b'(', None) => open = Some(k),
-            (b'(', Some(_)) => {
-                return Err(vcnc_syntax::diagnostics::paren_in_comment(Span::new(
-                    start + k,
-                    start + k + 1,
-                )));
-            }
-            (b')', Some(_)) => open = None,
-            _ => {}
-        }
-    }
-    Ok(())
-}
-
-/// E601 in LinuxCNC's syntax.
-fn syntax(span: Span, wanted: &str) -> Diagnostic {
-    vcnc_syntax::diagnostics::macro_syntax(
-        span,
-        &format!("expected {wanted} here (LinuxCNC's parameters and expressions)"),
-        "write e.g. #1 = [#2 * 3], #<depth> = 2, X[#1 + 5], or put text inside ( )",
-    )
-}
-
-struct Reader<'a> {
-    s: &'a [u8],
-    i: usize,
-    params: &'a Params,
-    /// Values being read inside one another.
-    depth: u8,
-}
-
-/// Most values inside one another (brackets, signs, `#`).
-const MAX_DEPTH: u8 = 64;
-
-/// Binary operators by precedence level, lowest first.
-const LEVELS: &[&[&str]] = &[
-    &["AND", "OR", "XOR"],
-    &["EQ", "NE", "GT", "GE", "LT", "LE"],
-    &["+", "-"],
-    &["*", "/", "MOD"],
-    &["**"],
-];
-
-impl Reader<'_> {
-    fn peek(&self) -> u8 {
-        self.s.get(self.i).copied().unwrap_or(0)
-    }
-
-    /// Skips blanks, `( )` comments and a `;` comment (to the end).
-    fn blank(&mut self) {
-        loop {
-            match self.peek() {
-                b' ' | b'\t' | b'\r' => self.i += 1,
-                b'(' => match self.s[self.i..].iter().position(|c| *c == b')') {
-                    Some(k) => self.i += k + 1,
-                    None => self.i = self.s.len(),
-                },
-                b';' | b'\n' => self.i = self.s.len(),
-                _ => return,
-            }
-        }
-    }
-
-    /// The keyword `k` (letters, any case) at the reader, consumed.
-    fn keyword(&mut self, k: &str) -> bool {
-        self.blank();
-        let end = self.i + k.len();
-        let here = self.s.get(self.i..end);
-        let after = self.s.get(end).copied().unwrap_or(0);
-        // `X` then `OR`: a letter word is no keyword's end.
-        let word_end = !k.as_bytes()[0].is_ascii_alphabetic() || !after.is_ascii_alphabetic();
-        if here.is_some_and(|h| h.eq_ignore_ascii_case(k.as_bytes())) && word_end {
-            self.i = end;
-            true
-        } else {
-            false
-        }
-    }
-
-    /// A word's value: a number, a parameter, `[expr]`, a function or a
-    /// signed one of these.
-    fn value(&mut self) -> Result<f64, Diagnostic> {
-        self.blank();
-        let at = self.i;
-        // Brackets, signs and `#` nest by recursion: bounded, so that a
-        // line of 4,000 `[` alarms instead of overflowing the stack.
-        self.depth += 1;
-        if self.depth > MAX_DEPTH {
-            return Err(vcnc_syntax::diagnostics::macro_nesting(
-                Span::new(at, at + 1),
-                MAX_DEPTH,
-            ));
-        }
-        let v = self.value_here(at);
-        self.depth -= 1;
-        v
-    }
-
-    fn value_here(&mut self, at: usize) -> Result<f64, Diagnostic> {
-        match self.peek() {
-            b'-' => {
-                self.i += 1;
-                Ok(-self.value()?)
-            }
-            b'+' => {
-                self.i += 1;
-                self.value()
-            }
-            b'[' => {
-                self.i += 1;
-                let v = self.expr()?;
-                self.close(at)?;
-                Ok(v)
-            }
-            b'#' => {
-                let key = self.target()?;
-                self.read(&key, Span::new(at, self.i))
-            }
-            b'0'..=b'9' | b'.' => self.number(),
-            c if c.is_ascii_alphabetic() => self.function(at),
-            _ => Err(syntax(Span::new(at, at + 1), "a value")),
-        }
-    }
-
-    fn close(&mut self, open: usize) -> Result<(), Diagnostic> {
-        self.blank();
-        if self.peek() != b']' {
-            return Err(syntax(Span::new(open, open + 1), "a `]` closing this `[`"));
-        }
-        self.i += 1;
-        Ok(())
-    }
-
-    fn number(&mut self) -> Result<f64, Diagnostic> {
-        let at = self.i;
-        while matches!(self.peek(), b'0'..=b'9' | b'.') {
-            self.i += 1;
-        }
-        std::str::from_utf8(&self.s[at..self.i])
-            .ok()
-            .and_then(|t| t.parse::<f64>().ok())
-            .ok_or_else(|| syntax(Span::new(at, self.i), "a number"))
-    }
-
-    /// `#n`, `#[expr]`, `##n` or `#<name>`: which parameter.
-    fn target(&mut self) -> Result<Key, Diagnostic> {
-        let at = self.i;
-        self.i += 1; // the `#`
-        self.blank();
-        if self.peek() == b'<' {
-            let close = self.s[self.i..]
-                .iter()
-                .position(|c| *c == b'>')
-                .ok_or_else(|| syntax(Span::new(at, self.i + 1), "a `>` closing the name"))?;
-            let name: String = self.s[self.i + 1..self.i + close]
-                .iter()
-                .filter(|c| !c.is_ascii_whitespace())
-                .map(|c| char::from(c.to_ascii_lowercase()))
-                .collect();
-            self.i += close + 1;
-            if name.is_empty() {
-                return Err(syntax(Span::new(at, self.i), "a parameter name"));
-            }
-            return Ok(Key::Named(name));
-        }
-        let n = self.value()?;
-        let span = Span::new(at, self.i);
-        if n.fract() != 0.0 || !(1.0..=LAST as f64).contains(&n) {
-            return Err(alarms::no_such_variable(span, '#', n));
-        }
-        // 1..=LAST and whole: the cast is exact.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        Ok(Key::Numbered(n as usize))
-    }
-
-    fn read(&self, key: &Key, span: Span) -> Result<f64, Diagnostic> {
-        match key {
-            Key::Numbered(n) => Ok(self.params.numbered[*n]),
-            Key::Named(name) => self
-                .params
-                .named
-                .get(name)
-                .copied()
-                .ok_or_else(|| alarms::vacant_value(span, &format!("#<{name}>"))),
-        }
-    }
-
-    /// A function call at `at`: `NAME[expr]`, `ATAN[y]/[x]`, `EXISTS[#<n>]`.
-    fn function(&mut self, at: usize) -> Result<f64, Diagnostic> {
-        let len = self.s[self.i..]
-            .iter()
-            .take_while(|c| c.is_ascii_alphabetic())
-            .count();
-        let name = String::from_utf8_lossy(&self.s[self.i..self.i + len]).to_ascii_uppercase();
-        self.i += len;
-        self.blank();
-        if self.peek() != b'[' {
-            return Err(syntax(
-                Span::new(at, self.i),
-                "a `[` after the function's name",
-            ));
-        }
-        let open = self.i;
-        self.i += 1;
-        if name == "EXISTS" {
-            self.blank();
-            let key = self.target()?;
-            self.close(open)?;
-            return Ok(match key {
-                Key::Named(n) => f64::from(u8::from(self.params.named.contains_key(&n))),
-                Key::Numbered(_) => 1.0,
-            });
-        }
-        let x = self.expr()?;
-        self.close(open)?;
-        let span = Span::new(at, self.i);
-        let domain = |ok: bool, v: f64| {
-            if ok {
-                Ok(v)
-            } else {
-                Err(alarms::macro_domain(span, &format!("{name} of {x}")))
-            }
-        };
-        match name.as_str() {
-            "ABS" => Ok(x.abs()),
-            "ACOS" => domain((-1.0..=1.0).contains(&x), x.acos().to_degrees()),
-            "ASIN" => domain((-1.0..=1.0).contains(&x), x.asin().to_degrees()),
-            "COS" => Ok(x.to_radians().cos()),
-            "SIN" => Ok(x.to_radians().sin()),
-            "TAN" => Ok(x.to_radians().tan()),
-            "EXP" => Ok(x.exp()),
-            "LN" => domain(x > 0.0, x.ln()),
-            "SQRT" => domain(x >= 0.0, x.sqrt()),
-            "FIX" => Ok(x.floor()),
-            "FUP" => Ok(x.ceil()),
-            // Half away from zero, as rs274.
-            "ROUND" => Ok(x.round()),
-            "ATAN" => {
-                self.blank();
-                if self.peek() != b'/' {
-                    return Err(syntax(Span::new(at, self.i), "`/[x]` after ATAN[y]"));
-                }
-                self.i += 1;
-                self.blank();
-                if self.peek() != b'[' {
-                    return Err(syntax(Span::new(self.i, self.i + 1), "`[x]`"));
-                }
-                let open = self.i;
-                self.i += 1;
-                let d = self.expr()?;
-                self.close(open)?;
-                Ok(x.atan2(d).to_degrees())
-            }
-            _ => Err(vcnc_syntax::diagnostics::unknown_function(
-                Span::new(at, at + len),
-                &name,
-                false,
-            )),
-        }
-    }
-
-    /// An expression inside `[ ]`.
-    fn expr(&mut self) -> Result<f64, Diagnostic> {
-        self.level(0)
-    }
-
-    fn level(&mut self, n: usize) -> Result<f64, Diagnostic> {
-        let Some(ops) = LEVELS.get(n) else {
-            return self.value();
-        };
-        let mut left = self.level(n + 1)?;
-        loop {
-            let at = self.i;
-            let Some(op) = ops.iter().copied().find(|op| {
-                // `*` must not take the first half of `**`.
-                let ok = self.keyword(op);
-                if ok && *op == "*" && self.peek() == b'*' {
-                    self.i -= 1;
-                    return false;
-                }
-                ok
-            }) else {
-                return Ok(left);
-            };
-            let right = self.level(n + 1)?;
-            left = apply(op, left, right, Span::new(at, self.i))?;
-        }
-    }
-}
-
-fn apply(op: &str, a: f64, b: f64, span: Span) -> Result<f64, Diagnostic> {
-    let truth = |x: bool| f64::from(u8::from(x));
-    Ok(match op {
-        "**" => a.powf(b),
-        "*" => a * b,
-        "/" if b == 0.0 => return Err(alarms::division_by_zero(span)),
-        "/" => a / b,
-        "MOD" if b == 0.0 => return Err(alarms::division_by_zero(span)),
-        // In [0, |b|), whatever the signs (rs274: -2 MOD 3 is 1, 2 MOD -3
-        // is 2).
-        "MOD" => a - b.abs() * (a / b.abs()).floor(),
-        "+" => a + b,
-        "-" => a - b,
-        // rs274 compares for equality within 0.0001.
-        "EQ" => truth((a - b).abs() < EQUAL),
-        "NE" => truth((a - b).abs() >= EQUAL),
-        "GT" => truth(a > b),
-        "GE" => truth(a >= b),
-        "LT" => truth(a < b),
-        "LE" => truth(a <= b),
-        "AND" => truth(a != 0.0 && b != 0.0),
-        "OR" => truth(a != 0.0 || b != 0.0),
-        _ => truth((a != 0.0) != (b != 0.0)),
-    })
-}
-
-/// An O-word statement's keyword.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Kw {
-    Sub,
-    EndSub,
-    Call,
-    Return,
-    If,
-    ElseIf,
-    Else,
-    EndIf,
-    While,
-    EndWhile,
-    Do,
-    Repeat,
-    EndRepeat,
-    Break,
-    Continue,
-}
-
-const KEYWORDS: &[(&str, Kw)] = &[
-    ("endsub", Kw::EndSub),
-    ("sub", Kw::Sub),
-    ("call", Kw::Call),
-    ("return", Kw::Return),
-    ("elseif", Kw::ElseIf),
-    ("else", Kw::Else),
-    ("endif", Kw::EndIf),
-    ("if", Kw::If),
-    ("endwhile", Kw::EndWhile),
-    ("while", Kw::While),
-    ("do", Kw::Do),
-    ("endrepeat", Kw::EndRepeat),
-    ("repeat", Kw::Repeat),
-    ("break", Kw::Break),
-    ("continue", Kw::Continue),
-];
-
-/// `[N…] o<label> keyword …`: the label (`100`, or a name in lower case),
-/// the keyword and where its operands start.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct OStmt {
-    pub label: String,
-    pub kw: Kw,
-    /// Byte index after the keyword.
-    pub rest: usize,
-}
-
-/// The O-word statement of `text` (from `start`), if the line is one.
-pub(crate) fn o_statement(text: &[u8], start: usize) -> Option<OStmt> {
-    let mut i = start;
-    let skip = |i: &mut usize| {
-        while matches!(text.get(*i), Some(b' ' | b'\t' | b'\r')) {
-            *i += 1;
-        }
-    };
-    skip(&mut i);
-    // Block delete, then a sequence number before it.
-    if text.get(i) == Some(&b'/') {
-        i += 1;
-        skip(&mut i);
-    }
-    if matches!(text.get(i), Some(b'N' | b'n')) {
-        i += 1;
-        while matches!(text.get(i), Some(b'0'..=b'9' | b' ' | b'\t')) {
-            i += 1;
-        }
-    }
-    if !matches!(text.get(i), Some(b'O' | b'o')) {
-        return None;
-    }
-    i += 1;
-    skip(&mut i);
-    let label = if text.get(i) == Some(&b'<') {
-        let close = text[i..].iter().position(|c| *c == b'>')?;
-        let name: String = text[i + 1..i + close]
-            .iter()
-            .filter(|c| !c.is_ascii_whitespace())
-            .map(|c| char::from(c.to_ascii_lowercase()))
-            .collect();
-        i += close + 1;
-        name
-    } else {
-        let digits = text[i..].iter().take_while(|c| c.is_ascii_digit()).count();
-        if digits == 0 {
-            return None;
-        }
-        // `o0100` is `o100`.
-        let label = String::from_utf8_lossy(&text[i..i + digits])
-            .trim_start_matches('0')
-            .to_string();
-        i += digits;
-        label
-    };
-    skip(&mut i);
-    let len = text[i..]
-        .iter()
-        .take_while(|c| c.is_ascii_alphabetic())
-        .count();
-    let word = &text[i..i + len];
-    let kw = KEYWORDS
-        .iter()
-        .find(|(k, _)| word.eq_ignore_ascii_case(k.as_bytes()))?
-        .1;
-    Some(OStmt {
-        label,
-        kw,
-        rest: i + len,
-    })
-}
-
-/// The values in brackets after an O-word keyword (`[c]`, a call's
-/// arguments `[1] [#2 * 3]`), read with `params`; no value: empty.
-pub(crate) fn operands(text: &[u8], at: usize, params: &Params) -> Result<Vec<f64>, Diagnostic> {
-    let mut r = Reader {
-        s: text,
-        i: at,
-        params,
-        depth: 0,
-    };
-    let mut out = Vec::new();
-    loop {
-        r.blank();
-        match r.peek() {
-            0 => return Ok(out),
-            b'[' => {
-                let open = r.i;
-                r.i += 1;
-                let v = r.expr()?;
-                r.close(open)?;
-                if !v.is_finite() {
-                    return Err(alarms::macro_range(Span::new(open, r.i), "the value"));
-                }
-                out.push(v);
-            }
-            _ => return Err(syntax(Span::new(r.i, r.i + 1), "a value in [ ]")),
-        }
-    }
-}
-
 /// A subroutine's locals, kept while it runs: #1–#30 and the named
 /// parameters without a leading `_`.
 #[derive(Debug, Clone)]
@@ -764,5 +204,222 @@ impl Params {
         );
         // A return without a value clears the last one (rs274).
         self.named.insert("_value".into(), value.unwrap_or(0.0));
+    }
+}
+
+/// The parameter number `n` names, checked: whole and 1..=5601.
+pub(crate) fn param_number(n: f64, span: Span) -> Result<usize, Diagnostic> {
+    if n.fract() != 0.0 || !(1.0..=LAST as f64).contains(&n) {
+        return Err(alarms::no_such_variable(span, '#', n));
+    }
+    // 1..=LAST and whole: the cast is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    Ok(n as usize)
+}
+
+impl Interpreter<'_> {
+    fn ngc_params(&mut self) -> &mut Params {
+        self.macros.ngc.get_or_insert_with(Box::default)
+    }
+
+    /// `#n` read under LinuxCNC's table.
+    pub(crate) fn ngc_numbered(&mut self, n: f64, span: Span) -> Result<f64, Diagnostic> {
+        let n = param_number(n, span)?;
+        Ok(self.ngc_params().numbered(n))
+    }
+
+    /// `#<name>` read: an unset name alarms.
+    pub(crate) fn ngc_named(&mut self, name: &str, span: Span) -> Result<f64, Diagnostic> {
+        self.ngc_params()
+            .named(name)
+            .ok_or_else(|| alarms::vacant_value(span, &format!("#<{name}>")))
+    }
+
+    /// Whether `#<name>` is set (EXISTS).
+    pub(crate) fn ngc_exists(&mut self, name: &str) -> bool {
+        self.ngc_params().named(name).is_some()
+    }
+
+    /// A value of LinuxCNC's expressions (every one is a number).
+    fn ngc_eval(&mut self, e: &Expr) -> Result<f64, Diagnostic> {
+        Ok(self.eval(e, Lang::Ngc)?.number().unwrap_or(0.0))
+    }
+
+    /// Evaluates a parsed line's items in their order with the parameters
+    /// as they were before it: its words, checked as the lexer would
+    /// check them, and its settings (applied later by `Params::commit`).
+    pub(crate) fn ngc_line(&mut self, items: &[LineItem]) -> Result<Line, Diagnostic> {
+        let mut line = Line::default();
+        for item in items {
+            match item {
+                LineItem::Set {
+                    target,
+                    value,
+                    span,
+                } => {
+                    let key = self.ngc_key(target)?;
+                    let v = self.ngc_eval(value)?;
+                    if !v.is_finite() {
+                        return Err(alarms::macro_range(*span, "the parameter's value"));
+                    }
+                    line.sets.push((key, v));
+                }
+                LineItem::Word(w) => {
+                    let v = match &w.value {
+                        MValue::Literal { value, .. } => *value,
+                        MValue::Expr(e) => self.ngc_eval(e)?,
+                    };
+                    line.words.push(ngc_word(&line.words, w.addr, v, w.span)?);
+                }
+            }
+        }
+        Ok(line)
+    }
+
+    /// The parameter a setting writes.
+    fn ngc_key(&mut self, target: &Target) -> Result<Key, Diagnostic> {
+        match target {
+            Target::Named(name, span) => {
+                if READ_ONLY.contains(&&**name) {
+                    return Err(alarms::read_only_named(*span, name));
+                }
+                Ok(Key::Named(name.to_string()))
+            }
+            Target::Fixed(_, n, span) => Ok(Key::Numbered(param_number(f64::from(*n), *span)?)),
+            Target::Indirect(_, e, span) => {
+                let n = self.ngc_eval(e)?;
+                Ok(Key::Numbered(param_number(n, *span)?))
+            }
+        }
+    }
+
+    /// The values in brackets after an O-word keyword (`[c]`, a call's
+    /// arguments `[1] [#2 * 3]`) from byte `at` of `text`; none: empty.
+    pub(crate) fn ngc_operands(&mut self, text: &[u8], at: usize) -> Result<Vec<f64>, Diagnostic> {
+        let exprs = vcnc_syntax::macros::ngc_operands(text, at)?;
+        let mut out = Vec::with_capacity(exprs.len());
+        for e in &exprs {
+            let v = self.ngc_eval(e)?;
+            if !v.is_finite() {
+                return Err(alarms::macro_range(e.span, "the value"));
+            }
+            out.push(v);
+        }
+        Ok(out)
+    }
+}
+
+/// A word of value `v` after `words`: a value the lexer would take (at
+/// most 9 digits before the point), and G and M codes may repeat (`G1 G91
+/// Z-#1`); other letters once, as the lexer wants.
+fn ngc_word(words: &[Word], addr: Addr, v: f64, span: Span) -> Result<Word, Diagnostic> {
+    let once = || ngc_expected(span, "one word per letter in a block");
+    match addr.as_letter() {
+        Some(l) => {
+            if !v.is_finite() {
+                return Err(alarms::macro_range(span, "the word's value"));
+            }
+            if v.abs() >= MAX_VALUE {
+                return Err(vcnc_syntax::diagnostics::number_out_of_range(
+                    span,
+                    char::from(l),
+                ));
+            }
+            if !matches!(l, b'G' | b'M') && words.iter().any(|w| w.addr.as_letter() == Some(l)) {
+                return Err(once());
+            }
+        }
+        // The polar words `@` and `^`.
+        None => {
+            if !v.is_finite() || v.abs() >= MAX_VALUE {
+                return Err(alarms::macro_range(span, "the word's value"));
+            }
+            if words.iter().any(|w| w.addr == addr) {
+                return Err(once());
+            }
+        }
+    }
+    Ok(Word {
+        addr,
+        value: v,
+        // Whole units either way; a fraction in an M or T word still
+        // alarms as written with a point.
+        point: v.fract() != 0.0,
+        span,
+    })
+}
+
+/// A value of LinuxCNC's arithmetic (`eval.rs` asks): rs274's rules.
+#[inline(never)]
+pub(crate) fn ngc_binary(
+    op: vcnc_syntax::macros::BinOp,
+    a: f64,
+    b: f64,
+    span: Span,
+) -> Result<Value, Diagnostic> {
+    use vcnc_syntax::macros::BinOp;
+    let truth = |x: bool| f64::from(u8::from(x));
+    Ok(Value::Double(match op {
+        BinOp::Pow => a.powf(b),
+        BinOp::Mul => a * b,
+        BinOp::Div | BinOp::Mod if b == 0.0 => return Err(alarms::division_by_zero(span)),
+        BinOp::Div => a / b,
+        // In [0, |b|), whatever the signs (rs274: -2 MOD 3 is 1, 2 MOD -3
+        // is 2).
+        BinOp::Mod => a - b.abs() * (a / b.abs()).floor(),
+        BinOp::Add => a + b,
+        BinOp::Sub => a - b,
+        // rs274 compares for equality within 0.0001.
+        BinOp::Eq => truth((a - b).abs() < EQUAL),
+        BinOp::Ne => truth((a - b).abs() >= EQUAL),
+        BinOp::Gt => truth(a > b),
+        BinOp::Ge => truth(a >= b),
+        BinOp::Lt => truth(a < b),
+        BinOp::Le => truth(a <= b),
+        // Logical, not bitwise.
+        BinOp::And => truth(a != 0.0 && b != 0.0),
+        BinOp::Or => truth(a != 0.0 || b != 0.0),
+        BinOp::Xor => truth((a != 0.0) != (b != 0.0)),
+    }))
+}
+
+/// rs274's tolerance of EQ and NE.
+const EQUAL: f64 = 1e-4;
+
+/// rs274's functions: angles in degrees, FIX and FUP floor and ceiling,
+/// ROUND half away from zero, `ATAN[y]/[x]` the full-circle angle (±180°);
+/// results are not checked here (a word or a setting that gets an
+/// infinite value alarms).
+#[inline(never)]
+pub(crate) fn ngc_function(
+    f: vcnc_syntax::macros::Func,
+    x: f64,
+    y: f64,
+    span: Span,
+) -> Result<Value, Diagnostic> {
+    use vcnc_syntax::macros::Func;
+    let domain = |ok: bool, name: &str, v: f64| {
+        if ok {
+            Ok(Value::Double(v))
+        } else {
+            Err(alarms::macro_domain(span, &format!("{name} of {x}")))
+        }
+    };
+    match f {
+        Func::Abs => domain(true, "ABS", x.abs()),
+        Func::Acos => domain((-1.0..=1.0).contains(&x), "ACOS", x.acos().to_degrees()),
+        Func::Asin => domain((-1.0..=1.0).contains(&x), "ASIN", x.asin().to_degrees()),
+        Func::Cos => domain(true, "COS", x.to_radians().cos()),
+        Func::Sin => domain(true, "SIN", x.to_radians().sin()),
+        Func::Tan => domain(true, "TAN", x.to_radians().tan()),
+        Func::Exp => domain(true, "EXP", x.exp()),
+        Func::Ln => domain(x > 0.0, "LN", x.ln()),
+        Func::Sqrt => domain(x >= 0.0, "SQRT", x.sqrt()),
+        Func::Fix => domain(true, "FIX", x.floor()),
+        Func::Fup => domain(true, "FUP", x.ceil()),
+        Func::Round => domain(true, "ROUND", x.round()),
+        Func::Atan => domain(true, "ATAN", x.atan2(y).to_degrees()),
+        // The parser gives LinuxCNC no other function.
+        _ => Ok(Value::Null),
     }
 }

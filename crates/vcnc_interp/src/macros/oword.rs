@@ -11,9 +11,10 @@
 //!   o104 repeat [n] … o104 endrepeat    break / continue / return
 //! ```
 //!
-//! The first O-word statement of a source reads the whole file once for
-//! its statements (label, keyword, line), so that each jump finds where
-//! it goes without searching the text again. A statement's partner is the
+//! The first O-word statement of a source has `structure.rs`, where all
+//! loop and branch pairing lives, read the whole file once for its
+//! statements (label, keyword, line: `vcnc_syntax::macros::o_statement`),
+//! so that each jump finds where it goes without searching the text again. A statement's partner is the
 //! next one with the same label in the file (the previous one for the
 //! loops' ends). Every jump counts against `limits.max_jumps`, calls
 //! against `limits.max_call_depth`. A call of a subroutine the program
@@ -21,44 +22,17 @@
 //! (LinuxCNC's subroutine path), once, through the `ProgramStore`; the name
 //! must be a plain file name, so no call reads outside those directories.
 
-use super::ngc::{Kw, OStmt, o_statement, operands};
+use super::structure::{Entry, find, find_back};
 use crate::alarms;
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
-use std::rc::Rc;
-use vcnc_syntax::{Cursor, Diagnostic, Line, ReadError, Span};
+use vcnc_syntax::macros::{Kw, OStmt, o_statement};
+use vcnc_syntax::{Cursor, Diagnostic, Line, Span};
 
-/// One O-word statement of a source.
-#[derive(Debug, Clone)]
-pub(crate) struct Entry {
-    label: String,
-    kw: Kw,
-    /// Where its label lives: 0 the main program, i + 1 the body of the
-    /// subroutine whose `sub` is statement i (labels are local to a sub).
-    scope: usize,
-    /// A WHILE that closes a DO: the DO's index (found once, at the scan).
-    closes_do: Option<usize>,
-    /// Its line, from its start.
-    here: Cursor,
-    /// Just past its line.
-    after: Cursor,
-}
-
-/// A source's O-word statements, in file order, and each one's index by
-/// its line's offset.
-#[derive(Debug, Default)]
-pub(crate) struct Statements {
-    entries: Vec<Entry>,
-    at: std::collections::HashMap<u64, usize>,
-    /// Each label's SUB statements (more than one: defined twice).
-    subs: std::collections::HashMap<String, Vec<usize>>,
-}
-
-/// The O-word statements of the sources read so far, by source id, and
-/// the flow's own state.
+/// The flow's own state (the statements of each source are listed by
+/// `structure.rs`).
 #[derive(Debug, Default)]
 pub(crate) struct Flow {
-    statements: Vec<(u32, Rc<Statements>)>,
     /// Repeat loops running: (label, remaining passes).
     repeats: Vec<(String, f64)>,
     /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
@@ -67,36 +41,6 @@ pub(crate) struct Flow {
     /// The locals of each subroutine call running, and how many repeat
     /// loops ran when it was called (a return leaves the sub's own).
     saved: Vec<(super::ngc::Saved, usize)>,
-}
-
-/// The first statement from index `from` in `scope` with `label`, one of
-/// `kws`.
-fn find<'e>(
-    entries: &'e [Entry],
-    from: usize,
-    scope: usize,
-    label: &str,
-    kws: &[Kw],
-) -> Option<(usize, &'e Entry)> {
-    entries
-        .iter()
-        .enumerate()
-        .skip(from)
-        .find(|(_, e)| e.scope == scope && e.label == label && kws.contains(&e.kw))
-}
-
-/// The last statement before index `before` in `scope` with `label`.
-fn find_back<'e>(
-    entries: &'e [Entry],
-    before: usize,
-    scope: usize,
-    label: &str,
-    kws: &[Kw],
-) -> Option<&'e Entry> {
-    entries[..before]
-        .iter()
-        .rev()
-        .find(|e| e.scope == scope && e.label == label && kws.contains(&e.kw))
 }
 
 /// A jump past the next `kw` with the statement's label in `scope` (its
@@ -173,8 +117,7 @@ impl Interpreter<'_> {
             .ok_or_else(|| unpaired(span, &st, "place in the program"))?;
         let here = entries[here_at].clone();
         let sc = here.scope;
-        let params = self.macros.ngc.get_or_insert_with(Box::default);
-        let values = operands(&bytes, st.rest, params)?;
+        let values = self.ngc_operands(&bytes, st.rest)?;
         let value = values.first().copied();
         let cond = || value.ok_or_else(|| unpaired(span, &st, "[condition]"));
         let next = here_at + 1;
@@ -545,81 +488,5 @@ impl Interpreter<'_> {
             [] => Err(missing()),
             more => Err(defined_twice(span, label, more.len(), "this program")),
         }
-    }
-
-    /// The O-word statements of source `src`, read once from its start.
-    fn oword_statements(&mut self, src: usize) -> Result<Rc<Statements>, Diagnostic> {
-        let id = self.source_id(src);
-        if let Some((_, e)) = self.oword_flow().statements.iter().find(|(i, _)| *i == id) {
-            return Ok(Rc::clone(e));
-        }
-        let mut entries: Vec<Entry> = Vec::new();
-        // The DO each label of each scope has open.
-        let mut open_do: std::collections::HashMap<(usize, String), usize> =
-            std::collections::HashMap::new();
-        // The scope of the statements being read: 0, or i + 1 inside the
-        // sub of statement i.
-        let mut scope = 0;
-        if let Some(s) = self.flow.source(src) {
-            s.reader.seek(Cursor::default());
-            loop {
-                let line = match s.reader.next_line() {
-                    Ok(Some(l)) => l,
-                    Ok(None) | Err(ReadError::Io(_)) => break,
-                    Err(ReadError::TooLong { .. }) => continue,
-                };
-                let bytes = s.reader.bytes(&line);
-                if let Some(st) = o_statement(bytes, 0) {
-                    let (own, after_it) = match st.kw {
-                        Kw::Sub => (scope, entries.len() + 1),
-                        Kw::EndSub => (scope, 0),
-                        _ => (scope, scope),
-                    };
-                    scope = after_it;
-                    let here = Cursor {
-                        offset: line.offset,
-                        line: line.number,
-                        col: 0,
-                    };
-                    let key = (own, st.label.clone());
-                    let closes_do = match st.kw {
-                        Kw::Do => {
-                            open_do.insert(key, entries.len());
-                            None
-                        }
-                        Kw::While => open_do.remove(&key),
-                        _ => None,
-                    };
-                    entries.push(Entry {
-                        label: st.label,
-                        kw: st.kw,
-                        scope: own,
-                        closes_do,
-                        here,
-                        after: Cursor {
-                            col: vcnc_syntax::clamp_u32(bytes.len()),
-                            ..here
-                        },
-                    });
-                }
-            }
-        }
-        // The scan moved the reader: the statement's step seeks again.
-        self.macros.moved_reader = true;
-        let at = entries
-            .iter()
-            .enumerate()
-            .map(|(i, e)| (e.here.offset, i))
-            .collect();
-        let mut subs: std::collections::HashMap<String, Vec<usize>> =
-            std::collections::HashMap::new();
-        for (i, e) in entries.iter().enumerate().filter(|(_, e)| e.kw == Kw::Sub) {
-            subs.entry(e.label.clone()).or_default().push(i);
-        }
-        let statements = Rc::new(Statements { entries, at, subs });
-        self.oword_flow()
-            .statements
-            .push((id, Rc::clone(&statements)));
-        Ok(statements)
     }
 }

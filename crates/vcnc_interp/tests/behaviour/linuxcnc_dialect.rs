@@ -920,3 +920,55 @@ fn g70_ignores_the_profiles_feed_words() {
         .collect();
     assert_eq!(feeds, [0.2, 0.2, 0.2]);
 }
+
+/// What LinuxCNC's roughing cycles G71/G72 refuse, each checked with
+/// `rs274 -g` (its words in the test): a depth of cut I of zero ("I must
+/// be greater than zero": E346) or below (E109), P or E beside it ("P word
+/// with no … to use it": E203), a profile that turns back ("Not
+/// monotonic": E343 at that block), two neighbouring parallel lines under
+/// an allowance ("Cannot intersect parallel lines": E343), cutter
+/// compensation in force ("cannot be used with cutter compensation
+/// enabled": E349). Under G91 rs274 2.9.0 reads the cycle block's X Z as
+/// absolute and the profile as increments: vcnc refuses that (E349). In
+/// the mill dialect the cycles are E201, naming `linuxcnc-lathe`. The
+/// moves themselves are rs274's (`tests/fixtures/linuxcnc_lathe_cycles`).
+#[test]
+fn roughing_cycles_refuse_what_rs274_refuses() {
+    let run = |sub: &str, cycle: &str| {
+        let program = format!(
+            "G18 G21 G90 G8 G95\nS800 M3\nO100 sub\n{sub}\nO100 endsub\nG0 X11 Z2\nF0.1\n{cycle}\nM2\n"
+        );
+        let (ev, out) = run_str(&Dialect::linuxcnc_lathe(), &program);
+        let Outcome::Alarm(d) = out else {
+            panic!("no alarm: {out:?}\n{program}");
+        };
+        assert!(
+            matches!(ev.last(), Some(Event::Alarm(a)) if *a == d),
+            "motion after the alarm"
+        );
+        (d.code, d.line)
+    };
+    let profile = "G1 X5 Z0\nG1 Z-10\nG1 X8 Z-15\nG1 X10";
+    assert_eq!(run(profile, "G71 Q100 I0"), (Code::E346, 11));
+    assert_eq!(run(profile, "G71 Q100 I-1"), (Code::E109, 11));
+    assert_eq!(run(profile, "G71 Q100 P2"), (Code::E203, 11));
+    assert_eq!(run(profile, "G72 Q100 E1"), (Code::E203, 11));
+    assert_eq!(run(profile, "G71"), (Code::E312, 11));
+    assert_eq!(run(profile, "G41 G71 Q100"), (Code::E349, 11));
+    assert_eq!(run(profile, "G91 G71 Q100"), (Code::E349, 11));
+    let back = "G1 X5 Z0\nG1 Z-5\nG1 X7 Z-3\nG1 X9 Z-14";
+    assert_eq!(run(back, "G71 Q100 I1"), (Code::E343, 6));
+    let parallel = "G1 X5 Z0\nG1 Z-5\nG1 Z-10\nG1 X9 Z-14";
+    assert_eq!(run(parallel, "G71 Q100 I1 D0.2"), (Code::E343, 4));
+    // Without an allowance nothing is offset: the same profile runs.
+    let program = format!(
+        "G18 G21 G90 G8 G95\nS800 M3\nO100 sub\n{parallel}\nO100 endsub\nG0 X11 Z2\nF0.1\nG71 Q100 I1\nM2\n"
+    );
+    let (_, out) = run_str(&Dialect::linuxcnc_lathe(), &program);
+    assert!(matches!(out, Outcome::Ended(_)), "{out:?}");
+    let (_, out) = run_str(&Dialect::linuxcnc(), "G21\nG71 Q100\nM2\n");
+    assert!(
+        matches!(&out, Outcome::Alarm(d) if d.code == Code::E201 && d.message.contains("linuxcnc-lathe")),
+        "{out:?}"
+    );
+}

@@ -193,31 +193,236 @@ const MACRO_B_ABBREVIATIONS: &[(&str, &str)] = &[
     ("XO", "XOR"),
 ];
 
-/// The custom macro word `name` (upper case) stands for: the whole word
-/// of a Macro B abbreviation, else `name` itself.
-pub(super) fn macro_b_word(name: &str) -> &str {
-    MACRO_B_ABBREVIATIONS
+/// Fanuc functions vcnc does not evaluate.
+const MACRO_B_UNAVAILABLE: &[&str] = &["BIN", "BCD", "ADP"];
+
+/// LinuxCNC's functions (rs274 2.9), written `NAME[…]`; ATAN is always
+/// `ATAN[y]/[x]` and EXISTS takes a parameter, both read by
+/// [`ExprParser::ngc_call`].
+const NGC_FUNCS: &[(&str, Sig)] = &[
+    ("ABS", sig(Func::Abs, 1, 1)),
+    ("ACOS", sig(Func::Acos, 1, 1)),
+    ("ASIN", sig(Func::Asin, 1, 1)),
+    ("COS", sig(Func::Cos, 1, 1)),
+    ("SIN", sig(Func::Sin, 1, 1)),
+    ("TAN", sig(Func::Tan, 1, 1)),
+    ("EXP", sig(Func::Exp, 1, 1)),
+    ("LN", sig(Func::Ln, 1, 1)),
+    ("SQRT", sig(Func::Sqrt, 1, 1)),
+    ("FIX", sig(Func::Fix, 1, 1)),
+    ("FUP", sig(Func::Fup, 1, 1)),
+    ("ROUND", sig(Func::Round, 1, 1)),
+    ("ATAN", sig(Func::Atan, 2, 2)),
+];
+
+/// One binary operator as written: a symbol, or a word (letters).
+type OpRow = (&'static str, BinOp);
+
+/// What the expression parser needs to know about a language: data, so
+/// that the one parser reads all three.
+pub(super) struct Grammar {
+    /// What is a comment between tokens.
+    pub comments: Comments,
+    /// Digits and `_` continue an identifier (Syntec's `END_IF`,
+    /// `ATAN2`); elsewhere keywords are letters only (`#1EQ2`, `GOTO10`).
+    pub ident_tail: bool,
+    /// `0x1F` hexadecimal numbers (Syntec).
+    pub hex_numbers: bool,
+    /// Binary operators by level, loosest first; operators of one level
+    /// associate to the left.
+    levels: &'static [&'static [OpRow]],
+    /// Texts that begin like a symbol operator but are none (Syntec's `==`
+    /// and `//`): the longest symbol written wins, so `<>` is never `<`.
+    not_ops: &'static [&'static str],
+    /// Functions, and those that need the machine (E604).
+    funcs: &'static [(&'static str, Sig)],
+    unavailable: &'static [&'static str],
+    /// Two-letter abbreviations of words (Fanuc's).
+    pub abbreviations: &'static [(&'static str, &'static str)],
+    /// `( )` groups as well as `[ ]` (Syntec).
+    pub paren_groups: bool,
+    /// The brackets of a function's arguments.
+    call: (u8, u8),
+    /// `@n` variables (Syntec globals).
+    pub at_vars: bool,
+    /// `NOT` is a unary operator (Syntec).
+    not: bool,
+    /// A number written without a point is a Long (Syntec).
+    longs: bool,
+    /// Fanuc's `ATAN[y]/[x]` may follow a one-argument ATAN.
+    atan_slash: bool,
+    /// STKTOP[n] (Syntec).
+    stktop: bool,
+    /// LinuxCNC's reading: a value is a signed number, parameter,
+    /// `[expression]` or function, nested at most 64 deep by any of these
+    /// (rs274's recursion); `#` takes any value (`##1`, `#<name>`); an
+    /// operator's span runs to the end of its right operand; messages say
+    /// what was expected.
+    pub ngc_values: bool,
+    /// The help of "expected a value".
+    operand_help: &'static str,
+}
+
+/// Comments between tokens.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Comments {
+    /// `( )`, whose text is kept (Macro B's #3000 messages); an unclosed
+    /// one alarms.
+    ParenMessages,
+    /// `(* *)` and, with `MacroSyntax::slash_comments`, `//` (Syntec).
+    StarParen,
+    /// `( )` (unclosed: to the end) and `;` to the end (rs274).
+    ParenSemicolon,
+}
+
+const MACRO_B: Grammar = Grammar {
+    comments: Comments::ParenMessages,
+    ident_tail: false,
+    hex_numbers: false,
+    levels: &[
+        &[
+            ("EQ", BinOp::Eq),
+            ("NE", BinOp::Ne),
+            ("GT", BinOp::Gt),
+            ("GE", BinOp::Ge),
+            ("LT", BinOp::Lt),
+            ("LE", BinOp::Le),
+        ],
+        &[
+            ("+", BinOp::Add),
+            ("-", BinOp::Sub),
+            ("OR", BinOp::Or),
+            ("XOR", BinOp::Xor),
+        ],
+        &[
+            ("*", BinOp::Mul),
+            // `/[` after ATAN[…] is its second argument, handled there.
+            ("/", BinOp::Div),
+            ("AND", BinOp::And),
+            ("MOD", BinOp::Mod),
+        ],
+    ],
+    not_ops: &[],
+    funcs: MACRO_B_FUNCS,
+    unavailable: MACRO_B_UNAVAILABLE,
+    abbreviations: MACRO_B_ABBREVIATIONS,
+    paren_groups: false,
+    call: (b'[', b']'),
+    at_vars: false,
+    not: false,
+    longs: false,
+    atan_slash: true,
+    stktop: false,
+    ngc_values: false,
+    operand_help: "write a number, a variable (#1, #[#2+1]), [an expression] or a function (SIN[30])",
+};
+
+const SYNTEC: Grammar = Grammar {
+    comments: Comments::StarParen,
+    ident_tail: true,
+    hex_numbers: true,
+    levels: &[
+        &[("OR", BinOp::Or)],
+        &[("XOR", BinOp::Xor)],
+        &[("&", BinOp::And), ("AND", BinOp::And)],
+        &[("<>", BinOp::Ne)],
+        &[("=", BinOp::Eq)],
+        &[
+            ("<=", BinOp::Le),
+            (">=", BinOp::Ge),
+            ("<", BinOp::Lt),
+            (">", BinOp::Gt),
+        ],
+        &[("+", BinOp::Add), ("-", BinOp::Sub)],
+        &[("*", BinOp::Mul), ("/", BinOp::Div), ("MOD", BinOp::Mod)],
+    ],
+    not_ops: &["==", "//"],
+    funcs: SYNTEC_FUNCS,
+    unavailable: SYNTEC_UNAVAILABLE,
+    abbreviations: &[],
+    paren_groups: true,
+    call: (b'(', b')'),
+    at_vars: true,
+    not: true,
+    longs: true,
+    atan_slash: false,
+    stktop: true,
+    ngc_values: false,
+    operand_help: "write a number, a variable (#1, @2, #[#3+1]), (an expression) or a function (SIN(30))",
+};
+
+/// rs274's precedence (`interp_read.cc`'s levels): `**` binds tightest,
+/// then `* / MOD`, `+ -`, the comparisons, and `AND OR XOR` loosest.
+const NGC: Grammar = Grammar {
+    comments: Comments::ParenSemicolon,
+    ident_tail: false,
+    hex_numbers: false,
+    levels: &[
+        &[("AND", BinOp::And), ("OR", BinOp::Or), ("XOR", BinOp::Xor)],
+        &[
+            ("EQ", BinOp::Eq),
+            ("NE", BinOp::Ne),
+            ("GT", BinOp::Gt),
+            ("GE", BinOp::Ge),
+            ("LT", BinOp::Lt),
+            ("LE", BinOp::Le),
+        ],
+        &[("+", BinOp::Add), ("-", BinOp::Sub)],
+        &[("*", BinOp::Mul), ("/", BinOp::Div), ("MOD", BinOp::Mod)],
+        &[("**", BinOp::Pow)],
+    ],
+    not_ops: &[],
+    funcs: NGC_FUNCS,
+    unavailable: &[],
+    abbreviations: &[],
+    paren_groups: false,
+    call: (b'[', b']'),
+    at_vars: false,
+    not: false,
+    longs: false,
+    atan_slash: false,
+    stktop: false,
+    ngc_values: true,
+    operand_help: "",
+};
+
+/// Most values inside one another in a LinuxCNC expression (brackets,
+/// signs, `#`, functions).
+pub(super) const NGC_MAX_DEPTH: u8 = 64;
+
+/// The grammar of `lang`.
+pub(super) fn grammar(lang: Lang) -> &'static Grammar {
+    match lang {
+        Lang::MacroB => &MACRO_B,
+        Lang::Syntec => &SYNTEC,
+        Lang::Ngc => &NGC,
+    }
+}
+
+/// The word `name` (upper case) stands for in `g`: the whole word of an
+/// abbreviation, else `name` itself.
+pub(super) fn full_word<'n>(g: &Grammar, name: &'n str) -> &'n str {
+    g.abbreviations
         .iter()
         .find(|(short, _)| *short == name)
         .map_or(name, |(_, full)| full)
 }
 
-/// Fanuc functions vcnc does not evaluate.
-const MACRO_B_UNAVAILABLE: &[&str] = &["BIN", "BCD", "ADP"];
+/// The abbreviation of word `full` in `g`, if it has one.
+pub(super) fn abbreviation(g: &Grammar, full: &str) -> Option<&'static str> {
+    g.abbreviations
+        .iter()
+        .find(|(_, f)| *f == full)
+        .map(|(short, _)| *short)
+}
 
 /// Whether `name` is a function of `lang` (known or unavailable).
 pub(super) fn is_function(lang: Lang, name: &str) -> bool {
-    match lang {
-        Lang::MacroB => {
-            let name = macro_b_word(name);
-            MACRO_B_FUNCS.iter().any(|(n, _)| *n == name) || MACRO_B_UNAVAILABLE.contains(&name)
-        }
-        Lang::Syntec => {
-            name == "STKTOP"
-                || SYNTEC_FUNCS.iter().any(|(n, _)| *n == name)
-                || SYNTEC_UNAVAILABLE.contains(&name)
-        }
-    }
+    let g = grammar(lang);
+    let name = full_word(g, name);
+    (g.stktop && name == "STKTOP")
+        || g.funcs.iter().any(|(n, _)| *n == name)
+        || g.unavailable.contains(&name)
 }
 
 impl<'s, 'a> ExprParser<'s, 'a> {
@@ -254,11 +459,8 @@ impl<'s, 'a> ExprParser<'s, 'a> {
         Ok(())
     }
 
-    fn levels(&self) -> u8 {
-        match self.s.syn.lang {
-            Lang::MacroB => 3,
-            Lang::Syntec => 8,
-        }
+    fn g(&self) -> &'static Grammar {
+        grammar(self.s.syn.lang)
     }
 
     pub fn expr(&mut self) -> Result<(), Diagnostic> {
@@ -266,12 +468,23 @@ impl<'s, 'a> ExprParser<'s, 'a> {
     }
 
     fn binary(&mut self, level: u8) -> Result<(), Diagnostic> {
-        if level > self.levels() {
-            return self.unary();
+        let g = self.g();
+        if usize::from(level) > g.levels.len() {
+            return if g.ngc_values {
+                self.ngc_value()
+            } else {
+                self.unary()
+            };
         }
         self.binary(level + 1)?;
         while let Some((op, span)) = self.operator(level)? {
             self.binary(level + 1)?;
+            // rs274 reports an operator's error over its right operand.
+            let span = if g.ngc_values {
+                Span::new(span.start as usize, self.s.pos)
+            } else {
+                span
+            };
             self.push(OpCode::Bin(op), span)?;
         }
         Ok(())
@@ -279,83 +492,54 @@ impl<'s, 'a> ExprParser<'s, 'a> {
 
     /// The binary operator of `level` that comes next, consumed.
     fn operator(&mut self, level: u8) -> Result<Option<(BinOp, Span)>, Diagnostic> {
+        let g = self.g();
+        let Some(row) = g.levels.get(usize::from(level) - 1) else {
+            return Ok(None);
+        };
         let b = self.s.peek()?;
         let at = self.s.pos;
-        let sym = |len: usize, op: BinOp| Some((op, len));
-        let found = match (self.s.syn.lang, level) {
-            (Lang::MacroB, 2) => match b {
-                b'+' => sym(1, BinOp::Add),
-                b'-' => sym(1, BinOp::Sub),
-                _ => self.word_op(&[("OR", BinOp::Or), ("XOR", BinOp::Xor)])?,
-            },
-            (Lang::MacroB, 3) => match b {
-                b'*' => sym(1, BinOp::Mul),
-                // `/[` after ATAN[…] is its second argument, handled there.
-                b'/' => sym(1, BinOp::Div),
-                _ => self.word_op(&[("AND", BinOp::And), ("MOD", BinOp::Mod)])?,
-            },
-            (Lang::MacroB, _) => self.word_op(&[
-                ("EQ", BinOp::Eq),
-                ("NE", BinOp::Ne),
-                ("GT", BinOp::Gt),
-                ("GE", BinOp::Ge),
-                ("LT", BinOp::Lt),
-                ("LE", BinOp::Le),
-            ])?,
-            (Lang::Syntec, 1) => self.word_op(&[("OR", BinOp::Or)])?,
-            (Lang::Syntec, 2) => self.word_op(&[("XOR", BinOp::Xor)])?,
-            (Lang::Syntec, 3) if b == b'&' => sym(1, BinOp::And),
-            (Lang::Syntec, 3) => self.word_op(&[("AND", BinOp::And)])?,
-            (Lang::Syntec, 4) if b == b'<' && self.s.at(1) == b'>' => sym(2, BinOp::Ne),
-            (Lang::Syntec, 5) if b == b'=' && self.s.at(1) != b'=' => sym(1, BinOp::Eq),
-            (Lang::Syntec, 6) => match (b, self.s.at(1)) {
-                (b'<', b'=') => sym(2, BinOp::Le),
-                (b'>', b'=') => sym(2, BinOp::Ge),
-                (b'<', b'>') => None,
-                (b'<', _) => sym(1, BinOp::Lt),
-                (b'>', _) => sym(1, BinOp::Gt),
-                _ => None,
-            },
-            (Lang::Syntec, 7) => match b {
-                b'+' => sym(1, BinOp::Add),
-                b'-' => sym(1, BinOp::Sub),
-                _ => None,
-            },
-            (Lang::Syntec, 8) => match b {
-                b'*' => sym(1, BinOp::Mul),
-                b'/' if self.s.at(1) != b'/' => sym(1, BinOp::Div),
-                _ => self.word_op(&[("MOD", BinOp::Mod)])?,
-            },
-            _ => None,
+        let found = if b.is_ascii_alphabetic() {
+            self.word_op(row)?
+        } else {
+            self.symbol_op(row)
         };
-        if let Some((BinOp::Eq, _)) = found
-            && self.s.syn.lang == Lang::Syntec
-            && b == b'='
-            && self.s.at(1) == b'='
-        {
-            return Err(diag::macro_syntax(
-                Span::new(at, at + 2),
-                "`==` is not an operator of the Syntec MACRO language",
-                "compare with a single `=`",
-            ));
-        }
         Ok(found.map(|(op, len)| {
             self.s.pos = at + len;
             (op, Span::new(at, at + len))
         }))
     }
 
-    /// A keyword operator among `ops` if the next identifier is one
-    /// (length in bytes).
-    fn word_op(&mut self, ops: &[(&str, BinOp)]) -> Result<Option<(BinOp, usize)>, Diagnostic> {
+    /// The symbol operator of `row` written next: the longest symbol of
+    /// the grammar that starts here must be one of `row`'s.
+    fn symbol_op(&self, row: &[OpRow]) -> Option<(BinOp, usize)> {
+        let g = self.g();
+        let here = |t: &str| t.bytes().enumerate().all(|(k, c)| self.s.at(k) == c);
+        let symbols = g
+            .levels
+            .iter()
+            .flat_map(|l| l.iter().map(|(t, _)| *t))
+            .chain(g.not_ops.iter().copied())
+            .filter(|t| !t.as_bytes()[0].is_ascii_alphabetic());
+        let mut longest: Option<&str> = None;
+        for t in symbols {
+            if here(t) && longest.is_none_or(|l| t.len() > l.len()) {
+                longest = Some(t);
+            }
+        }
+        let t = longest?;
+        row.iter()
+            .find(|(r, _)| *r == t)
+            .map(|(_, op)| (*op, t.len()))
+    }
+
+    /// A keyword operator of `row` if the next identifier is one (length
+    /// in bytes).
+    fn word_op(&mut self, row: &[OpRow]) -> Result<Option<(BinOp, usize)>, Diagnostic> {
         let Some((name, _)) = self.s.peek_ident()? else {
             return Ok(None);
         };
-        let word = match self.s.syn.lang {
-            Lang::MacroB => macro_b_word(&name),
-            Lang::Syntec => &name,
-        };
-        Ok(ops
+        let word = full_word(self.g(), &name);
+        Ok(row
             .iter()
             .find(|(n, _)| *n == word)
             .map(|(_, op)| (*op, name.len())))
@@ -373,7 +557,7 @@ impl<'s, 'a> ExprParser<'s, 'a> {
             } else if b == b'+' {
                 self.s.pos += 1;
                 signs.push((OpCode::Pos, Span::new(at, at + 1)));
-            } else if self.s.syn.lang == Lang::Syntec && self.s.keyword("NOT")? {
+            } else if self.g().not && self.s.keyword("NOT")? {
                 signs.push((OpCode::Not, Span::new(at, at + 3)));
             } else {
                 break;
@@ -431,22 +615,22 @@ impl<'s, 'a> ExprParser<'s, 'a> {
 
     pub(super) fn primary(&mut self) -> Result<(), Diagnostic> {
         let b = self.s.peek()?;
-        let lang = self.s.syn.lang;
+        let g = self.g();
         match b {
             b'[' => self.group(b']'),
-            b'(' if lang == Lang::Syntec => self.group(b')'),
+            b'(' if g.paren_groups => self.group(b')'),
             b'#' => self.variable(VarKind::Hash),
-            b'@' if lang == Lang::Syntec => self.variable(VarKind::At),
+            b'@' if g.at_vars => self.variable(VarKind::At),
             b'0'..=b'9' | b'.' => {
                 let Some(n) = self.s.number()? else {
                     return Err(self.expected_operand());
                 };
-                let v = match lang {
-                    Lang::MacroB => Value::Double(n.value),
+                let v = if g.longs && !n.point {
                     // Whole by construction (no point, at most 10 digits).
                     #[allow(clippy::cast_possible_truncation)]
-                    Lang::Syntec if !n.point => Value::Long(n.value as i64),
-                    Lang::Syntec => Value::Double(n.value),
+                    Value::Long(n.value as i64)
+                } else {
+                    Value::Double(n.value)
                 };
                 self.push(OpCode::Num(v), n.span)
             }
@@ -459,18 +643,10 @@ impl<'s, 'a> ExprParser<'s, 'a> {
 
     fn expected_operand(&mut self) -> Diagnostic {
         let what = self.s.show_next();
-        let help = match self.s.syn.lang {
-            Lang::MacroB => {
-                "write a number, a variable (#1, #[#2+1]), [an expression] or a function (SIN[30])"
-            }
-            Lang::Syntec => {
-                "write a number, a variable (#1, @2, #[#3+1]), (an expression) or a function (SIN(30))"
-            }
-        };
         diag::macro_syntax(
             self.s.here(),
             &format!("expected a value, found {what}"),
-            help,
+            self.g().operand_help,
         )
     }
 
@@ -535,12 +711,9 @@ impl<'s, 'a> ExprParser<'s, 'a> {
 
     /// A function call (the identifier is next, not yet consumed).
     fn call(&mut self, name: String, span: Span) -> Result<(), Diagnostic> {
-        let lang = self.s.syn.lang;
-        let name = match lang {
-            Lang::MacroB => macro_b_word(&name).to_string(),
-            Lang::Syntec => name,
-        };
-        if lang == Lang::Syntec && name == "STKTOP" {
+        let g = self.g();
+        let name = full_word(g, &name).to_string();
+        if g.stktop && name == "STKTOP" {
             self.s.pos = span.end as usize;
             if self.s.peek()? != b'[' {
                 return Err(diag::macro_syntax(
@@ -552,22 +725,12 @@ impl<'s, 'a> ExprParser<'s, 'a> {
             self.group(b']')?;
             return self.push(OpCode::Call(Func::StkTop, 1), span);
         }
-        let table = match lang {
-            Lang::MacroB => MACRO_B_FUNCS,
-            Lang::Syntec => SYNTEC_FUNCS,
-        };
-        let Some(sig) = table.iter().find(|(n, _)| *n == name).map(|(_, s)| *s) else {
-            let unavailable = match lang {
-                Lang::MacroB => MACRO_B_UNAVAILABLE.contains(&name.as_str()),
-                Lang::Syntec => SYNTEC_UNAVAILABLE.contains(&name.as_str()),
-            };
+        let Some(sig) = g.funcs.iter().find(|(n, _)| *n == name).map(|(_, s)| *s) else {
+            let unavailable = g.unavailable.contains(&name.as_str());
             return Err(diag::unknown_function(span, &name, unavailable));
         };
         self.s.pos = span.end as usize;
-        let (open, close) = match lang {
-            Lang::MacroB => (b'[', b']'),
-            Lang::Syntec => (b'(', b')'),
-        };
+        let (open, close) = g.call;
         if !self.s.eat(open)? {
             let what = self.s.show_next();
             return Err(diag::macro_syntax(
@@ -599,7 +762,7 @@ impl<'s, 'a> ExprParser<'s, 'a> {
         self.close(close, open_span)?;
         self.depth -= 1;
         // Fanuc's two-argument arctangent: ATAN[y]/[x].
-        if lang == Lang::MacroB && sig.func == Func::Atan && slots == 1 && self.s.peek()? == b'/' {
+        if g.atan_slash && sig.func == Func::Atan && slots == 1 && self.s.peek()? == b'/' {
             let save = self.s.pos;
             self.s.pos += 1;
             if self.s.peek()? == b'[' {
@@ -620,6 +783,201 @@ impl<'s, 'a> ExprParser<'s, 'a> {
         } else {
             self.push(OpCode::Call(sig.func, argc), span)
         }
+    }
+
+    /// A LinuxCNC value: a signed value, `[expression]`, a parameter, a
+    /// number or a function. Each one inside another counts toward
+    /// [`NGC_MAX_DEPTH`], as rs274's recursion does, so that 4,000 `[`
+    /// alarm instead of overflowing the stack.
+    pub(super) fn ngc_value(&mut self) -> Result<(), Diagnostic> {
+        self.s.trivia()?;
+        let at = self.s.pos;
+        self.depth += 1;
+        if self.depth > NGC_MAX_DEPTH {
+            return Err(diag::macro_nesting(Span::new(at, at + 1), NGC_MAX_DEPTH));
+        }
+        self.ngc_value_here(at)?;
+        self.depth -= 1;
+        Ok(())
+    }
+
+    fn ngc_value_here(&mut self, at: usize) -> Result<(), Diagnostic> {
+        match self.s.at(0) {
+            b'-' => {
+                self.s.pos += 1;
+                self.ngc_value()?;
+                self.push(OpCode::Neg, Span::new(at, at + 1))
+            }
+            b'+' => {
+                self.s.pos += 1;
+                self.ngc_value()
+            }
+            b'[' => {
+                self.s.pos += 1;
+                self.expr()?;
+                self.ngc_close(at)
+            }
+            b'#' => self.ngc_parameter(at),
+            b'0'..=b'9' | b'.' => {
+                let Some(n) = self.s.number()? else {
+                    return Err(super::ngc::ngc_expected(Span::new(at, at + 1), "a value"));
+                };
+                self.push(OpCode::Num(Value::Double(n.value)), n.span)
+            }
+            c if c.is_ascii_alphabetic() => self.ngc_call(at),
+            _ => Err(super::ngc::ngc_expected(Span::new(at, at + 1), "a value")),
+        }
+    }
+
+    fn ngc_close(&mut self, open: usize) -> Result<(), Diagnostic> {
+        self.s.trivia()?;
+        if self.s.at(0) != b']' {
+            return Err(super::ngc::ngc_expected(
+                Span::new(open, open + 1),
+                "a `]` closing this `[`",
+            ));
+        }
+        self.s.pos += 1;
+        Ok(())
+    }
+
+    /// `#<name>`: the name in lower case, blanks removed; `Ok(None)` when
+    /// no `<` follows the `#` at `at` (the scanner is past the `#` and
+    /// its blanks).
+    pub(super) fn ngc_name(&mut self, at: usize) -> Result<Option<Box<str>>, Diagnostic> {
+        if self.s.at(0) != b'<' {
+            return Ok(None);
+        }
+        let rest = &self.s.text[self.s.pos..self.s.end];
+        let Some(close) = memchr::memchr(b'>', rest) else {
+            return Err(super::ngc::ngc_expected(
+                Span::new(at, self.s.pos + 1),
+                "a `>` closing the name",
+            ));
+        };
+        let name: String = rest[1..close]
+            .iter()
+            .filter(|c| !c.is_ascii_whitespace())
+            .map(|c| char::from(c.to_ascii_lowercase()))
+            .collect();
+        self.s.pos += close + 1;
+        if name.is_empty() {
+            return Err(super::ngc::ngc_expected(
+                Span::new(at, self.s.pos),
+                "a parameter name",
+            ));
+        }
+        Ok(Some(name.into_boxed_str()))
+    }
+
+    /// The parameter `#` at `at` names: a name, or a number that is any
+    /// value (`#1`, `#[#2 + 1]`, `##3`), whose range the evaluator checks.
+    /// Returns the name, or pushes the number's ops and returns `None`.
+    pub(super) fn ngc_target(&mut self, at: usize) -> Result<Option<Box<str>>, Diagnostic> {
+        self.s.pos += 1;
+        self.s.trivia()?;
+        if let Some(name) = self.ngc_name(at)? {
+            return Ok(Some(name));
+        }
+        self.ngc_value()?;
+        Ok(None)
+    }
+
+    /// A parameter read: `Var` for a whole number written out, `VarAt`
+    /// over a computed one, `Named` for a name.
+    fn ngc_parameter(&mut self, at: usize) -> Result<(), Diagnostic> {
+        let before = self.out.ops.len();
+        if let Some(name) = self.ngc_target(at)? {
+            return self.push_named(name, Span::new(at, self.s.pos));
+        }
+        let span = Span::new(at, self.s.pos);
+        if let [op] = &self.out.ops[before..]
+            && let OpCode::Num(Value::Double(v)) = op.code
+            && v.fract() == 0.0
+            && (0.0..=f64::from(u32::MAX)).contains(&v)
+        {
+            self.out.ops.truncate(before);
+            // Whole and within u32, checked above.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            return self.push(OpCode::Var(VarKind::Hash, v as u32), span);
+        }
+        self.push(OpCode::VarAt(VarKind::Hash), span)
+    }
+
+    fn push_named(&mut self, name: Box<str>, span: Span) -> Result<(), Diagnostic> {
+        let i = u16::try_from(self.out.texts.len())
+            .map_err(|_| diag::macro_too_complex(span, MAX_OPS))?;
+        self.out.texts.push(vec![Arg::Name(name)]);
+        self.push(OpCode::Named(i), span)
+    }
+
+    /// A LinuxCNC function at `at`: `NAME[e]`, `ATAN[y]/[x]`,
+    /// `EXISTS[#<name>]`.
+    fn ngc_call(&mut self, at: usize) -> Result<(), Diagnostic> {
+        let mut len = 0;
+        while self.s.at(len).is_ascii_alphabetic() {
+            len += 1;
+        }
+        let name = String::from_utf8_lossy(&self.s.text[at..at + len]).to_ascii_uppercase();
+        self.s.pos += len;
+        self.s.trivia()?;
+        if self.s.at(0) != b'[' {
+            return Err(super::ngc::ngc_expected(
+                Span::new(at, self.s.pos),
+                "a `[` after the function's name",
+            ));
+        }
+        let open = self.s.pos;
+        self.s.pos += 1;
+        if name == "EXISTS" {
+            self.s.trivia()?;
+            let hash = self.s.pos;
+            let name = self.ngc_target(hash)?;
+            let span = Span::new(hash, self.s.pos);
+            self.ngc_close(open)?;
+            return match name {
+                Some(name) => {
+                    let i = u16::try_from(self.out.texts.len())
+                        .map_err(|_| diag::macro_too_complex(span, MAX_OPS))?;
+                    self.out.texts.push(vec![Arg::Name(name)]);
+                    self.push(OpCode::CallText(Func::Exists, 0, i), span)
+                }
+                None => self.push(OpCode::Call(Func::Exists, 1), span),
+            };
+        }
+        self.expr()?;
+        self.ngc_close(open)?;
+        let span = Span::new(at, self.s.pos);
+        let Some(sig) = NGC_FUNCS.iter().find(|(n, _)| *n == name).map(|(_, s)| *s) else {
+            return Err(diag::unknown_function(
+                Span::new(at, at + len),
+                &name,
+                false,
+            ));
+        };
+        if sig.func == Func::Atan {
+            self.s.trivia()?;
+            if self.s.at(0) != b'/' {
+                return Err(super::ngc::ngc_expected(
+                    Span::new(at, self.s.pos),
+                    "`/[x]` after ATAN[y]",
+                ));
+            }
+            self.s.pos += 1;
+            self.s.trivia()?;
+            if self.s.at(0) != b'[' {
+                return Err(super::ngc::ngc_expected(
+                    Span::new(self.s.pos, self.s.pos + 1),
+                    "`[x]`",
+                ));
+            }
+            let open = self.s.pos;
+            self.s.pos += 1;
+            self.expr()?;
+            self.ngc_close(open)?;
+            return self.push(OpCode::Call(Func::Atan, 2), span);
+        }
+        self.push(OpCode::Call(sig.func, 1), span)
     }
 
     /// One argument of a call: a string, a bare name or an expression.

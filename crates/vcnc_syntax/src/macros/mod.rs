@@ -18,16 +18,22 @@
 //! for a Syntec statement that spans lines, the caller joins the lines into
 //! one buffer and maps offsets back to `(line, column)` pairs.
 //!
-//! The two languages differ in grammar and arithmetic, which [`Lang`] selects:
-//! Macro B writes expressions in `[ ]`, comments in `( )`, `=` assigns, and
-//! every number is real; Syntec MACRO groups with `( )`, comments with `//`
-//! and `(* *)`, assigns with `:=`, and types numbers Long (no decimal point)
-//! or Double. Which variable numbers exist is the interpreter's business.
+//! The three languages differ in grammar and arithmetic, which [`Lang`]
+//! selects and `expr.rs` describes as data (a [`Lang`]'s operator levels,
+//! function table, brackets, sigils): Macro B writes expressions in `[ ]`,
+//! comments in `( )`, `=` assigns, and every number is real; Syntec MACRO
+//! groups with `( )`, comments with `//` and `(* *)`, assigns with `:=`, and
+//! types numbers Long (no decimal point) or Double; LinuxCNC's RS274/NGC
+//! (`ngc.rs`) writes `[ ]` like Macro B, adds named parameters `#<name>`,
+//! `**` and `EXISTS`, and ranks its operators its own way. Which variable
+//! numbers exist is the interpreter's business.
 
 mod expr;
+mod ngc;
 mod scan;
 mod stmt;
 
+pub use ngc::{Kw, OStmt, ngc_expected, ngc_operands, o_statement, parse_ngc_line};
 pub use stmt::{Extent, parse_iso_block, parse_syntec_statement, syntec_extent};
 
 use crate::block::Addr;
@@ -40,6 +46,8 @@ pub enum Lang {
     MacroB,
     /// The Syntec MACRO language of files whose first line is `%@MACRO`.
     Syntec,
+    /// LinuxCNC's RS274/NGC parameters and expressions.
+    Ngc,
 }
 
 /// What the parser needs to know about the dialect.
@@ -127,6 +135,8 @@ pub enum BinOp {
     Le,
     Gt,
     Ge,
+    /// LinuxCNC `**`.
+    Pow,
 }
 
 /// Functions of both languages; which ones a language has is decided by
@@ -175,6 +185,9 @@ pub enum Func {
     Param,
     /// Syntec `SETDRAW(…)`/`DRAWHOLE()`: graphics settings, no-ops.
     Draw,
+    /// LinuxCNC `EXISTS[#<name>]`: 1 when the named parameter is set (the
+    /// name is the call's text); `EXISTS[#n]` checks the number and is 1.
+    Exists,
 }
 
 /// An argument of a call that takes names or strings.
@@ -210,6 +223,9 @@ pub enum OpCode {
     /// A call whose arguments include names or strings: `Expr::texts[i]`
     /// holds them, numeric arguments are popped (`argc`).
     CallText(Func, u8, u16),
+    /// LinuxCNC `#<name>`: the name (lower case, blanks removed) is the
+    /// only `Arg::Name` of `Expr::texts[i]`.
+    Named(u16),
 }
 
 /// One op and the text it came from.
@@ -253,15 +269,33 @@ pub enum Target {
     Fixed(VarKind, u32, Span),
     /// `#[e]`, `@[e]`.
     Indirect(VarKind, Expr, Span),
+    /// LinuxCNC `#<name>` (lower case, blanks removed).
+    Named(Box<str>, Span),
 }
 
 impl Target {
     /// Where the variable is written.
     pub fn span(&self) -> Span {
         match self {
-            Target::Fixed(_, _, s) | Target::Indirect(_, _, s) => *s,
+            Target::Fixed(_, _, s) | Target::Indirect(_, _, s) | Target::Named(_, s) => *s,
         }
     }
+}
+
+/// One item of a LinuxCNC line, in the order written.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LineItem {
+    /// `#1 = e`, `#<name> = e`: takes effect after the whole line.
+    Set {
+        /// The parameter.
+        target: Target,
+        /// Its value.
+        value: Expr,
+        /// The whole setting (alarms about its value).
+        span: Span,
+    },
+    /// A word whose value is a number or an expression.
+    Word(MWord),
 }
 
 /// The value of a word in a macro word block.
@@ -374,6 +408,9 @@ pub enum StmtKind {
     Exit,
     /// A call statement (`MSG("x");`, `PUSH(5);`, `WAIT();`).
     Call(Expr),
+    /// A LinuxCNC line: its words, evaluated with the parameters as they
+    /// were before it, and its settings, applied after it.
+    Line(Vec<LineItem>),
 }
 
 impl StmtKind {
@@ -389,6 +426,7 @@ impl StmtKind {
                 | StmtKind::IfGoto { .. }
                 | StmtKind::IfThen { .. }
                 | StmtKind::Call(_)
+                | StmtKind::Line(_)
         )
     }
 }

@@ -5,7 +5,8 @@
 //! that context decides what a letter is: an address in a word block
 //! (`X10`), a keyword or a function in an expression (`SIN`, `END_IF`).
 
-use super::{Lang, MacroSyntax};
+use super::MacroSyntax;
+use super::expr::{Comments, Grammar, grammar};
 use crate::diagnostics as diag;
 use crate::number::parse_number;
 use vcnc_core::{Diagnostic, Span};
@@ -46,7 +47,17 @@ impl<'a> Scan<'a> {
     }
 
     /// Skips blanks and comments; `Err` for a comment left open.
+    /// The grammar of the text's language.
+    pub fn g(&self) -> &'static Grammar {
+        grammar(self.syn.lang)
+    }
+
     pub fn trivia(&mut self) -> Result<(), Diagnostic> {
+        let comments = self.g().comments;
+        if comments == Comments::ParenSemicolon {
+            self.ngc_trivia();
+            return Ok(());
+        }
         loop {
             match self.at(0) {
                 b' ' | b'\t' | b'\r' | b'\n' | 0x0c => self.pos += 1,
@@ -57,7 +68,7 @@ impl<'a> Scan<'a> {
                         self.pos += 1;
                     }
                 }
-                b'(' if self.syn.lang == Lang::Syntec && self.at(1) == b'*' => {
+                b'(' if comments == Comments::StarParen && self.at(1) == b'*' => {
                     let open = self.pos;
                     self.pos += 2;
                     loop {
@@ -77,7 +88,7 @@ impl<'a> Scan<'a> {
                         self.pos += 1;
                     }
                 }
-                b'(' if self.syn.lang == Lang::MacroB => {
+                b'(' if comments == Comments::ParenMessages => {
                     let open = self.pos;
                     let rest = &self.text[self.pos + 1..self.end];
                     let Some(k) = memchr::memchr(b')', rest) else {
@@ -92,6 +103,22 @@ impl<'a> Scan<'a> {
                     self.pos = open + 1 + k + 1;
                 }
                 _ => return Ok(()),
+            }
+        }
+    }
+
+    /// LinuxCNC's blanks: spaces, tabs, `( )` comments (one left open
+    /// runs to the end) and a `;` comment to the end of the line.
+    fn ngc_trivia(&mut self) {
+        loop {
+            match self.at(0) {
+                b' ' | b'\t' | b'\r' => self.pos += 1,
+                b'(' => match memchr::memchr(b')', &self.text[self.pos..self.end]) {
+                    Some(k) => self.pos += k + 1,
+                    None => self.pos = self.end,
+                },
+                b';' | b'\n' => self.pos = self.end,
+                _ => return,
             }
         }
     }
@@ -122,13 +149,8 @@ impl<'a> Scan<'a> {
 
     /// Whether byte `b` continues an identifier.
     fn ident_byte(&self, b: u8, first: bool) -> bool {
-        match self.syn.lang {
-            // Macro B keywords are letters only: `#1EQ2`, `GOTO10`.
-            Lang::MacroB => b.is_ascii_alphabetic(),
-            Lang::Syntec => {
-                b.is_ascii_alphabetic() || (!first && (b.is_ascii_digit() || b == b'_'))
-            }
-        }
+        b.is_ascii_alphabetic()
+            || (self.g().ident_tail && !first && (b.is_ascii_digit() || b == b'_'))
     }
 
     /// Length of the identifier at `pos` (after blanks), 0 if none.
@@ -178,7 +200,7 @@ impl<'a> Scan<'a> {
     pub fn number(&mut self) -> Result<Option<Num>, Diagnostic> {
         self.trivia()?;
         let start = self.pos;
-        if self.syn.lang == Lang::Syntec
+        if self.g().hex_numbers
             && self.at(0) == b'0'
             && matches!(self.at(1), b'x' | b'X')
             && self.at(2).is_ascii_hexdigit()
@@ -193,6 +215,9 @@ impl<'a> Scan<'a> {
             return Ok(None);
         }
         let span = Span::new(start, start + k);
+        if self.g().ngc_values {
+            return self.ngc_number(span).map(Some);
+        }
         let n = parse_number(&self.text[..start + k], start).map_err(|e| {
             use crate::number::NumberError;
             match e {
@@ -210,6 +235,25 @@ impl<'a> Scan<'a> {
             point: n.point,
             span,
         }))
+    }
+
+    /// LinuxCNC reads any run of digits and points as one number; the
+    /// text holds nothing but digits and points, so the float parser can
+    /// only fail (`1.2.3`, `.`) or give a large finite value (or infinity
+    /// for 309 digits, which the word's and the setting's range checks
+    /// stop).
+    fn ngc_number(&mut self, span: Span) -> Result<Num, Diagnostic> {
+        let digits = &self.text[span.start as usize..span.end as usize];
+        let value = std::str::from_utf8(digits)
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .ok_or_else(|| super::ngc::ngc_expected(span, "a number"))?;
+        self.pos = span.end as usize;
+        Ok(Num {
+            value,
+            point: false,
+            span,
+        })
     }
 
     fn hex(&mut self, start: usize) -> Result<Num, Diagnostic> {

@@ -20,7 +20,7 @@
 //! assembles line by line, so the statement reader needs no grammar of its
 //! own.
 
-use super::expr::{ExprParser, is_function};
+use super::expr::{ExprParser, abbreviation, is_function};
 use super::scan::Scan;
 use super::{Expr, Lang, MAX_MACRO_WORDS, MValue, MWord, MacroSyntax, OpCode, Statement, StmtKind};
 use super::{Target, Value, VarKind};
@@ -214,14 +214,15 @@ fn iso_statement(s: &mut Scan<'_>, words: &mut Vec<MWord>) -> Result<StmtKind, D
 
 /// The length of custom macro word `full` (WHILE, END, GOTO) at the
 /// scanner, glued to what follows (`END1`), or of its two-letter
-/// abbreviation in Macro B (`WH`, `EN`, `GO`: Fanuc's abbreviations of
-/// custom macro words, `expr::macro_b_word`).
+/// abbreviation in the grammar (Macro B's `WH`, `EN`, `GO`: Fanuc's
+/// abbreviations of custom macro words).
 fn macro_word(s: &mut Scan<'_>, full: &str) -> Result<Option<usize>, Diagnostic> {
     if s.at_prefix(full)? {
         return Ok(Some(full.len()));
     }
-    let short = full.get(..2).unwrap_or(full);
-    if s.syn.lang == Lang::MacroB && s.at_prefix(short)? {
+    if let Some(short) = abbreviation(s.g(), full)
+        && s.at_prefix(short)?
+    {
         return Ok(Some(short.len()));
     }
     Ok(None)
@@ -260,7 +261,7 @@ fn stray(s: &mut Scan<'_>) -> Diagnostic {
         .unwrap_or('\u{FFFD}');
     match ch {
         // In Syntec MACRO `[ ]` index variables: the advice differs.
-        '+' | '-' | '*' | '/' | '=' | ']' if s.syn.lang == Lang::Syntec => diag::macro_syntax(
+        '+' | '-' | '*' | '/' | '=' | ']' if s.g().paren_groups => diag::macro_syntax(
             at,
             &format!("`{ch}` is not allowed here: a statement or a G-code block starts here"),
             "start a G-code block with its address letter, whose value may be an expression: X(#1 + 2.)",
@@ -303,7 +304,7 @@ fn target(s: &mut Scan<'_>) -> Result<Target, Diagnostic> {
     let b = s.peek()?;
     let kind = match b {
         b'#' => VarKind::Hash,
-        b'@' if s.syn.lang == Lang::Syntec => VarKind::At,
+        b'@' if s.g().at_vars => VarKind::At,
         _ => return Err(expected(s, "a variable", "#1")),
     };
     let at = s.pos;
@@ -339,7 +340,8 @@ fn iso_if(s: &mut Scan<'_>) -> Result<StmtKind, Diagnostic> {
         let target = goto_target(s)?;
         return finish(s, StmtKind::IfGoto { cond, word, target });
     }
-    if s.keyword("THEN")? || (s.syn.lang == Lang::MacroB && s.keyword("TH")?) {
+    let then = abbreviation(s.g(), "THEN");
+    if s.keyword("THEN")? || (then.is_some_and(|t| t == "TH") && s.keyword("TH")?) {
         if s.peek()? != b'#' {
             return Err(expected(
                 s,

@@ -78,7 +78,7 @@ impl Interpreter<'_> {
 
     /// Stage 2: a move while compensation is engaged.
     pub(crate) fn compensate(&mut self, mm: MachineMove, cmd: Span) -> Result<(), Diagnostic> {
-        let axes = self.plane_axes(self.stage.comp.plane, cmd)?;
+        let axes = self.cfg.plane_axes(self.stage.comp.plane, cmd)?;
         let at = self.origin(cmd);
         let Some(seg) = self.plane_seg(&mm, axes) else {
             // No motion in the plane: it waits behind the held move.
@@ -254,7 +254,7 @@ impl Interpreter<'_> {
         mm: &MachineMove,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let axes = self.plane_axes(self.stage.comp.plane, cmd)?;
+        let axes = self.cfg.plane_axes(self.stage.comp.plane, cmd)?;
         let mut plain = mm.to;
         for i in [axes.a, axes.b] {
             if (mm.to.get(i) - self.state.pos.get(i)).abs() < ZERO_MM {
@@ -303,7 +303,7 @@ impl Interpreter<'_> {
         end: P2,
         extension: Option<P2>,
     ) -> Result<(), Diagnostic> {
-        let axes = self.plane_axes(self.stage.comp.plane, held.at.cmd)?;
+        let axes = self.cfg.plane_axes(self.stage.comp.plane, held.at.cmd)?;
         if !held.startup && !held.seg.keeps_direction(held.start, end) {
             return Err(self.fault(Fault::NoIntersection, &held.at));
         }
