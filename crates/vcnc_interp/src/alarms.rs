@@ -782,6 +782,20 @@ pub fn comp_arc_too_small(span: Span) -> Diagnostic {
     )
 }
 
+/// E318: an entry arc (compensation starting on an arc) whose start is
+/// within the tool radius of its end.
+#[cold]
+pub fn comp_entry_arc_short(span: Span, r: f64) -> Diagnostic {
+    d(
+        Code::E318,
+        span,
+        format!(
+            "cutter compensation cannot start on this arc: its start is not farther than the tool radius ({r:.4} mm) from its end"
+        ),
+        "start compensation farther from the arc's end, or on a G01 move before the arc",
+    )
+}
+
 /// E318: a compensated path that would cut into the part.
 #[cold]
 pub fn comp_overcut(span: Span) -> Diagnostic {
