@@ -960,7 +960,8 @@ fn roughing_cycles_refuse_what_rs274_refuses() {
 /// start within r of the end ("Radius of cutter compensation entry arc is
 /// not greater than the tool radius") is E318 at the arc, an arc that
 /// cancels compensation E317 ("The move just after exiting cutter
-/// compensation mode must be straight"). Fanuc keeps E317 (type A's
+/// compensation mode must be straight"), and so is an entry line not longer
+/// than r in the plane. Fanuc keeps E317 (type A's
 /// start-up is a line). The moves rs274 makes are also the fixture
 /// `tests/fixtures/linuxcnc_dialect/comp_entry_arc`.
 #[test]
@@ -1033,6 +1034,20 @@ fn compensation_starts_on_an_entry_arc_as_in_rs274() {
         )),
         (Code::E317, 6, 5)
     );
+    // rs274 takes the first move after G41/G42 for the entry, also one
+    // without motion in the plane, and refuses it when it is not longer
+    // than r ("Length of cutter compensation entry move is not greater
+    // than the tool radius", probed: `G1 Z-1`, `G1 X0 Y-20` from there,
+    // `G1 X1 Y-20`); E318 at the move. Longer than r: it runs.
+    for entry in [
+        "G41\nG1 Z-1 F100",
+        "G41\nG1 X0 Y-20 F100",
+        "G41\nG1 X1 Y-20 F100",
+    ] {
+        let program = format!("{base}{entry}\nG1 X10 Y-10\nM2\n");
+        assert_eq!(alarm(&program), (Code::E318, 6, 1), "{program}");
+    }
+    ended(&format!("{base}G41\nG1 X2.1 Y-20 F100\nG1 X10 Y-10\nM2\n"));
     // Fanuc: the start-up must be a line.
     let fanuc =
         "G21 G90 G17\nG10 L12 P1 R2\nT1 M6\nG0 X0 Y-20\nG41 D1 G3 X10 Y-10 I0 J10 F100\nM2\n";

@@ -81,6 +81,17 @@ impl Interpreter<'_> {
     pub(crate) fn compensate(&mut self, mm: MachineMove, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.plane_axes(self.stage.comp.plane, cmd)?;
         let at = self.origin(cmd);
+        if self.stage.comp.mode == Mode::Starting
+            && self.cfg.dialect.comp_start == CompStart::LineOrArc
+            && !matches!(mm.kind, MachineKind::Arc { .. })
+        {
+            // rs274: the first move after G41/G42 is the entry, also
+            // without motion in the plane, and must be longer than r.
+            let (_, r) = self.side_and_radius();
+            if v2(mm.from, axes).dist(v2(mm.to, axes)) <= r {
+                return Err(alarms::comp_entry_short(cmd, r));
+            }
+        }
         let Some(seg) = self.plane_seg(&mm, axes) else {
             // No motion in the plane: it waits behind the held move.
             if self.stage.comp.held.is_some() {
@@ -104,7 +115,7 @@ impl Interpreter<'_> {
         match self.stage.comp.mode {
             Mode::Starting if entry_arc => {
                 let Some((seg, centre)) = geom::entry_arc(&seg, side, r) else {
-                    return Err(alarms::comp_entry_arc_short(cmd, r));
+                    return Err(alarms::comp_entry_short(cmd, r));
                 };
                 self.stage.comp.mode = Mode::On;
                 self.stage.comp.held = Some(Box::new(Held {
