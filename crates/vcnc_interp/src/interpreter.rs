@@ -16,7 +16,9 @@
 use crate::Sink;
 use crate::alarms;
 use crate::block::words::Words;
-use crate::dialect::{AxisWord, Dialect};
+use crate::config::Config;
+pub use crate::config::Options;
+use crate::dialect::Dialect;
 use crate::events::{EndCode, Event};
 use crate::flow::{Flow, ProgramStore, first_value};
 use crate::machine::Machine;
@@ -35,20 +37,6 @@ use vcnc_syntax::{
 /// done is asked after every block, so it is noticed at the first block
 /// after the batch that made it done.
 pub const HAND_OVER: usize = 1024;
-
-/// Operator switches.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Options {
-    /// Skip blocks that start with `/`.
-    pub block_delete: bool,
-    /// Stop at M01.
-    pub optional_stop: bool,
-    /// Go on after an alarm with the next block, the state as it was
-    /// before the alarmed one (`vcnc check --keep-going`, the language
-    /// server): every alarm becomes an `alarm` event and the run ends as
-    /// the program does, its outcome the first alarm.
-    pub keep_going: bool,
-}
 
 /// The most alarms a run under [`Options::keep_going`] reports before it
 /// stops at the next one.
@@ -83,27 +71,6 @@ pub(crate) enum Step {
     End(EndCode),
     /// The program ran into `%` or another program's `O` header.
     ProgramEnd,
-}
-
-/// What a run reads and never changes: the machine, the dialect, the
-/// operator's switches and what follows from them.
-pub(crate) struct Config<'a> {
-    pub machine: &'a Machine,
-    pub dialect: &'a Dialect,
-    pub opts: Options,
-    /// Letters that address axes (axis letters and incremental words).
-    pub axis_mask: u32,
-    /// How each machine axis is written, in axis order.
-    pub axis_words: Vec<AxisWord>,
-    /// Whether the machine has travel limits to check (E501).
-    pub travel_limited: bool,
-    /// The highest cutting feed, mm/min (the control's clamp).
-    pub max_feed: f64,
-    /// The dialect reads `%@MACRO` files (checked for every block).
-    pub macro_files: bool,
-    /// Whether the markers of program coordinates are emitted
-    /// ([`Interpreter::with_program_markers`]).
-    pub markers: bool,
 }
 
 /// What the run loop keeps between blocks: the runaway budget, and whether
@@ -151,28 +118,8 @@ impl<'a> Interpreter<'a> {
     /// `dialect` was built with.
     pub fn new(machine: &'a Machine, dialect: &'a Dialect, opts: Options) -> Interpreter<'a> {
         let dialect = dialect.under_system(machine.gcode_system);
-        let mut axis_words: Vec<AxisWord> = machine
-            .axes
-            .iter()
-            .map(|a| AxisWord::of(a.letter, dialect))
-            .collect();
-        let mut rest = 0;
-        for a in axis_words.iter_mut().rev() {
-            rest |= a.mask;
-            a.rest = rest;
-        }
         Interpreter {
-            cfg: Config {
-                machine,
-                dialect,
-                opts,
-                axis_mask: axis_words.iter().fold(0, |m, a| m | a.mask),
-                axis_words,
-                travel_limited: machine.has_travel_limits(),
-                max_feed: machine.max_feed_mm_per_min(),
-                macro_files: dialect.macros.files != crate::dialect::MacroFiles::None,
-                markers: false,
-            },
+            cfg: Config::new(machine, dialect, opts),
             state: State::power_on(machine, dialect),
             tables: Tables::new(machine),
             flow: Flow::new(Box::new(MemSource(Vec::<u8>::new()))),

@@ -22,6 +22,7 @@
 pub mod alarms;
 mod block;
 mod codes;
+mod config;
 pub mod detect;
 pub mod dialect;
 pub mod explain;

@@ -27,6 +27,9 @@
 use crate::kernel::{Arc, Line, arc_envelope, line_envelope};
 use crate::tool::{Cutter, Profile};
 use rayon::prelude::*;
+use rows::{Gather, Run};
+
+mod rows;
 
 /// Most cells a Z-map may have: 4 bytes of height and 1 of tool each,
 /// so at most 250 MB.
@@ -166,6 +169,8 @@ struct Band {
     tool: Vec<u8>,
     /// This worker's findings for the current batch.
     hits: Vec<Hit>,
+    /// The run of cuts being applied row by row (reused).
+    run: Run,
 }
 
 /// The height field over a rectangle of stock.
@@ -418,15 +423,8 @@ impl FlatLine {
     }
 }
 
-/// An envelope linear along a row, floored: max(start + k·step, floor)
-/// at the span's k-th cell.
-struct Linear {
-    start: f64,
-    step: f64,
-    floor: f64,
-}
-
 /// Where a span of a flat line's row lies.
+#[derive(Debug, Clone, Copy)]
 struct FlatSpan {
     /// Its first cell's column.
     i0: usize,
@@ -436,9 +434,6 @@ struct FlatSpan {
     y: f64,
     /// Whether the move's tip goes under the stock's bottom at all.
     through: bool,
-    /// Along X: the covered half-width of the row in the move's
-    /// parameter (the same for every cell).
-    row_s: f64,
 }
 
 /// What a worker needs to apply one move to one row.
@@ -541,6 +536,7 @@ impl ZMap {
                     h: vec![to_f32(top); rows * nx],
                     tool: vec![0; rows * nx],
                     hits: Vec::new(),
+                    run: Run::default(),
                 }
             })
             .collect();
@@ -628,20 +624,7 @@ impl ZMap {
             n,
             inv_dx: 1.0 / self.dx,
         };
-        let work = |(w, band): (usize, &mut Band)| {
-            band.hits.clear();
-            band.hits.resize(cuts.len(), Hit::default());
-            for (k, cut) in cuts.iter().enumerate() {
-                let Some(cutter) = cutters.get(usize::from(cut.cutter)) else {
-                    continue;
-                };
-                let mut hit = Hit::default();
-                geo.apply_cut(w, band, cut, cutter, &mut hit);
-                if let Some(slot) = band.hits.get_mut(k) {
-                    *slot = hit;
-                }
-            }
-        };
+        let work = |(w, band): (usize, &mut Band)| geo.apply_batch(w, band, cuts, cutters);
         if n > 1 && cuts.len() > 1 {
             self.bands.par_iter_mut().enumerate().for_each(work);
         } else {
@@ -681,20 +664,6 @@ struct Geometry {
 }
 
 impl Geometry {
-    /// Worker `w`'s rows whose centres lie in [ya, yb], each with the
-    /// index of its first cell in the worker's band (no division a row).
-    fn row_starts(
-        &self,
-        w: usize,
-        ya: f64,
-        yb: f64,
-    ) -> impl Iterator<Item = (usize, usize)> + use<> {
-        let mut rows = self.rows(w, ya, yb).peekable();
-        let (first, nx) = (rows.peek().copied().unwrap_or(0), self.nx);
-        let k0 = first / self.n;
-        rows.zip((k0..).map(move |k| k * nx))
-    }
-
     /// Worker `w`'s rows whose centres lie in [ya, yb].
     fn rows(&self, w: usize, ya: f64, yb: f64) -> impl Iterator<Item = usize> + use<> {
         let (lo, hi) = cells(ya, yb, self.y0, self.dy, self.ny);
@@ -704,6 +673,57 @@ impl Geometry {
         let first = lo + (w + n - lo % n) % n;
         let end = hi.map_or(0, |h| h + 1);
         (first..end).step_by(n)
+    }
+
+    /// Applies `cuts` to worker `w`'s rows: runs of cuts that only lower
+    /// cells row by row (`rows.rs`), any other cut on its own.
+    fn apply_batch(&self, w: usize, band: &mut Band, cuts: &[Cut], cutters: &[Cutter]) {
+        band.hits.clear();
+        band.hits.resize(cuts.len(), Hit::default());
+        let mut run = std::mem::take(&mut band.run);
+        let mut k = 0;
+        while k < cuts.len() {
+            // A run: the cuts from here that only lower cells and have
+            // their rows' form, while their rows stay close.
+            run.clear();
+            while let Some(cut) = cuts.get(k) {
+                let Some(cutter) = cutters.get(usize::from(cut.cutter)) else {
+                    k += 1;
+                    continue;
+                };
+                if !Self::lowers_only(cut, cutter) {
+                    break;
+                }
+                match self.gather(&mut run, k, cut, cutter) {
+                    Gather::Added | Gather::Nothing => k += 1,
+                    Gather::Full | Gather::Other => break,
+                }
+            }
+            if !run.is_empty() {
+                self.run_rows(w, (&mut band.h, &mut band.tool), &run, &mut band.hits);
+                continue;
+            }
+            // Nothing gathered: the cut here takes the general path.
+            if let Some(cut) = cuts.get(k)
+                && let Some(cutter) = cutters.get(usize::from(cut.cutter))
+            {
+                band.run = std::mem::take(&mut run);
+                let mut hit = Hit::default();
+                self.apply_cut(w, band, cut, cutter, &mut hit);
+                if let Some(slot) = band.hits.get_mut(k) {
+                    *slot = hit;
+                }
+                run = std::mem::take(&mut band.run);
+            }
+            k += 1;
+        }
+        band.run = run;
+    }
+
+    /// Whether applying `cut` only lowers cells: no shank, holder or
+    /// centre check reads the stock around it first.
+    fn lowers_only(cut: &Cut, cutter: &Cutter) -> bool {
+        cutter.flute_mm.is_none() && cutter.holder.is_none() && !cut.check_centre
     }
 
     fn apply_cut(&self, w: usize, band: &mut Band, cut: &Cut, cutter: &Cutter, hit: &mut Hit) {
@@ -752,33 +772,23 @@ impl Geometry {
             bottom: self.bottom,
             id: cut.cutter.saturating_add(1),
         };
+        let mut run = std::mem::take(&mut band.run);
+        run.clear();
+        let gathered = self.gather(&mut run, 0, cut, cutter);
+        if matches!(gathered, Gather::Added) {
+            let hits = std::slice::from_mut(hit);
+            self.run_rows(w, (&mut band.h, &mut band.tool), &run, hits);
+        }
+        band.run = run;
+        if !matches!(gathered, Gather::Other) {
+            return;
+        }
         let r = cutter.radius;
         let (bx0, by0, bx1, by1) = cut.shape.bounds_xy();
-        let (rows, flat) = match &cut.shape {
-            Shape::Line(l) => (
-                CapsuleRows::new(l.a, l.b, r),
-                if is_flat(cutter) {
-                    FlatLine::new(l, r)
-                } else {
-                    None
-                },
-            ),
-            Shape::Arc(_) => (CapsuleRows::new([0.0; 3], [0.0; 3], r), None),
+        let rows = match &cut.shape {
+            Shape::Line(l) => CapsuleRows::new(l.a, l.b, r),
+            Shape::Arc(_) => CapsuleRows::new([0.0; 3], [0.0; 3], r),
         };
-        if let Some(f) = &flat {
-            self.flat_line(w, band, &ctx, cut, f, &rows, hit);
-            return;
-        }
-        if let Shape::Line(l) = &cut.shape
-            && is_flat(cutter)
-            && l.a[0] == l.b[0]
-            && l.a[1] == l.b[1]
-        {
-            // A flat end mill standing or moving straight up or down: its
-            // envelope is the lower end's height over its whole disc.
-            self.flat_disc(w, band, &ctx, [l.a[0], l.a[1], min_z], r, hit);
-            return;
-        }
         for j in self.rows(w, by0 - r, by1 + r) {
             let y = self.y0 + (j as f64 + 0.5) * self.dy;
             let base = (j / self.n) * self.nx;
@@ -798,140 +808,6 @@ impl Geometry {
                     }
                 }
             }
-        }
-    }
-
-    /// The hot path: a flat end mill along a straight move, row by row
-    /// with everything but a square root per row and per cell hoisted.
-    #[allow(clippy::too_many_arguments)]
-    fn flat_line(
-        &self,
-        w: usize,
-        band: &mut Band,
-        ctx: &RowCtx,
-        cut: &Cut,
-        f: &FlatLine,
-        rows: &CapsuleRows,
-        hit: &mut Hit,
-    ) {
-        let (a, b, r2) = (rows.a, rows.b, f.r2);
-        let r = rows.r;
-        let (y_lo, y_hi) = (a[1].min(b[1]) - r, a[1].max(b[1]) + r);
-        let margin = 1e-9 * (1.0 + r);
-        // The envelope never goes under the lower end's tip, so a move
-        // whose tip stays above the bottom cannot cut through it.
-        let through = fmin(a[2], b[2]) < ctx.bottom - CUT_EPS_MM;
-        // A move along X crosses each row at one distance from its line:
-        // both discs and the band meet the row over one interval, the
-        // half-width w its only square root.
-        let along_x = f.dy == 0.0;
-        let (x_lo, x_hi) = (fmin(a[0], b[0]), fmax(a[0], b[0]));
-        for (j, base) in self.row_starts(w, y_lo, y_hi) {
-            let y = self.y0 + (j as f64 + 0.5) * self.dy;
-            let (lo, hi, h_lo, h_hi, row_s) = if along_x {
-                let wy = y - a[1];
-                let w2 = r2 - wy * wy;
-                if w2 < 0.0 {
-                    continue;
-                }
-                let half = w2.sqrt();
-                let hole = if cut.skip_end {
-                    (b[0] - half + margin, b[0] + half - margin)
-                } else if cut.skip_start {
-                    (a[0] - half + margin, a[0] + half - margin)
-                } else {
-                    (f64::INFINITY, f64::NEG_INFINITY)
-                };
-                (x_lo - half, x_hi + half, hole.0, hole.1, half * f.inv_len)
-            } else {
-                match self.row_of_line(cut, rows, r2, margin, y) {
-                    Some((lo, hi, h_lo, h_hi)) => (lo, hi, h_lo, h_hi, 0.0),
-                    None => continue,
-                }
-            };
-            let (i0, i1) = cells_inv(lo, hi, self.x0, self.inv_dx, self.nx);
-            let (e0, e1) = cells_inv(h_lo, h_hi, self.x0, self.inv_dx, self.nx);
-            let pieces = if e0 <= e1 {
-                [(i0.max(0), i1.min(e0 - 1)), (i0.max(e1 + 1).max(0), i1)]
-            } else {
-                [(i0.max(0), i1), (1, 0)]
-            };
-            for (p0, p1) in pieces {
-                if p0 > p1 {
-                    continue;
-                }
-                let (Ok(p0), Ok(p1)) = (usize::try_from(p0), usize::try_from(p1)) else {
-                    continue;
-                };
-                let (Some(h), Some(t)) = (
-                    band.h.get_mut(base + p0..=base + p1),
-                    band.tool.get_mut(base + p0..=base + p1),
-                ) else {
-                    continue;
-                };
-                let span = FlatSpan {
-                    i0: p0,
-                    j,
-                    y,
-                    through,
-                    row_s,
-                };
-                if along_x {
-                    self.flat_span_x(ctx, &span, h, t, hit, f);
-                } else {
-                    self.flat_span::<false>(ctx, &span, h, t, hit, f);
-                }
-            }
-        }
-    }
-
-    /// A flat end mill of radius `r` whose lowest tip is `p`, over its
-    /// disc (a chain's vertex, a plunge): every covered cell's envelope is
-    /// p's height.
-    fn flat_disc(
-        &self,
-        w: usize,
-        band: &mut Band,
-        ctx: &RowCtx,
-        p: [f64; 3],
-        r: f64,
-        hit: &mut Hit,
-    ) {
-        let r2 = r * r;
-        let through = p[2] < ctx.bottom - CUT_EPS_MM;
-        let linear = Linear {
-            start: p[2],
-            step: 0.0,
-            floor: p[2],
-        };
-        for (j, base) in self.row_starts(w, p[1] - r, p[1] + r) {
-            let y = self.y0 + (j as f64 + 0.5) * self.dy;
-            let w2 = r2 - (y - p[1]) * (y - p[1]);
-            if w2 < 0.0 {
-                continue;
-            }
-            let half = w2.sqrt();
-            let (i0, i1) = cells_inv(p[0] - half, p[0] + half, self.x0, self.inv_dx, self.nx);
-            let (Ok(i0), Ok(i1)) = (usize::try_from(i0.max(0)), usize::try_from(i1)) else {
-                continue;
-            };
-            if i0 > i1 {
-                continue;
-            }
-            let (Some(h), Some(t)) = (
-                band.h.get_mut(base + i0..=base + i1),
-                band.tool.get_mut(base + i0..=base + i1),
-            ) else {
-                continue;
-            };
-            let span = FlatSpan {
-                i0,
-                j,
-                y,
-                through,
-                row_s: 0.0,
-            };
-            Self::lower_linear(ctx, &span, h, t, hit, &linear);
         }
     }
 
@@ -972,63 +848,11 @@ impl Geometry {
         (lo <= hi).then_some((lo, hi, h_lo, h_hi))
     }
 
-    /// [`Geometry::flat_span`] for a move along X, whose row span lies
-    /// inside the tool's sweep by construction. With the covered
-    /// half-width s fixed along the row, the end the envelope takes (t_c +
-    /// s descending, t_c − s ascending) is linear in x, and clamping it
-    /// to [0, 1] is taking the lower end's height as a floor: each cell is
-    /// e = max(lin, z_min) with lin growing by a constant step.
-    fn flat_span_x(
-        &self,
-        ctx: &RowCtx,
-        span: &FlatSpan,
-        h: &mut [f32],
-        tools: &mut [u8],
-        hit: &mut Hit,
-        f: &FlatLine,
-    ) {
-        let x = self.x0 + (span.i0 as f64 + 0.5) * self.dx;
-        let tc = ((x - f.ax) * f.dx + (span.y - f.ay) * f.dy) * f.inv_l2;
-        let g = self.dx * f.dx * f.inv_l2;
-        let side = if f.dz > 0.0 { -span.row_s } else { span.row_s };
-        let linear = Linear {
-            start: f.az + f.dz * (tc + side),
-            step: f.dz * g,
-            floor: f.az.min(f.az + f.dz),
-        };
-        Self::lower_linear(ctx, span, h, tools, hit, &linear);
-    }
-
-    /// Lowers the cells of a span to the envelope max(start + k·step,
-    /// floor) (and not under the bottom), marking the tool and the
-    /// deepest removal.
-    fn lower_linear(
-        ctx: &RowCtx,
-        span: &FlatSpan,
-        h: &mut [f32],
-        tools: &mut [u8],
-        hit: &mut Hit,
-        linear: &Linear,
-    ) {
-        let (floor, step) = (linear.floor, linear.step);
-        let mut lin = linear.start;
-        let mut cut = SpanCut::start(hit);
-        for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
-            let e = fmax(lin, floor);
-            lin += step;
-            cut.lower(k, cell, tool, e, ctx, span, hit);
-        }
-        cut.finish(span, hit);
-    }
-
     /// [`Geometry::cut_span`] for a flat line. Along a row the
     /// projection t_c and the signed distance d⊥ from the line are linear
-    /// in x, so each cell costs two additions before its square root; a
-    /// move along X (`ALONG_X`: the raster of most 3D finishing) keeps d⊥
-    /// and so the covered half-width fixed along the row, and its cells
-    /// need no square root at all (the same figures, computed once).
+    /// in x, so each cell costs two additions before its square root.
     #[inline]
-    fn flat_span<const ALONG_X: bool>(
+    fn flat_span(
         &self,
         ctx: &RowCtx,
         span: &FlatSpan,
@@ -1044,21 +868,14 @@ impl Geometry {
         let (g, q) = (self.dx * f.dx * f.inv_l2, self.dx * f.dy * f.inv_len);
         let up = f.dz > 0.0;
         let (r2, inv_l2, az, dz) = (f.r2, f.inv_l2, f.az, f.dz);
-        let row_s = span.row_s;
         let mut cut = SpanCut::start(hit);
         for (k, (cell, tool)) in h.iter_mut().zip(tools.iter_mut()).enumerate() {
             let d2 = dp * dp;
-            let s = if ALONG_X {
-                row_s
-            } else {
-                (fmax(r2 - d2, 0.0) * inv_l2).sqrt()
-            };
+            let s = (fmax(r2 - d2, 0.0) * inv_l2).sqrt();
             let (t0, t1) = (fmax(tc - s, 0.0), fmin(tc + s, 1.0));
             tc += g;
-            if !ALONG_X {
-                dp += q;
-            }
-            if (!ALONG_X && d2 > r2) || t0 > t1 {
+            dp += q;
+            if d2 > r2 || t0 > t1 {
                 continue;
             }
             let e = az + dz * if up { t0 } else { t1 };

@@ -13,13 +13,103 @@ use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
 use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
-use crate::machine::DecimalInput;
-use crate::state::Motion;
 use crate::state::PointStyle;
+use crate::state::{Modal, Motion};
 use vcnc_syntax::{Addr, Diagnostic, Word};
 
 /// mm per inch.
 pub const MM_PER_INCH: f64 = 25.4;
+
+/// How the words of a block read as numbers: the program's units and
+/// diameter programming (the modal codes in force), and whether a word
+/// without a decimal point is in whole units (the dialect's integers, a
+/// calculator-style machine). A view taken when a word is read
+/// ([`Interpreter::units`]): the conversions need neither the rest of the
+/// state nor the interpreter. It reads the modal codes only when a word
+/// needs them, as a plain pointed length does not ask whether X is a
+/// diameter.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Units<'a> {
+    /// G20/G21, lathe G22/G23.
+    modal: &'a Modal,
+    /// A word without a point is in whole units all the same.
+    whole_words: bool,
+}
+
+impl<'a> Units<'a> {
+    /// The units of the modal codes `modal`; `whole_words` as the run's
+    /// configuration says (`Config::whole_words`).
+    #[inline]
+    pub fn new(modal: &'a Modal, whole_words: bool) -> Units<'a> {
+        Units { modal, whole_words }
+    }
+
+    /// Whether the word is in whole units (else least increments).
+    #[inline]
+    fn whole(self, w: &Word) -> bool {
+        w.point || self.whole_words
+    }
+
+    /// A length word in mm.
+    #[inline]
+    pub fn length_mm(self, w: &Word) -> f64 {
+        let v = if self.whole(w) {
+            w.value
+        } else {
+            w.value * if self.modal.inch { 0.0001 } else { 0.001 }
+        };
+        if self.modal.inch { v * MM_PER_INCH } else { v }
+    }
+
+    /// An X-direction length that follows diameter programming (lathe G23
+    /// halves it): axis words, and the cycles' X depths.
+    #[inline]
+    pub fn x_length_mm(self, w: &Word) -> f64 {
+        let v = self.length_mm(w);
+        if self.modal.diameter { v / 2.0 } else { v }
+    }
+
+    /// The value of an axis word: mm (a radius for a diameter axis), or
+    /// degrees for a rotary axis.
+    #[inline]
+    pub fn axis_mm(self, a: &AxisWord, w: &Word) -> f64 {
+        if a.rotary {
+            self.angle_deg(w)
+        } else if a.diameter {
+            self.x_length_mm(w)
+        } else {
+            self.length_mm(w)
+        }
+    }
+
+    /// The value of the word of machine axis `i` among `axes`.
+    pub fn axis_value(self, axes: &[AxisWord], i: usize, w: &Word) -> f64 {
+        match axes.get(i) {
+            Some(a) => self.axis_mm(a, w),
+            None => self.length_mm(w),
+        }
+    }
+
+    /// A time word (G04 X): seconds with a point, milliseconds without.
+    pub fn seconds(self, w: &Word) -> f64 {
+        if self.whole(w) {
+            w.value
+        } else {
+            w.value * 0.001
+        }
+    }
+
+    /// An angle word in degrees (0.001° without a decimal point), whatever
+    /// the length unit.
+    #[inline]
+    pub fn angle_deg(self, w: &Word) -> f64 {
+        if self.whole(w) {
+            w.value
+        } else {
+            w.value * 0.001
+        }
+    }
+}
 
 impl Interpreter<'_> {
     /// Program units → mm factor.
@@ -31,66 +121,11 @@ impl Interpreter<'_> {
         }
     }
 
-    fn whole_units(&self, w: &Word) -> bool {
-        w.point
-            || self.cfg.dialect.integers == IntegerWords::WholeUnits
-            || self.cfg.machine.params.decimal_input == DecimalInput::Calculator
-    }
-
-    /// A length word in mm.
-    pub(crate) fn length_mm(&self, w: &Word) -> f64 {
-        let inch = self.state.modal.inch;
-        let v = if self.whole_units(w) {
-            w.value
-        } else {
-            w.value * if inch { 0.0001 } else { 0.001 }
-        };
-        if inch { v * MM_PER_INCH } else { v }
-    }
-
-    /// An X-direction length that follows diameter programming (lathe G23
-    /// halves it): axis words, and the cycles' X depths.
-    pub(crate) fn x_length_mm(&self, w: &Word) -> f64 {
-        let v = self.length_mm(w);
-        if self.state.modal.diameter {
-            v / 2.0
-        } else {
-            v
-        }
-    }
-
-    /// The value of an axis word: mm (a radius for a diameter axis), or
-    /// degrees for a rotary axis.
+    /// How this block's words read (the units in force now: a G20/G21 of
+    /// the block has already been executed).
     #[inline]
-    pub(crate) fn axis_mm(&self, a: &AxisWord, w: &Word) -> f64 {
-        if a.rotary {
-            if self.whole_units(w) {
-                w.value
-            } else {
-                w.value * 0.001
-            }
-        } else if a.diameter {
-            self.x_length_mm(w)
-        } else {
-            self.length_mm(w)
-        }
-    }
-
-    /// The value of the axis word of machine axis `i`.
-    pub(crate) fn axis_value(&self, i: usize, w: &Word) -> f64 {
-        match self.cfg.axis_words.get(i) {
-            Some(a) => self.axis_mm(a, w),
-            None => self.length_mm(w),
-        }
-    }
-
-    /// A time word (G04 X): seconds with a point, milliseconds without.
-    pub(crate) fn seconds(&self, w: &Word) -> f64 {
-        if self.whole_units(w) {
-            w.value
-        } else {
-            w.value * 0.001
-        }
+    pub(crate) fn units(&self) -> Units<'_> {
+        Units::new(&self.state.modal, self.cfg.whole_words)
     }
 
     /// Warning W101: a length word without a decimal point in a program
@@ -159,9 +194,9 @@ impl Interpreter<'_> {
                 continue;
             };
             let shown = if a.rotary || polar_angle == Some(i) {
-                (self.angle_deg(&word), "°")
+                (self.units().angle_deg(&word), "°")
             } else {
-                length(self.axis_mm(&a, &word))
+                length(self.units().axis_mm(&a, &word))
             };
             self.note_point(word, shown);
         }
@@ -169,7 +204,7 @@ impl Interpreter<'_> {
             if extra & bit(l) != 0
                 && let Some(word) = w.get(l)
             {
-                self.note_point(word, length(self.length_mm(&word)));
+                self.note_point(word, length(self.units().length_mm(&word)));
             }
         }
     }
@@ -297,6 +332,7 @@ impl Interpreter<'_> {
         let (mut named, mut all_incremental) = (0u32, true);
         let (mut prog, mut delta) = (self.state.prog, Pos::default());
         let present = w.present();
+        let units = self.units();
         for (i, a) in self.cfg.axis_words.iter().enumerate() {
             if present & a.rest == 0 {
                 break;
@@ -311,7 +347,7 @@ impl Interpreter<'_> {
                     None => continue,
                 },
             };
-            let v = self.axis_mm(a, &word);
+            let v = units.axis_mm(a, &word);
             if inc {
                 prog.set(i, self.state.prog.get(i) + v);
                 delta.set(i, v);
@@ -371,8 +407,9 @@ impl Interpreter<'_> {
             return 0;
         }
         let (last_r, last_deg) = self.state.polar;
-        let r = r_word.map(|word| self.length_mm(&word));
-        let deg = a_word.map(|word| self.angle_deg(&word));
+        let units = self.units();
+        let r = r_word.map(|word| units.length_mm(&word));
+        let deg = a_word.map(|word| units.angle_deg(&word));
         let (r, deg) = if incremental {
             (last_r + r.unwrap_or(0.0), last_deg + deg.unwrap_or(0.0))
         } else {
@@ -464,16 +501,6 @@ impl Interpreter<'_> {
             ));
         }
         Ok(())
-    }
-
-    /// An angle word in degrees (0.001° without a decimal point), whatever
-    /// the length unit.
-    pub(crate) fn angle_deg(&self, w: &Word) -> f64 {
-        if self.whole_units(w) {
-            w.value
-        } else {
-            w.value * 0.001
-        }
     }
 
     /// The polar radius and angle that `to` has (after a G16 move).

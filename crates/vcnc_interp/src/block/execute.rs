@@ -200,7 +200,7 @@ impl Interpreter<'_> {
         }
         self.other_m_codes(w);
         let tool_moved = self.frame_codes(w)?;
-        self.smoothing_frame_change(w);
+        self.state.smoothing.frame_change(w);
         self.comp_codes(w)?;
         self.setting_codes(w)?;
         let moves_before = self.stage.moves;
@@ -681,8 +681,20 @@ impl Interpreter<'_> {
                     self.tables.suspend_shift(on);
                     self.state.refresh_origin(&self.tables);
                 }
-                GOp::Pace(PaceOp::Smoothing) => self.haas_smoothing(w),
-                GOp::Pace(PaceOp::LookAhead) => self.look_ahead(w, at.span)?,
+                GOp::Pace(PaceOp::Smoothing) => {
+                    let (on, tolerance_mm) = crate::state::Smoothing::haas_level(w, self.units());
+                    self.emit(|loc| Event::Smoothing {
+                        loc,
+                        on,
+                        tolerance_mm,
+                    });
+                }
+                GOp::Pace(PaceOp::LookAhead) => {
+                    let corner_mm = self.cfg.machine.motion.corner_tolerance_mm;
+                    if let Some(t) = self.state.smoothing.look_ahead(w, at.span, corner_mm)? {
+                        self.report_smoothing(t);
+                    }
+                }
                 // A G4 that leaves the axis words to the motion (LinuxCNC:
                 // the dwell, then the block's move).
                 GOp::Pace(PaceOp::DwellP) if !at.def.takes_axes() => {
@@ -723,7 +735,7 @@ impl Interpreter<'_> {
                     "G64's P is a path tolerance, not negative",
                 ));
             }
-            Some(p) => self.length_mm(&p),
+            Some(p) => self.units().length_mm(&p),
             None => 0.0,
         };
         // Only a change reaches the planner (a bare G64 on every safe-start
@@ -739,53 +751,6 @@ impl Interpreter<'_> {
             tolerance_mm,
         });
         Ok(())
-    }
-
-    /// Fanuc G08 P1 / P0: AI look-ahead control. It reads blocks ahead and
-    /// lowers the feed before corners by the allowed acceleration, keeping
-    /// to the path: a `smoothing` event for the planner, on with the
-    /// machine's own corner tolerance (`motion.corner_tolerance_mm`, no
-    /// path error of its own, unlike G05.1's E), or off. It is the mode
-    /// G05.1 Q1 starts too: G05.1 Q0 ends it and G08 P0 ends G05.1's
-    /// (`codes/smoothing.rs`).
-    fn look_ahead(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let p = w
-            .get(b'P')
-            .ok_or_else(|| alarms::needs_word(cmd, "G08", "P (1 on, 0 off)"))?;
-        match p.value {
-            1.0 => self.look_ahead_on(),
-            0.0 => self.smoothing_off(),
-            _ => {
-                return Err(alarms::value_out_of_range(
-                    p.span,
-                    b'P',
-                    p.value,
-                    "G08 P is 1 (look-ahead on) or 0 (off)",
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// Haas G187: P1 rough, P2 medium, P3 finish with a corner tolerance
-    /// E (else the level's: 0.05, 0.02, 0.005 mm); G187 alone returns to
-    /// the machine's own setting (smoothing off). One `smoothing` event for
-    /// the planner, as G05.1's.
-    fn haas_smoothing(&mut self, w: &Words<'_>) {
-        let level = w.get(b'P').map(|p| p.value);
-        let tolerance_mm = match (w.get(b'E'), level) {
-            (Some(e), _) => self.length_mm(&e),
-            (None, Some(p)) if p >= 3.0 => 0.005,
-            (None, Some(p)) if p >= 2.0 => 0.02,
-            (None, Some(_)) => 0.05,
-            (None, None) => 0.0,
-        };
-        let on = level.is_some() || w.get(b'E').is_some();
-        self.emit(|loc| Event::Smoothing {
-            loc,
-            on,
-            tolerance_mm,
-        });
     }
 
     /// Step 5b: the machine builder's M codes and the controller's own
@@ -940,17 +905,18 @@ impl Interpreter<'_> {
         }
     }
 
+    /// The `smoothing` event of what the smoothing state decided
+    /// (`codes/smoothing.rs`), out of line: a G01 asks for it rarely.
+    #[inline(never)]
+    pub(crate) fn report_smoothing(&mut self, tolerance_mm: f64) {
+        self.emit(crate::state::Smoothing::event(tolerance_mm));
+    }
+
     /// Adds an event of the current block; it reaches the sink when the
     /// block has succeeded.
     pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
-        let loc = self.flow.loc.clone();
-        let e = make(loc);
-        if self.stage.comp.holding() {
-            // Behind a move cutter compensation still holds.
-            self.stage.comp.queue_event(e);
-        } else {
-            self.stage.pending.push(e);
-        }
+        let e = make(self.flow.loc.clone());
+        self.stage.emit(e);
     }
 }
 

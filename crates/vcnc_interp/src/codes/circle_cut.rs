@@ -117,11 +117,15 @@ impl Interpreter<'_> {
                 "I (the radius of the first circle, or of the finished circle without K)",
             )
         })?;
-        let first = positive(iw, self.length_mm(&iw), "I is a radius, more than 0")?;
+        let first = positive(
+            iw,
+            self.units().length_mm(&iw),
+            "I is a radius, more than 0",
+        )?;
         let step = match (w.get(b'K'), w.get(b'Q')) {
             (None, None) => None,
             (Some(k), Some(q)) => {
-                let finish = self.length_mm(&k);
+                let finish = self.units().length_mm(&k);
                 if finish <= first + SAME_MM {
                     return Err(alarms::value_out_of_range(
                         k.span,
@@ -130,7 +134,7 @@ impl Interpreter<'_> {
                         "K, the finished circle's radius, is more than I (Haas: \"I value must be … less than K value\")",
                     ));
                 }
-                let q_mm = positive(q, self.length_mm(&q), "the step Q is more than 0")?;
+                let q_mm = positive(q, self.units().length_mm(&q), "the step Q is more than 0")?;
                 Some((finish, q_mm))
             }
             (Some(_), None) => {
@@ -208,7 +212,7 @@ impl Interpreter<'_> {
         let iw = w
             .get(b'I')
             .ok_or_else(|| alarms::needs_word(cmd, code, "I (the circle's radius)"))?;
-        let r = self.length_mm(&iw);
+        let r = self.units().length_mm(&iw);
         if r.abs() <= SAME_MM {
             return Err(alarms::value_out_of_range(
                 iw.span,

@@ -50,13 +50,13 @@ impl Interpreter<'_> {
             return self.dynamic_comp(w, c.def.op, c.span);
         }
         let d_number = match w.get(b'D').filter(|_| self.reads_d(w)) {
-            Some(d) => Some(self.offset_word(&d)?),
+            Some(d) => Some(self.cfg.offset_word(&d, self.state.tool_active)?),
             None => match code {
                 Some(c)
                     if c.def.op != GOp::Comp(CompOp::Cancel)
                         && self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle =>
                 {
-                    Some(self.tool_in_spindle(c.span)?)
+                    Some(self.cfg.tool_in_spindle(self.state.tool_active, c.span)?)
                 }
                 _ => None,
             },
@@ -140,7 +140,7 @@ impl Interpreter<'_> {
             self.state.lathe.tip = crate::motion::comp::nose::linuxcnc_tip(tip);
         }
         self.state.d_number = 0;
-        self.state.comp_d_mm = self.length_mm(&d) / 2.0;
+        self.state.comp_d_mm = self.units().length_mm(&d) / 2.0;
         let side = if op == GOp::Comp(CompOp::LeftDiameter) {
             CompSide::Left
         } else {

@@ -211,8 +211,8 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let (kind, word) = match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
             (Some(_), Some(r)) => return Err(alarms::corner_fault(r.span, "both ,C and ,R")),
-            (Some(c), None) => (CornerKind::Chamfer(self.length_mm(&c)), c),
-            (None, Some(r)) => (CornerKind::Round(self.length_mm(&r)), r),
+            (Some(c), None) => (CornerKind::Chamfer(self.units().length_mm(&c)), c),
+            (None, Some(r)) => (CornerKind::Round(self.units().length_mm(&r)), r),
             (None, None) => return Ok(()),
         };
         if goal.named == 0 {
@@ -283,7 +283,7 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        let axes = self.plane_axes(self.state.modal.plane, mv.cmd)?;
+        let axes = self.cfg.plane_axes(self.state.modal.plane, mv.cmd)?;
         let ab = (axes.a, axes.b);
         let p = |q: Pos| P2::of(&q, ab);
         let off_plane = (0..crate::events::MAX_AXES)

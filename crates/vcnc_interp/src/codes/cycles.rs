@@ -95,7 +95,7 @@ pub(crate) struct CycleAxes {
 
 impl Interpreter<'_> {
     pub(crate) fn cycle_axes(&self, cmd: Span) -> Result<CycleAxes, Diagnostic> {
-        let axes = self.plane_axes(self.state.modal.plane, cmd)?;
+        let axes = self.cfg.plane_axes(self.state.modal.plane, cmd)?;
         let z = axes
             .n
             .ok_or_else(|| alarms::needs_axes(cmd, "a canned cycle"))?;
@@ -295,8 +295,10 @@ impl Interpreter<'_> {
     fn store_cycle_words(&mut self, w: &Words<'_>, axes: CycleAxes) -> Result<(), Diagnostic> {
         let inc = self.state.modal.incremental;
         let z_letter = self.cfg.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
-        let r_word = w.get(b'R').map(|r| self.length_mm(&r));
-        let z_word = w.get(z_letter).map(|z| self.axis_value(axes.z, &z));
+        let r_word = w.get(b'R').map(|r| self.units().length_mm(&r));
+        let z_word = w
+            .get(z_letter)
+            .map(|z| self.units().axis_value(&self.cfg.axis_words, axes.z, &z));
         let cycle = &mut self.state.cycle;
         let (r_word, z_word) = if self.cfg.dialect.cycles.rs274_words {
             // LinuxCNC keeps the words and reads them under each block's
@@ -330,7 +332,7 @@ impl Interpreter<'_> {
             }
         }
         if let Some(q) = w.get(b'Q') {
-            let v = self.length_mm(&q);
+            let v = self.units().length_mm(&q);
             let bad = match self.state.cycle.code.map(|_| hole) {
                 // A tap that pecks takes Q ≥ 0 (0: no pecks).
                 Some(Hole::Tap) => v < 0.0,
@@ -352,7 +354,7 @@ impl Interpreter<'_> {
         }
         if let Some(p) = w.get(b'P') {
             crate::block::convert::dwell_not_negative(&p)?;
-            self.state.cycle.p_s = Some(self.seconds(&p));
+            self.state.cycle.p_s = Some(self.units().seconds(&p));
         }
         if self.cfg.dialect.cycles.reduced_pecks {
             self.store_reduced_peck(w)?;
@@ -381,7 +383,11 @@ impl Interpreter<'_> {
                 "I, J and K together (the first peck, how much less each next one, the least)",
             ));
         };
-        let (first, less, least) = (self.length_mm(&i), self.length_mm(&j), self.length_mm(&k));
+        let (first, less, least) = (
+            self.units().length_mm(&i),
+            self.units().length_mm(&j),
+            self.units().length_mm(&k),
+        );
         for (word, v, ok, why) in [
             (i, first, first > 0.0, "the first peck I is more than 0"),
             (j, less, less >= 0.0, "the reduction J is not negative"),
@@ -982,8 +988,8 @@ impl Interpreter<'_> {
         match op {
             CycleOp::PatternCircle => {
                 let i = need(b'I', "I (the radius)")?;
-                let r = positive(i, self.length_mm(&i), "the radius I is more than 0")?;
-                let start = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j));
+                let r = positive(i, self.units().length_mm(&i), "the radius I is more than 0")?;
+                let start = w.get(b'J').map_or(0.0, |j| self.units().angle_deg(&j));
                 let k = need(b'K', "K (the number of holes)")?;
                 if k.point {
                     return Err(alarms::no_decimal_point(k.span, b'K', "K counts holes"));
@@ -1007,7 +1013,7 @@ impl Interpreter<'_> {
             }
             CycleOp::PatternLine => {
                 let i = need(b'I', "I (the interval)")?;
-                let step = self.length_mm(&i);
+                let step = self.units().length_mm(&i);
                 if step == 0.0 {
                     return Err(alarms::value_out_of_range(
                         i.span,
@@ -1016,7 +1022,10 @@ impl Interpreter<'_> {
                         "the interval I is not 0",
                     ));
                 }
-                let ang = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j)).to_radians();
+                let ang = w
+                    .get(b'J')
+                    .map_or(0.0, |j| self.units().angle_deg(&j))
+                    .to_radians();
                 let n = count(
                     need(b'K', "K (the number of holes)")?,
                     1.0,
@@ -1029,15 +1038,15 @@ impl Interpreter<'_> {
             }
             CycleOp::PatternArc => {
                 let i = need(b'I', "I (the radius)")?;
-                let r = positive(i, self.length_mm(&i), "the radius I is more than 0")?;
-                let start = w.get(b'J').map_or(0.0, |j| self.angle_deg(&j));
+                let r = positive(i, self.units().length_mm(&i), "the radius I is more than 0")?;
+                let start = w.get(b'J').map_or(0.0, |j| self.units().angle_deg(&j));
                 let n = count(
                     need(b'K', "K (the number of holes)")?,
                     1.0,
                     "K is 1 to 9999 holes",
                 )?;
                 let p = need(b'P', "P (the angle between holes)")?;
-                let step = self.angle_deg(&p);
+                let step = self.units().angle_deg(&p);
                 if step == 0.0 && n > 1 {
                     return Err(alarms::value_out_of_range(
                         p.span,
@@ -1062,7 +1071,7 @@ impl Interpreter<'_> {
                     need(b'I', "I (the X interval)")?,
                     need(b'J', "J (the Y interval)")?,
                 );
-                let (di, dj) = (self.length_mm(&iw), self.length_mm(&jw));
+                let (di, dj) = (self.units().length_mm(&iw), self.units().length_mm(&jw));
                 let per_row = count(
                     need(b'P', "P (holes per row)")?,
                     1.0,

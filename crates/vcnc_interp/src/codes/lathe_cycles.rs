@@ -84,8 +84,8 @@ impl Interpreter<'_> {
         };
         let start: Xz = P2::of(&self.state.prog, axes);
         let end: Xz = P2::of(&end, axes);
-        let profile_x = self.x_length_mm(&r);
-        let (step, allowance) = (self.x_length_mm(&i), self.x_length_mm(&k));
+        let profile_x = self.units().x_length_mm(&r);
+        let (step, allowance) = (self.units().x_length_mm(&i), self.units().x_length_mm(&k));
         let depth = profile_x - start.0;
         if step == 0.0 || (allowance != 0.0 && allowance.signum() != step.signum()) {
             return Err(alarms::cycle_parameters(
@@ -171,7 +171,7 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        let lead_mm = self.length_mm(&k);
+        let lead_mm = self.units().length_mm(&k);
         if lead_mm <= 0.0 {
             return Err(alarms::cycle_parameters(
                 k.span,
@@ -185,8 +185,8 @@ impl Interpreter<'_> {
             ));
         }
         let passes = whole(&p, b'P', 1.0, 1000.0, "P is a number of passes")?;
-        let taper = w.get(b'X').map_or(0.0, |x| self.x_length_mm(&x));
-        let tail = w.get(b'I').map_or(0.0, |i| self.x_length_mm(&i));
+        let taper = w.get(b'X').map_or(0.0, |x| self.units().x_length_mm(&x));
+        let tail = w.get(b'I').map_or(0.0, |i| self.units().x_length_mm(&i));
         // "each depth of cut into R ÷ p and rounded": rounded to 0.001 in
         // program units, the last pass takes what is left.
         let step_prog = ((r.value / f64::from(passes)) * 1000.0).round() / 1000.0;
@@ -196,8 +196,8 @@ impl Interpreter<'_> {
                 "the depth per pass R/P rounds to 0: use fewer passes",
             ));
         }
-        let scale = self.x_length_mm(&r) / r.value;
-        let total = self.x_length_mm(&r);
+        let scale = self.units().x_length_mm(&r) / r.value;
+        let total = self.units().x_length_mm(&r);
         let thread = Step::Thread(lead_mm);
         let mut moves: Vec<(Step, Xz)> = Vec::new();
         for n in 1..=passes + 1 {
@@ -226,9 +226,9 @@ impl Interpreter<'_> {
     fn thread_end_z(&self, w: &Words<'_>, iz: usize, cmd: Span) -> Result<f64, Diagnostic> {
         let here = self.state.prog.get(iz);
         let z = match (w.get(b'Z'), w.get(b'W')) {
-            (Some(z), _) if self.state.modal.incremental => here + self.length_mm(&z),
-            (Some(z), _) => self.length_mm(&z),
-            (None, Some(wz)) => here + self.length_mm(&wz),
+            (Some(z), _) if self.state.modal.incremental => here + self.units().length_mm(&z),
+            (Some(z), _) => self.units().length_mm(&z),
+            (None, Some(wz)) => here + self.units().length_mm(&wz),
             (None, None) => {
                 return Err(alarms::cycle_parameters(
                     cmd,

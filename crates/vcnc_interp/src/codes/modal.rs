@@ -46,7 +46,9 @@ impl Interpreter<'_> {
                 self.straight(MoveKind::Rapid, to, w, cmd)
             }
             Motion::Linear => {
-                self.smoothing_before_linear();
+                if let Some(t) = self.state.smoothing.before_linear(self.state.modal.path) {
+                    self.report_smoothing(t);
+                }
                 let goal = self.target(w, self.state.modal.incremental);
                 let feed = if self.state.modal.inverse_time {
                     let from = self.state.prog;
@@ -70,7 +72,7 @@ impl Interpreter<'_> {
                     && let Some(k) = w.get(b'K')
                 {
                     // LinuxCNC's G33 K: distance per revolution.
-                    self.state.thread_lead_mm = Some(self.length_mm(&k));
+                    self.state.thread_lead_mm = Some(self.units().length_mm(&k));
                 }
                 let lead_mm = self
                     .state
@@ -96,7 +98,7 @@ impl Interpreter<'_> {
         let k = w.get(b'K').ok_or_else(|| {
             alarms::needs_word(cmd, "G33.1", "K (the pitch: distance per revolution)")
         })?;
-        let lead_mm = self.length_mm(&k);
+        let lead_mm = self.units().length_mm(&k);
         if lead_mm <= 0.0 {
             return Err(alarms::value_out_of_range(
                 k.span,
@@ -148,6 +150,17 @@ impl Interpreter<'_> {
     /// [`commit`](Self::commit) takes it.
     #[inline]
     pub(crate) fn send(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.state.lathe.corner.is_some() || self.state.modal.css {
+            return self.send_turning(mv, w);
+        }
+        // Handed on as it came: a plain move is not copied on its way.
+        self.commit(mv, w)
+    }
+
+    /// [`send`](Self::send) on a lathe with a corner held or under G96,
+    /// out of line.
+    #[inline(never)]
+    fn send_turning(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
         let mv = if self.state.lathe.corner.is_some() {
             // A G01's or an arc's chamfer or corner R is cut before this
             // move, which then starts where the chamfer or round ends.

@@ -127,7 +127,7 @@ impl Interpreter<'_> {
     /// G71 U R, G72 W R, G73 U W R.
     fn profile_first_block(&mut self, op: GOp, w: &Words<'_>) -> Result<(), Diagnostic> {
         self.refuse(w, b"XZD")?;
-        let len = |word: Option<Word>| word.map(|x| self.length_mm(&x));
+        let len = |word: Option<Word>| word.map(|x| self.units().length_mm(&x));
         match op {
             GOp::Turn(TurnOp::RoughTurnCycle) | GOp::Turn(TurnOp::RoughFaceCycle) => {
                 let depth_letter = if op == GOp::Turn(TurnOp::RoughTurnCycle) {
@@ -205,8 +205,8 @@ impl Interpreter<'_> {
     /// The finishing allowance of a second block: U (a diameter) and W.
     fn allowance(&self, w: &Words<'_>) -> Xz {
         P2(
-            w.get(b'U').map_or(0.0, |u| self.x_length_mm(&u)),
-            w.get(b'W').map_or(0.0, |v| self.length_mm(&v)),
+            w.get(b'U').map_or(0.0, |u| self.units().x_length_mm(&u)),
+            w.get(b'W').map_or(0.0, |v| self.units().length_mm(&v)),
         )
     }
 
@@ -235,7 +235,7 @@ impl Interpreter<'_> {
             Across::Z
         };
         let depth = match w.get(b'D') {
-            Some(d) => self.length_mm(&d),
+            Some(d) => self.units().length_mm(&d),
             None => self.state.lathe.mrc.depth_mm,
         };
         if depth <= 0.0 {
@@ -495,7 +495,7 @@ impl Interpreter<'_> {
         let goal = self.target(w, self.state.modal.incremental);
         let a = P2::of(&goal.prog, axes);
         let mut profile = self.ngc_cycle_profile(w, cmd, "G70")?;
-        let len = |l: u8| w.get(l).map_or(0.0, |x| self.length_mm(&x));
+        let len = |l: u8| w.get(l).map_or(0.0, |x| self.units().length_mm(&x));
         let (d, e) = (len(b'D'), len(b'E'));
         if d != 0.0 || e != 0.0 {
             return self.ngc_offset_finish(&profile, a, (d, e, passes), w, cmd);
@@ -576,7 +576,7 @@ impl Interpreter<'_> {
         let axes = self.lathe_axes(cmd)?;
         let code = if facing { "G72" } else { "G71" };
         self.ngc_cycle_modes(cmd, code)?;
-        let len = |l: u8, default: f64| w.get(l).map_or(default, |x| self.length_mm(&x));
+        let len = |l: u8, default: f64| w.get(l).map_or(default, |x| self.units().length_mm(&x));
         let (step, allowance, retract) = (len(b'I', 1.0), len(b'D', 0.0), len(b'R', 0.5));
         if let Some(i) = w.get(b'I').filter(|_| step < 0.0) {
             return Err(alarms::value_out_of_range(

@@ -85,20 +85,20 @@ impl Interpreter<'_> {
         };
         let pitch_mm = positive(
             pitch,
-            self.length_mm(&pitch),
+            self.units().length_mm(&pitch),
             "G76's P is the pitch, more than 0",
         )?;
         let first_mm = positive(
             j,
-            self.x_length_mm(&j),
+            self.units().x_length_mm(&j),
             "G76's J is the first cut's depth, more than 0",
         )?;
         let full_mm = positive(
             k,
-            self.x_length_mm(&k),
+            self.units().x_length_mm(&k),
             "G76's K is the full thread depth, more than 0",
         )?;
-        let peak_mm = self.x_length_mm(&i);
+        let peak_mm = self.units().x_length_mm(&i);
         if peak_mm == 0.0 {
             return Err(alarms::value_out_of_range(
                 i.span,
@@ -142,7 +142,7 @@ impl Interpreter<'_> {
             None => 0,
         };
         let taper_mm = match w.get(b'E') {
-            Some(e) if e.value >= 0.0 => self.length_mm(&e),
+            Some(e) if e.value >= 0.0 => self.units().length_mm(&e),
             Some(e) => {
                 return Err(alarms::value_out_of_range(
                     e.span,

@@ -8,30 +8,32 @@
 //! coordinate system"), so the preset position is what the axis then reads.
 //! G10 L10/L11 write an H length (geometry, wear), L12/L13 a D radius; the
 //! value in force for an active G43 is the one latched when H was given.
+//!
+//! The offsets are the journaled [`Tables`]' own: each code is a method of
+//! `Tables` that reads the configuration and the state it needs and writes
+//! only the tables; the interpreter then moves the state's origin to them
+//! (`State::refresh_origin`) when the code says the origin moved.
 
 use crate::alarms;
-use crate::block::convert::whole;
+use crate::block::convert::{Units, whole};
 use crate::block::words::Words;
+use crate::config::Config;
 use crate::dialect::SetOp;
 use crate::dialect::{GOp, OffsetDefault};
-use crate::interpreter::Interpreter;
+use crate::state::{State, Tables};
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
-    /// `(axis index, value in mm)` of each named axis.
-    fn named_values(&self, w: &Words<'_>) -> Vec<(usize, f64)> {
-        self.cfg
-            .machine
-            .axes
-            .iter()
-            .enumerate()
-            .filter_map(|(i, a)| w.get(a.letter).map(|word| (i, self.axis_value(i, &word))))
-            .collect()
-    }
-
-    /// G10: L2 work offsets, L10–L13 tool offsets.
-    pub(crate) fn set_data(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let rules = self.cfg.dialect.g10;
+impl Tables {
+    /// G10: L2 work offsets, L10–L13 tool offsets; whether the origin
+    /// moved (a work offset changed).
+    pub(crate) fn set_data(
+        &mut self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<bool, Diagnostic> {
+        let rules = cfg.dialect.g10;
         let l = w.get(b'L').ok_or_else(|| {
             let forms = if rules.tool_table_l1 {
                 "L (1 tool table, 2 work offset, 20 work offset here) and P"
@@ -43,10 +45,14 @@ impl Interpreter<'_> {
         let which = rules.forms();
         let lowest = if rules.tool_table_l1 { 1.0 } else { 2.0 };
         match whole(&l, b'L', lowest, 20.0, which)? {
-            2 => self.set_work_offset(w, cmd, false),
-            20 if rules.from_position_l20 => self.set_work_offset(w, cmd, true),
-            n @ 10..=13 if rules.registers_l10_l13 => self.set_tool_offset(w, cmd, n),
-            1 if rules.tool_table_l1 => self.set_tool_entry(w, cmd),
+            2 => self.set_work_offset(cfg, s, w, cmd, false).map(|()| true),
+            20 if rules.from_position_l20 => {
+                self.set_work_offset(cfg, s, w, cmd, true).map(|()| true)
+            }
+            n @ 10..=13 if rules.registers_l10_l13 => {
+                self.set_tool_offset(cfg, s, w, cmd, n).map(|()| false)
+            }
+            1 if rules.tool_table_l1 => self.set_tool_entry(cfg, s, w, cmd).map(|()| false),
             _ => Err(alarms::value_out_of_range(l.span, b'L', l.value, which)),
         }
     }
@@ -57,6 +63,8 @@ impl Interpreter<'_> {
     /// system.
     fn set_work_offset(
         &mut self,
+        cfg: &Config<'_>,
+        s: &State,
         w: &Words<'_>,
         cmd: Span,
         from_position: bool,
@@ -67,32 +75,31 @@ impl Interpreter<'_> {
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::bad_offset_number(cmd, 0.0))?;
-        let rules = self.cfg.dialect.g10;
+        let rules = cfg.dialect.g10;
         let lowest = if rules.from_position_l20 { 0.0 } else { 1.0 };
         let last = f64::from(rules.last_work_offset);
         if p.point || !(lowest..=last).contains(&p.value) {
             return Err(alarms::bad_offset_number(p.span, p.value));
         }
         let n = match whole(&p, b'P', lowest, last, "P is a work offset number")? {
-            0 => self.state.modal.wcs,
+            0 => s.modal.wcs,
             k => k as usize - 1,
         };
-        let values = self.named_values(w);
+        let values = cfg.named_values(Units::new(&s.modal, cfg.whole_words), w);
         if values.is_empty() {
             return Err(alarms::needs_axes(
                 cmd,
                 if from_position { "G10 L20" } else { "G10 L2" },
             ));
         }
-        let incremental = self.state.modal.incremental;
-        let mut offset = self.tables.work[n];
+        let incremental = s.modal.incremental;
+        let mut offset = self.work[n];
         for (i, v) in values {
             let value = if from_position {
                 // The work offset: the origin at which the tool reads `v`,
                 // G52 and G92 kept as they are.
-                let m =
-                    self.state.nominal.get(i) - self.tables.local.get(i) - self.tables.shift.get(i);
-                self.state.frame.origin_for(i, m, v)
+                let m = s.nominal.get(i) - self.local.get(i) - self.shift.get(i);
+                s.frame.origin_for(i, m, v)
             } else if incremental && rules.l2_adds_under_g91 {
                 // Fanuc adds under G91; grbl and LinuxCNC set L2's values
                 // as they are.
@@ -102,24 +109,30 @@ impl Interpreter<'_> {
             };
             offset.set(i, value);
         }
-        self.tables.set_work(n, offset);
-        self.state.refresh_origin(&self.tables);
+        self.set_work(n, offset);
         Ok(())
     }
 
     /// G10 L10–L13 P R: an H length or D radius, geometry or wear.
-    fn set_tool_offset(&mut self, w: &Words<'_>, cmd: Span, l: u32) -> Result<(), Diagnostic> {
-        self.no_axis_words(w, &[])?;
+    fn set_tool_offset(
+        &mut self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        cmd: Span,
+        l: u32,
+    ) -> Result<(), Diagnostic> {
+        cfg.no_axis_words(w, &[])?;
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "P (the offset number)"))?;
-        let n = self.offset_number(&p)?;
+        let n = cfg.offset_number(&p)?;
         let r = w
             .get(b'R')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "R (the offset value)"))?;
-        let value = self.length_mm(&r);
-        let incremental = self.state.modal.incremental;
-        let mut tool = self.tables.tool(n);
+        let value = Units::new(&s.modal, cfg.whole_words).length_mm(&r);
+        let incremental = s.modal.incremental;
+        let mut tool = self.tool(n);
         let slot = match l {
             10 => &mut tool.h_mm,
             11 => &mut tool.h_wear_mm,
@@ -127,7 +140,7 @@ impl Interpreter<'_> {
             _ => &mut tool.d_wear_mm,
         };
         *slot = if incremental { *slot + value } else { value };
-        self.tables.set_tool(n, tool);
+        self.set_tool(n, tool);
         Ok(())
     }
 
@@ -135,13 +148,19 @@ impl Interpreter<'_> {
     /// tool table, as given under G91 too (they are table values, not
     /// positions). Other axis words (the lathe's X, the rotary offsets) are
     /// not run.
-    fn set_tool_entry(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        self.no_axis_words(w, b"Z")?;
+    fn set_tool_entry(
+        &mut self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        cfg.no_axis_words(w, b"Z")?;
         let p = w
             .get(b'P')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L1", "P (the tool number)"))?;
         // Tool 0 is "no tool" ("P value out of range with G10 L1").
-        let n = match self.offset_number(&p)? {
+        let n = match cfg.offset_number(&p)? {
             0 => {
                 return Err(alarms::value_out_of_range(
                     p.span,
@@ -160,21 +179,102 @@ impl Interpreter<'_> {
                 "R (the tool radius) or Z (its length offset)",
             ));
         }
-        let mut tool = self.tables.tool(n);
+        let mut tool = self.tool(n);
         if let Some(r) = r {
-            tool.d_mm = self.length_mm(&r);
+            tool.d_mm = Units::new(&s.modal, cfg.whole_words).length_mm(&r);
         }
         if let Some(z) = z {
-            tool.h_mm = self.length_mm(&z);
+            tool.h_mm = Units::new(&s.modal, cfg.whole_words).length_mm(&z);
         }
-        self.tables.set_tool(n, tool);
+        self.set_tool(n, tool);
         Ok(())
+    }
+
+    /// G92: preset the current position (axes), or clamp the spindle (S).
+    pub(crate) fn preset(
+        &mut self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let values = cfg.named_values(Units::new(&s.modal, cfg.whole_words), w);
+        // The code's own name for the messages: G92, a Fanuc lathe's G50.
+        let name = || {
+            let g = cfg
+                .dialect
+                .g_for(GOp::Set(SetOp::PresetOrClamp))
+                .unwrap_or(92.0);
+            format!("G{g}")
+        };
+        if let Some(clamp) = w.get(b'S') {
+            if !values.is_empty() {
+                return Err(alarms::g92_axes_and_s(clamp.span, &name()));
+            }
+            // The clamp itself was set with the spindle words (execute.rs).
+            return Ok(());
+        }
+        if values.is_empty() {
+            return Err(alarms::needs_axes(cmd, &name()));
+        }
+        if s.frame.is_transformed() {
+            return Err(alarms::g92_under_transform(cmd));
+        }
+        let nominal = s.nominal;
+        let work = self.work.get(s.modal.wcs).copied().unwrap_or_default();
+        let (mut local, mut shift) = (self.local, self.shift);
+        for (i, v) in values {
+            // The shift: the origin at which the tool reads `v`, the work
+            // offset kept and G52 cancelled on the axis.
+            local.set(i, 0.0);
+            let m = nominal.get(i) - work.get(i);
+            shift.set(i, s.frame.origin_for(i, m, v));
+        }
+        self.set_local(local);
+        self.set_shift(shift);
+        Ok(())
+    }
+
+    /// G52: the local system's origin in the work system; zero cancels.
+    pub(crate) fn local_system(
+        &mut self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let values = cfg.named_values(Units::new(&s.modal, cfg.whole_words), w);
+        if values.is_empty() {
+            return Err(alarms::needs_axes(cmd, "G52"));
+        }
+        let mut local = self.local;
+        for (i, v) in values {
+            local.set(i, v);
+        }
+        self.set_local(local);
+        Ok(())
+    }
+}
+
+// What the offset codes read of the configuration: their words' values
+// and numbers.
+impl Config<'_> {
+    /// `(axis index, value in mm)` of each named axis.
+    fn named_values(&self, units: Units<'_>, w: &Words<'_>) -> Vec<(usize, f64)> {
+        self.machine
+            .axes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, a)| {
+                w.get(a.letter)
+                    .map(|word| (i, units.axis_value(&self.axis_words, i, &word)))
+            })
+            .collect()
     }
 
     /// E203 on the first axis word of the block but those of `allowed`.
     fn no_axis_words(&self, w: &Words<'_>, allowed: &[u8]) -> Result<(), Diagnostic> {
         match self
-            .cfg
             .machine
             .axes
             .iter()
@@ -188,8 +288,8 @@ impl Interpreter<'_> {
     }
 
     /// An H, D or G10 P offset number within the machine's offset registers.
-    pub(crate) fn offset_number(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
-        let max = self.cfg.machine.params.offset_registers;
+    pub fn offset_number(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
+        let max = self.machine.params.offset_registers;
         if w.point || w.value < 0.0 || w.value > f64::from(max) {
             return Err(alarms::bad_tool_offset_number(
                 w.span, w.addr.0, w.value, max,
@@ -200,85 +300,25 @@ impl Interpreter<'_> {
 
     /// An H or D word's offset number; where the dialect's default is the
     /// tool in the spindle, number 0 is that tool too (LinuxCNC: `H0`,
-    /// `D0`).
-    pub(crate) fn offset_word(&self, w: &vcnc_syntax::Word) -> Result<u32, Diagnostic> {
+    /// `D0`); `tool` is the tool in the spindle.
+    pub fn offset_word(&self, w: &vcnc_syntax::Word, tool: Option<u32>) -> Result<u32, Diagnostic> {
         match self.offset_number(w)? {
-            0 if self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle => {
-                self.tool_in_spindle(w.span)
+            0 if self.dialect.offset_default == OffsetDefault::ToolInSpindle => {
+                self.tool_in_spindle(tool, w.span)
             }
             n => Ok(n),
         }
     }
 
     /// The tool in the spindle as an offset number (LinuxCNC's G43 without
-    /// H, G41/G42 without D): 0, no offset, before the first tool change.
-    pub(crate) fn tool_in_spindle(&self, at: Span) -> Result<u32, Diagnostic> {
-        let t = self.state.tool_active.unwrap_or(0);
-        let max = self.cfg.machine.params.offset_registers;
+    /// H, G41/G42 without D) of `tool`: 0, no offset, before the first tool
+    /// change.
+    pub fn tool_in_spindle(&self, tool: Option<u32>, at: Span) -> Result<u32, Diagnostic> {
+        let t = tool.unwrap_or(0);
+        let max = self.machine.params.offset_registers;
         if t > max {
             return Err(alarms::bad_tool_offset_number(at, b'T', f64::from(t), max));
         }
         Ok(t)
-    }
-
-    /// G92: preset the current position (axes), or clamp the spindle (S).
-    pub(crate) fn preset(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let values = self.named_values(w);
-        // The code's own name for the messages: G92, a Fanuc lathe's G50.
-        let name = || {
-            let g = self
-                .cfg
-                .dialect
-                .g_for(GOp::Set(SetOp::PresetOrClamp))
-                .unwrap_or(92.0);
-            format!("G{g}")
-        };
-        if let Some(s) = w.get(b'S') {
-            if !values.is_empty() {
-                return Err(alarms::g92_axes_and_s(s.span, &name()));
-            }
-            // The clamp itself was set with the spindle words (execute.rs).
-            return Ok(());
-        }
-        if values.is_empty() {
-            return Err(alarms::needs_axes(cmd, &name()));
-        }
-        if self.state.frame.is_transformed() {
-            return Err(alarms::g92_under_transform(cmd));
-        }
-        let nominal = self.state.nominal;
-        let work = self
-            .tables
-            .work
-            .get(self.state.modal.wcs)
-            .copied()
-            .unwrap_or_default();
-        let (mut local, mut shift) = (self.tables.local, self.tables.shift);
-        for (i, v) in values {
-            // The shift: the origin at which the tool reads `v`, the work
-            // offset kept and G52 cancelled on the axis.
-            local.set(i, 0.0);
-            let m = nominal.get(i) - work.get(i);
-            shift.set(i, self.state.frame.origin_for(i, m, v));
-        }
-        self.tables.set_local(local);
-        self.tables.set_shift(shift);
-        self.state.refresh_origin(&self.tables);
-        Ok(())
-    }
-
-    /// G52: the local system's origin in the work system; zero cancels.
-    pub(crate) fn local_system(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let values = self.named_values(w);
-        if values.is_empty() {
-            return Err(alarms::needs_axes(cmd, "G52"));
-        }
-        let mut local = self.tables.local;
-        for (i, v) in values {
-            local.set(i, v);
-        }
-        self.tables.set_local(local);
-        self.state.refresh_origin(&self.tables);
-        Ok(())
     }
 }

@@ -161,25 +161,41 @@ impl Interpreter<'_> {
                 "I (the length in X)"
             },
         )?;
-        let size_i = positive(iw, self.length_mm(&iw), "the pocket size I is more than 0")?;
+        let size_i = positive(
+            iw,
+            self.units().length_mm(&iw),
+            "the pocket size I is more than 0",
+        )?;
         let size_j = if circle {
             size_i
         } else {
             let jw = need(b'J', "J (the width in Y)")?;
-            positive(jw, self.length_mm(&jw), "the pocket size J is more than 0")?
+            positive(
+                jw,
+                self.units().length_mm(&jw),
+                "the pocket size J is more than 0",
+            )?
         };
         let corner = match w.get(b'K') {
-            Some(k) => not_negative(k, self.length_mm(&k), "the corner radius K is not negative")?,
+            Some(k) => not_negative(
+                k,
+                self.units().length_mm(&k),
+                "the corner radius K is not negative",
+            )?,
             None => 0.0,
         };
         let allowance = match w.get(b'P') {
-            Some(pw) => not_negative(pw, self.length_mm(&pw), "the allowance P is not negative")?,
+            Some(pw) => not_negative(
+                pw,
+                self.units().length_mm(&pw),
+                "the allowance P is not negative",
+            )?,
             None => 0.0,
         };
         let q = match w.get(b'Q') {
             Some(qw) => Some(positive(
                 qw,
-                self.length_mm(&qw),
+                self.units().length_mm(&qw),
                 "a depth per pass Q is more than 0",
             )?),
             None => None,
@@ -239,7 +255,7 @@ impl Interpreter<'_> {
         let initial = self.state.prog.get(axes.z);
         let r_level = match w.get(b'R') {
             Some(rw) => {
-                let v = self.length_mm(&rw);
+                let v = self.units().length_mm(&rw);
                 if inc { initial + v } else { v }
             }
             None => initial,
@@ -247,7 +263,7 @@ impl Interpreter<'_> {
         let z_letter = self.cfg.axis_words.get(axes.z).map_or(b'Z', |a| a.letter);
         let zw = need(z_letter, "Z (the pocket's depth)")?;
         let bottom = {
-            let v = self.axis_value(axes.z, &zw);
+            let v = self.units().axis_value(&self.cfg.axis_words, axes.z, &zw);
             if inc { r_level + v } else { v }
         };
         if bottom >= r_level - SAME_MM {

@@ -499,18 +499,24 @@ impl Interpreter<'_> {
             ));
         }
         let coord = |abs: u8, inc: u8, i: usize, from: f64| match (w.get(abs), w.get(inc)) {
-            (Some(word), _) => (self.axis_value(i, &word), true),
-            (None, Some(word)) => (from + self.axis_value(i, &word), true),
+            (Some(word), _) => (
+                self.units().axis_value(&self.cfg.axis_words, i, &word),
+                true,
+            ),
+            (None, Some(word)) => (
+                from + self.units().axis_value(&self.cfg.axis_words, i, &word),
+                true,
+            ),
             (None, None) => (from, false),
         };
         let (x, nx) = coord(b'X', b'U', ix, at.0);
         let (z, nz) = coord(b'Z', b'W', iz, at.1);
         let arc_words = if arc {
             match (w.get(b'R'), w.get(b'I'), w.get(b'K')) {
-                (Some(r), _, _) => Some(ArcWords::Radius(self.length_mm(&r), r.span)),
+                (Some(r), _, _) => Some(ArcWords::Radius(self.units().length_mm(&r), r.span)),
                 (None, i, k) if i.is_some() || k.is_some() => Some(ArcWords::Offsets(
-                    i.map_or(0.0, |i| self.length_mm(&i)),
-                    k.map_or(0.0, |k| self.length_mm(&k)),
+                    i.map_or(0.0, |i| self.units().length_mm(&i)),
+                    k.map_or(0.0, |k| self.units().length_mm(&k)),
                 )),
                 _ => return Err(alarms::arc_without_center(span, "zx")),
             }
@@ -524,8 +530,8 @@ impl Interpreter<'_> {
         };
         let corner = match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
             (Some(_), Some(r)) => return Err(alarms::corner_fault(r.span, "both ,C and ,R")),
-            (Some(c), None) => Some((CornerKind::Chamfer(self.length_mm(&c)), c.span)),
-            (None, Some(r)) => Some((CornerKind::Round(self.length_mm(&r)), r.span)),
+            (Some(c), None) => Some((CornerKind::Chamfer(self.units().length_mm(&c)), c.span)),
+            (None, Some(r)) => Some((CornerKind::Round(self.units().length_mm(&r)), r.span)),
             (None, None) => None,
         };
         if let Some((_, word)) = corner.filter(|_| op != GOp::Motion(MotionOp::Linear)) {

@@ -74,9 +74,22 @@ impl Interpreter<'_> {
     /// take no axis words (step 6b).
     fn set_code(&mut self, op: SetOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
         match op {
-            SetOp::Data => self.set_data(w, cmd),
-            SetOp::PresetOrClamp => self.preset(w, cmd),
-            SetOp::LocalSystem => self.local_system(w, cmd),
+            SetOp::Data => {
+                if self.tables.set_data(&self.cfg, &self.state, w, cmd)? {
+                    self.state.refresh_origin(&self.tables);
+                }
+                Ok(())
+            }
+            SetOp::PresetOrClamp => {
+                self.tables.preset(&self.cfg, &self.state, w, cmd)?;
+                self.state.refresh_origin(&self.tables);
+                Ok(())
+            }
+            SetOp::LocalSystem => {
+                self.tables.local_system(&self.cfg, &self.state, w, cmd)?;
+                self.state.refresh_origin(&self.tables);
+                Ok(())
+            }
             SetOp::ProgramZero => self.program_zero(w, cmd),
             SetOp::RefStore(_) | SetOp::ShiftCancel | SetOp::ShiftSuspend(_) => Ok(()),
         }
@@ -91,7 +104,16 @@ impl Interpreter<'_> {
             PaceOp::DwellOrWait => self.dwell_or_wait(w),
             PaceOp::DwellP => self.dwell_p(w, cmd),
             PaceOp::HighSpeed => self.high_speed(w, cmd),
-            PaceOp::PathSmoothing => self.path_smoothing(w, cmd),
+            PaceOp::PathSmoothing => {
+                let look_ahead = (self.cfg.dialect.g(8.0))
+                    .is_some_and(|d| d.op == GOp::Pace(PaceOp::LookAhead))
+                    .then_some(self.cfg.machine.motion.corner_tolerance_mm);
+                let now = (self.state.modal.path, self.unit_mm(), look_ahead);
+                if let Some(t) = self.state.smoothing.path_smoothing(w, cmd, now)? {
+                    self.report_smoothing(t);
+                }
+                Ok(())
+            }
             PaceOp::FeedUp => self.feed_step(1, cmd),
             PaceOp::FeedDown => self.feed_step(-1, cmd),
             PaceOp::OverrideCancel => {
@@ -109,10 +131,20 @@ impl Interpreter<'_> {
     /// their data; the other frame codes take none (step 6).
     fn frame_axis_code(&mut self, op: FrameOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
         match op {
-            FrameOp::ScaleOn => self.scale_on(w, cmd),
-            FrameOp::MirrorOn => self.mirror(w, cmd, true),
-            FrameOp::MirrorOff => self.mirror(w, cmd, false),
-            FrameOp::RotateOn => self.rotate_on(w, cmd),
+            FrameOp::ScaleOn => {
+                let next = (self.tables.transforms).scaled((&self.cfg, &self.state), w, cmd)?;
+                self.use_transforms(next, cmd)
+            }
+            FrameOp::MirrorOn | FrameOp::MirrorOff => {
+                let on = matches!(op, FrameOp::MirrorOn);
+                let read = (&self.cfg, &self.state);
+                let next = (self.tables.transforms).mirrored(read, w, (cmd, on))?;
+                self.use_transforms(next, cmd)
+            }
+            FrameOp::RotateOn => {
+                let next = (self.tables.transforms).rotated((&self.cfg, &self.state), w, cmd)?;
+                self.use_transforms(next, cmd)
+            }
             FrameOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
             FrameOp::ToolLengthPlus
             | FrameOp::ToolLengthMinus
@@ -181,7 +213,7 @@ impl Interpreter<'_> {
             }
             (None, Some(x)) => {
                 dwell_not_negative(&x)?;
-                self.seconds(&x)
+                self.units().seconds(&x)
             }
             // Syntec 1.2.5: the dwell is X or P; a bare G04 says nothing.
             (None, None) => {
@@ -217,7 +249,7 @@ impl Interpreter<'_> {
     /// A dwell of P seconds (milliseconds without a point in least-increment
     /// dialects), 0 to 9999.999 s.
     fn dwell_p_seconds(&mut self, p: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
-        let seconds = self.seconds(p);
+        let seconds = self.units().seconds(p);
         if !(0.0..=9_999.999).contains(&seconds) {
             return Err(alarms::value_out_of_range(
                 p.span,
@@ -347,7 +379,7 @@ impl Interpreter<'_> {
                 return Err(alarms::g29_without_g28(cmd, axis.letter));
             }
             let m = self.state.intermediate.get(i);
-            let v = self.axis_value(i, &word);
+            let v = self.units().axis_value(&self.cfg.axis_words, i, &word);
             mid.set(i, m);
             target.set(
                 i,
@@ -383,7 +415,7 @@ impl Interpreter<'_> {
         let mut named = 0;
         for (i, axis) in self.cfg.machine.axes.iter().enumerate() {
             if let Some(word) = w.get(axis.letter) {
-                to.set(i, self.axis_value(i, &word));
+                to.set(i, self.units().axis_value(&self.cfg.axis_words, i, &word));
                 named |= 1 << i;
             }
         }

@@ -28,17 +28,30 @@
 //! starts the mode as `G08 P1` does, with the machine's corner tolerance.
 
 use crate::alarms;
+use crate::block::convert::Units;
 use crate::block::words::Words;
-use crate::dialect::{GOp, Group, PaceOp};
-use crate::events::{Event, PathMode};
-use crate::interpreter::Interpreter;
+use crate::dialect::Group;
+use crate::events::{Event, Loc, PathMode};
+use crate::state::Smoothing;
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
-    /// G05.1 Q1 E / Q0.
-    pub(crate) fn path_smoothing(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+// The smoothing state decides; the interpreter only emits what it returns:
+// each method that can change what the planner was told returns
+// `Some(tolerance_mm)` (0: off) for a `smoothing` event, already noted as
+// reported.
+impl Smoothing {
+    /// G05.1 Q1 E / Q0. `look_ahead` is the machine's corner tolerance
+    /// where the dialect's G05.1 Q1 and G08 P1 are one mode (Fanuc, Haas:
+    /// it has G08 look-ahead), `path` the path mode in force, and
+    /// `mm_per_unit` the program's units.
+    pub fn path_smoothing(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        (path, mm_per_unit, look_ahead): (PathMode, f64, Option<f64>),
+    ) -> Result<Option<f64>, Diagnostic> {
         let Some(q) = w.get(b'Q') else {
-            return Ok(()); // ineffective (rule 1)
+            return Ok(None); // ineffective (rule 1)
         };
         if q.value != 0.0 && q.value != 1.0 {
             return Err(alarms::value_out_of_range(
@@ -49,23 +62,17 @@ impl Interpreter<'_> {
             ));
         }
         if q.value == 0.0 {
-            self.smoothing_off();
-            return Ok(());
+            return Ok(self.off());
         }
         let Some(e) = w.get(b'E') else {
-            if self.has_look_ahead_mode() {
-                // Fanuc's AI contour control: G08 P1's mode.
-                self.look_ahead_on();
-            }
-            return Ok(()); // ineffective (rule 1)
+            // Fanuc's AI contour control: G08 P1's mode; elsewhere
+            // ineffective (rule 1).
+            return Ok(look_ahead.and_then(|tol| self.look_ahead_on(tol)));
         };
-        if matches!(
-            self.state.modal.path,
-            PathMode::ExactStop | PathMode::Tapping
-        ) {
+        if matches!(path, PathMode::ExactStop | PathMode::Tapping) {
             return Err(alarms::smoothing_in_exact_stop(cmd));
         }
-        let tol = e.value * self.unit_mm();
+        let tol = e.value * mm_per_unit;
         if !(tol.is_finite() && tol > 0.0 && tol <= 10.0) {
             return Err(alarms::value_out_of_range(
                 e.span,
@@ -74,75 +81,113 @@ impl Interpreter<'_> {
                 "G05.1 E is the largest path error, more than 0 and at most 10 mm",
             ));
         }
-        self.state.smoothing.tolerance_mm = tol;
-        Ok(())
+        self.tolerance_mm = tol;
+        Ok(None)
     }
 
-    /// Whether this dialect's G05.1 Q1 and G08 P1 are one mode (Fanuc,
-    /// Haas): it has G08 look-ahead.
-    fn has_look_ahead_mode(&self) -> bool {
-        self.cfg
-            .dialect
-            .g(8.0)
-            .is_some_and(|d| d.op == GOp::Pace(PaceOp::LookAhead))
+    /// Fanuc G08 P1 / P0: AI look-ahead control. It reads blocks ahead and
+    /// lowers the feed before corners by the allowed acceleration, keeping
+    /// to the path: a `smoothing` event for the planner, on with the
+    /// machine's own corner tolerance `corner_mm`
+    /// (`motion.corner_tolerance_mm`, no path error of its own, unlike
+    /// G05.1's E), or off. It is the mode G05.1 Q1 starts too: G05.1 Q0
+    /// ends it and G08 P0 ends G05.1's.
+    pub fn look_ahead(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        corner_mm: f64,
+    ) -> Result<Option<f64>, Diagnostic> {
+        let p = w
+            .get(b'P')
+            .ok_or_else(|| alarms::needs_word(cmd, "G08", "P (1 on, 0 off)"))?;
+        match p.value {
+            1.0 => Ok(self.look_ahead_on(corner_mm)),
+            0.0 => Ok(self.off()),
+            _ => Err(alarms::value_out_of_range(
+                p.span,
+                b'P',
+                p.value,
+                "G08 P is 1 (look-ahead on) or 0 (off)",
+            )),
+        }
     }
 
     /// G08 P1, Fanuc's G05.1 Q1 without E: smoothing on with the
     /// machine's corner tolerance, reported at once.
-    pub(crate) fn look_ahead_on(&mut self) {
-        let tol = self.cfg.machine.motion.corner_tolerance_mm;
-        self.state.smoothing.tolerance_mm = tol;
-        self.state.smoothing.skip_next = false;
-        if self.state.smoothing.reported_mm != tol {
-            self.report_smoothing(tol);
-        }
+    fn look_ahead_on(&mut self, tol: f64) -> Option<f64> {
+        self.tolerance_mm = tol;
+        self.skip_next = false;
+        self.report(tol)
     }
 
     /// G05.1 Q0, G08 P0: the mode ends, whichever code started it; `off`
     /// when the planner was last told `on`.
-    pub(crate) fn smoothing_off(&mut self) {
-        self.state.smoothing.tolerance_mm = 0.0;
-        self.state.smoothing.skip_next = false;
-        if self.state.smoothing.reported_mm > 0.0 {
-            self.report_smoothing(0.0);
+    fn off(&mut self) -> Option<f64> {
+        self.tolerance_mm = 0.0;
+        self.skip_next = false;
+        if self.reported_mm > 0.0 {
+            self.report(0.0)
+        } else {
+            None
         }
     }
 
     /// Step 6: a tool length or work system code exempts the next G01.
-    pub(crate) fn smoothing_frame_change(&mut self, w: &Words<'_>) {
-        if self.state.smoothing.tolerance_mm > 0.0
+    pub fn frame_change(&mut self, w: &Words<'_>) {
+        if self.tolerance_mm > 0.0
             && (w.group(Group::ToolLength).is_some() || w.group(Group::Wcs).is_some())
         {
-            self.state.smoothing.skip_next = true;
+            self.skip_next = true;
         }
     }
 
-    /// Before a G01: what smoothing it gets, reported when it changes.
+    /// Before a G01 under the path mode `path`: what smoothing it gets,
+    /// reported when it changes.
     #[inline]
-    pub(crate) fn smoothing_before_linear(&mut self) {
-        let s = self.state.smoothing;
-        let suspended = matches!(
-            self.state.modal.path,
-            PathMode::ExactStop | PathMode::Tapping
-        );
-        let now = if s.tolerance_mm > 0.0 && !suspended && !s.skip_next {
-            s.tolerance_mm
+    pub fn before_linear(&mut self, path: PathMode) -> Option<f64> {
+        let suspended = matches!(path, PathMode::ExactStop | PathMode::Tapping);
+        let now = if self.tolerance_mm > 0.0 && !suspended && !self.skip_next {
+            self.tolerance_mm
         } else {
             0.0
         };
-        self.state.smoothing.skip_next = false;
-        if now != s.reported_mm {
-            self.report_smoothing(now);
-        }
+        self.skip_next = false;
+        self.report(now)
     }
 
-    #[inline(never)]
-    fn report_smoothing(&mut self, tolerance_mm: f64) {
-        self.state.smoothing.reported_mm = tolerance_mm;
-        self.emit(|loc| Event::Smoothing {
+    /// Notes `tolerance_mm` as told to the planner, if it was not.
+    #[inline]
+    fn report(&mut self, tolerance_mm: f64) -> Option<f64> {
+        if self.reported_mm == tolerance_mm {
+            return None;
+        }
+        self.reported_mm = tolerance_mm;
+        Some(tolerance_mm)
+    }
+
+    /// The `smoothing` event that tells the planner `tolerance_mm` (0: off).
+    pub fn event(tolerance_mm: f64) -> impl FnOnce(Loc) -> Event {
+        move |loc| Event::Smoothing {
             loc,
             on: tolerance_mm > 0.0,
             tolerance_mm,
-        });
+        }
+    }
+
+    /// Haas G187: P1 rough, P2 medium, P3 finish with a corner tolerance E
+    /// (else the level's: 0.05, 0.02, 0.005 mm); G187 alone returns to the
+    /// machine's own setting (smoothing off). Its `smoothing` event: whether
+    /// it is on, and the tolerance. It leaves G05.1's state alone.
+    pub fn haas_level(w: &Words<'_>, units: Units<'_>) -> (bool, f64) {
+        let level = w.get(b'P').map(|p| p.value);
+        let tolerance_mm = match (w.get(b'E'), level) {
+            (Some(e), _) => units.length_mm(&e),
+            (None, Some(p)) if p >= 3.0 => 0.005,
+            (None, Some(p)) if p >= 2.0 => 0.02,
+            (None, Some(_)) => 0.05,
+            (None, None) => 0.0,
+        };
+        (level.is_some() || w.get(b'E').is_some(), tolerance_mm)
     }
 }

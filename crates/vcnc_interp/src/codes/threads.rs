@@ -182,7 +182,7 @@ impl Interpreter<'_> {
                 }
             }
             if let Some(r) = w.get(b'R') {
-                self.state.lathe.mrc.peck_retract_mm = self.length_mm(&r).abs();
+                self.state.lathe.mrc.peck_retract_mm = self.units().length_mm(&r).abs();
             }
             return Ok(());
         }
@@ -197,8 +197,8 @@ impl Interpreter<'_> {
         // Two-block P, Q, R or one-block I, K, D (FS15 format, Haas).
         let (x_word, z_word) = (either(w, b'P', b'I')?, either(w, b'Q', b'K')?);
         let relief_word = either(w, b'R', b'D')?;
-        let x_amount = x_word.map(|p| self.length_mm(&p).abs());
-        let z_amount = z_word.map(|q| self.length_mm(&q).abs());
+        let x_amount = x_word.map(|p| self.units().length_mm(&p).abs());
+        let z_amount = z_word.map(|q| self.units().length_mm(&q).abs());
         let (peck, step, peck_word, step_word) = if face {
             (z_amount, x_amount, z_word, x_word)
         } else {
@@ -226,7 +226,7 @@ impl Interpreter<'_> {
                 return Err(alarms::zero_amount(span, "the step between positions"));
             }
         };
-        let relief = relief_word.map_or(0.0, |r| self.length_mm(&r).abs());
+        let relief = relief_word.map_or(0.0, |r| self.units().length_mm(&r).abs());
         let retract = self.state.lathe.mrc.peck_retract_mm;
         let count = ((pe - pa).abs() / peck).ceil() * (((se - sa).abs() / step).floor() + 2.0);
         if count > MAX_STEPS as f64 {
@@ -293,7 +293,7 @@ impl Interpreter<'_> {
             Some(f) if f.value > 0.0 => f.value * self.unit_mm(),
             _ => return Err(alarms::thread_without_lead(cmd)),
         };
-        let taper = taper_word.map_or(0.0, |r| self.length_mm(&r));
+        let taper = taper_word.map_or(0.0, |r| self.units().length_mm(&r));
         let (dir_x, dir_z) = ((root - a.0).signum(), (z_end - a.1).signum());
         if (root - a.0).abs() < ZERO_MM || (z_end - a.1).abs() < ZERO_MM {
             return Err(alarms::cycle_parameters(
@@ -345,7 +345,7 @@ impl Interpreter<'_> {
         cmd: Span,
     ) -> Result<f64, Diagnostic> {
         match w.get(letter) {
-            Some(word) if self.length_mm(&word) > 0.0 => Ok(self.length_mm(&word)),
+            Some(word) if self.units().length_mm(&word) > 0.0 => Ok(self.units().length_mm(&word)),
             Some(word) if word.value < 0.0 => Err(alarms::value_out_of_range(
                 word.span, letter, word.value, rule,
             )),
@@ -385,10 +385,10 @@ impl Interpreter<'_> {
             mrc.tool_angle_deg = f64::from(angle);
         }
         if let Some(q) = w.get(b'Q') {
-            self.state.lathe.mrc.min_depth_mm = self.length_mm(&q).abs();
+            self.state.lathe.mrc.min_depth_mm = self.units().length_mm(&q).abs();
         }
         if let Some(r) = w.get(b'R') {
-            self.state.lathe.mrc.allowance_mm = self.length_mm(&r).abs();
+            self.state.lathe.mrc.allowance_mm = self.units().length_mm(&r).abs();
         }
         Ok(())
     }

@@ -88,12 +88,13 @@ impl Interpreter<'_> {
             None => self.state.modal.tool_length,
         };
         if let Some(h) = h {
-            self.state.h_number = self.offset_word(&h)?;
+            self.state.h_number = self.cfg.offset_word(&h, self.state.tool_active)?;
         } else if mode != ToolLength::Off
             && code.is_some()
             && self.cfg.dialect.offset_default == OffsetDefault::ToolInSpindle
         {
-            self.state.h_number = self.tool_in_spindle(code.map_or(w.first, |c| c.span))?;
+            let at = code.map_or(w.first, |c| c.span);
+            self.state.h_number = self.cfg.tool_in_spindle(self.state.tool_active, at)?;
         }
         let sign = match mode {
             ToolLength::Plus => 1.0,
@@ -153,7 +154,7 @@ impl Interpreter<'_> {
             }
         }
         let mut tool = Pos::default();
-        tool.set(z, self.length_mm(&word));
+        tool.set(z, self.units().length_mm(&word));
         self.state.modal.tool_length = ToolLength::Plus;
         self.state.frame.tool = tool;
         self.state.prog = self.state.frame.program_of(self.state.nominal);

@@ -15,36 +15,46 @@
 //! an omitted centre coordinate is the programmed point's. Factors and
 //! angles written without a decimal point are in 0.001 units (`P500` is
 //! 0.5, `R90000` is 90°), as Fanuc reads them by default.
+//!
+//! Each code is a method of the [`Transforms`] in force that returns the
+//! next ones, read from the block with the configuration and the state it
+//! needs; the interpreter puts them in force (`use_transforms`), the one
+//! step that writes the tables and the frame.
 
 use crate::alarms;
+use crate::block::convert::Units;
 use crate::block::words::Words;
+use crate::config::Config;
 use crate::interpreter::Interpreter;
 use crate::motion::frame::{Transform, Transforms, plane_rows};
+use crate::state::State;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Largest scale factor (Fanuc 0i: 999.999 with 0.001 units).
 const MAX_SCALE: f64 = 999.999;
 
-impl Interpreter<'_> {
+impl Transforms {
     /// The X, Y, Z centre words of a transform, program coordinates; an
     /// omitted one is the programmed point's coordinate.
-    fn centre(&self, w: &Words<'_>) -> [f64; 3] {
+    fn centre(cfg: &Config<'_>, s: &State, w: &Words<'_>) -> [f64; 3] {
         let mut c = [0.0; 3];
         for (k, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
-            let Some(i) = self.cfg.machine.axis_of(*letter) else {
+            let Some(i) = cfg.machine.axis_of(*letter) else {
                 continue;
             };
             c[k] = match w.get(*letter) {
-                Some(word) => self.axis_value(i, &word),
-                None => self.state.prog.get(i),
+                Some(word) => {
+                    Units::new(&s.modal, cfg.whole_words).axis_value(&cfg.axis_words, i, &word)
+                }
+                None => s.prog.get(i),
             };
         }
         c
     }
 
     /// A factor word: as written with a point, in 0.001 units without.
-    fn factor(&self, word: &Word) -> Result<f64, Diagnostic> {
-        let k = self.angle_deg(word);
+    fn factor(units: Units<'_>, word: &Word) -> Result<f64, Diagnostic> {
+        let k = units.angle_deg(word);
         if k == 0.0 || k.abs() > MAX_SCALE {
             return Err(alarms::bad_scale_factor(word.span, word.addr.0, k));
         }
@@ -52,16 +62,22 @@ impl Interpreter<'_> {
     }
 
     /// G51: scaling about a centre.
-    pub(crate) fn scale_on(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+    pub fn scaled(
+        &self,
+        (cfg, s): (&Config<'_>, &State),
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<Transforms, Diagnostic> {
+        let units = Units::new(&s.modal, cfg.whole_words);
         let per_axis = [b'I', b'J', b'K'].map(|l| w.get(l));
         let factor = match (w.get(b'P'), per_axis.iter().flatten().next()) {
             (Some(_), Some(ijk)) => return Err(alarms::scale_p_and_ijk(ijk.span)),
-            (Some(p), None) => [self.factor(&p)?; 3],
+            (Some(p), None) => [Transforms::factor(units, &p)?; 3],
             (None, Some(_)) => {
                 let mut f = [1.0; 3];
                 for (k, word) in per_axis.iter().enumerate() {
                     if let Some(word) = word {
-                        f[k] = self.factor(word)?;
+                        f[k] = Transforms::factor(units, word)?;
                     }
                 }
                 f
@@ -76,20 +92,21 @@ impl Interpreter<'_> {
         };
         let t = Transform::Scale {
             factor,
-            centre: self.centre(w),
+            centre: Transforms::centre(cfg, s, w),
         };
-        self.use_transforms(self.tables.transforms.with(t), cmd)
+        Ok(self.with(t))
     }
 
     /// G51.1 (on) and G50.1 (off, for the named axes or all).
-    pub(crate) fn mirror(&mut self, w: &Words<'_>, cmd: Span, on: bool) -> Result<(), Diagnostic> {
-        let centre = self.centre(w);
+    pub fn mirrored(
+        &self,
+        (cfg, s): (&Config<'_>, &State),
+        w: &Words<'_>,
+        (cmd, on): (Span, bool),
+    ) -> Result<Transforms, Diagnostic> {
+        let centre = Transforms::centre(cfg, s, w);
         let named = [b'X', b'Y', b'Z'].map(|l| w.get(l).is_some());
-        let mut about = match self
-            .tables
-            .transforms
-            .like(&Transform::Mirror { about: [None; 3] })
-        {
+        let mut about = match self.like(&Transform::Mirror { about: [None; 3] }) {
             Some(Transform::Mirror { about }) => about,
             _ => [None; 3],
         };
@@ -112,25 +129,28 @@ impl Interpreter<'_> {
         }
         let t = Transform::Mirror { about };
         let next = if about.iter().all(Option::is_none) {
-            self.tables.transforms.without(&t)
+            self.without(&t)
         } else {
-            self.tables.transforms.with(t)
+            self.with(t)
         };
-        self.use_transforms(next, cmd)
+        Ok(next)
     }
 
     /// G68: rotation in the active plane.
-    pub(crate) fn rotate_on(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let plane = self.state.modal.plane;
+    pub fn rotated(
+        &self,
+        (cfg, s): (&Config<'_>, &State),
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<Transforms, Diagnostic> {
+        let plane = s.modal.plane;
         let normal = plane.letters()[2];
         if let Some(word) = w.get(normal) {
             return Err(alarms::word_not_allowed(word.span, normal));
         }
         let (i, j) = plane_rows(plane);
         let letters = [b'X', b'Y', b'Z'];
-        if self.cfg.machine.axis_of(letters[i]).is_none()
-            || self.cfg.machine.axis_of(letters[j]).is_none()
-        {
+        if cfg.machine.axis_of(letters[i]).is_none() || cfg.machine.axis_of(letters[j]).is_none() {
             return Err(alarms::arc_without_center(cmd, plane.as_str()));
         }
         let r = w
@@ -138,12 +158,14 @@ impl Interpreter<'_> {
             .ok_or_else(|| alarms::needs_word(cmd, "G68", "R (the angle of rotation)"))?;
         let t = Transform::Rotate {
             plane,
-            degrees: self.angle_deg(&r),
-            centre: self.centre(w),
+            degrees: Units::new(&s.modal, cfg.whole_words).angle_deg(&r),
+            centre: Transforms::centre(cfg, s, w),
         };
-        self.use_transforms(self.tables.transforms.with(t), cmd)
+        Ok(self.with(t))
     }
+}
 
+impl Interpreter<'_> {
     /// Puts `next` in force. The programmed point stays what it was and the
     /// machine does not move: the next absolute move goes where the new
     /// frame puts its point (Fanuc; Syntec 1.2.20's figure).

@@ -174,7 +174,7 @@ impl Interpreter<'_> {
         SingleCycle {
             x: pick(ix, last.x),
             z: pick(iz, last.z),
-            r: w.get(b'R').map_or(last.r, |r| self.length_mm(&r)),
+            r: w.get(b'R').map_or(last.r, |r| self.units().length_mm(&r)),
         }
     }
 

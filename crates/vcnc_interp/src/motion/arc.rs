@@ -83,10 +83,10 @@ impl Interpreter<'_> {
                 let (Some(i), Some(j)) = (w.get(oa), w.get(ob)) else {
                     return Err(alarms::arc_without_center(cmd, plane.as_str()));
                 };
-                (self.length_mm(&i), self.length_mm(&j))
+                (self.units().length_mm(&i), self.units().length_mm(&j))
             }
             None if has_center => {
-                let off = |l: u8| w.get(l).map_or(0.0, |word| self.length_mm(&word));
+                let off = |l: u8| w.get(l).map_or(0.0, |word| self.units().length_mm(&word));
                 (s.0 + off(oa), s.1 + off(ob))
             }
             None => return Err(alarms::arc_without_center(cmd, plane.as_str())),
@@ -143,7 +143,7 @@ impl Interpreter<'_> {
         let s = (from.get(idx.a), from.get(idx.b));
         let e = (to.get(idx.a), to.get(idx.b));
         self.check_on_circle(s, e, center, cmd)?;
-        let axes = self.plane_axes(plane, cmd)?;
+        let axes = self.cfg.plane_axes(plane, cmd)?;
         let mut c = from;
         c.set(idx.a, center.0);
         c.set(idx.b, center.1);
@@ -186,7 +186,7 @@ impl Interpreter<'_> {
 
     /// Program indices of a plane's axes (E305 if the machine lacks one).
     fn plane_idx(&self, plane: Plane, cmd: Span) -> Result<PlaneIdx, Diagnostic> {
-        let axes = self.plane_axes(plane, cmd)?;
+        let axes = self.cfg.plane_axes(plane, cmd)?;
         Ok(PlaneIdx {
             a: axes.a,
             b: axes.b,
@@ -198,7 +198,7 @@ impl Interpreter<'_> {
     fn radius_word(&self, w: &Words<'_>) -> Option<Radius> {
         if let Some(r) = w.get(b'R') {
             return Some(Radius {
-                mm: self.length_mm(&r),
+                mm: self.units().length_mm(&r),
                 span: r.span,
                 line_if_short: self.cfg.dialect.long_chord == LongChord::Line,
             });
@@ -208,7 +208,7 @@ impl Interpreter<'_> {
         let line_if_short = self.cfg.dialect.long_chord == LongChord::Line;
         if let Some(cr) = w.get_ext(Addr::CR) {
             return Some(Radius {
-                mm: self.length_mm(&cr),
+                mm: self.units().length_mm(&cr),
                 span: cr.span,
                 line_if_short,
             });
@@ -218,7 +218,7 @@ impl Interpreter<'_> {
             return None;
         }
         w.get(b'D').map(|d| Radius {
-            mm: self.length_mm(&d) / 2.0,
+            mm: self.units().length_mm(&d) / 2.0,
             span: d.span,
             line_if_short,
         })
@@ -243,7 +243,7 @@ impl Interpreter<'_> {
         offset.set(idx.a, center.0 - s.0);
         offset.set(idx.b, center.1 - s.1);
         let feed = if self.state.modal.inverse_time {
-            let axes = self.plane_axes(plane, cmd)?;
+            let axes = self.cfg.plane_axes(plane, cmd)?;
             let mut c = from;
             c.set(idx.a, center.0);
             c.set(idx.b, center.1);
@@ -295,7 +295,7 @@ impl Interpreter<'_> {
             let (Some(word), Some(i)) = (w.get_ext(addr), self.cfg.machine.axis_of(letter)) else {
                 continue;
             };
-            let v = self.axis_value(i, &word);
+            let v = self.units().axis_value(&self.cfg.axis_words, i, &word);
             mid.set(
                 i,
                 if self.state.modal.incremental {

@@ -29,11 +29,15 @@ pub(crate) mod travel;
 
 use crate::alarms;
 use crate::block::words::Words;
+use crate::config::Config;
 use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
+use crate::events::Loc;
 use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Interpreter;
+use crate::state::State;
 use frame::ArcMap;
+use stage::Stage;
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -157,8 +161,8 @@ impl Interpreter<'_> {
             }
         }
         // 1 frame
-        let (prog_to, to) = self.machine_target(mv.to);
-        let kind = self.machine_kind(&mv)?;
+        let (prog_to, to) = self.state.machine_target(mv.to);
+        let kind = self.state.machine_kind(&self.cfg, &mv)?;
         // 2 compensation works from the uncompensated point, the rest
         // from where the tool is.
         let engaged = self.stage.comp.engaged();
@@ -179,15 +183,18 @@ impl Interpreter<'_> {
         // machine's limits leaves the state as the block found it (which a
         // plain move block relies on, see `Interpreter::block`).
         if self.cfg.travel_limited {
-            self.travel_alarm(&mm, mv.cmd, Some(w))?;
+            self.cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
         }
-        self.accept_move(prog_to, mm.to, mv.to);
+        self.stage
+            .accept_move(&mut self.state, &self.flow.loc, (prog_to, mm.to), mv.to);
         // 4 events
         if self.cfg.markers {
-            self.mark_axes(&mv, mm.to, w);
+            self.stage
+                .mark_axes(&self.cfg, &self.flow.loc, (&mv, mm.to), w);
         }
         let loc = self.flow.loc.clone();
-        self.emit_released(&mm, loc);
+        self.stage
+            .emit_released(&self.cfg, &mut self.state, &mm, loc);
         Ok(())
     }
 
@@ -200,10 +207,12 @@ impl Interpreter<'_> {
         mv: &Move,
         w: &Words<'_>,
     ) -> Result<(), Diagnostic> {
-        self.accept_move(prog_to, mm.to, mv.to);
+        self.stage
+            .accept_move(&mut self.state, &self.flow.loc, (prog_to, mm.to), mv.to);
         if !matches!(mv.to, Target::Machine(_)) {
             if self.cfg.markers {
-                self.mark_axes(mv, mm.to, w);
+                self.stage
+                    .mark_axes(&self.cfg, &self.flow.loc, (mv, mm.to), w);
             }
             return self.compensate(mm, mv.cmd);
         }
@@ -222,58 +231,10 @@ impl Interpreter<'_> {
             cmd: mv.cmd,
         };
         if self.cfg.markers {
-            self.mark_axes(mv, mm.to, w);
+            self.stage
+                .mark_axes(&self.cfg, &self.flow.loc, (mv, mm.to), w);
         }
         self.release(mm, &at, Some(w))
-    }
-
-    /// The markers a consumer that writes program coordinates needs (the
-    /// flattened program; with [`Interpreter::with_program_markers`]),
-    /// before the move's events: `machine_move` before
-    /// a move to a machine point, with the axes the block names (every axis
-    /// when it names none: a bare G28); `placed` when the block names axes
-    /// that no program-coordinate move has placed since power-on or since
-    /// a machine move. Rare, so a plain move pays one test. Kept outside
-    /// `State`: an alarm ends the run, so nothing needs undoing.
-    #[cold]
-    #[inline(never)]
-    fn mark_axes(&mut self, mv: &Move, to: Pos, w: &Words<'_>) {
-        let machine = matches!(mv.to, Target::Machine(_));
-        if self.stage.unplaced == 0 && !machine {
-            return;
-        }
-        let bits = |named: bool| {
-            self.cfg
-                .axis_words
-                .iter()
-                .enumerate()
-                .filter(|(_, a)| !named || w.any(a.mask))
-                .fold(0u8, |m, (i, _)| m | 1u8 << i)
-        };
-        let named = bits(true);
-        if machine {
-            let axes = if named == 0 { bits(false) } else { named };
-            self.stage.unplaced |= axes;
-            self.emit(|loc| Event::MachineMove { loc, to, axes });
-        } else if named & self.stage.unplaced != 0 {
-            let axes = named & self.stage.unplaced;
-            self.stage.unplaced &= !named;
-            self.emit(|loc| Event::Placed { loc, axes });
-        }
-    }
-
-    /// Stage 1's bookkeeping once a move is accepted: the programmed and
-    /// nominal points move to its end, and the frame it uses is reported
-    /// before it (also when it waits in the compensation stage).
-    #[inline]
-    fn accept_move(&mut self, prog_to: Pos, nominal: Pos, to: Target) {
-        self.stage.moves += 1;
-        self.state.prog = prog_to;
-        self.state.nominal = nominal;
-        if !matches!(to, Target::Relative(_)) {
-            self.state.detached = false;
-        }
-        self.report_frame();
     }
 
     /// A move with the spindle stopped: a thread or a feed per revolution
@@ -305,29 +266,12 @@ impl Interpreter<'_> {
         at: &comp::Origin,
         w: Option<&Words<'_>>,
     ) -> Result<(), Diagnostic> {
-        self.travel_alarm(mm, at.cmd, w).map_err(|d| match at.line {
-            Some(line) => self.locate(d, at.src, &line),
-            None => d,
-        })
-    }
-
-    /// Stage 3 for a move of the current block: the alarm points at the
-    /// axis word of `w`, else at `cmd`.
-    fn travel_alarm(
-        &self,
-        mm: &MachineMove,
-        cmd: Span,
-        w: Option<&Words<'_>>,
-    ) -> Result<(), Diagnostic> {
-        let arc = match mm.kind {
-            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, cmd)?),
-            _ => None,
-        };
-        if let Err(out) = travel::check(self.cfg.machine, mm, arc.as_ref()) {
-            let span = w.and_then(|w| self.axis_span(w, out.axis)).unwrap_or(cmd);
-            return Err(out.alarm(self.cfg.machine, span));
-        }
-        Ok(())
+        self.cfg
+            .travel_alarm(mm, at.cmd, w)
+            .map_err(|d| match at.line {
+                Some(line) => self.locate(d, at.src, &line),
+                None => d,
+            })
     }
 
     /// Stages 3 and 4: the travel check and the events of a machine move,
@@ -351,44 +295,31 @@ impl Interpreter<'_> {
             self.check_travel(&mm, at, w)?;
         }
         self.report_frame();
-        self.emit_released(&mm, at.loc.clone());
+        self.stage
+            .emit_released(&self.cfg, &mut self.state, &mm, at.loc.clone());
         Ok(())
     }
 
-    /// Stage 4 of a checked move: its events, and the tool at its end
-    /// (or where the skip signal stopped it).
+    /// Emits a `frame` event if the frame changed since the last one.
     #[inline]
-    fn emit_released(&mut self, mm: &MachineMove, loc: crate::events::Loc) {
-        match self.emit_motion(mm, loc) {
-            None => self.state.pos = mm.to,
-            Some(stop) => {
-                // The skip signal stopped the move short.
-                self.state.pos = stop;
-                self.state.nominal = stop;
-                self.state.prog = self.state.frame.program_of(stop);
-                self.state.detached = false;
-            }
-        }
+    pub(crate) fn report_frame(&mut self) {
+        self.stage.report_frame(&mut self.state, &self.flow.loc);
     }
+}
 
-    /// The word that positioned machine axis `i` in this block, if any.
-    fn axis_span(&self, w: &Words<'_>, i: usize) -> Option<Span> {
-        let a = self.cfg.axis_words.get(i)?;
-        w.get(a.letter)
-            .or_else(|| a.inc.and_then(|l| w.get(l)))
-            .map(|word| word.span)
-    }
-
+// Stage 1, the frame: where a move goes in machine coordinates, read from
+// the state's frame and points alone.
+impl State {
     /// Stage 1: the programmed end point of a move to `to`, and its end in
     /// machine coordinates.
     #[inline(always)]
     fn machine_target(&self, to: Target) -> (Pos, Pos) {
-        let frame = &self.state.frame;
+        let frame = &self.frame;
         match to {
             Target::Program(p) => (p, frame.machine_of(p)),
             Target::Relative(delta) => (
-                self.state.prog.plus(delta),
-                self.state.nominal.plus(frame.vector_to_machine(delta)),
+                self.prog.plus(delta),
+                self.nominal.plus(frame.vector_to_machine(delta)),
             ),
             Target::Machine(m) => (frame.program_of(m), m),
         }
@@ -397,7 +328,7 @@ impl Interpreter<'_> {
     /// Stage 1: the path of a move in machine coordinates (an arc's centre
     /// from the uncompensated start, its direction under mirror).
     #[inline(always)]
-    fn machine_kind(&self, mv: &Move) -> Result<MachineKind, Diagnostic> {
+    fn machine_kind(&self, cfg: &Config<'_>, mv: &Move) -> Result<MachineKind, Diagnostic> {
         Ok(match mv.kind {
             MoveKind::Rapid => MachineKind::Rapid(true),
             MoveKind::StraightRapid => MachineKind::Rapid(false),
@@ -409,7 +340,7 @@ impl Interpreter<'_> {
                 plane,
                 cw,
                 feed,
-            } => self.machine_arc(offset, plane, cw, feed, mv.cmd)?,
+            } => self.machine_arc(cfg, offset, plane, cw, feed, mv.cmd)?,
         })
     }
 
@@ -417,20 +348,21 @@ impl Interpreter<'_> {
     #[inline(never)]
     fn machine_arc(
         &self,
+        cfg: &Config<'_>,
         offset: Pos,
         plane: Plane,
         cw: bool,
         feed: Feed,
         cmd: Span,
     ) -> Result<MachineKind, Diagnostic> {
-        let frame = &self.state.frame;
+        let frame = &self.frame;
         let reversed = match frame.arc_map(plane) {
             ArcMap::Similar { reversed } => reversed,
             ArcMap::Uneven => return Err(alarms::arc_uneven_scale(cmd)),
             ArcMap::Tilted => return Err(alarms::arc_tilted(cmd)),
         };
-        let axes = self.plane_axes(plane, cmd)?;
-        let c = self.state.nominal.plus(frame.vector_to_machine(offset));
+        let axes = cfg.plane_axes(plane, cmd)?;
+        let c = self.nominal.plus(frame.vector_to_machine(offset));
         Ok(MachineKind::Arc {
             center: (c.get(axes.a), c.get(axes.b)),
             plane,
@@ -442,45 +374,134 @@ impl Interpreter<'_> {
             feed,
         })
     }
+}
 
-    /// The machine axes of a plane (E305 when the machine lacks one).
-    pub(crate) fn plane_axes(&self, plane: Plane, cmd: Span) -> Result<PlaneAxes, Diagnostic> {
-        let [la, lb, ln] = plane.letters();
-        match (self.cfg.machine.axis_of(la), self.cfg.machine.axis_of(lb)) {
-            (Some(a), Some(b)) => Ok(PlaneAxes {
-                a,
-                b,
-                n: self.cfg.machine.axis_of(ln),
-            }),
-            _ => Err(alarms::arc_without_center(cmd, plane.as_str())),
+// Stages 1 (its bookkeeping) and 4, the events: the stage's own data
+// (its events, the move count, the markers) written from the state and
+// the configuration it is handed.
+impl Stage {
+    /// Queues an event of the block: behind a move cutter compensation
+    /// still holds, else with the block's events.
+    #[inline]
+    pub fn emit(&mut self, e: Event) {
+        if self.comp.holding() {
+            self.comp.queue_event(e);
+        } else {
+            self.pending.push(e);
+        }
+    }
+
+    /// The markers a consumer that writes program coordinates needs (the
+    /// flattened program; with [`Interpreter::with_program_markers`]),
+    /// before the move's events: `machine_move` before
+    /// a move to a machine point, with the axes the block names (every axis
+    /// when it names none: a bare G28); `placed` when the block names axes
+    /// that no program-coordinate move has placed since power-on or since
+    /// a machine move. Rare, so a plain move pays one test. Kept outside
+    /// `State`: an alarm ends the run, so nothing needs undoing.
+    #[cold]
+    #[inline(never)]
+    fn mark_axes(&mut self, cfg: &Config<'_>, loc: &Loc, (mv, to): (&Move, Pos), w: &Words<'_>) {
+        let machine = matches!(mv.to, Target::Machine(_));
+        if self.unplaced == 0 && !machine {
+            return;
+        }
+        let bits = |named: bool| {
+            cfg.axis_words
+                .iter()
+                .enumerate()
+                .filter(|(_, a)| !named || w.any(a.mask))
+                .fold(0u8, |m, (i, _)| m | 1u8 << i)
+        };
+        let named = bits(true);
+        if machine {
+            let axes = if named == 0 { bits(false) } else { named };
+            self.unplaced |= axes;
+            self.emit(Event::MachineMove {
+                loc: loc.clone(),
+                to,
+                axes,
+            });
+        } else if named & self.unplaced != 0 {
+            let axes = named & self.unplaced;
+            self.unplaced &= !named;
+            self.emit(Event::Placed {
+                loc: loc.clone(),
+                axes,
+            });
+        }
+    }
+
+    /// Stage 1's bookkeeping once a move is accepted: the programmed and
+    /// nominal points move to its end, and the frame it uses is reported
+    /// before it (also when it waits in the compensation stage).
+    #[inline]
+    fn accept_move(
+        &mut self,
+        s: &mut State,
+        loc: &Loc,
+        (prog_to, nominal): (Pos, Pos),
+        to: Target,
+    ) {
+        self.moves += 1;
+        s.prog = prog_to;
+        s.nominal = nominal;
+        if !matches!(to, Target::Relative(_)) {
+            s.detached = false;
+        }
+        self.report_frame(s, loc);
+    }
+
+    /// Stage 4 of a checked move: its events, and the tool at its end
+    /// (or where the skip signal stopped it).
+    #[inline(always)]
+    fn emit_released(&mut self, cfg: &Config<'_>, s: &mut State, mm: &MachineMove, loc: Loc) {
+        match self.emit_motion(cfg, &mut s.skip_pos, mm, loc) {
+            None => s.pos = mm.to,
+            Some(stop) => {
+                // The skip signal stopped the move short.
+                s.pos = stop;
+                s.nominal = stop;
+                s.prog = s.frame.program_of(stop);
+                s.detached = false;
+            }
         }
     }
 
     /// Emits a `frame` event if the frame changed since the last one.
     #[inline]
-    pub(crate) fn report_frame(&mut self) {
-        if self.state.frame_dirty {
-            self.report_changed_frame();
+    pub fn report_frame(&mut self, s: &mut State, loc: &Loc) {
+        if s.frame_dirty {
+            self.report_changed_frame(s, loc);
         }
     }
 
     #[cold]
-    fn report_changed_frame(&mut self) {
-        self.state.frame_dirty = false;
-        let frame = self.state.frame_info();
+    fn report_changed_frame(&mut self, s: &mut State, loc: &Loc) {
+        s.frame_dirty = false;
+        let frame = s.frame_info();
         let print = crate::state::fingerprint(&frame);
-        if print == self.state.reported {
+        if print == s.reported {
             return;
         }
-        self.state.reported = print;
-        self.emit(|loc| Event::Frame { loc, frame });
+        s.reported = print;
+        self.emit(Event::Frame {
+            loc: loc.clone(),
+            frame,
+        });
     }
 
     /// Stage 4: the events of a machine move from the block at `loc`;
     /// returns where it stopped if that is not its end (a G31 whose skip
     /// signal fired).
     #[inline(always)]
-    fn emit_motion(&mut self, m: &MachineMove, loc: crate::events::Loc) -> Option<Pos> {
+    fn emit_motion(
+        &mut self,
+        cfg: &Config<'_>,
+        skip_pos: &mut Option<Pos>,
+        m: &MachineMove,
+        loc: Loc,
+    ) -> Option<Pos> {
         if matches!(m.kind, MachineKind::Rapid(_) | MachineKind::Feed(_))
             && same_point(m.from, m.to)
         {
@@ -491,16 +512,16 @@ impl Interpreter<'_> {
             return None;
         }
         let (exact_stop, to) = (m.exact_stop, m.to);
-        let pending = &mut self.stage.pending;
+        let pending = &mut self.pending;
         match m.kind {
             MachineKind::Rapid(may_dog_leg) => {
-                let legs = match self.cfg.dialect.rapid {
+                let legs = match cfg.dialect.rapid {
                     _ if !may_dog_leg => None,
-                    RapidPath::ByParameter if self.cfg.machine.params.g00_mode == 1 => {
-                        Some(line::dog_leg(self.cfg.machine, m.from, m.to))
+                    RapidPath::ByParameter if cfg.machine.params.g00_mode == 1 => {
+                        Some(line::dog_leg(cfg.machine, m.from, m.to))
                     }
                     RapidPath::ByParameter => None,
-                    RapidPath::ZPriority => Some(line::z_priority(self.cfg.machine, m.from, m.to)),
+                    RapidPath::ZPriority => Some(line::z_priority(cfg.machine, m.from, m.to)),
                 };
                 if let Some((corners, count)) = legs {
                     for &to in &corners[..count] {
@@ -536,9 +557,7 @@ impl Interpreter<'_> {
             } => {
                 let [la, lb, _] = plane.letters();
                 let mut center = m.from;
-                if let (Some(a), Some(b)) =
-                    (self.cfg.machine.axis_of(la), self.cfg.machine.axis_of(lb))
-                {
+                if let (Some(a), Some(b)) = (cfg.machine.axis_of(la), cfg.machine.axis_of(lb)) {
                     center.set(a, ca);
                     center.set(b, cb);
                 }
@@ -558,7 +577,7 @@ impl Interpreter<'_> {
                 None
             }
             MachineKind::Skip(feed) => {
-                let hit = line::skip_fraction(self.cfg.machine, m.from, m.to);
+                let hit = line::skip_fraction(cfg.machine, m.from, m.to);
                 let to = hit.map_or(m.to, |t| line::lerp(m.from, m.to, t));
                 let triggered = hit.is_some();
                 push_built(pending, || Event::Skip {
@@ -567,7 +586,7 @@ impl Interpreter<'_> {
                     feed,
                     triggered,
                 });
-                self.state.skip_pos = Some(to);
+                *skip_pos = Some(to);
                 hit.map(|_| to)
             }
         }

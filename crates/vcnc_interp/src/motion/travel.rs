@@ -9,8 +9,10 @@
 //! A limit is passed only by more than `ZERO_MM`, the rounding noise of
 //! the frame's sums.
 
-use super::MachineMove;
+use super::{MachineKind, MachineMove};
 use crate::alarms;
+use crate::block::words::Words;
+use crate::config::Config;
 use crate::events::Pos;
 use crate::machine::Machine;
 use vcnc_core::geometry::{ArcPath, ZERO_MM};
@@ -33,6 +35,35 @@ impl OverTravel {
             .get(self.axis)
             .map_or((b'?', 0.0, 0.0), |a| (a.letter, a.min_mm, a.max_mm));
         alarms::over_travel(span, letter, self.value, min, max)
+    }
+}
+
+impl Config<'_> {
+    /// The word that positioned machine axis `i` in this block, if any.
+    fn axis_span(&self, w: &Words<'_>, i: usize) -> Option<Span> {
+        let a = self.axis_words.get(i)?;
+        w.get(a.letter)
+            .or_else(|| a.inc.and_then(|l| w.get(l)))
+            .map(|word| word.span)
+    }
+
+    /// Stage 3 for a move of the current block: the alarm points at the
+    /// axis word of `w`, else at `cmd`.
+    pub fn travel_alarm(
+        &self,
+        mm: &MachineMove,
+        cmd: Span,
+        w: Option<&Words<'_>>,
+    ) -> Result<(), Diagnostic> {
+        let arc = match mm.kind {
+            MachineKind::Arc { plane, .. } => mm.arc_path(self.plane_axes(plane, cmd)?),
+            _ => None,
+        };
+        if let Err(out) = check(self.machine, mm, arc.as_ref()) {
+            let span = w.and_then(|w| self.axis_span(w, out.axis)).unwrap_or(cmd);
+            return Err(out.alarm(self.machine, span));
+        }
+        Ok(())
     }
 }
 

@@ -79,7 +79,7 @@ impl Interpreter<'_> {
 
     /// Stage 2: a move while compensation is engaged.
     pub(crate) fn compensate(&mut self, mm: MachineMove, cmd: Span) -> Result<(), Diagnostic> {
-        let axes = self.plane_axes(self.stage.comp.plane, cmd)?;
+        let axes = self.cfg.plane_axes(self.stage.comp.plane, cmd)?;
         let at = self.origin(cmd);
         if self.stage.comp.mode == Mode::Starting
             && self.cfg.dialect.comp_start == CompStart::LineOrArc
@@ -294,7 +294,7 @@ impl Interpreter<'_> {
         mm: &MachineMove,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let axes = self.plane_axes(self.stage.comp.plane, cmd)?;
+        let axes = self.cfg.plane_axes(self.stage.comp.plane, cmd)?;
         let mut plain = mm.to;
         for i in [axes.a, axes.b] {
             if (mm.to.get(i) - self.state.pos.get(i)).abs() < ZERO_MM {
@@ -343,7 +343,7 @@ impl Interpreter<'_> {
         end: P2,
         extension: Option<P2>,
     ) -> Result<(), Diagnostic> {
-        let axes = self.plane_axes(self.stage.comp.plane, held.at.cmd)?;
+        let axes = self.cfg.plane_axes(self.stage.comp.plane, held.at.cmd)?;
         if !held.startup && !held.seg.keeps_direction(held.start, end) {
             return Err(self.fault(Fault::NoIntersection, &held.at));
         }
