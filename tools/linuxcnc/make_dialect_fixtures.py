@@ -10,7 +10,8 @@ power-on, G74/G84 tapping, G59.1-G59.3 and G61.1 — so no Fanuc spelling
 table TOOLS (in inches, D a diameter: rs274_events.tool_table_text) and a
 fresh parameter file; its canonical calls become vcnc events
 (rs274_events.py) in NAME.expected.jsonl; machine.toml is the default mill
-with TOOLS.
+with TOOLS. Moves under cutter compensation get their own block's line
+(comp_lines: rs274 prints a held move with the next block's number).
 
 Usage: make_dialect_fixtures.py [--rs274 PATH]
 """
@@ -48,6 +49,44 @@ def cycle_lines(ngc):
     return out
 
 
+MOVES = ("rapid", "feed", "arc")
+
+
+def comp_lines(ngc, events):
+    """Give compensated moves their own block's line. Under G41/G42 rs274
+    holds a move until it reads the next one, so its canonical call prints
+    with the number of the block that released it: a move printed on line L
+    belongs to the block with motion before L, but for the last move of the
+    G40 block, which is that block's own."""
+    motion, comp, region = [], False, {}
+    for i, text in enumerate(ngc, 1):
+        code = rv.strip_comments(text).upper()
+        cancel = re.search(r"G\s*40(?![\d.])", code)
+        if re.search(r"G\s*4[12](?![\d])", code):
+            comp = True
+        if comp:
+            region[i] = "cancel" if cancel else "on"
+        if cancel:
+            comp = False
+        if re.search(r"[XYZ@^]", code):
+            motion.append(i)
+
+    def before(line):
+        return max(m for m in motion if m < line)
+
+    out = []
+    for k, e in enumerate(events):
+        line = e.get("line")
+        kind = region.get(line)
+        if e["type"] in MOVES and kind:
+            last = not any(f["type"] in MOVES and f.get("line") == line
+                           for f in events[k + 1:])
+            if not (kind == "cancel" and last):
+                e = dict(e, line=before(line))
+        out.append(e)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rs274", default=shutil.which("rs274"))
@@ -66,6 +105,7 @@ def main():
         events = rv.convert(out, name, end, cycle_lines(ngc), m5, inch=True,
                             end_code=rv.end_code(ngc, end),
                             home_lines=rv.home_lines(ngc))
+        events = comp_lines(ngc, events)
         rv.write_jsonl(os.path.join(FOLDER, name + ".expected.jsonl"), events)
         n += len(events)
     with open(os.path.join(FOLDER, "machine.toml"), "w") as f:

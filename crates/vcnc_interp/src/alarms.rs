@@ -782,6 +782,21 @@ pub fn comp_arc_too_small(span: Span) -> Diagnostic {
     )
 }
 
+/// E318: an entry move (the first move after G41/G42 where compensation
+/// may start on an arc: rs274's) not longer than the tool radius in the
+/// plane, or an entry arc whose start is within the tool radius of its end.
+#[cold]
+pub fn comp_entry_short(span: Span, r: f64) -> Diagnostic {
+    d(
+        Code::E318,
+        span,
+        format!(
+            "cutter compensation cannot start on this move: it does not go farther than the tool radius ({r:.4} mm) in the plane"
+        ),
+        "make the first move after G41/G42 a move in the plane longer than the tool radius",
+    )
+}
+
 /// E318: a compensated path that would cut into the part.
 #[cold]
 pub fn comp_overcut(span: Span) -> Diagnostic {

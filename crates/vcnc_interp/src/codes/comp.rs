@@ -7,7 +7,8 @@
 //! `G10 L12` of that D changes nothing until D is given again); D0 is a
 //! radius of 0; a negative value puts the tool on the other side (the
 //! manual's direction table). G41/G42/G40 in a block with G02/G03 alarm
-//! (E317, "only with G00 and G01").
+//! (E317, "only with G00 and G01"), but for G41/G42 in a dialect that
+//! starts compensation on an entry arc (`CompStart::LineOrArc`: rs274).
 
 use crate::alarms;
 use crate::block::words::Words;
@@ -28,8 +29,14 @@ impl Interpreter<'_> {
                 GOp::Motion(MotionOp::ArcCw) | GOp::Motion(MotionOp::ArcCcw)
             )
         });
-        if let (Some(_), Some(m)) = (code, arc) {
-            return Err(alarms::comp_arc_startup(m.span));
+        if let (Some(c), Some(m)) = (code, arc) {
+            // G41/G42 on an arc is an entry arc where the dialect has them;
+            // G40 on an arc is never run.
+            let entry = self.cfg.dialect.comp_start == crate::dialect::CompStart::LineOrArc
+                && c.def.op != GOp::Comp(CompOp::Cancel);
+            if !entry {
+                return Err(alarms::comp_arc_startup(m.span));
+            }
         }
         if let Some(c) = code {
             self.check_comp_when_on(c.def.op, c.span)?;

@@ -289,6 +289,7 @@ pub(super) fn fanuc_lathe_in(system: GcodeSystem) -> Dialect {
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        comp_start: super::CompStart::Line,
         gcode_systems: true,
         polar_words: false,
         macros: super::MacroRules::FANUC,
@@ -323,6 +324,7 @@ pub(super) fn haas_lathe() -> Dialect {
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        comp_start: super::CompStart::Line,
         // Haas lathes run system A only.
         gcode_systems: false,
         polar_words: false,

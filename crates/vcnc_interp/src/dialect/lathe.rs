@@ -147,6 +147,7 @@ pub(super) fn lathe() -> Dialect {
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
     }

@@ -281,6 +281,8 @@ pub(super) fn linuxcnc() -> Dialect {
         // P, the arc's number of turns, also in a modal G2/G3 block.
         arc_letters: bit(b'P'),
         comp_when_on: super::CompWhenOn::Alarm,
+        // rs274 starts compensation on an arc too ("entry arc").
+        comp_start: super::CompStart::LineOrArc,
         lex: LINUXCNC_LEX,
         polar_words: true,
         ..grbl()

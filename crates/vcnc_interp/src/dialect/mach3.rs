@@ -142,6 +142,7 @@ pub(super) fn mach3() -> Dialect {
         // Mach3 programs write a bare `G53 G90 G40` in their headers.
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        comp_start: super::CompStart::Line,
         polar_words: false,
         // Mach3Mill has no G7/G8 (diameter mode is Mach3 Turn's).
         diameter: super::Diameter {

@@ -379,6 +379,7 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         g53_incremental: super::G53Incremental::Ignored,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
     }
@@ -400,6 +401,7 @@ pub(super) fn syntec() -> Dialect {
         g53_incremental: super::G53Incremental::Alarm,
         g53_without_axes: super::G53WithoutAxes::MovesNothing,
         comp_when_on: super::CompWhenOn::Changes,
+        comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
         ..mill("syntec", SYNTEC_UNITS)

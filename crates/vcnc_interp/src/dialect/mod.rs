@@ -476,6 +476,19 @@ pub enum CompWhenOn {
     Alarm,
 }
 
+/// What move may start cutter compensation (G41/G42).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CompStart {
+    /// Only a straight move: an arc there is E317 (Fanuc 0i type A,
+    /// Syntec: "G41/G42 ... only with G00 and G01").
+    Line,
+    /// A straight move or an entry arc (rs274): the arc ends r from its
+    /// programmed end along the radius, about a centre on the line through
+    /// the programmed centre and end, as far from the start as from the
+    /// new end (`motion/comp/pass.rs`).
+    LineOrArc,
+}
+
 /// The feed mode at power-on (group 05).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FeedAtPowerOn {
@@ -570,6 +583,8 @@ pub struct Dialect {
     pub g53_without_axes: G53WithoutAxes,
     /// G41/G42 (G41.1/G42.1) while cutter compensation is already on.
     pub comp_when_on: CompWhenOn,
+    /// What move may start cutter compensation.
+    pub comp_start: CompStart,
     /// Whether the code numbers follow the machine's `gcode_system`
     /// (Fanuc 0i-TF's systems A, B and C, other tables of this profile);
     /// a dialect without it has one numbering.

@@ -972,3 +972,110 @@ fn roughing_cycles_refuse_what_rs274_refuses() {
         "{out:?}"
     );
 }
+
+/// Cutter compensation may start on an arc (rs274's entry arc, probed with
+/// rs274 -g, tool radius 2 mm: `G0 X0 Y-20` then `G41 G3 X10 Y-10 I0 J10`
+/// is ARC_FEED to (8, −10) about (−2.25, −10)): the arc ends r from its
+/// programmed end along the radius, about a centre on the line through the
+/// programmed centre and end, as far from the start as from the new end;
+/// the next block joins as after any arc. Refused as rs274 refuses it: a
+/// start within r of the end ("Radius of cutter compensation entry arc is
+/// not greater than the tool radius") is E318 at the arc, an arc that
+/// cancels compensation E317 ("The move just after exiting cutter
+/// compensation mode must be straight"), and so is an entry line not longer
+/// than r in the plane. Fanuc keeps E317 (type A's
+/// start-up is a line). The moves rs274 makes are also the fixture
+/// `tests/fixtures/linuxcnc_dialect/comp_entry_arc`.
+#[test]
+fn compensation_starts_on_an_entry_arc_as_in_rs274() {
+    let entry = |comp: &str, arc: &str| {
+        format!("G21 G90 G17\nG10 L1 P1 R2\nT1 M6\nG0 X0 Y-20\n{comp} {arc} F100\nG1 Y10\nM2\n")
+    };
+    for (comp, arc, end, centre) in [
+        ("G41", "G3 X10 Y-10 I0 J10", (8.0, -10.0), (-2.25, -10.0)),
+        (
+            "G42",
+            "G3 X10 Y-10 I0 J10",
+            (12.0, -10.0),
+            (11.0 / 6.0, -10.0),
+        ),
+        (
+            "G41",
+            "G2 X-10 Y-10 I0 J10",
+            (-12.0, -10.0),
+            (-11.0 / 6.0, -10.0),
+        ),
+        // G41 alone, the arc the first move after it.
+        ("G41\n", "G3 X10 Y-10 I0 J10", (8.0, -10.0), (-2.25, -10.0)),
+    ] {
+        let program = entry(comp, arc);
+        let ev = ended(&program);
+        let arcs: Vec<_> = ev
+            .iter()
+            .filter_map(|e| match e {
+                Event::Arc { to, center, .. } => Some((*to, *center)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(arcs.len(), 1, "{program}");
+        let (to, c) = arcs[0];
+        assert!(common::near(to, end.0, end.1, 0.0), "{to:?}\n{program}");
+        assert!(common::near(c, centre.0, centre.1, 0.0), "{c:?}\n{program}");
+        // The line after it follows the offset path: X at the new end.
+        let line = common::ends(&ev, if comp.ends_with('\n') { 7 } else { 6 });
+        assert!(
+            common::near(line[0], end.0, 10.0, 0.0),
+            "{line:?}\n{program}"
+        );
+    }
+    // An inside corner after it moves the arc's end onto the next offset
+    // path, on the entry arc's own circle (rs274: (7.9689, −10.7974)).
+    let ev = ended(
+        "G21 G90 G17\nG10 L1 P1 R2\nT1 M6\nG0 X0 Y-20\nG41 G3 X10 Y-10 I0 J10 F100\nG1 X0 Y0\nM2\n",
+    );
+    let to = common::ends(&ev, 5)[0];
+    assert!(
+        (to.0[0] - 7.968939).abs() < 1e-6 && (to.0[1] + 10.797366).abs() < 1e-6,
+        "{to:?}"
+    );
+    assert!(((to.0[0] + 2.25).hypot(to.0[1] + 10.0) - 10.25).abs() < 1e-9);
+    // Start within r of the end; an arc too small for the side (rs274:
+    // "Tool radius not less than arc radius with comp"); G40 on an arc.
+    let base = "G21 G90 G17\nG10 L1 P1 R2\nT1 M6\nG0 X0 Y-20\n";
+    assert_eq!(
+        alarm(&format!("{base}G41 G3 X1 Y-19.95 R10 F100\nM2\n")),
+        (Code::E318, 5, 5)
+    );
+    assert_eq!(
+        alarm(&format!("{base}G41 G3 X0 Y-17 R1.5 F100\nM2\n")),
+        (Code::E318, 5, 5)
+    );
+    assert_eq!(
+        alarm(&format!(
+            "{base}G41 G1 Y-10 F100\nG40 G3 X10 Y0 I10 J0\nM2\n"
+        )),
+        (Code::E317, 6, 5)
+    );
+    // rs274 takes the first move after G41/G42 for the entry, also one
+    // without motion in the plane, and refuses it when it is not longer
+    // than r ("Length of cutter compensation entry move is not greater
+    // than the tool radius", probed: `G1 Z-1`, `G1 X0 Y-20` from there,
+    // `G1 X1 Y-20`); E318 at the move. Longer than r: it runs.
+    for entry in [
+        "G41\nG1 Z-1 F100",
+        "G41\nG1 X0 Y-20 F100",
+        "G41\nG1 X1 Y-20 F100",
+    ] {
+        let program = format!("{base}{entry}\nG1 X10 Y-10\nM2\n");
+        assert_eq!(alarm(&program), (Code::E318, 6, 1), "{program}");
+    }
+    ended(&format!("{base}G41\nG1 X2.1 Y-20 F100\nG1 X10 Y-10\nM2\n"));
+    // Fanuc: the start-up must be a line.
+    let fanuc =
+        "G21 G90 G17\nG10 L12 P1 R2\nT1 M6\nG0 X0 Y-20\nG41 D1 G3 X10 Y-10 I0 J10 F100\nM2\n";
+    let (_, out) = run_str(&Dialect::fanuc(), fanuc);
+    let Outcome::Alarm(d) = out else {
+        panic!("{out:?}");
+    };
+    assert_eq!((d.code, d.line), (Code::E317, 5));
+}

@@ -42,6 +42,46 @@ const SAME_END: f64 = 1e-6;
 /// tangent point is the corner, not an over-cut.
 const TOUCH_MM: f64 = 0.01;
 
+/// An entry arc (compensation starting on `arc`, `CompStart::LineOrArc`,
+/// as rs274 runs it): the tool leaves the arc's start and ends `r` from its
+/// programmed end along the radius, on side `s`, about a centre on the line
+/// through the programmed centre and end, as far from the start as from
+/// that new end. Returned as the arc about that centre whose offset on
+/// side `s` at `r` is the tool's path (it ends at the programmed end, so
+/// the corner to the next block is worked out as for any arc), with the
+/// centre; `None` when the start is within `r` of the end or no such
+/// centre exists (rs274: "Radius of cutter compensation entry arc is not
+/// greater than the tool radius").
+pub(crate) fn entry_arc(arc: &Seg, s: f64, r: f64) -> Option<(Seg, P2)> {
+    let (c, ccw) = arc.arc_of()?;
+    let (a, e) = (arc.start(), arc.end());
+    if a.dist(e) <= r {
+        return None;
+    }
+    let sigma = if ccw { 1.0 } else { -1.0 };
+    // Unit vector from the end toward the centre; left of a CCW arc's
+    // direction of travel.
+    let u = (c - e).unit();
+    let tool_end = e + u * (s * sigma * r);
+    // The centre tool_end + λu is as far from a as from tool_end.
+    let chord = tool_end - a;
+    let along = u.dot(chord);
+    if along.abs() < ZERO_MM {
+        return None;
+    }
+    let lambda = -chord.dot(chord) / (2.0 * along);
+    let centre = tool_end + u * lambda;
+    let tool_r = lambda.abs();
+    // The arc whose offset is the tool's circle: radius tool_r + sσr.
+    let prog_r = tool_r + s * sigma * r;
+    if prog_r <= ZERO_MM || tool_r <= ZERO_MM {
+        return None;
+    }
+    let start = centre + (a - centre) * (prog_r / tool_r);
+    let end = centre + (e - centre).unit() * prog_r;
+    Some((Seg::arc(start, end, centre, ccw), centre))
+}
+
 /// Why compensation cannot go on.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Fault {

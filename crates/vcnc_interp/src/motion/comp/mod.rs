@@ -69,6 +69,10 @@ struct Held {
     /// From the nose centre to the controlled point: a lathe's imaginary
     /// tool tip (`nose.rs`); zero on a mill.
     shift: P2,
+    /// The compensated arc's centre when it is not the programmed one (an
+    /// entry arc, `CompStart::LineOrArc`): `seg` is then the arc about it
+    /// whose offset the tool follows.
+    centre: Option<P2>,
     at: Origin,
 }
 
@@ -153,6 +157,7 @@ impl Clone for Held {
             r,
             startup,
             shift,
+            centre,
             at,
         } = src;
         self.mm = *mm;
@@ -163,6 +168,7 @@ impl Clone for Held {
         self.r = *r;
         self.startup = *startup;
         self.shift = *shift;
+        self.centre = *centre;
         self.at.clone_from(at);
     }
 }

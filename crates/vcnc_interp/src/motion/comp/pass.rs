@@ -8,6 +8,7 @@ use super::geom::{self, Corner, Fault};
 use super::nose::{self, tip_direction};
 use super::{Held, Mode, Origin, Queued, v2, with_plane};
 use crate::alarms;
+use crate::dialect::CompStart;
 use crate::events::{Event, Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::motion::{MachineKind, MachineMove};
@@ -80,6 +81,17 @@ impl Interpreter<'_> {
     pub(crate) fn compensate(&mut self, mm: MachineMove, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.cfg.plane_axes(self.stage.comp.plane, cmd)?;
         let at = self.origin(cmd);
+        if self.stage.comp.mode == Mode::Starting
+            && self.cfg.dialect.comp_start == CompStart::LineOrArc
+            && !matches!(mm.kind, MachineKind::Arc { .. })
+        {
+            // rs274: the first move after G41/G42 is the entry, also
+            // without motion in the plane, and must be longer than r.
+            let (_, r) = self.side_and_radius();
+            if v2(mm.from, axes).dist(v2(mm.to, axes)) <= r {
+                return Err(alarms::comp_entry_short(cmd, r));
+            }
+        }
         let Some(seg) = self.plane_seg(&mm, axes) else {
             // No motion in the plane: it waits behind the held move.
             if self.stage.comp.held.is_some() {
@@ -89,12 +101,37 @@ impl Interpreter<'_> {
             return self.release(mm, &at, None);
         };
         self.stage.comp.moved_in_plane = true;
-        if seg.is_arc() && matches!(self.stage.comp.mode, Mode::Starting | Mode::Cancelling) {
+        let entry_arc = seg.is_arc()
+            && self.stage.comp.mode == Mode::Starting
+            && self.cfg.dialect.comp_start == CompStart::LineOrArc;
+        if seg.is_arc()
+            && !entry_arc
+            && matches!(self.stage.comp.mode, Mode::Starting | Mode::Cancelling)
+        {
             return Err(alarms::comp_arc_startup(cmd));
         }
         let (side, r) = self.side_and_radius();
         seg.check(side, r).map_err(|f| self.fault(f, &at))?;
         match self.stage.comp.mode {
+            Mode::Starting if entry_arc => {
+                let Some((seg, centre)) = geom::entry_arc(&seg, side, r) else {
+                    return Err(alarms::comp_entry_short(cmd, r));
+                };
+                self.stage.comp.mode = Mode::On;
+                self.stage.comp.held = Some(Box::new(Held {
+                    mm,
+                    seg,
+                    start: seg.start(),
+                    lead_in: None,
+                    side,
+                    r,
+                    startup: false,
+                    shift: self.nose_shift(r),
+                    centre: Some(centre),
+                    at,
+                }));
+                Ok(())
+            }
             Mode::Starting => {
                 self.stage.comp.mode = Mode::On;
                 self.stage.comp.held = Some(Box::new(Held {
@@ -106,6 +143,7 @@ impl Interpreter<'_> {
                     r,
                     startup: true,
                     shift: self.nose_shift(r),
+                    centre: None,
                     at,
                 }));
                 Ok(())
@@ -181,6 +219,7 @@ impl Interpreter<'_> {
                 b.r = r;
                 b.startup = false;
                 b.shift = shift;
+                b.centre = None;
                 b.at = at;
                 b
             }
@@ -193,6 +232,7 @@ impl Interpreter<'_> {
                 r,
                 startup: false,
                 shift,
+                centre: None,
                 at,
             }),
         };
@@ -361,7 +401,7 @@ impl Interpreter<'_> {
             let first = MachineMove {
                 from: self.state.pos,
                 to: with_plane(half, axes, tip(mid)),
-                kind: nose::shifted_kind(held.mm.kind, held.shift),
+                kind: nose::shifted_kind(entry_kind(held), held.shift),
                 ..held.mm
             };
             self.release(first, &held.at, None)?;
@@ -370,7 +410,7 @@ impl Interpreter<'_> {
         let kind = if held.seg.collapses(held.start, end) {
             straight_kind(&held.mm)
         } else {
-            nose::shifted_kind(held.mm.kind, held.shift)
+            nose::shifted_kind(entry_kind(held), held.shift)
         };
         let moved = MachineMove {
             from: self.state.pos,
@@ -409,6 +449,24 @@ impl Interpreter<'_> {
         // Keep the queue's buffer for the next block.
         self.stage.comp.queue = queue;
         Ok(())
+    }
+}
+
+/// The held move's kind, about the entry arc's own centre if it has one.
+fn entry_kind(held: &Held) -> MachineKind {
+    match (held.mm.kind, held.centre) {
+        (
+            MachineKind::Arc {
+                plane, dir, feed, ..
+            },
+            Some(c),
+        ) => MachineKind::Arc {
+            center: (c.0, c.1),
+            plane,
+            dir,
+            feed,
+        },
+        (k, _) => k,
     }
 }
 
