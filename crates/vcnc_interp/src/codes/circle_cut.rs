@@ -156,7 +156,16 @@ impl Interpreter<'_> {
             Some(l) => whole(&l, b'L', 1.0, 9_999.0, "L repeats the cut, at least once")?,
             None => 1,
         };
-        let tool_r = self.state.comp_d_mm;
+        // The cutter radius is the machine's, not scaled with the circle
+        // (G51 scales the path, not the offset, as under G41/G42): in
+        // program millimetres it is r divided by the scale. The circle lies
+        // in XY (G17 only), whose scale is even or its arcs alarm.
+        let scale = self.tables.transforms.x_length_scale();
+        let tool_r = if scale > 0.0 {
+            self.state.comp_d_mm / scale
+        } else {
+            self.state.comp_d_mm
+        };
         let mut radii = vec![first];
         if let Some((finish, q)) = step {
             // Bounded: beyond MAX_CIRCLES the block alarms anyway.

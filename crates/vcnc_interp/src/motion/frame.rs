@@ -252,6 +252,15 @@ impl Transforms {
         next
     }
 
+    /// How many machine millimetres one program millimetre along X
+    /// becomes (1 without scaling; rotation and mirror keep lengths).
+    pub fn x_length_scale(&self) -> f64 {
+        self.compose().map_or(1.0, |a| {
+            let v = a.apply_vector([1.0, 0.0, 0.0]);
+            v.iter().map(|c| c * c).sum::<f64>().sqrt()
+        })
+    }
+
     /// The composed map, `None` when it cannot be inverted (a zero factor).
     pub fn compose(&self) -> Option<Affine> {
         let mut a = Affine::IDENTITY;

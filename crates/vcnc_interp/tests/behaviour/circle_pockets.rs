@@ -80,6 +80,29 @@ fn haas_g12_with_i_only_cuts_one_circle_less_the_cutter_radius() {
 }
 
 #[test]
+fn under_g51_the_circle_is_scaled_and_the_cutter_radius_is_not() {
+    // G51 P2 about the origin doubles the programmed 8 mm circle to 16 mm;
+    // the tool (D1 = 5 mm) runs inside it on 11 mm, as a G42 contour of the
+    // same circle would: the offset is the machine's, not scaled (Haas's
+    // G51: cutter compensation values are not affected). Program
+    // coordinates carry the scale: the circle reached is X5.5 (11 / 2).
+    let program =
+        format!("{HAAS_START}G00 X0. Y0. Z5.\nG51 X0. Y0. P2.\nG12 I8. Z-2. F500. D01\nG50\nM30\n");
+    let r = run_on(&mill_with_tools(), "haas", &program, Store::default(), &[]);
+    crate::common::ended(&r);
+    let far = r
+        .events
+        .iter()
+        .filter(|e| e.loc().is_some_and(|l| l.line == 6))
+        .filter_map(|e| match e {
+            vcnc_interp::Event::Arc { to, .. } => Some(to.get(0).hypot(to.get(1))),
+            _ => None,
+        })
+        .fold(0.0_f64, f64::max);
+    assert!((far - 11.0).abs() < 1e-9, "tool centre reaches {far}");
+}
+
+#[test]
 fn haas_g13_with_k_and_q_steps_out_and_g91_l_goes_deeper_each_time() {
     // "G91 … L: multiple Z depth pass" — radii 8, 13, 18 and the finish 20,
     // less D1's 5 mm: 3, 8, 13, 15; twice, 2 mm deeper each time.
