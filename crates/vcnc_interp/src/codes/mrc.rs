@@ -487,6 +487,7 @@ impl Interpreter<'_> {
     /// follow the profile offset from D … to E (`ngc_rough.rs`) and carry
     /// the cycle block's line.
     pub(crate) fn ngc_finish_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        self.ngc_cycle_plane(cmd, "G70")?;
         let axes = self.lathe_axes(cmd)?;
         let passes = match w.get(b'P') {
             Some(p) => self.count(&p, "P is G70's number of passes")?,
@@ -588,8 +589,9 @@ impl Interpreter<'_> {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let axes = self.lathe_axes(cmd)?;
         let code = if facing { "G72" } else { "G71" };
+        self.ngc_cycle_plane(cmd, code)?;
+        let axes = self.lathe_axes(cmd)?;
         self.ngc_cycle_modes(cmd, code)?;
         let len = |l: u8, default: f64| w.get(l).map_or(default, |x| self.units().length_mm(&x));
         let (step, allowance, retract) = (len(b'I', 1.0), len(b'D', 0.0), len(b'R', 0.5));
@@ -624,6 +626,15 @@ impl Interpreter<'_> {
             .map_err(|f| self.ngc_fault(f, &profile, cmd))?;
         self.return_to(a, axes, w, cmd)?;
         self.ngc_cuts(&cuts, axes, w, cmd)
+    }
+
+    /// rs274 runs G70–G72 only in the XZ plane ("G71.0 can only be used
+    /// in XZ plane (G18)").
+    fn ngc_cycle_plane(&self, cmd: Span, code: &str) -> Result<(), Diagnostic> {
+        if self.state.modal.plane == crate::events::Plane::Zx {
+            return Ok(());
+        }
+        Err(alarms::ngc_cycle_mode(cmd, code, "G18 (the XZ plane)"))
     }
 
     /// rs274 refuses G71/G72 under cutter compensation; under G91 its

@@ -956,6 +956,9 @@ fn roughing_cycles_refuse_what_rs274_refuses() {
     assert_eq!(run(profile, "G71"), (Code::E312, 11));
     assert_eq!(run(profile, "G41 G71 Q100"), (Code::E349, 11));
     assert_eq!(run(profile, "G91 G71 Q100"), (Code::E349, 11));
+    // rs274: "G71.0 can only be used in XZ plane (G18)", and G70 alike.
+    assert_eq!(run(profile, "G17 G71 Q100"), (Code::E349, 11));
+    assert_eq!(run(profile, "G17 G70 Q100"), (Code::E349, 11));
     let back = "G1 X5 Z0\nG1 Z-5\nG1 X7 Z-3\nG1 X9 Z-14";
     assert_eq!(run(back, "G71 Q100 I1"), (Code::E343, 6));
     let parallel = "G1 X5 Z0\nG1 Z-5\nG1 Z-10\nG1 X9 Z-14";
