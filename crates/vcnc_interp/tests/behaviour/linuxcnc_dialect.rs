@@ -1082,3 +1082,45 @@ fn compensation_starts_on_an_entry_arc_as_in_rs274() {
     };
     assert_eq!((d.code, d.line), (Code::E317, 5));
 }
+
+/// An empty D register (radius 0, the built-in mill's) offsets nothing:
+/// the plunge after G41 and a full-circle entry arc run as programmed, as
+/// rs274 runs them with a tool of diameter 0; neither is "an entry not
+/// longer than the tool radius" (review 2026-12-06).
+#[test]
+fn compensation_with_an_empty_register_needs_no_entry_length() {
+    for program in [
+        "G21 G17 G90 G94\nS1000 M3\nG0 X0 Y-20 Z2\nG41 D1 G1 Z-1 F300\nG1 X10 Y-20\nG40 G1 X20 Y-20\nM2\n",
+        "G21 G17 G90 G94\nS1000 M3\nG0 X0 Y-20 Z-1\nG41 D1 G3 X0 Y-20 I0 J10 F300\nG40 G1 X0 Y-30\nM2\n",
+    ] {
+        let (ev, out) = run_str(&Dialect::linuxcnc(), program);
+        assert!(matches!(out, Outcome::Ended(_)), "{out:?}\n{program}");
+        let ends: Vec<(f64, f64)> = ev
+            .iter()
+            .filter_map(|e| match e {
+                Event::Feed { to, .. } | Event::Arc { to, .. } => Some((to.get(0), to.get(1))),
+                _ => None,
+            })
+            .collect();
+        assert!(
+            ends.contains(&(0.0, -20.0)) || ends.contains(&(10.0, -20.0)),
+            "{ends:?}"
+        );
+    }
+}
+
+/// An entry arc whose chord is all but square to its end radius has no
+/// centre within reach: rs274 refuses it below a cosine of 1e-4 ("Tool
+/// radius not less than arc radius with comp"); vcnc cut a loop about a
+/// centre 180 km away.
+#[test]
+fn an_entry_arc_square_to_its_radius_is_refused() {
+    let program = "G21 G17 G90 G94\nS1000 M3\nG0 X8.0001 Y-15.99987 Z-1\n\
+        G41.1 D4 G3 X10 Y-10 I-8.0001 J5.99987 F300\nG1 X10 Y10\nG40 G1 X10 Y30\nM2\n";
+    let (ev, out) = run_str(&Dialect::linuxcnc(), program);
+    let Outcome::Alarm(d) = out else {
+        panic!("no alarm: {out:?}");
+    };
+    assert_eq!((d.code, d.line), (Code::E318, 4));
+    assert!(matches!(ev.last(), Some(Event::Alarm(_))));
+}

@@ -42,6 +42,10 @@ const SAME_END: f64 = 1e-6;
 /// tangent point is the corner, not an over-cut.
 const TOUCH_MM: f64 = 0.01;
 
+/// The smallest cosine between an entry arc's chord (start to the tool's
+/// end) and its end radius that rs274 accepts.
+const ENTRY_MIN_COS: f64 = 1e-4;
+
 /// An entry arc (compensation starting on `arc`, `CompStart::LineOrArc`,
 /// as rs274 runs it): the tool leaves the arc's start and ends `r` from its
 /// programmed end along the radius, on side `s`, about a centre on the line
@@ -55,6 +59,10 @@ const TOUCH_MM: f64 = 0.01;
 pub(crate) fn entry_arc(arc: &Seg, s: f64, r: f64) -> Option<(Seg, P2)> {
     let (c, ccw) = arc.arc_of()?;
     let (a, e) = (arc.start(), arc.end());
+    if r <= ZERO_MM {
+        // An empty register: the tool runs the programmed arc.
+        return Some((Seg::arc(a, e, c, ccw), c));
+    }
     if a.dist(e) <= r {
         return None;
     }
@@ -66,7 +74,9 @@ pub(crate) fn entry_arc(arc: &Seg, s: f64, r: f64) -> Option<(Seg, P2)> {
     // The centre tool_end + λu is as far from a as from tool_end.
     let chord = tool_end - a;
     let along = u.dot(chord);
-    if along.abs() < ZERO_MM {
+    // rs274 refuses an entry whose chord is this near square to the
+    // radius (cosine below 1e-4): the centre would run off to kilometres.
+    if along.abs() < ENTRY_MIN_COS * chord.dot(chord).sqrt() {
         return None;
     }
     let lambda = -chord.dot(chord) / (2.0 * along);

@@ -88,7 +88,8 @@ impl Interpreter<'_> {
             // rs274: the first move after G41/G42 is the entry, also
             // without motion in the plane, and must be longer than r.
             let (_, r) = self.side_and_radius();
-            if v2(mm.from, axes).dist(v2(mm.to, axes)) <= r {
+            // A radius of 0 (an empty register) offsets nothing: no entry.
+            if r > ZERO_MM && v2(mm.from, axes).dist(v2(mm.to, axes)) <= r {
                 return Err(alarms::comp_entry_short(cmd, r));
             }
         }
