@@ -143,16 +143,7 @@ impl Interpreter<'_> {
         let s = (from.get(idx.a), from.get(idx.b));
         let e = (to.get(idx.a), to.get(idx.b));
         self.check_on_circle(s, e, center, cmd)?;
-        let axes = self.cfg.plane_axes(plane, cmd)?;
-        let mut c = from;
-        c.set(idx.a, center.0);
-        c.set(idx.b, center.1);
-        let dir = if cw {
-            crate::events::ArcDir::Cw
-        } else {
-            crate::events::ArcDir::Ccw
-        };
-        let last = vcnc_core::geometry::ArcPath::new(from, to, c, axes, dir);
+        let last = self.arc_path(to, center, cw, plane, cmd)?;
         let circles = f64::from(turns - 1);
         let total = circles * TAU + last.sweep.abs();
         let feed = if self.state.modal.inverse_time {
@@ -182,6 +173,29 @@ impl Interpreter<'_> {
         // The program point, not an increment: the circles have moved the
         // tool (no LinuxCNC code detaches the program point from it).
         self.straight(kind, Target::Program(to), w, cmd)
+    }
+
+    /// The arc from the program point to `to` about `center` (the plane's
+    /// two coordinates; the other axes at the start point's).
+    fn arc_path(
+        &self,
+        to: Pos,
+        center: (f64, f64),
+        cw: bool,
+        plane: Plane,
+        cmd: Span,
+    ) -> Result<vcnc_core::geometry::ArcPath, Diagnostic> {
+        let axes = self.cfg.plane_axes(plane, cmd)?;
+        let from = self.state.prog;
+        let mut c = from;
+        c.set(axes.a, center.0);
+        c.set(axes.b, center.1);
+        let dir = if cw {
+            crate::events::ArcDir::Cw
+        } else {
+            crate::events::ArcDir::Ccw
+        };
+        Ok(vcnc_core::geometry::ArcPath::new(from, to, c, axes, dir))
     }
 
     /// Program indices of a plane's axes (E305 if the machine lacks one).
@@ -243,16 +257,7 @@ impl Interpreter<'_> {
         offset.set(idx.a, center.0 - s.0);
         offset.set(idx.b, center.1 - s.1);
         let feed = if self.state.modal.inverse_time {
-            let axes = self.cfg.plane_axes(plane, cmd)?;
-            let mut c = from;
-            c.set(idx.a, center.0);
-            c.set(idx.b, center.1);
-            let dir = if cw {
-                crate::events::ArcDir::Cw
-            } else {
-                crate::events::ArcDir::Ccw
-            };
-            let len = vcnc_core::geometry::ArcPath::new(from, to, c, axes, dir).length();
+            let len = self.arc_path(to, center, cw, plane, cmd)?.length();
             self.inverse_time_feed(w, cmd, len)?
         } else {
             self.feed(cmd)?
