@@ -106,8 +106,6 @@ pub struct Interpreter<'a> {
     pub(crate) macros: Box<crate::macros::Macros>,
     /// What the program's length words look like (warning W101).
     pub(crate) points: crate::state::PointStyle,
-    /// A G06.2 curve whose definition is still being read.
-    pub(crate) nurbs: Option<crate::state::NurbsBuild>,
 }
 
 impl<'a> Interpreter<'a> {
@@ -135,7 +133,6 @@ impl<'a> Interpreter<'a> {
             stage: crate::motion::stage::Stage::new(machine.axes.len()),
             points: crate::state::PointStyle::new(machine, dialect),
             macros: Box::new(crate::macros::Macros::new(dialect.macros)),
-            nurbs: None,
         }
     }
 
@@ -341,7 +338,7 @@ impl<'a> Interpreter<'a> {
             self.looping.first_alarm = Some(d.clone());
         }
         self.stage.pending.push(Event::Alarm(d));
-        self.release_corner();
+        self.machining().release_corner();
         Ok(())
     }
 
@@ -447,33 +444,66 @@ impl<'a> Interpreter<'a> {
         d
     }
 
-    /// The bytes of `line` of source `src`, read again (cold paths only).
-    fn line_text(&mut self, src: usize, line: &Line) -> Vec<u8> {
-        self.flow
-            .source(src)
-            .map(|s| s.reader.reread(line))
-            .unwrap_or_default()
+    /// The program text's side of placing a diagnostic.
+    pub(crate) fn locator(&mut self) -> Locator<'_> {
+        Locator {
+            flow: &mut self.flow,
+            span_map: &self.macros.span_map,
+        }
     }
 
     /// Fills in line, column and file of a diagnostic raised in `line` of
-    /// source `src` (cold path: the line is read again for the column).
+    /// source `src` (see [`Locator::locate`]).
     pub(crate) fn locate(&mut self, d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
-        if d.is_located() {
-            // Raised about an earlier block (a move compensation held).
-            return d;
+        self.locator().locate(d, src, line)
+    }
+
+    /// The machine's side and the record of the program's length words
+    /// (W101, W109), which a block's words update on their way.
+    #[inline(always)]
+    pub(crate) fn machining_and_points(
+        &mut self,
+    ) -> (Machining<'_, 'a>, &mut crate::state::PointStyle) {
+        (
+            Machining {
+                cfg: &self.cfg,
+                state: &mut self.state,
+                tables: &mut self.tables,
+                stage: &mut self.stage,
+                at: Locator {
+                    flow: &mut self.flow,
+                    span_map: &self.macros.span_map,
+                },
+            },
+            &mut self.points,
+        )
+    }
+
+    /// The macro evaluator's side of the interpreter.
+    pub(crate) fn evaluator(&mut self) -> crate::macros::Evaluator<'_, 'a> {
+        crate::macros::Evaluator {
+            cfg: &self.cfg,
+            state: &mut self.state,
+            tables: &mut self.tables,
+            stage: &mut self.stage,
+            macros: &mut self.macros,
+            flow: &mut self.flow,
         }
-        // A macro statement spanning lines maps its offsets to their line.
-        let (mut d, line) = self.macro_line_of(d, *line);
-        let line = &line;
-        let text = self.line_text(src, line);
-        d.line = line.number;
-        d.column = column_of(&text, d.span.start);
-        d.line_offset = line.offset;
-        d.file = self
-            .flow
-            .source(src)
-            .and_then(|s| s.name.as_deref().map(str::to_string));
-        d
+    }
+
+    /// The machine's side of the interpreter, for the codes that move it.
+    #[inline(always)]
+    pub(crate) fn machining(&mut self) -> Machining<'_, 'a> {
+        Machining {
+            cfg: &self.cfg,
+            state: &mut self.state,
+            tables: &mut self.tables,
+            stage: &mut self.stage,
+            at: Locator {
+                flow: &mut self.flow,
+                span_map: &self.macros.span_map,
+            },
+        }
     }
 
     /// A diagnostic of the block at `start` of `line`, placed, with the
@@ -499,7 +529,7 @@ impl<'a> Interpreter<'a> {
         if !reading || start == 0 || d.line != line.number {
             return d;
         }
-        let text = self.line_text(src, line);
+        let text = self.locator().line_text(src, line);
         let before = text.get(..start).unwrap_or_default().trim_ascii_end();
         if before.ends_with(b";") {
             d.help = format!(
@@ -584,7 +614,7 @@ impl<'a> Interpreter<'a> {
         let jumps = self.flow.jumps;
         let comp_engaged = self.stage.comp.engaged();
         let plain = words.is_plain_motion(self.cfg.axis_mask);
-        let in_place = plain && self.moves_in_place(&words, comp_engaged);
+        let in_place = plain && self.machining().moves_in_place(&words, comp_engaged);
         // Under compensation such a block undoes the stage by itself.
         let comp_in_place = comp_engaged && in_place;
         let mark = self.stage.begin(comp_in_place);
@@ -771,11 +801,11 @@ impl<'a> Interpreter<'a> {
             return Err(alarms::sub_without_return(span, code));
         }
         // A G01 whose `,C`/`,R` waits for a move that never comes.
-        self.check_corner_at_end()?;
+        self.machining().check_corner_at_end()?;
         // Compensation ends with the program: its last move leaves first
         // (after the warning that the program has no end code).
-        self.comp_finish()?;
-        self.report_frame();
+        self.machining().comp_finish()?;
+        self.machining().report_frame();
         if let Some(e) = self.unset_report() {
             self.stage.pending.push(e);
         }
@@ -819,4 +849,93 @@ impl<'a> Interpreter<'a> {
         flow.jumps += 1;
         Ok(())
     }
+}
+
+/// What executing a block may ask of the program text: the location its
+/// events carry, and where an alarm about a line (this block's, or an
+/// earlier one a compensation or a corner held) sits in the source. The
+/// codes that move the machine reach the program flow only through it.
+pub(crate) struct Locator<'r> {
+    flow: &'r mut Flow,
+    /// The macro statement being run when it spans lines: a diagnostic's
+    /// offset is into its joined text.
+    span_map: &'r Option<std::rc::Rc<crate::macros::Compiled>>,
+}
+
+impl Locator<'_> {
+    /// The location of the block being executed.
+    #[inline(always)]
+    pub(crate) fn loc(&self) -> &crate::events::Loc {
+        &self.flow.loc
+    }
+
+    /// Moves the location of the events to `line` (a held corner or a
+    /// profile element emitted at its own line); returns the one before.
+    pub(crate) fn set_line(&mut self, line: u64) -> u64 {
+        std::mem::replace(&mut self.flow.loc.line, line)
+    }
+
+    /// The bytes of `line` of source `src`, read again (cold paths only).
+    fn line_text(&mut self, src: usize, line: &Line) -> Vec<u8> {
+        self.flow
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default()
+    }
+
+    /// Fills in line, column and file of a diagnostic raised in `line` of
+    /// source `src` (cold path: the line is read again for the column).
+    pub(crate) fn locate(&mut self, d: Diagnostic, src: usize, line: &Line) -> Diagnostic {
+        if d.is_located() {
+            // Raised about an earlier block (a move compensation held).
+            return d;
+        }
+        // A macro statement spanning lines maps its offsets to their line.
+        let (mut d, line) = match self.span_map.as_deref() {
+            Some(c) => {
+                let (l, start) = c.line_of(d.span.start);
+                let len = d.span.end.saturating_sub(d.span.start);
+                let mut d = d;
+                d.span = Span {
+                    start,
+                    end: start + len,
+                };
+                (d, l)
+            }
+            None => (d, *line),
+        };
+        let line = &line;
+        let text = self.line_text(src, line);
+        d.line = line.number;
+        d.column = column_of(&text, d.span.start);
+        d.line_offset = line.offset;
+        d.file = self
+            .flow
+            .source(src)
+            .and_then(|s| s.name.as_deref().map(str::to_string));
+        d
+    }
+}
+
+impl<'r> Locator<'r> {
+    pub(crate) fn new(
+        flow: &'r mut Flow,
+        span_map: &'r Option<std::rc::Rc<crate::macros::Compiled>>,
+    ) -> Locator<'r> {
+        Locator { flow, span_map }
+    }
+}
+
+/// The machine's side of the interpreter: what the codes that move the
+/// machine may read and change — the run's configuration, the modal state,
+/// the offset tables, the motion stage — and, through [`Locator`], where
+/// the block stands in the program. Borrowed from the [`Interpreter`] for
+/// the length of one code's work; the program flow, the macro variables
+/// and the run loop's counters stay out of its reach.
+pub(crate) struct Machining<'r, 'a> {
+    pub(crate) cfg: &'r Config<'a>,
+    pub(crate) state: &'r mut State,
+    pub(crate) tables: &'r mut Tables,
+    pub(crate) stage: &'r mut crate::motion::stage::Stage,
+    pub(crate) at: Locator<'r>,
 }

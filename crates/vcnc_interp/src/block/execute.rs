@@ -26,6 +26,7 @@ use crate::dialect::{
 use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
 use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
+use crate::interpreter::Machining;
 use crate::interpreter::{Interpreter, Step};
 use crate::motion::stage::Stage;
 use crate::state::Motion;
@@ -46,34 +47,7 @@ impl Words<'_> {
 }
 
 impl Interpreter<'_> {
-    /// Whether a plain motion block `w` is a G00/G01 that the stage's
-    /// [`MoveMark`](Stage::mark_move) (or under compensation its
-    /// [`CompensatedMoveMark`](Stage::mark_compensated_move)) can undo: no canned cycle,
-    /// lathe corner or G96 in force (each changes more before it can
-    /// alarm), compensation either off or holding a move with nothing
-    /// queued behind it, and nothing in the block beyond axes, F and N (no
-    /// arc word, D or `,C`/`,R`).
-    #[inline(always)]
-    pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
-        let s = &self.state;
-        if (comp_engaged && !self.stage.comp.can_mark())
-            || s.cycle.code.is_some()
-            || s.lathe.corner.is_some()
-            || s.modal.css
-            || w.has_arc_words(self.cfg.axis_mask)
-        {
-            return false;
-        }
-        match w.group(Group::Motion) {
-            Some(m) => matches!(
-                m.def.op,
-                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
-            ),
-            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
-        }
-    }
-
-    /// A plain move that [`moves_in_place`](Self::moves_in_place)
+    /// A plain move that [`moves_in_place`](Machining::moves_in_place)
     /// accepted, all or nothing with the stage's mark instead of a copy of
     /// the state.
     #[inline(always)]
@@ -94,7 +68,7 @@ impl Interpreter<'_> {
     }
 
     /// [`move_in_place`](Self::move_in_place) under compensation, for a
-    /// block that [`moves_in_place`](Self::moves_in_place) accepts.
+    /// block that [`moves_in_place`](Machining::moves_in_place) accepts.
     #[inline(never)]
     pub(crate) fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let mark = self.stage.mark_compensated_move(&self.state);
@@ -114,37 +88,12 @@ impl Interpreter<'_> {
 
     /// A block that [`Words::is_plain_motion`] accepts: nothing to do but move.
     pub(crate) fn execute_motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if w.get(b'D').is_some() {
-            // A D word (a new radius, or outside G41/G42 the offset the
-            // next G41/G42 uses) reaches the compensation stage; a plain
-            // block has no G40/G41/G42, so without D there is nothing to do.
-            self.comp_codes(w)?;
+        let (mut m, points) = self.machining_and_points();
+        m.motion_words(w)?;
+        if points.active {
+            m.note_points(points, w);
         }
-        if let Some(motion) = w.group(Group::Motion) {
-            self.apply_modal(motion.def.op);
-            if self.state.cycle.code.is_some() {
-                self.cycle_modes(w)?;
-            }
-        }
-        if w.has_arc_words(self.cfg.axis_mask) {
-            let (allowed, ext) = self.allowed_letters(w);
-            w.check_used(allowed, ext)?;
-            if self.cfg.dialect.polar_words {
-                self.check_polar_words(w, self.state.modal.plane)?;
-            }
-        }
-        if self.points.active {
-            self.note_points(w);
-        }
-        self.feed_word(w)?;
-        self.modal_motion(w)?;
-        if self.state.lathe.corner.is_some() {
-            self.check_corner_cut(w)?;
-        }
-        if self.stage.comp.engaged() {
-            self.comp_block_end(w.first)?;
-        }
-        Ok(())
+        m.motion_only(w)
     }
 
     pub(crate) fn execute(
@@ -154,6 +103,131 @@ impl Interpreter<'_> {
         next: Cursor,
         store: &mut dyn ProgramStore,
     ) -> Result<Step, Diagnostic> {
+        let (mut m, points) = self.machining_and_points();
+        let path_before = m.modes(w)?;
+        if points.active {
+            m.note_points(points, w);
+        }
+        let tool_moved = m.words(w, path_before)?;
+        let moves_before = m.stage.moves;
+        let mut resume = None;
+        match w.axis_user {
+            // G70–G73 read their profile from the program text.
+            Some(user) if user.def.op.reads_profile() => {
+                resume = self.profile_cycle(user.def.op, user.span, w, next)?;
+            }
+            Some(user) => m.axis_code(user.def.op, user.span, w)?,
+            None => m.modal_motion(w)?,
+        }
+        self.machining().after_motion(w, tool_moved, moves_before)?;
+        // Calls and returns are resolved last: an unknown program or
+        // sequence alarms after the motion, which the alarm then drops.
+        let flow = self.prepare_flow(w, here, next, store)?;
+        self.program_flow(w, flow.or(resume.map(Step::Jump)))
+    }
+
+    /// Step 8: stops, ends, calls and returns (already resolved).
+    fn program_flow(&mut self, w: &Words<'_>, flow: Option<Step>) -> Result<Step, Diagnostic> {
+        let Some(m) = w.m_of(MGroup::Flow) else {
+            return Ok(flow.unwrap_or(Step::Next));
+        };
+        match m.def.op {
+            MOp::Stop => self.machining().program_stop(StopCode::M00),
+            MOp::OptionalStop if self.cfg.opts.optional_stop => {
+                self.machining().program_stop(StopCode::M01)
+            }
+            MOp::End => return self.end_program(EndCode::M02),
+            MOp::EndRewind => return self.end_program(EndCode::M30),
+            // Calls and returns were resolved before (`prepare_flow`); the
+            // other M codes are not of the flow group.
+            MOp::OptionalStop
+            | MOp::Call
+            | MOp::Return
+            | MOp::LocalCall
+            | MOp::SpindleCw
+            | MOp::SpindleCcw
+            | MOp::SpindleStop
+            | MOp::SpindleOrient
+            | MOp::RigidTap
+            | MOp::ToolChange
+            | MOp::CoolantOn
+            | MOp::CoolantOff => {}
+        }
+        Ok(flow.unwrap_or(Step::Next))
+    }
+
+    /// The end of the run: compensation's last move leaves first, then the
+    /// frame, then the `end` event.
+    pub(crate) fn end_program(&mut self, code: EndCode) -> Result<Step, Diagnostic> {
+        self.machining().comp_finish()?;
+        self.machining().report_frame();
+        if let Some(e) = self.unset_report() {
+            self.machining().emit(|_| e);
+        }
+        if let Some(w) = self.whole_units_report() {
+            self.machining().emit(|_| w);
+        }
+        self.machining().emit(|loc| Event::End { loc, code });
+        Ok(Step::End(code))
+    }
+
+    /// Resolves M98/M99 of the block into the jump it will make.
+    fn prepare_flow(
+        &mut self,
+        w: &Words<'_>,
+        here: Cursor,
+        next: Cursor,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Option<Step>, Diagnostic> {
+        if let Some(g) = w.axis_user
+            && let GOp::Flow(flow) = g.def.op
+        {
+            match flow {
+                FlowOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
+                FlowOp::SubReturn => return self.sub_return(g.span).map(Some),
+                FlowOp::Jump => return self.jump(w, g.span).map(Some),
+                // A finished loop continues after its block, but the label
+                // search may have moved the reader: re-read from `next`.
+                FlowOp::Loop => {
+                    let step = self.loop_back(w, g.span, here)?;
+                    return Ok(Some(if matches!(step, Step::Next) {
+                        Step::Jump(next)
+                    } else {
+                        step
+                    }));
+                }
+                // Macro calls leave before execution (`Interpreter::block`).
+                FlowOp::MacroCall | FlowOp::MacroModal | FlowOp::MacroModalCancel => {}
+            }
+        }
+        let Some(m) = w.m_of(MGroup::Flow) else {
+            return Ok(None);
+        };
+        match m.def.op {
+            MOp::Call => self.call(w, m.span, here, next, store, false).map(Some),
+            MOp::Return => self.ret(w, m.span, here).map(Some),
+            MOp::LocalCall => self.call(w, m.span, here, next, store, true).map(Some),
+            // Stops and ends run after the motion (`program_flow`).
+            MOp::Stop
+            | MOp::OptionalStop
+            | MOp::End
+            | MOp::EndRewind
+            | MOp::SpindleCw
+            | MOp::SpindleCcw
+            | MOp::SpindleStop
+            | MOp::SpindleOrient
+            | MOp::RigidTap
+            | MOp::ToolChange
+            | MOp::CoolantOn
+            | MOp::CoolantOff => Ok(None),
+        }
+    }
+}
+
+impl Machining<'_, '_> {
+    /// Step 1: the checks of the block's codes against the modes in
+    /// force, then its modal codes (returns the path mode before them).
+    fn modes(&mut self, w: &Words<'_>) -> Result<PathMode, Diagnostic> {
         self.check_comp_changes(w)?;
         self.check_cycle_plane(w)?;
         if self.state.modal.high_speed {
@@ -167,7 +241,7 @@ impl Interpreter<'_> {
         }
         self.cycle_modes(w)?;
         if w.group(Group::Wcs).is_some() {
-            self.state.refresh_origin(&self.tables);
+            self.state.refresh_origin(self.tables);
         }
         if self.cfg.markers {
             self.report_modes(wcs_before, inch_before);
@@ -176,11 +250,15 @@ impl Interpreter<'_> {
         w.check_used(allowed, ext)
             .map_err(|d| cancelled_cycle_hint(d, w))?;
         if self.cfg.dialect.polar_words {
-            self.check_polar_words(w, plane_before)?;
+            self.state.check_polar_words(self.cfg, w, plane_before)?;
         }
-        if self.points.active {
-            self.note_points(w);
-        }
+        Ok(path_before)
+    }
+
+    /// Steps 2–6: F, S, T, M06, the spindle, coolant, the other M codes,
+    /// the frame codes without axis words, compensation and the settings
+    /// (returns whether a tool length offset moved the tool).
+    fn words(&mut self, w: &Words<'_>, path_before: PathMode) -> Result<bool, Diagnostic> {
         if self.state.modal.path != path_before {
             let mode = self.state.modal.path;
             self.emit(|loc| Event::PathMode { loc, mode });
@@ -203,16 +281,18 @@ impl Interpreter<'_> {
         self.state.smoothing.frame_change(w);
         self.comp_codes(w)?;
         self.setting_codes(w)?;
-        let moves_before = self.stage.moves;
-        let mut resume = None;
-        match w.axis_user {
-            // G70–G73 read their profile from the program text.
-            Some(user) if user.def.op.reads_profile() => {
-                resume = self.profile_cycle(user.def.op, user.span, w, next)?;
-            }
-            Some(user) => self.axis_code(user.def.op, user.span, w)?,
-            None => self.modal_motion(w)?,
-        }
+        Ok(tool_moved)
+    }
+
+    /// After step 7's motion: a held corner's check, a tool length offset
+    /// that moves by itself, EIA G99, the compensation's block end and a
+    /// frame changed without a move.
+    fn after_motion(
+        &mut self,
+        w: &Words<'_>,
+        tool_moved: bool,
+        moves_before: u64,
+    ) -> Result<(), Diagnostic> {
         if self.state.lathe.corner.is_some() {
             self.check_corner_cut(w)?;
         }
@@ -220,7 +300,7 @@ impl Interpreter<'_> {
             match self.cfg.dialect.tool_length_change {
                 ToolLengthChange::MovesNow => self.tool_length_move(w)?,
                 ToolLengthChange::AtNextMove => {
-                    let s = &mut self.state;
+                    let s = &mut *self.state;
                     s.prog = s.frame.program_of(s.nominal);
                     s.detached = false;
                 }
@@ -247,10 +327,120 @@ impl Interpreter<'_> {
         // A frame changed without a move is reported with its block, before
         // the block's stop or end.
         self.report_frame();
-        // Calls and returns are resolved last: an unknown program or
-        // sequence alarms after the motion, which the alarm then drops.
-        let flow = self.prepare_flow(w, here, next, store)?;
-        self.program_flow(w, flow.or(resume.map(Step::Jump)))
+        Ok(())
+    }
+    /// A plain block's words before its move: D, the motion code, the
+    /// letters the motion allows, polar words.
+    #[inline(always)]
+    fn motion_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if w.get(b'D').is_some() {
+            // A D word (a new radius, or outside G41/G42 the offset the
+            // next G41/G42 uses) reaches the compensation stage; a plain
+            // block has no G40/G41/G42, so without D there is nothing to do.
+            self.comp_codes(w)?;
+        }
+        if let Some(motion) = w.group(Group::Motion) {
+            self.apply_modal(motion.def.op);
+            if self.state.cycle.code.is_some() {
+                self.cycle_modes(w)?;
+            }
+        }
+        if w.has_arc_words(self.cfg.axis_mask) {
+            let (allowed, ext) = self.allowed_letters(w);
+            w.check_used(allowed, ext)?;
+            if self.cfg.dialect.polar_words {
+                self.state
+                    .check_polar_words(self.cfg, w, self.state.modal.plane)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// A plain block's F and its move.
+    #[inline(always)]
+    fn motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        self.feed_word(w)?;
+        self.modal_motion(w)?;
+        if self.state.lathe.corner.is_some() {
+            self.check_corner_cut(w)?;
+        }
+        if self.stage.comp.engaged() {
+            self.comp_block_end(w.first)?;
+        }
+        Ok(())
+    }
+}
+
+/// Letters a plain motion block may carry besides the axes.
+const PLAIN_EXTRA: u32 =
+    bit(b'F') | bit(b'N') | bit(b'R') | bit(b'I') | bit(b'J') | bit(b'K') | bit(b'D');
+
+/// E109 for a negative F (a feed or a thread's lead).
+fn not_negative_feed(f: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
+    if f.value < 0.0 {
+        return Err(alarms::value_out_of_range(
+            f.span,
+            b'F',
+            f.value,
+            "a feed is not negative",
+        ));
+    }
+    Ok(())
+}
+
+/// The centre-offset letters of a plane.
+fn plane_offsets(plane: Plane) -> u32 {
+    match plane {
+        Plane::Xy => bit(b'I') | bit(b'J'),
+        Plane::Zx => bit(b'I') | bit(b'K'),
+        Plane::Yz => bit(b'J') | bit(b'K'),
+    }
+}
+
+/// The bit of an extended address in `Words::ext_present`.
+fn ext_bit(a: Addr) -> u8 {
+    a.extended_index().map_or(0, |i| 1 << i)
+}
+
+/// E203 in a block with a cycle code and a group-01 code: the help says
+/// that the group-01 code cancelled the cycle (Syntec 1.2.31).
+#[cold]
+fn cancelled_cycle_hint(mut d: Diagnostic, w: &Words<'_>) -> Diagnostic {
+    if let (Some(cycle), Some(_)) = (w.group(Group::Cycle), w.group(Group::Motion))
+        && matches!(cycle.def.op, GOp::Cycle(_))
+        && d.code.as_str() == "E203"
+    {
+        d.help = "a group-01 code (G00–G03) cancels the canned cycle in its block (Syntec 1.2.31): remove it to drill, or cancel the cycle in a block of its own".to_string();
+    }
+    d
+}
+
+impl<'a> Machining<'_, 'a> {
+    /// Whether a plain motion block `w` is a G00/G01 that the stage's
+    /// [`MoveMark`](Stage::mark_move) (or under compensation its
+    /// [`CompensatedMoveMark`](Stage::mark_compensated_move)) can undo: no canned cycle,
+    /// lathe corner or G96 in force (each changes more before it can
+    /// alarm), compensation either off or holding a move with nothing
+    /// queued behind it, and nothing in the block beyond axes, F and N (no
+    /// arc word, D or `,C`/`,R`).
+    #[inline(always)]
+    pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
+        let s = &self.state;
+        if (comp_engaged && !self.stage.comp.can_mark())
+            || s.cycle.code.is_some()
+            || s.lathe.corner.is_some()
+            || s.modal.css
+            || w.has_arc_words(self.cfg.axis_mask)
+        {
+            return false;
+        }
+        match w.group(Group::Motion) {
+            Some(m) => matches!(
+                m.def.op,
+                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
+            ),
+            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
+        }
     }
 
     /// Step 1: one modal code written in the block. The frame codes,
@@ -675,11 +865,11 @@ impl Interpreter<'_> {
                 GOp::Set(SetOp::RefStore(n)) => self.store_reference(n),
                 GOp::Set(SetOp::ShiftCancel) => {
                     self.tables.set_shift(crate::events::Pos::default());
-                    self.state.refresh_origin(&self.tables);
+                    self.state.refresh_origin(self.tables);
                 }
                 GOp::Set(SetOp::ShiftSuspend(on)) => {
                     self.tables.suspend_shift(on);
-                    self.state.refresh_origin(&self.tables);
+                    self.state.refresh_origin(self.tables);
                 }
                 GOp::Pace(PaceOp::Smoothing) => {
                     let (on, tolerance_mm) = crate::state::Smoothing::haas_level(w, self.units());
@@ -782,107 +972,12 @@ impl Interpreter<'_> {
         }
     }
 
-    /// Step 8: stops, ends, calls and returns (already resolved).
-    fn program_flow(&mut self, w: &Words<'_>, flow: Option<Step>) -> Result<Step, Diagnostic> {
-        let Some(m) = w.m_of(MGroup::Flow) else {
-            return Ok(flow.unwrap_or(Step::Next));
-        };
-        match m.def.op {
-            MOp::Stop => self.program_stop(StopCode::M00),
-            MOp::OptionalStop if self.cfg.opts.optional_stop => self.program_stop(StopCode::M01),
-            MOp::End => return self.end_program(EndCode::M02),
-            MOp::EndRewind => return self.end_program(EndCode::M30),
-            // Calls and returns were resolved before (`prepare_flow`); the
-            // other M codes are not of the flow group.
-            MOp::OptionalStop
-            | MOp::Call
-            | MOp::Return
-            | MOp::LocalCall
-            | MOp::SpindleCw
-            | MOp::SpindleCcw
-            | MOp::SpindleStop
-            | MOp::SpindleOrient
-            | MOp::RigidTap
-            | MOp::ToolChange
-            | MOp::CoolantOn
-            | MOp::CoolantOff => {}
-        }
-        Ok(flow.unwrap_or(Step::Next))
-    }
-
-    /// The end of the run: compensation's last move leaves first, then the
-    /// frame, then the `end` event.
-    pub(crate) fn end_program(&mut self, code: EndCode) -> Result<Step, Diagnostic> {
-        self.comp_finish()?;
-        self.report_frame();
-        if let Some(e) = self.unset_report() {
-            self.emit(|_| e);
-        }
-        if let Some(w) = self.whole_units_report() {
-            self.emit(|_| w);
-        }
-        self.emit(|loc| Event::End { loc, code });
-        Ok(Step::End(code))
-    }
-
-    /// Resolves M98/M99 of the block into the jump it will make.
-    fn prepare_flow(
-        &mut self,
-        w: &Words<'_>,
-        here: Cursor,
-        next: Cursor,
-        store: &mut dyn ProgramStore,
-    ) -> Result<Option<Step>, Diagnostic> {
-        if let Some(g) = w.axis_user
-            && let GOp::Flow(flow) = g.def.op
-        {
-            match flow {
-                FlowOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
-                FlowOp::SubReturn => return self.sub_return(g.span).map(Some),
-                FlowOp::Jump => return self.jump(w, g.span).map(Some),
-                // A finished loop continues after its block, but the label
-                // search may have moved the reader: re-read from `next`.
-                FlowOp::Loop => {
-                    let step = self.loop_back(w, g.span, here)?;
-                    return Ok(Some(if matches!(step, Step::Next) {
-                        Step::Jump(next)
-                    } else {
-                        step
-                    }));
-                }
-                // Macro calls leave before execution (`Interpreter::block`).
-                FlowOp::MacroCall | FlowOp::MacroModal | FlowOp::MacroModalCancel => {}
-            }
-        }
-        let Some(m) = w.m_of(MGroup::Flow) else {
-            return Ok(None);
-        };
-        match m.def.op {
-            MOp::Call => self.call(w, m.span, here, next, store, false).map(Some),
-            MOp::Return => self.ret(w, m.span, here).map(Some),
-            MOp::LocalCall => self.call(w, m.span, here, next, store, true).map(Some),
-            // Stops and ends run after the motion (`program_flow`).
-            MOp::Stop
-            | MOp::OptionalStop
-            | MOp::End
-            | MOp::EndRewind
-            | MOp::SpindleCw
-            | MOp::SpindleCcw
-            | MOp::SpindleStop
-            | MOp::SpindleOrient
-            | MOp::RigidTap
-            | MOp::ToolChange
-            | MOp::CoolantOn
-            | MOp::CoolantOff => Ok(None),
-        }
-    }
-
     /// Reports a warning about the current block (located in its line); it
     /// reaches the sink with the block's events.
     #[cold]
     pub(crate) fn warn(&mut self, d: Diagnostic) {
         let d = match self.stage.cur_line {
-            Some((src, line)) => self.locate(d, src, &line),
+            Some((src, line)) => self.at.locate(d, src, &line),
             None => d,
         };
         self.emit(|_| Event::Warning(d));
@@ -915,51 +1010,7 @@ impl Interpreter<'_> {
     /// Adds an event of the current block; it reaches the sink when the
     /// block has succeeded.
     pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
-        let e = make(self.flow.loc.clone());
+        let e = make(self.at.loc().clone());
         self.stage.emit(e);
     }
-}
-
-/// Letters a plain motion block may carry besides the axes.
-const PLAIN_EXTRA: u32 =
-    bit(b'F') | bit(b'N') | bit(b'R') | bit(b'I') | bit(b'J') | bit(b'K') | bit(b'D');
-
-/// E109 for a negative F (a feed or a thread's lead).
-fn not_negative_feed(f: &vcnc_syntax::Word) -> Result<(), Diagnostic> {
-    if f.value < 0.0 {
-        return Err(alarms::value_out_of_range(
-            f.span,
-            b'F',
-            f.value,
-            "a feed is not negative",
-        ));
-    }
-    Ok(())
-}
-
-/// The centre-offset letters of a plane.
-fn plane_offsets(plane: Plane) -> u32 {
-    match plane {
-        Plane::Xy => bit(b'I') | bit(b'J'),
-        Plane::Zx => bit(b'I') | bit(b'K'),
-        Plane::Yz => bit(b'J') | bit(b'K'),
-    }
-}
-
-/// The bit of an extended address in `Words::ext_present`.
-fn ext_bit(a: Addr) -> u8 {
-    a.extended_index().map_or(0, |i| 1 << i)
-}
-
-/// E203 in a block with a cycle code and a group-01 code: the help says
-/// that the group-01 code cancelled the cycle (Syntec 1.2.31).
-#[cold]
-fn cancelled_cycle_hint(mut d: Diagnostic, w: &Words<'_>) -> Diagnostic {
-    if let (Some(cycle), Some(_)) = (w.group(Group::Cycle), w.group(Group::Motion))
-        && matches!(cycle.def.op, GOp::Cycle(_))
-        && d.code.as_str() == "E203"
-    {
-        d.help = "a group-01 code (G00–G03) cancels the canned cycle in its block (Syntec 1.2.31): remove it to drill, or cancel the cycle in a block of its own".to_string();
-    }
-    d
 }

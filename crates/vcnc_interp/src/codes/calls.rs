@@ -173,7 +173,7 @@ impl Interpreter<'_> {
                 // ever (a bar feeder); one pass is the run. A program that
                 // uses variables can count its passes: it loops, bounded
                 // by the runaway limits.
-                self.warn(alarms::main_program_repeats(m));
+                self.machining().warn(alarms::main_program_repeats(m));
                 return self.end_program(EndCode::M99);
             }
             return Ok(Step::Jump(to));

@@ -40,7 +40,7 @@ use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::dialect::CircleCutForm;
 use crate::events::{ArcDir, Feed, Plane, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
@@ -65,7 +65,110 @@ struct Cut {
     arcs_in_out: bool,
 }
 
-impl Interpreter<'_> {
+fn positive(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(alarms::value_out_of_range(
+            word.span,
+            word.addr.0,
+            word.value,
+            why,
+        ))
+    }
+}
+
+/// The moves of one circle cut, relative to its centre.
+struct CircleSteps<'w, 'b> {
+    cut: Cut,
+    w: &'w Words<'b>,
+    cmd: Span,
+}
+
+impl CircleSteps<'_, '_> {
+    fn z(&self, it: &Machining<'_, '_>) -> f64 {
+        it.state.prog.get(self.cut.axes.z)
+    }
+
+    fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
+        let ax = self.cut.axes;
+        let mut p = it.state.prog;
+        p.set(ax.a, self.cut.centre.0 + da);
+        p.set(ax.b, self.cut.centre.1 + db);
+        p.set(ax.z, z);
+        p
+    }
+
+    /// To the centre at rapid, at the level the tool is at.
+    fn rapid(&mut self, it: &mut Machining<'_, '_>, z: f64) -> Result<(), Diagnostic> {
+        let p = self.point(it, (0.0, 0.0), z);
+        it.step_to(MoveKind::Rapid, p, self.w, self.cmd)
+    }
+
+    fn feed(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        at: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, at, z);
+        it.step_to(MoveKind::Feed(self.cut.feed), p, self.w, self.cmd)
+    }
+
+    /// An arc in the cut's sense to `to` about `centre` (relative points).
+    fn arc(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        to: (f64, f64),
+        centre: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let end = self.point(it, to, z);
+        let here = it.state.prog;
+        let ax = self.cut.axes;
+        let mut offset = Pos::default();
+        offset.set(ax.a, self.cut.centre.0 + centre.0 - here.get(ax.a));
+        offset.set(ax.b, self.cut.centre.1 + centre.1 - here.get(ax.b));
+        let mv = Move {
+            kind: MoveKind::Arc {
+                offset,
+                plane: Plane::Xy,
+                cw: self.cut.cw,
+                feed: self.cut.feed,
+            },
+            to: Target::Program(end),
+            exact_stop: false,
+            cmd: self.cmd,
+        };
+        it.send(mv, self.w)
+    }
+
+    /// From the centre round every ring and back, at level `z`.
+    fn rings(&mut self, it: &mut Machining<'_, '_>, z: f64) -> Result<(), Diagnostic> {
+        let radii = self.cut.radii.clone();
+        let (Some(&first), Some(&last)) = (radii.first(), radii.last()) else {
+            return Ok(());
+        };
+        if self.cut.arcs_in_out {
+            self.arc(it, (first, 0.0), (first / 2.0, 0.0), z)?;
+        } else {
+            self.feed(it, (first, 0.0), z)?;
+        }
+        for (k, &r) in radii.iter().enumerate() {
+            if k > 0 {
+                self.feed(it, (r, 0.0), z)?;
+            }
+            self.arc(it, (r, 0.0), (0.0, 0.0), z)?;
+        }
+        if self.cut.arcs_in_out {
+            self.arc(it, (0.0, 0.0), (last / 2.0, 0.0), z)
+        } else {
+            self.feed(it, (0.0, 0.0), z)
+        }
+    }
+}
+
+impl<'a> Machining<'_, 'a> {
     /// G12/G13: the whole cut, or an alarm before any of it moves.
     pub(crate) fn circle_cut(
         &mut self,
@@ -245,110 +348,12 @@ impl Interpreter<'_> {
     /// The centre (the block's X and Y, else where the tool is), the level
     /// the tool is at and the block's Z (program coordinates).
     fn circle_goal(&mut self, axes: CycleAxes, w: &Words<'_>) -> ((f64, f64), f64, f64) {
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         let z_start = self.state.prog.get(axes.z);
         (
             (goal.prog.get(axes.a), goal.prog.get(axes.b)),
             z_start,
             goal.prog.get(axes.z),
         )
-    }
-}
-
-fn positive(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
-    if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(alarms::value_out_of_range(
-            word.span,
-            word.addr.0,
-            word.value,
-            why,
-        ))
-    }
-}
-
-/// The moves of one circle cut, relative to its centre.
-struct CircleSteps<'w, 'b> {
-    cut: Cut,
-    w: &'w Words<'b>,
-    cmd: Span,
-}
-
-impl CircleSteps<'_, '_> {
-    fn z(&self, it: &Interpreter<'_>) -> f64 {
-        it.state.prog.get(self.cut.axes.z)
-    }
-
-    fn point(&self, it: &Interpreter<'_>, (da, db): (f64, f64), z: f64) -> Pos {
-        let ax = self.cut.axes;
-        let mut p = it.state.prog;
-        p.set(ax.a, self.cut.centre.0 + da);
-        p.set(ax.b, self.cut.centre.1 + db);
-        p.set(ax.z, z);
-        p
-    }
-
-    /// To the centre at rapid, at the level the tool is at.
-    fn rapid(&mut self, it: &mut Interpreter<'_>, z: f64) -> Result<(), Diagnostic> {
-        let p = self.point(it, (0.0, 0.0), z);
-        it.step_to(MoveKind::Rapid, p, self.w, self.cmd)
-    }
-
-    fn feed(&mut self, it: &mut Interpreter<'_>, at: (f64, f64), z: f64) -> Result<(), Diagnostic> {
-        let p = self.point(it, at, z);
-        it.step_to(MoveKind::Feed(self.cut.feed), p, self.w, self.cmd)
-    }
-
-    /// An arc in the cut's sense to `to` about `centre` (relative points).
-    fn arc(
-        &mut self,
-        it: &mut Interpreter<'_>,
-        to: (f64, f64),
-        centre: (f64, f64),
-        z: f64,
-    ) -> Result<(), Diagnostic> {
-        let end = self.point(it, to, z);
-        let here = it.state.prog;
-        let ax = self.cut.axes;
-        let mut offset = Pos::default();
-        offset.set(ax.a, self.cut.centre.0 + centre.0 - here.get(ax.a));
-        offset.set(ax.b, self.cut.centre.1 + centre.1 - here.get(ax.b));
-        let mv = Move {
-            kind: MoveKind::Arc {
-                offset,
-                plane: Plane::Xy,
-                cw: self.cut.cw,
-                feed: self.cut.feed,
-            },
-            to: Target::Program(end),
-            exact_stop: false,
-            cmd: self.cmd,
-        };
-        it.send(mv, self.w)
-    }
-
-    /// From the centre round every ring and back, at level `z`.
-    fn rings(&mut self, it: &mut Interpreter<'_>, z: f64) -> Result<(), Diagnostic> {
-        let radii = self.cut.radii.clone();
-        let (Some(&first), Some(&last)) = (radii.first(), radii.last()) else {
-            return Ok(());
-        };
-        if self.cut.arcs_in_out {
-            self.arc(it, (first, 0.0), (first / 2.0, 0.0), z)?;
-        } else {
-            self.feed(it, (first, 0.0), z)?;
-        }
-        for (k, &r) in radii.iter().enumerate() {
-            if k > 0 {
-                self.feed(it, (r, 0.0), z)?;
-            }
-            self.arc(it, (r, 0.0), (0.0, 0.0), z)?;
-        }
-        if self.cut.arcs_in_out {
-            self.arc(it, (0.0, 0.0), (last / 2.0, 0.0), z)
-        } else {
-            self.feed(it, (0.0, 0.0), z)
-        }
     }
 }

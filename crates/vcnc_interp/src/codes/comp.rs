@@ -14,12 +14,12 @@ use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::{CompOp, ModeOp, MotionOp};
 use crate::dialect::{GOp, Group, OffsetDefault, bit};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::comp::Mode;
 use crate::state::{CompSide, Motion};
 use vcnc_syntax::Diagnostic;
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// Step 6 for G40/G41/G42 and D.
     pub(crate) fn comp_codes(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let code = w.group(Group::CutterComp);

@@ -24,7 +24,7 @@ use crate::alarms;
 use crate::block::convert::Goal;
 use crate::block::words::Words;
 use crate::events::{Feed, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use crate::plane::{Curve, P2, Seg, ZERO_MM, intersect};
 use crate::state::lathe::{CornerKind, PendingCorner};
@@ -199,7 +199,7 @@ fn on_seg(s: &Seg, p: P2) -> bool {
     }
 }
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// A G01 with `,C` or `,R`: hold it until the next block.
     pub(crate) fn hold_corner(
         &mut self,
@@ -258,7 +258,7 @@ impl Interpreter<'_> {
             arc,
             cmd,
             word: word.span,
-            line: self.flow.loc.line,
+            line: self.at.loc().line,
             block_at: w.first.start,
             source_line: self.stage.cur_line,
         });
@@ -311,7 +311,7 @@ impl Interpreter<'_> {
         .map_err(|why| alarms::corner_fault(mv.cmd, why))?;
         let at = |q: P2| q.placed(corner, ab);
         // The held block's moves carry its line (and its alarms its place).
-        let line = std::mem::replace(&mut self.flow.loc.line, held.line);
+        let line = self.at.set_line(held.line);
         let cur_line = std::mem::replace(&mut self.stage.cur_line, held.source_line);
         self.state.prog = held.start;
         let first_kind = match held.arc {
@@ -351,9 +351,9 @@ impl Interpreter<'_> {
             };
             out = self.send(round, w);
         }
-        self.flow.loc.line = line;
+        self.at.set_line(line);
         let out = match (out, held.source_line) {
-            (Err(d), Some((src, l))) => Err(self.locate(d, src, &l)),
+            (Err(d), Some((src, l))) => Err(self.at.locate(d, src, &l)),
             (out, _) => out,
         };
         self.stage.cur_line = cur_line;
@@ -389,7 +389,7 @@ impl Interpreter<'_> {
         let corner = self.state.prog;
         let block = vcnc_syntax::Block::default();
         let w = Words::new(&block);
-        let line = std::mem::replace(&mut self.flow.loc.line, held.line);
+        let line = self.at.set_line(held.line);
         let cur_line = std::mem::replace(&mut self.stage.cur_line, held.source_line);
         self.state.prog = held.start;
         let straight = Move {
@@ -401,7 +401,7 @@ impl Interpreter<'_> {
         if self.commit(straight, &w).is_err() {
             self.state.prog = corner;
         }
-        self.flow.loc.line = line;
+        self.at.set_line(line);
         self.stage.cur_line = cur_line;
     }
 
@@ -421,7 +421,7 @@ impl Interpreter<'_> {
     /// this block did not cut (it did not move with G01) alarms.
     pub(crate) fn check_corner_cut(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
         match self.state.lathe.corner {
-            Some(held) if (held.line, held.block_at) != (self.flow.loc.line, w.first.start) => Err(
+            Some(held) if (held.line, held.block_at) != (self.at.loc().line, w.first.start) => Err(
                 alarms::corner_fault(w.first, "the block after a ,C or ,R must be a G01 move"),
             ),
             _ => Ok(()),

@@ -24,7 +24,7 @@ use crate::block::words::Words;
 use crate::dialect::{Approach, GOp, Group, Hole, PeckClearance, TapStyle};
 use crate::dialect::{CycleOp, ModeOp};
 use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::state::{CycleData, ReducedPeck};
 use vcnc_syntax::{Diagnostic, Span, Word};
@@ -93,7 +93,66 @@ pub(crate) struct CycleAxes {
     pub z: usize,
 }
 
-impl Interpreter<'_> {
+/// The moves of one hole: to a level at the hole's position, or shifted.
+struct Steps<'w, 'b> {
+    axes: CycleAxes,
+    xy: (f64, f64),
+    w: &'w Words<'b>,
+    cmd: Span,
+}
+
+impl Steps<'_, '_> {
+    fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
+        let mut p = it.state.prog;
+        p.set(self.axes.a, self.xy.0 + da);
+        p.set(self.axes.b, self.xy.1 + db);
+        p.set(self.axes.z, z);
+        p
+    }
+
+    fn go(&self, it: &mut Machining<'_, '_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
+        it.step_to(kind, p, self.w, self.cmd)
+    }
+
+    fn rapid(&mut self, it: &mut Machining<'_, '_>, z: f64) -> Result<(), Diagnostic> {
+        let p = self.point(it, (0.0, 0.0), z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+
+    fn feed(&mut self, it: &mut Machining<'_, '_>, z: f64, feed: Feed) -> Result<(), Diagnostic> {
+        let p = self.point(it, (0.0, 0.0), z);
+        self.go(it, MoveKind::Feed(feed), p)
+    }
+
+    /// A rapid in the plane to the shifted (or, with (0,0), centred) point.
+    fn shift(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        s: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, s, z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+
+    /// A rapid along the drilling axis at the shifted point.
+    fn shifted(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        s: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, s, z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+}
+
+/// Whether a cycle doing `hole` pecks by Q (and so needs Q > 0).
+fn pecks_with_q(hole: Hole) -> bool {
+    matches!(hole, Hole::HighSpeedPeck | Hole::DeepPeck | Hole::ChipBreak)
+}
+
+impl<'a> Machining<'_, 'a> {
     pub(crate) fn cycle_axes(&self, cmd: Span) -> Result<CycleAxes, Diagnostic> {
         let axes = self.cfg.plane_axes(self.state.modal.plane, cmd)?;
         let z = axes
@@ -231,7 +290,7 @@ impl Interpreter<'_> {
         self.check_pecks(count.into(), cmd)?;
         let suspended = self.suspend_comp()?;
         for _ in 0..count {
-            let mut goal = self.target(w, self.state.modal.incremental);
+            let mut goal = self.state.target(self.cfg, w, self.state.modal.incremental);
             keep(&mut goal, self.state.prog);
             self.hole(
                 c,
@@ -943,7 +1002,7 @@ impl Interpreter<'_> {
         self.spindle_ready(c, cmd)?;
         let axes = self.cycle_axes(cmd)?;
         let (x, y) = {
-            let mut goal = self.target(w, self.state.modal.incremental);
+            let mut goal = self.state.target(self.cfg, w, self.state.modal.incremental);
             goal.prog.set(axes.z, self.state.prog.get(axes.z));
             (goal.prog.get(axes.a), goal.prog.get(axes.b))
         };
@@ -1115,58 +1174,4 @@ impl Interpreter<'_> {
         }
         Ok(out)
     }
-}
-
-/// The moves of one hole: to a level at the hole's position, or shifted.
-struct Steps<'w, 'b> {
-    axes: CycleAxes,
-    xy: (f64, f64),
-    w: &'w Words<'b>,
-    cmd: Span,
-}
-
-impl Steps<'_, '_> {
-    fn point(&self, it: &Interpreter<'_>, (da, db): (f64, f64), z: f64) -> Pos {
-        let mut p = it.state.prog;
-        p.set(self.axes.a, self.xy.0 + da);
-        p.set(self.axes.b, self.xy.1 + db);
-        p.set(self.axes.z, z);
-        p
-    }
-
-    fn go(&self, it: &mut Interpreter<'_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
-        it.step_to(kind, p, self.w, self.cmd)
-    }
-
-    fn rapid(&mut self, it: &mut Interpreter<'_>, z: f64) -> Result<(), Diagnostic> {
-        let p = self.point(it, (0.0, 0.0), z);
-        self.go(it, MoveKind::Rapid, p)
-    }
-
-    fn feed(&mut self, it: &mut Interpreter<'_>, z: f64, feed: Feed) -> Result<(), Diagnostic> {
-        let p = self.point(it, (0.0, 0.0), z);
-        self.go(it, MoveKind::Feed(feed), p)
-    }
-
-    /// A rapid in the plane to the shifted (or, with (0,0), centred) point.
-    fn shift(&mut self, it: &mut Interpreter<'_>, s: (f64, f64), z: f64) -> Result<(), Diagnostic> {
-        let p = self.point(it, s, z);
-        self.go(it, MoveKind::Rapid, p)
-    }
-
-    /// A rapid along the drilling axis at the shifted point.
-    fn shifted(
-        &mut self,
-        it: &mut Interpreter<'_>,
-        s: (f64, f64),
-        z: f64,
-    ) -> Result<(), Diagnostic> {
-        let p = self.point(it, s, z);
-        self.go(it, MoveKind::Rapid, p)
-    }
-}
-
-/// Whether a cycle doing `hole` pecks by Q (and so needs Q > 0).
-fn pecks_with_q(hole: Hole) -> bool {
-    matches!(hole, Hole::HighSpeedPeck | Hole::DeepPeck | Hole::ChipBreak)
 }

@@ -31,7 +31,7 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::events::{Feed, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Xz, ZERO_MM};
 use vcnc_syntax::{Diagnostic, Span};
@@ -54,7 +54,7 @@ enum Step {
     Thread(f64),
 }
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// Machine axis indices of X and Z.
     fn xz_axes(&self, cmd: Span) -> Result<(usize, usize), Diagnostic> {
         match (
@@ -77,7 +77,10 @@ impl Interpreter<'_> {
     pub(crate) fn cylinder_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.xz_axes(cmd)?;
         let feed = self.feed(cmd)?;
-        let end = self.target(w, self.state.modal.incremental).prog;
+        let end = self
+            .state
+            .target(self.cfg, w, self.state.modal.incremental)
+            .prog;
         let (r, i, k) = match (w.get(b'R'), w.get(b'I'), w.get(b'K')) {
             (Some(r), Some(i), Some(k)) => (r, i, k),
             _ => return Err(alarms::cycle_parameters(cmd, "G81 needs R, I and K")),

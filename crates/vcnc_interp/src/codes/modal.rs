@@ -19,74 +19,12 @@ use crate::block::words::Words;
 use crate::dialect::{GOp, Group, PaceOp, ThreadLead};
 use crate::events::MAX_AXES;
 use crate::events::SpindleDir;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use crate::state::Motion;
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
-    /// Step 7 without a one-shot code: the modal motion, if the block moves.
-    pub(crate) fn modal_motion(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
-        let motion = self.state.modal.motion;
-        let cmd = w.group(Group::Motion).map_or(w.first, |a| a.span);
-        if self.state.cycle.code.is_some() {
-            return self.drill(w, cmd);
-        }
-        match motion {
-            Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
-            Motion::ThreePointArc => self.three_point_arc(w, cmd),
-            Motion::Nurbs => self.nurbs_block(w, cmd),
-            Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
-                self.single_cycle(w, cmd, motion)
-            }
-            _ if !w.moves(self.cfg.axis_mask) => Ok(()),
-            Motion::Rapid => {
-                let goal = self.target(w, self.state.modal.incremental);
-                let to = self.to_target(&goal);
-                self.straight(MoveKind::Rapid, to, w, cmd)
-            }
-            Motion::Linear => {
-                if let Some(t) = self.state.smoothing.before_linear(self.state.modal.path) {
-                    self.report_smoothing(t);
-                }
-                let goal = self.target(w, self.state.modal.incremental);
-                let feed = if self.state.modal.inverse_time {
-                    let from = self.state.prog;
-                    let len = (0..MAX_AXES)
-                        .map(|i| (goal.prog.get(i) - from.get(i)).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    self.inverse_time_feed(w, cmd, len)?
-                } else {
-                    self.feed(cmd)?
-                };
-                let to = self.to_target(&goal);
-                if w.corner_word() {
-                    // `,C`/`,R`: the corner waits for the next block.
-                    return self.hold_corner(w, cmd, feed, &goal, None);
-                }
-                self.straight(MoveKind::Feed(feed), to, w, cmd)
-            }
-            Motion::Thread | Motion::ThreadInch => {
-                if self.cfg.dialect.thread_lead == ThreadLead::K
-                    && let Some(k) = w.get(b'K')
-                {
-                    // LinuxCNC's G33 K: distance per revolution.
-                    self.state.thread_lead_mm = Some(self.units().length_mm(&k));
-                }
-                let lead_mm = self
-                    .state
-                    .thread_lead_mm
-                    .filter(|l| *l > 0.0)
-                    .ok_or_else(|| alarms::thread_without_lead(cmd))?;
-                let goal = self.target(w, self.state.modal.incremental);
-                let to = self.to_target(&goal);
-                self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)
-            }
-            Motion::RigidTap => self.rigid_tap(w, cmd),
-        }
-    }
-
+impl<'a> Machining<'_, 'a> {
     /// LinuxCNC's G33.1 K: in to the block's point locked to the spindle,
     /// K per revolution; the spindle reversed; back out the same way to
     /// where the tap started, which is where the tool stays; the spindle's
@@ -117,8 +55,8 @@ impl Interpreter<'_> {
             return Err(alarms::tapping_spindle(cmd, "G33.1", None));
         }
         let start = self.state.prog;
-        let goal = self.target(w, self.state.modal.incremental);
-        let to = self.to_target(&goal);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
+        let to = self.state.move_target(&goal);
         self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)?;
         self.cycle_spindle(rev);
         let back = crate::motion::Target::Program(start);
@@ -178,5 +116,69 @@ impl Interpreter<'_> {
     /// Whether G09 is in the block.
     pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
         w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()
+    }
+}
+
+impl<'a> Machining<'_, 'a> {
+    /// Step 7 without a one-shot code: the modal motion, if the block moves.
+    pub(crate) fn modal_motion(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let motion = self.state.modal.motion;
+        let cmd = w.group(Group::Motion).map_or(w.first, |a| a.span);
+        if self.state.cycle.code.is_some() {
+            return self.drill(w, cmd);
+        }
+        match motion {
+            Motion::ArcCw | Motion::ArcCcw => self.arc(w, cmd, motion == Motion::ArcCw),
+            Motion::ThreePointArc => self.three_point_arc(w, cmd),
+            Motion::Nurbs => self.nurbs_block(w, cmd),
+            Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
+                self.single_cycle(w, cmd, motion)
+            }
+            _ if !w.moves(self.cfg.axis_mask) => Ok(()),
+            Motion::Rapid => {
+                let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
+                let to = self.state.move_target(&goal);
+                self.straight(MoveKind::Rapid, to, w, cmd)
+            }
+            Motion::Linear => {
+                if let Some(t) = self.state.smoothing.before_linear(self.state.modal.path) {
+                    self.report_smoothing(t);
+                }
+                let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
+                let feed = if self.state.modal.inverse_time {
+                    let from = self.state.prog;
+                    let len = (0..MAX_AXES)
+                        .map(|i| (goal.prog.get(i) - from.get(i)).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    self.inverse_time_feed(w, cmd, len)?
+                } else {
+                    self.feed(cmd)?
+                };
+                let to = self.state.move_target(&goal);
+                if w.corner_word() {
+                    // `,C`/`,R`: the corner waits for the next block.
+                    return self.hold_corner(w, cmd, feed, &goal, None);
+                }
+                self.straight(MoveKind::Feed(feed), to, w, cmd)
+            }
+            Motion::Thread | Motion::ThreadInch => {
+                if self.cfg.dialect.thread_lead == ThreadLead::K
+                    && let Some(k) = w.get(b'K')
+                {
+                    // LinuxCNC's G33 K: distance per revolution.
+                    self.state.thread_lead_mm = Some(self.state.units(self.cfg).length_mm(&k));
+                }
+                let lead_mm = self
+                    .state
+                    .thread_lead_mm
+                    .filter(|l| *l > 0.0)
+                    .ok_or_else(|| alarms::thread_without_lead(cmd))?;
+                let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
+                let to = self.state.move_target(&goal);
+                self.straight(MoveKind::Thread { lead_mm }, to, w, cmd)
+            }
+            Motion::RigidTap => self.rigid_tap(w, cmd),
+        }
     }
 }

@@ -43,6 +43,7 @@ use crate::dialect::GOp;
 use crate::dialect::{MotionOp, RoughPockets, TurnOp};
 use crate::events::Pos;
 use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Seg, Xz, ZERO_MM};
 use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
@@ -71,7 +72,7 @@ impl Interpreter<'_> {
         }
         let pq = (w.get(b'P'), w.get(b'Q'));
         if op != GOp::Turn(TurnOp::FinishCycle) && pq == (None, None) {
-            self.profile_first_block(op, w)?;
+            self.machining().profile_first_block(op, w)?;
             return Ok(None);
         }
         let (Some(p), Some(q)) = pq else {
@@ -81,7 +82,7 @@ impl Interpreter<'_> {
                 "P and Q (the profile's first and last sequence numbers)",
             ));
         };
-        self.refuse(w, b"XZ")?;
+        self.machining().refuse(w, b"XZ")?;
         match op {
             GOp::Turn(TurnOp::FinishCycle) => {
                 // G70 runs the profile as written: no allowance, no depth.
@@ -90,7 +91,7 @@ impl Interpreter<'_> {
                 let read = self.cfg.dialect.g(70.0).map_or(0, |d| d.letters);
                 for letter in b"UWRD" {
                     if read & crate::dialect::bit(*letter) == 0 {
-                        self.refuse(w, &[*letter])?;
+                        self.machining().refuse(w, &[*letter])?;
                     }
                 }
                 let profile = self.read_profile(p, q, next)?;
@@ -100,22 +101,237 @@ impl Interpreter<'_> {
             _ => {
                 // R is a first-block word (G73's pass count); nothing reads
                 // it in the second block.
-                self.refuse(w, b"R")?;
+                self.machining().refuse(w, b"R")?;
                 // Compensation is suspended for the passes (like the mill's
                 // canned cycles): the next move in the plane starts it again.
-                let suspended = self.suspend_comp()?;
+                let suspended = self.machining().suspend_comp()?;
                 let profile = self.read_profile(p, q, next)?;
                 if op == GOp::Turn(TurnOp::PatternCycle) {
-                    self.pattern_repeat(&profile, w, cmd)?;
+                    self.machining().pattern_repeat(&profile, w, cmd)?;
                 } else {
-                    self.rough(op, &profile, w, cmd)?;
+                    self.machining().rough(op, &profile, w, cmd)?;
                 }
-                self.resume_comp(suspended);
+                self.machining().resume_comp(suspended);
                 Ok(Some(if profile.follows { profile.after } else { next }))
             }
         }
     }
 
+    /// LinuxCNC's G70 Q [X Z D E P]: P passes (default 1) along the
+    /// profile `o<Q> sub`, each a rapid to the start point (X Z, else
+    /// where the tool is) and to the profile's first point, then its
+    /// blocks; the tool stays at the profile's end. With D or E the passes
+    /// follow the profile offset from D … to E (`ngc_rough.rs`) and carry
+    /// the cycle block's line.
+    pub(crate) fn ngc_finish_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        self.machining().ngc_cycle_plane(cmd, "G70")?;
+        let axes = self.machining().lathe_axes(cmd)?;
+        let passes = match w.get(b'P') {
+            Some(p) => self.machining().count(&p, "P is G70's number of passes")?,
+            None => 1,
+        };
+        let incremental = self.state.modal.incremental;
+        let goal = self.state.target(&self.cfg, w, incremental);
+        let a = P2::of(&goal.prog, axes);
+        let mut profile = self.ngc_cycle_profile(w, cmd, "G70")?;
+        let len = |l: u8| {
+            w.get(l)
+                .map_or(0.0, |x| self.state.units(&self.cfg).length_mm(&x))
+        };
+        let (d, e) = (len(b'D'), len(b'E'));
+        if d != 0.0 || e != 0.0 {
+            return self
+                .machining()
+                .ngc_offset_finish(&profile, a, (d, e, passes), w, cmd);
+        }
+        // rs274 goes to the profile's first point at rapid, whatever its
+        // block says.
+        if let Some(first) = profile.elems.first_mut() {
+            first.rapid = true;
+        }
+        let corner = profile.elems.split_first().and_then(|(first, rest)| {
+            let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
+            Path::new(a, first.seg.end(), &segs).approach_corner()
+        });
+        self.machining().return_to(a, axes, w, cmd)?;
+        for _ in 0..passes {
+            // rs274 moves the approach's start to the corner: each pass
+            // returns there.
+            self.machining()
+                .return_to(corner.unwrap_or(a), axes, w, cmd)?;
+            let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
+            let out = self.finish_moves(&profile, axes, w);
+            self.flow.loc.line = line;
+            self.stage.cur_line = cur_line;
+            out?;
+        }
+        Ok(())
+    }
+
+    /// The profile of LinuxCNC's G70–G72: the body of subroutine `o<Q>`.
+    fn ngc_cycle_profile(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        code: &str,
+    ) -> Result<Profile, Diagnostic> {
+        let q = w
+            .get(b'Q')
+            .ok_or_else(|| alarms::needs_word(cmd, code, "Q (the profile's subroutine number)"))?;
+        let label = crate::block::convert::whole(
+            &q,
+            b'Q',
+            1.0,
+            99_999_999.0,
+            "Q is the profile's subroutine number",
+        )?;
+        let (src, start, endsub) = self.ngc_sub_lines(&label.to_string(), q.span)?;
+        // rs274 runs the sub as a call without arguments: #1–#30 and the
+        // named locals are its own (zero) while the profile is read, and
+        // the caller's come back after; #31 and up are the program's.
+        let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(&[]);
+        let profile = self.read_sub_profile(src, start, endsub, q.span);
+        if let Some(params) = self.macros.ngc.as_mut() {
+            params.restore(saved);
+        }
+        profile
+    }
+
+    /// LinuxCNC's G71/G72 Q [X Z D I R] and their .1 and .2
+    /// (`ngc_rough.rs`): levels I apart from the start point (X Z, else
+    /// where the tool is) down to the profile `o<Q>` kept D away, each
+    /// pass retracted R; the tool stays where the last move ends, and
+    /// the modal motion is that move's, as in rs274.
+    fn ngc_rough_cycle(
+        &mut self,
+        facing: bool,
+        pockets: RoughPockets,
+        w: &Words<'_>,
+        cmd: Span,
+    ) -> Result<(), Diagnostic> {
+        let code = if facing { "G72" } else { "G71" };
+        self.machining().ngc_cycle_plane(cmd, code)?;
+        let axes = self.machining().lathe_axes(cmd)?;
+        self.machining().ngc_cycle_modes(cmd, code)?;
+        let len = |l: u8, default: f64| {
+            w.get(l)
+                .map_or(default, |x| self.state.units(&self.cfg).length_mm(&x))
+        };
+        let (step, allowance, retract) = (len(b'I', 1.0), len(b'D', 0.0), len(b'R', 0.5));
+        if let Some(i) = w.get(b'I').filter(|_| step < 0.0) {
+            return Err(alarms::value_out_of_range(
+                i.span,
+                b'I',
+                i.value,
+                "the depth of cut is positive (rs274: \"I must be greater than zero\")",
+            ));
+        }
+        if step == 0.0 {
+            let span = w.get(b'I').map_or(cmd, |i| i.span);
+            return Err(alarms::zero_amount(span, "the depth of cut I"));
+        }
+        let goal = self.state.target(&self.cfg, w, false);
+        let a = P2::of(&goal.prog, axes);
+        let profile = self.ngc_cycle_profile(w, cmd, code)?;
+        let Some((first, rest)) = profile.elems.split_first() else {
+            return Err(self
+                .machining()
+                .profile_alarm(&profile, 0, "the profile has no moves"));
+        };
+        let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
+        let r = Roughing {
+            pockets,
+            allowance,
+            step,
+            retract,
+            facing,
+        };
+        let cuts = Path::new(a, first.seg.end(), &segs)
+            .rough(&r, rough::MAX_MOVES)
+            .map_err(|f| self.machining().ngc_fault(f, &profile, cmd))?;
+        self.machining().return_to(a, axes, w, cmd)?;
+        self.machining().ngc_cuts(&cuts, axes, w, cmd)
+    }
+
+    /// G70: the profile's own moves (with their F and S, and their lines),
+    /// then a G00 back to A.
+    fn finish(&mut self, profile: &Profile, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let axes = self.machining().lathe_axes(cmd)?;
+        let a = self.machining().here_xz(axes);
+        let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
+        let out = self.finish_moves(profile, axes, w);
+        self.flow.loc.line = line;
+        self.stage.cur_line = cur_line;
+        out?;
+        self.machining().return_to(a, axes, w, cmd)
+    }
+
+    fn finish_moves(
+        &mut self,
+        profile: &Profile,
+        axes: (usize, usize),
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        for e in &profile.elems {
+            self.finish_asides(profile, e.asides)?;
+            // The moves, warnings and alarms of an element are its block's.
+            self.flow.loc.line = e.line.number;
+            self.stage.cur_line = Some((profile.src, e.line));
+            self.machining()
+                .finish_elem(e, axes, w)
+                .map_err(|d| self.locate(d, profile.src, &e.line))?;
+        }
+        self.finish_asides(profile, profile.asides_after)?;
+        if let Some(side) = profile.comp_after {
+            self.machining().set_comp_side(side);
+        }
+        Ok(())
+    }
+
+    /// The asides `range` of the profile under G70: each block's words
+    /// beyond its move, run with the block's line as an ordinary block's
+    /// steps would run them (`Machining::profile_words`).
+    fn finish_asides(&mut self, profile: &Profile, range: (u32, u32)) -> Result<(), Diagnostic> {
+        let (from, to) = (range.0 as usize, range.1 as usize);
+        for aside in profile.asides.get(from..to).unwrap_or_default() {
+            self.flow.loc.line = aside.line.number;
+            self.stage.cur_line = Some((profile.src, aside.line));
+            let mut w = Words::new(&aside.block);
+            let feed = self.state.feed;
+            w.fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)
+                .and_then(|()| self.machining().profile_words(&w))
+                .map_err(|d| self.locate(d, profile.src, &aside.line))?;
+            // rs274's G70 reads only the geometry of its `o<Q> sub`: the
+            // profile's F words neither feed the cycle nor outlast it.
+            if self.macros.rules.iso == crate::dialect::IsoMacros::Ngc {
+                self.state.feed = feed;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How many of the profile's last elements are straight moves on the stock
+/// boundary, A's own level across the cuts (a retract along Z at A's X
+/// under G71): they cut nothing, so roughing ends before them (G70 still
+/// runs them). The approach and at least one element after it are kept, so
+/// a profile that is nothing but such moves still meets its alarm.
+fn boundary_tail(profile: &Profile, a: Xz, across: Across) -> usize {
+    let level = |p: Xz| match across {
+        Across::X => p.0,
+        Across::Z => p.1,
+    };
+    let on = |p: Xz| (level(p) - level(a)).abs() <= ZERO_MM;
+    let tail = profile
+        .elems
+        .iter()
+        .rev()
+        .take_while(|e| e.seg.arc_of().is_none() && on(e.seg.start()) && on(e.seg.end()))
+        .count();
+    tail.min(profile.elems.len().saturating_sub(2))
+}
+
+impl<'a> Machining<'_, 'a> {
     /// E203 for the first of `letters` written in the block.
     fn refuse(&self, w: &Words<'_>, letters: &[u8]) -> Result<(), Diagnostic> {
         match letters.iter().find_map(|l| w.get(*l)) {
@@ -216,7 +432,7 @@ impl Interpreter<'_> {
             return alarms::profile_not_cut(Span::new(0, 1), why);
         };
         let d = alarms::profile_not_cut(e.span, why);
-        self.locate(d, profile.src, &e.line)
+        self.at.locate(d, profile.src, &e.line)
     }
 
     /// G71 / G72 second block.
@@ -480,50 +696,6 @@ impl Interpreter<'_> {
         self.straight(MoveKind::Rapid, Target::Program(to), w, cmd)
     }
 
-    /// LinuxCNC's G70 Q [X Z D E P]: P passes (default 1) along the
-    /// profile `o<Q> sub`, each a rapid to the start point (X Z, else
-    /// where the tool is) and to the profile's first point, then its
-    /// blocks; the tool stays at the profile's end. With D or E the passes
-    /// follow the profile offset from D … to E (`ngc_rough.rs`) and carry
-    /// the cycle block's line.
-    pub(crate) fn ngc_finish_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        self.ngc_cycle_plane(cmd, "G70")?;
-        let axes = self.lathe_axes(cmd)?;
-        let passes = match w.get(b'P') {
-            Some(p) => self.count(&p, "P is G70's number of passes")?,
-            None => 1,
-        };
-        let goal = self.target(w, self.state.modal.incremental);
-        let a = P2::of(&goal.prog, axes);
-        let mut profile = self.ngc_cycle_profile(w, cmd, "G70")?;
-        let len = |l: u8| w.get(l).map_or(0.0, |x| self.units().length_mm(&x));
-        let (d, e) = (len(b'D'), len(b'E'));
-        if d != 0.0 || e != 0.0 {
-            return self.ngc_offset_finish(&profile, a, (d, e, passes), w, cmd);
-        }
-        // rs274 goes to the profile's first point at rapid, whatever its
-        // block says.
-        if let Some(first) = profile.elems.first_mut() {
-            first.rapid = true;
-        }
-        let corner = profile.elems.split_first().and_then(|(first, rest)| {
-            let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
-            Path::new(a, first.seg.end(), &segs).approach_corner()
-        });
-        self.return_to(a, axes, w, cmd)?;
-        for _ in 0..passes {
-            // rs274 moves the approach's start to the corner: each pass
-            // returns there.
-            self.return_to(corner.unwrap_or(a), axes, w, cmd)?;
-            let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
-            let out = self.finish_moves(&profile, axes, w);
-            self.flow.loc.line = line;
-            self.stage.cur_line = cur_line;
-            out?;
-        }
-        Ok(())
-    }
-
     /// G70 D E P: `passes` passes along the profile offset from D to E.
     fn ngc_offset_finish(
         &mut self,
@@ -544,86 +716,6 @@ impl Interpreter<'_> {
         if cuts.len() > rough::MAX_MOVES {
             return Err(alarms::too_many_cycle_moves(cmd));
         }
-        self.return_to(a, axes, w, cmd)?;
-        self.ngc_cuts(&cuts, axes, w, cmd)
-    }
-
-    /// The profile of LinuxCNC's G70–G72: the body of subroutine `o<Q>`.
-    fn ngc_cycle_profile(
-        &mut self,
-        w: &Words<'_>,
-        cmd: Span,
-        code: &str,
-    ) -> Result<Profile, Diagnostic> {
-        let q = w
-            .get(b'Q')
-            .ok_or_else(|| alarms::needs_word(cmd, code, "Q (the profile's subroutine number)"))?;
-        let label = crate::block::convert::whole(
-            &q,
-            b'Q',
-            1.0,
-            99_999_999.0,
-            "Q is the profile's subroutine number",
-        )?;
-        let (src, start, endsub) = self.ngc_sub_lines(&label.to_string(), q.span)?;
-        // rs274 runs the sub as a call without arguments: #1–#30 and the
-        // named locals are its own (zero) while the profile is read, and
-        // the caller's come back after; #31 and up are the program's.
-        let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(&[]);
-        let profile = self.read_sub_profile(src, start, endsub, q.span);
-        if let Some(params) = self.macros.ngc.as_mut() {
-            params.restore(saved);
-        }
-        profile
-    }
-
-    /// LinuxCNC's G71/G72 Q [X Z D I R] and their .1 and .2
-    /// (`ngc_rough.rs`): levels I apart from the start point (X Z, else
-    /// where the tool is) down to the profile `o<Q>` kept D away, each
-    /// pass retracted R; the tool stays where the last move ends, and
-    /// the modal motion is that move's, as in rs274.
-    fn ngc_rough_cycle(
-        &mut self,
-        facing: bool,
-        pockets: RoughPockets,
-        w: &Words<'_>,
-        cmd: Span,
-    ) -> Result<(), Diagnostic> {
-        let code = if facing { "G72" } else { "G71" };
-        self.ngc_cycle_plane(cmd, code)?;
-        let axes = self.lathe_axes(cmd)?;
-        self.ngc_cycle_modes(cmd, code)?;
-        let len = |l: u8, default: f64| w.get(l).map_or(default, |x| self.units().length_mm(&x));
-        let (step, allowance, retract) = (len(b'I', 1.0), len(b'D', 0.0), len(b'R', 0.5));
-        if let Some(i) = w.get(b'I').filter(|_| step < 0.0) {
-            return Err(alarms::value_out_of_range(
-                i.span,
-                b'I',
-                i.value,
-                "the depth of cut is positive (rs274: \"I must be greater than zero\")",
-            ));
-        }
-        if step == 0.0 {
-            let span = w.get(b'I').map_or(cmd, |i| i.span);
-            return Err(alarms::zero_amount(span, "the depth of cut I"));
-        }
-        let goal = self.target(w, false);
-        let a = P2::of(&goal.prog, axes);
-        let profile = self.ngc_cycle_profile(w, cmd, code)?;
-        let Some((first, rest)) = profile.elems.split_first() else {
-            return Err(self.profile_alarm(&profile, 0, "the profile has no moves"));
-        };
-        let segs: Vec<Seg> = rest.iter().map(|e| e.seg).collect();
-        let r = Roughing {
-            pockets,
-            allowance,
-            step,
-            retract,
-            facing,
-        };
-        let cuts = Path::new(a, first.seg.end(), &segs)
-            .rough(&r, rough::MAX_MOVES)
-            .map_err(|f| self.ngc_fault(f, &profile, cmd))?;
         self.return_to(a, axes, w, cmd)?;
         self.ngc_cuts(&cuts, axes, w, cmd)
     }
@@ -706,62 +798,6 @@ impl Interpreter<'_> {
         Ok(())
     }
 
-    /// G70: the profile's own moves (with their F and S, and their lines),
-    /// then a G00 back to A.
-    fn finish(&mut self, profile: &Profile, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let axes = self.lathe_axes(cmd)?;
-        let a = self.here_xz(axes);
-        let (line, cur_line) = (self.flow.loc.line, self.stage.cur_line);
-        let out = self.finish_moves(profile, axes, w);
-        self.flow.loc.line = line;
-        self.stage.cur_line = cur_line;
-        out?;
-        self.return_to(a, axes, w, cmd)
-    }
-
-    fn finish_moves(
-        &mut self,
-        profile: &Profile,
-        axes: (usize, usize),
-        w: &Words<'_>,
-    ) -> Result<(), Diagnostic> {
-        for e in &profile.elems {
-            self.finish_asides(profile, e.asides)?;
-            // The moves, warnings and alarms of an element are its block's.
-            self.flow.loc.line = e.line.number;
-            self.stage.cur_line = Some((profile.src, e.line));
-            self.finish_elem(e, axes, w)
-                .map_err(|d| self.locate(d, profile.src, &e.line))?;
-        }
-        self.finish_asides(profile, profile.asides_after)?;
-        if let Some(side) = profile.comp_after {
-            self.set_comp_side(side);
-        }
-        Ok(())
-    }
-
-    /// The asides `range` of the profile under G70: each block's words
-    /// beyond its move, run with the block's line as an ordinary block's
-    /// steps would run them (`Interpreter::profile_words`).
-    fn finish_asides(&mut self, profile: &Profile, range: (u32, u32)) -> Result<(), Diagnostic> {
-        let (from, to) = (range.0 as usize, range.1 as usize);
-        for aside in profile.asides.get(from..to).unwrap_or_default() {
-            self.flow.loc.line = aside.line.number;
-            self.stage.cur_line = Some((profile.src, aside.line));
-            let mut w = Words::new(&aside.block);
-            let feed = self.state.feed;
-            w.fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)
-                .and_then(|()| self.profile_words(&w))
-                .map_err(|d| self.locate(d, profile.src, &aside.line))?;
-            // rs274's G70 reads only the geometry of its `o<Q> sub`: the
-            // profile's F words neither feed the cycle nor outlast it.
-            if self.macros.rules.iso == crate::dialect::IsoMacros::Ngc {
-                self.state.feed = feed;
-            }
-        }
-        Ok(())
-    }
-
     /// One profile element under G70.
     fn finish_elem(
         &mut self,
@@ -786,24 +822,4 @@ impl Interpreter<'_> {
             self.along(&e.seg, axes, feed, w, e.span)
         }
     }
-}
-
-/// How many of the profile's last elements are straight moves on the stock
-/// boundary, A's own level across the cuts (a retract along Z at A's X
-/// under G71): they cut nothing, so roughing ends before them (G70 still
-/// runs them). The approach and at least one element after it are kept, so
-/// a profile that is nothing but such moves still meets its alarm.
-fn boundary_tail(profile: &Profile, a: Xz, across: Across) -> usize {
-    let level = |p: Xz| match across {
-        Across::X => p.0,
-        Across::Z => p.1,
-    };
-    let on = |p: Xz| (level(p) - level(a)).abs() <= ZERO_MM;
-    let tail = profile
-        .elems
-        .iter()
-        .rev()
-        .take_while(|e| e.seg.arc_of().is_none() && on(e.seg.start()) && on(e.seg.end()))
-        .count();
-    tail.min(profile.elems.len().saturating_sub(2))
 }

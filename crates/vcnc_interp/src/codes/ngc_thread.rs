@@ -24,7 +24,7 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::codes::turning_cycles::How;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::plane::{P2, Xz};
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -46,7 +46,62 @@ struct Thread {
     taper_out: bool,
 }
 
-impl Interpreter<'_> {
+/// The depths of the passes: J·n^(1/R) while below K, then K, then the
+/// spring passes at K.
+fn depths(t: &Thread, cmd: Span) -> Result<Vec<f64>, Diagnostic> {
+    let mut out = Vec::new();
+    for n in 1..=MAX_PASSES {
+        let d = t.first_mm * f64::from(n).powf(1.0 / t.degression);
+        // Within the length tolerance: J 0.3, K 0.9 is three passes for
+        // rs274, though 0.3 · 3 falls short of 0.9 in binary.
+        if d >= t.full_mm - crate::plane::ZERO_MM {
+            out.extend(std::iter::repeat_n(t.full_mm, 1 + t.spring as usize));
+            return Ok(out);
+        }
+        out.push(d);
+    }
+    Err(alarms::cycle_parameters(
+        cmd,
+        "G76 would make more than 10000 passes: J is too small for K",
+    ))
+}
+
+/// The moves of every pass, from the drive point `a` (radius, Z).
+fn ngc_thread_moves(a: Xz, t: &Thread, cmd: Span) -> Result<Vec<(How, Xz)>, Diagnostic> {
+    let dz = t.z_end - a.1;
+    if dz.abs() < crate::plane::ZERO_MM {
+        return Err(alarms::cycle_parameters(
+            cmd,
+            "G76's Z is where the tool already is",
+        ));
+    }
+    let (s, zdir) = (t.peak_mm.signum(), dz.signum());
+    let taper = t.pitch_mm * t.full_mm.hypot(t.taper_mm) / t.taper_mm.max(f64::MIN_POSITIVE);
+    let mut moves = Vec::new();
+    for d in depths(t, cmd)? {
+        let cut = a.0 + t.peak_mm + s * d;
+        let out = a.0 - s * (t.full_mm - d);
+        let z_start = a.1 + zdir * d * t.tan_q;
+        let z_stop = t.z_end - zdir * (t.full_mm - d) * t.tan_q;
+        moves.push((How::Rapid, P2(out, z_start)));
+        if t.taper_in {
+            moves.push((How::Thread(taper), P2(cut - s * t.full_mm, z_start)));
+            moves.push((How::Thread(taper), P2(cut, z_start + zdir * t.taper_mm)));
+        } else {
+            moves.push((How::Rapid, P2(cut, z_start)));
+        }
+        if t.taper_out {
+            moves.push((How::Thread(t.pitch_mm), P2(cut, z_stop - zdir * t.taper_mm)));
+            moves.push((How::Thread(taper), P2(cut - s * t.full_mm, z_stop)));
+        } else {
+            moves.push((How::Thread(t.pitch_mm), P2(cut, z_stop)));
+        }
+        moves.push((How::Rapid, P2(out, z_stop)));
+    }
+    Ok(moves)
+}
+
+impl<'a> Machining<'_, 'a> {
     /// G76 of LinuxCNC's lathe mode.
     pub(crate) fn ngc_thread_cycle(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
         let axes = self.lathe_axes(cmd)?;
@@ -163,7 +218,7 @@ impl Interpreter<'_> {
             )?,
             None => 0,
         };
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         Ok(Thread {
             pitch_mm,
             z_end: goal.prog.get(axes.1),
@@ -178,59 +233,4 @@ impl Interpreter<'_> {
             taper_out: taper_mm > 0.0 && ends & 2 != 0,
         })
     }
-}
-
-/// The depths of the passes: J·n^(1/R) while below K, then K, then the
-/// spring passes at K.
-fn depths(t: &Thread, cmd: Span) -> Result<Vec<f64>, Diagnostic> {
-    let mut out = Vec::new();
-    for n in 1..=MAX_PASSES {
-        let d = t.first_mm * f64::from(n).powf(1.0 / t.degression);
-        // Within the length tolerance: J 0.3, K 0.9 is three passes for
-        // rs274, though 0.3 · 3 falls short of 0.9 in binary.
-        if d >= t.full_mm - crate::plane::ZERO_MM {
-            out.extend(std::iter::repeat_n(t.full_mm, 1 + t.spring as usize));
-            return Ok(out);
-        }
-        out.push(d);
-    }
-    Err(alarms::cycle_parameters(
-        cmd,
-        "G76 would make more than 10000 passes: J is too small for K",
-    ))
-}
-
-/// The moves of every pass, from the drive point `a` (radius, Z).
-fn ngc_thread_moves(a: Xz, t: &Thread, cmd: Span) -> Result<Vec<(How, Xz)>, Diagnostic> {
-    let dz = t.z_end - a.1;
-    if dz.abs() < crate::plane::ZERO_MM {
-        return Err(alarms::cycle_parameters(
-            cmd,
-            "G76's Z is where the tool already is",
-        ));
-    }
-    let (s, zdir) = (t.peak_mm.signum(), dz.signum());
-    let taper = t.pitch_mm * t.full_mm.hypot(t.taper_mm) / t.taper_mm.max(f64::MIN_POSITIVE);
-    let mut moves = Vec::new();
-    for d in depths(t, cmd)? {
-        let cut = a.0 + t.peak_mm + s * d;
-        let out = a.0 - s * (t.full_mm - d);
-        let z_start = a.1 + zdir * d * t.tan_q;
-        let z_stop = t.z_end - zdir * (t.full_mm - d) * t.tan_q;
-        moves.push((How::Rapid, P2(out, z_start)));
-        if t.taper_in {
-            moves.push((How::Thread(taper), P2(cut - s * t.full_mm, z_start)));
-            moves.push((How::Thread(taper), P2(cut, z_start + zdir * t.taper_mm)));
-        } else {
-            moves.push((How::Rapid, P2(cut, z_start)));
-        }
-        if t.taper_out {
-            moves.push((How::Thread(t.pitch_mm), P2(cut, z_stop - zdir * t.taper_mm)));
-            moves.push((How::Thread(taper), P2(cut - s * t.full_mm, z_stop)));
-        } else {
-            moves.push((How::Thread(t.pitch_mm), P2(cut, z_stop)));
-        }
-        moves.push((How::Rapid, P2(out, z_stop)));
-    }
-    Ok(moves)
 }

@@ -25,7 +25,7 @@ use crate::block::words::Words;
 use crate::dialect::MotionOp;
 use crate::dialect::{GOp, Group};
 use crate::events::{Event, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MachineKind, MachineMove, Target, travel};
 use crate::state::NurbsBuild;
 use std::sync::Arc;
@@ -33,105 +33,11 @@ use vcnc_core::Nurbs;
 use vcnc_core::nurbs::MAX_NURBS_POINTS;
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
-    /// One block under the modal G06.2.
-    #[inline(never)]
-    pub(crate) fn nurbs_block(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let starts = w
-            .group(Group::Motion)
-            .is_some_and(|g| g.def.op == GOp::Motion(MotionOp::Nurbs));
-        if starts {
-            self.nurbs_start(w, cmd)?;
-        }
-        let Some(k) = w.get(b'K') else {
-            return match self.nurbs.as_ref() {
-                Some(b) => Err(alarms::bad_nurbs(
-                    w.first,
-                    if b.knots_only {
-                        "the curve needs more K-only blocks (n + P knots)"
-                    } else {
-                        "every block of a NURBS definition has a knot K"
-                    },
-                )),
-                None if w.any(self.cfg.axis_mask) => Err(alarms::bad_nurbs(
-                    w.first,
-                    "a new curve starts with G06.2 (P K X Y Z R)",
-                )),
-                None => Ok(()),
-            };
-        };
-        let Some(mut b) = self.nurbs.take() else {
-            return Err(alarms::bad_nurbs(
-                k.span,
-                "a new curve starts with G06.2 (P K X Y Z R)",
-            ));
-        };
-        if !k.value.is_finite() || b.curve.knots.last().is_some_and(|last| k.value < *last) {
-            return Err(alarms::bad_nurbs(k.span, "the knots must not decrease"));
-        }
-        b.curve.knots.push(k.value);
-        if w.any(self.cfg.axis_mask) {
-            self.nurbs_point(&mut b, w)?;
-        } else {
-            b.knots_only = true;
-            if let Some(r) = w.get(b'R') {
-                return Err(alarms::bad_nurbs(
-                    r.span,
-                    "a weight R belongs to a control point",
-                ));
-            }
-        }
-        let need = b.curve.points.len() + usize::from(b.curve.order);
-        if b.knots_only && b.curve.knots.len() == need {
-            return self.nurbs_emit(b);
-        }
-        if b.curve.knots.len() > need.max(MAX_NURBS_POINTS + 4) {
-            return Err(alarms::bad_nurbs(k.span, "more knots than n + P"));
-        }
-        self.nurbs = Some(b);
-        Ok(())
-    }
+fn distance(a: &Pos, b: &Pos) -> f64 {
+    a.minus(*b).0.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
 
-    fn nurbs_start(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        if self.state.high_speed_p != 10_000 {
-            return Err(alarms::nurbs_outside_high_speed(cmd));
-        }
-        if self.nurbs.is_some() {
-            return Err(alarms::bad_nurbs(cmd, "the previous curve is not complete"));
-        }
-        if self.stage.comp.engaged() {
-            return Err(alarms::bad_nurbs(
-                cmd,
-                "no NURBS under cutter compensation (G41/G42)",
-            ));
-        }
-        let order = match w.get(b'P') {
-            None => 4,
-            Some(p) if p.value == 2.0 => 2,
-            Some(p) if p.value == 3.0 => 3,
-            Some(p) if p.value == 4.0 => 4,
-            Some(p) => {
-                return Err(alarms::value_out_of_range(
-                    p.span,
-                    b'P',
-                    p.value,
-                    "P is the order, 2 to 4",
-                ));
-            }
-        };
-        self.nurbs = Some(NurbsBuild {
-            curve: Nurbs {
-                order,
-                knots: Vec::new(),
-                points: Vec::new(),
-                weights: Vec::new(),
-            },
-            knots_only: false,
-            cmd,
-        });
-        Ok(())
-    }
-
+impl<'a> Machining<'_, 'a> {
     /// A control point and its weight: the block's end point, as a G01's.
     fn nurbs_point(&mut self, b: &mut NurbsBuild, w: &Words<'_>) -> Result<(), Diagnostic> {
         if b.knots_only {
@@ -158,9 +64,9 @@ impl Interpreter<'_> {
                 ));
             }
         };
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         let frame = &self.state.frame;
-        let (prog, machine) = match self.to_target(&goal) {
+        let (prog, machine) = match self.state.move_target(&goal) {
             Target::Relative(d) => (
                 self.state.prog.plus(d),
                 self.state.nominal.plus(frame.vector_to_machine(d)),
@@ -205,6 +111,102 @@ impl Interpreter<'_> {
     }
 }
 
-fn distance(a: &Pos, b: &Pos) -> f64 {
-    a.minus(*b).0.iter().map(|v| v * v).sum::<f64>().sqrt()
+impl<'a> Machining<'_, 'a> {
+    /// One block under the modal G06.2.
+    #[inline(never)]
+    pub(crate) fn nurbs_block(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        let starts = w
+            .group(Group::Motion)
+            .is_some_and(|g| g.def.op == GOp::Motion(MotionOp::Nurbs));
+        if starts {
+            self.nurbs_start(w, cmd)?;
+        }
+        let Some(k) = w.get(b'K') else {
+            return match self.stage.nurbs.as_ref() {
+                Some(b) => Err(alarms::bad_nurbs(
+                    w.first,
+                    if b.knots_only {
+                        "the curve needs more K-only blocks (n + P knots)"
+                    } else {
+                        "every block of a NURBS definition has a knot K"
+                    },
+                )),
+                None if w.any(self.cfg.axis_mask) => Err(alarms::bad_nurbs(
+                    w.first,
+                    "a new curve starts with G06.2 (P K X Y Z R)",
+                )),
+                None => Ok(()),
+            };
+        };
+        let Some(mut b) = self.stage.nurbs.take() else {
+            return Err(alarms::bad_nurbs(
+                k.span,
+                "a new curve starts with G06.2 (P K X Y Z R)",
+            ));
+        };
+        if !k.value.is_finite() || b.curve.knots.last().is_some_and(|last| k.value < *last) {
+            return Err(alarms::bad_nurbs(k.span, "the knots must not decrease"));
+        }
+        b.curve.knots.push(k.value);
+        if w.any(self.cfg.axis_mask) {
+            self.nurbs_point(&mut b, w)?;
+        } else {
+            b.knots_only = true;
+            if let Some(r) = w.get(b'R') {
+                return Err(alarms::bad_nurbs(
+                    r.span,
+                    "a weight R belongs to a control point",
+                ));
+            }
+        }
+        let need = b.curve.points.len() + usize::from(b.curve.order);
+        if b.knots_only && b.curve.knots.len() == need {
+            return self.nurbs_emit(b);
+        }
+        if b.curve.knots.len() > need.max(MAX_NURBS_POINTS + 4) {
+            return Err(alarms::bad_nurbs(k.span, "more knots than n + P"));
+        }
+        self.stage.nurbs = Some(b);
+        Ok(())
+    }
+
+    fn nurbs_start(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        if self.state.high_speed_p != 10_000 {
+            return Err(alarms::nurbs_outside_high_speed(cmd));
+        }
+        if self.stage.nurbs.is_some() {
+            return Err(alarms::bad_nurbs(cmd, "the previous curve is not complete"));
+        }
+        if self.stage.comp.engaged() {
+            return Err(alarms::bad_nurbs(
+                cmd,
+                "no NURBS under cutter compensation (G41/G42)",
+            ));
+        }
+        let order = match w.get(b'P') {
+            None => 4,
+            Some(p) if p.value == 2.0 => 2,
+            Some(p) if p.value == 3.0 => 3,
+            Some(p) if p.value == 4.0 => 4,
+            Some(p) => {
+                return Err(alarms::value_out_of_range(
+                    p.span,
+                    b'P',
+                    p.value,
+                    "P is the order, 2 to 4",
+                ));
+            }
+        };
+        self.stage.nurbs = Some(NurbsBuild {
+            curve: Nurbs {
+                order,
+                knots: Vec::new(),
+                points: Vec::new(),
+                weights: Vec::new(),
+            },
+            knots_only: false,
+            cmd,
+        });
+        Ok(())
+    }
 }

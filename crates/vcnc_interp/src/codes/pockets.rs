@@ -21,7 +21,7 @@ use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::CycleOp;
 use crate::events::{Feed, Plane, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
@@ -57,7 +57,170 @@ struct Pocket {
     entry: Feed,
 }
 
-impl Interpreter<'_> {
+/// The roughing rings, innermost first, spaced by at most the stepover;
+/// the last is `rough` itself.
+fn rings(rough: Ring, stepover: f64) -> Vec<Ring> {
+    let span = rough.a.min(rough.b);
+    let n = (span / stepover - 1e-9).ceil().max(1.0);
+    let d = span / n;
+    // At least 1; beyond MAX_RINGS the caller alarms, so the list is cut
+    // there before it is built.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let count = n.min(MAX_RINGS as f64 + 1.0) as usize;
+    (1..=count)
+        .map(|k| {
+            let back = (count - k) as f64 * d;
+            if rough.circle {
+                Ring {
+                    a: k as f64 * d,
+                    b: k as f64 * d,
+                    corner: 0.0,
+                    circle: true,
+                }
+            } else {
+                Ring {
+                    a: rough.a - back,
+                    b: rough.b - back,
+                    corner: (rough.corner - back).max(0.0),
+                    circle: false,
+                }
+            }
+        })
+        .collect()
+}
+
+/// The cutting levels: Q per pass from R, the last at the bottom.
+fn levels(r_level: f64, bottom: f64, q: Option<f64>) -> Vec<f64> {
+    let Some(q) = q else { return vec![bottom] };
+    let mut out = Vec::new();
+    let mut k = 1.0;
+    loop {
+        let l = r_level - k * q;
+        if l <= bottom + SAME_MM || out.len() as u64 > MAX_RINGS {
+            out.push(bottom);
+            return out;
+        }
+        out.push(l);
+        k += 1.0;
+    }
+}
+
+/// The moves of one pocket, relative to its centre.
+struct PocketSteps<'w, 'b> {
+    axes: CycleAxes,
+    p: Pocket,
+    w: &'w Words<'b>,
+    cmd: Span,
+}
+
+impl PocketSteps<'_, '_> {
+    fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
+        let mut p = it.state.prog;
+        p.set(self.axes.a, self.p.centre.0 + da);
+        p.set(self.axes.b, self.p.centre.1 + db);
+        p.set(self.axes.z, z);
+        p
+    }
+
+    fn go(&self, it: &mut Machining<'_, '_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
+        it.step_to(kind, p, self.w, self.cmd)
+    }
+
+    fn rapid(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        at: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, at, z);
+        self.go(it, MoveKind::Rapid, p)
+    }
+
+    fn feed(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        at: (f64, f64),
+        z: f64,
+        feed: Feed,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, at, z);
+        self.go(it, MoveKind::Feed(feed), p)
+    }
+
+    /// A counter-clockwise arc to `to` about `centre` (relative points).
+    fn arc(
+        &mut self,
+        it: &mut Machining<'_, '_>,
+        to: (f64, f64),
+        centre: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let end = self.point(it, to, z);
+        let here = it.state.prog;
+        let mut offset = Pos::default();
+        offset.set(
+            self.axes.a,
+            self.p.centre.0 + centre.0 - here.get(self.axes.a),
+        );
+        offset.set(
+            self.axes.b,
+            self.p.centre.1 + centre.1 - here.get(self.axes.b),
+        );
+        let mv = Move {
+            kind: MoveKind::Arc {
+                offset,
+                plane: Plane::Xy,
+                cw: false,
+                feed: self.p.feed,
+            },
+            to: Target::Program(end),
+            exact_stop: false,
+            cmd: self.cmd,
+        };
+        it.send(mv, self.w)
+    }
+
+    /// From the plunge at the centre to the first ring's start: along the
+    /// long side first (a slot), so that no material is left in the middle.
+    fn slot(&mut self, it: &mut Machining<'_, '_>, first: Ring, z: f64) -> Result<(), Diagnostic> {
+        let (a, b) = (self.p.rough.a, self.p.rough.b);
+        let f = self.p.feed;
+        if !first.circle {
+            if a > b + SAME_MM {
+                self.feed(it, (-(a - b), 0.0), z, f)?;
+            } else if b > a + SAME_MM {
+                self.feed(it, (0.0, -(b - a)), z, f)?;
+                self.feed(it, (0.0, b - a), z, f)?;
+            }
+        }
+        self.feed(it, (first.a, 0.0), z, f)
+    }
+
+    /// One closed loop, counter-clockwise from the middle of its +X side.
+    fn ring(&mut self, it: &mut Machining<'_, '_>, r: Ring, z: f64) -> Result<(), Diagnostic> {
+        let f = self.p.feed;
+        if r.circle {
+            return self.arc(it, (r.a, 0.0), (0.0, 0.0), z);
+        }
+        let (a, b, c) = (r.a, r.b, r.corner);
+        // Corners in turn: the line to the corner's start, then its arc.
+        let corners = [
+            ((a, b - c), (a - c, b), (a - c, b - c)),
+            ((-a + c, b), (-a, b - c), (-a + c, b - c)),
+            ((-a, -b + c), (-a + c, -b), (-a + c, -b + c)),
+            ((a - c, -b), (a, -b + c), (a - c, -b + c)),
+        ];
+        for (start, end, centre) in corners {
+            self.feed(it, start, z, f)?;
+            if c > SAME_MM {
+                self.arc(it, end, centre, z)?;
+            }
+        }
+        self.feed(it, (a, 0.0), z, f)
+    }
+}
+
+impl<'a> Machining<'_, 'a> {
     /// G78/G79: the whole pocket, or an alarm before any of it moves.
     pub(crate) fn pocket(
         &mut self,
@@ -67,7 +230,7 @@ impl Interpreter<'_> {
     ) -> Result<(), Diagnostic> {
         let axes = self.cycle_axes(cmd)?;
         // The centre: X/Y absolute, or from where the tool is under G91.
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         let centre = (goal.prog.get(axes.a), goal.prog.get(axes.b));
         let p = self.pocket_words(op, w, cmd, axes, centre)?;
         let rings = rings(p.rough, p.stepover);
@@ -295,168 +458,5 @@ impl Interpreter<'_> {
             feed,
             entry,
         })
-    }
-}
-
-/// The roughing rings, innermost first, spaced by at most the stepover;
-/// the last is `rough` itself.
-fn rings(rough: Ring, stepover: f64) -> Vec<Ring> {
-    let span = rough.a.min(rough.b);
-    let n = (span / stepover - 1e-9).ceil().max(1.0);
-    let d = span / n;
-    // At least 1; beyond MAX_RINGS the caller alarms, so the list is cut
-    // there before it is built.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let count = n.min(MAX_RINGS as f64 + 1.0) as usize;
-    (1..=count)
-        .map(|k| {
-            let back = (count - k) as f64 * d;
-            if rough.circle {
-                Ring {
-                    a: k as f64 * d,
-                    b: k as f64 * d,
-                    corner: 0.0,
-                    circle: true,
-                }
-            } else {
-                Ring {
-                    a: rough.a - back,
-                    b: rough.b - back,
-                    corner: (rough.corner - back).max(0.0),
-                    circle: false,
-                }
-            }
-        })
-        .collect()
-}
-
-/// The cutting levels: Q per pass from R, the last at the bottom.
-fn levels(r_level: f64, bottom: f64, q: Option<f64>) -> Vec<f64> {
-    let Some(q) = q else { return vec![bottom] };
-    let mut out = Vec::new();
-    let mut k = 1.0;
-    loop {
-        let l = r_level - k * q;
-        if l <= bottom + SAME_MM || out.len() as u64 > MAX_RINGS {
-            out.push(bottom);
-            return out;
-        }
-        out.push(l);
-        k += 1.0;
-    }
-}
-
-/// The moves of one pocket, relative to its centre.
-struct PocketSteps<'w, 'b> {
-    axes: CycleAxes,
-    p: Pocket,
-    w: &'w Words<'b>,
-    cmd: Span,
-}
-
-impl PocketSteps<'_, '_> {
-    fn point(&self, it: &Interpreter<'_>, (da, db): (f64, f64), z: f64) -> Pos {
-        let mut p = it.state.prog;
-        p.set(self.axes.a, self.p.centre.0 + da);
-        p.set(self.axes.b, self.p.centre.1 + db);
-        p.set(self.axes.z, z);
-        p
-    }
-
-    fn go(&self, it: &mut Interpreter<'_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
-        it.step_to(kind, p, self.w, self.cmd)
-    }
-
-    fn rapid(
-        &mut self,
-        it: &mut Interpreter<'_>,
-        at: (f64, f64),
-        z: f64,
-    ) -> Result<(), Diagnostic> {
-        let p = self.point(it, at, z);
-        self.go(it, MoveKind::Rapid, p)
-    }
-
-    fn feed(
-        &mut self,
-        it: &mut Interpreter<'_>,
-        at: (f64, f64),
-        z: f64,
-        feed: Feed,
-    ) -> Result<(), Diagnostic> {
-        let p = self.point(it, at, z);
-        self.go(it, MoveKind::Feed(feed), p)
-    }
-
-    /// A counter-clockwise arc to `to` about `centre` (relative points).
-    fn arc(
-        &mut self,
-        it: &mut Interpreter<'_>,
-        to: (f64, f64),
-        centre: (f64, f64),
-        z: f64,
-    ) -> Result<(), Diagnostic> {
-        let end = self.point(it, to, z);
-        let here = it.state.prog;
-        let mut offset = Pos::default();
-        offset.set(
-            self.axes.a,
-            self.p.centre.0 + centre.0 - here.get(self.axes.a),
-        );
-        offset.set(
-            self.axes.b,
-            self.p.centre.1 + centre.1 - here.get(self.axes.b),
-        );
-        let mv = Move {
-            kind: MoveKind::Arc {
-                offset,
-                plane: Plane::Xy,
-                cw: false,
-                feed: self.p.feed,
-            },
-            to: Target::Program(end),
-            exact_stop: false,
-            cmd: self.cmd,
-        };
-        it.send(mv, self.w)
-    }
-
-    /// From the plunge at the centre to the first ring's start: along the
-    /// long side first (a slot), so that no material is left in the middle.
-    fn slot(&mut self, it: &mut Interpreter<'_>, first: Ring, z: f64) -> Result<(), Diagnostic> {
-        let (a, b) = (self.p.rough.a, self.p.rough.b);
-        let f = self.p.feed;
-        if !first.circle {
-            if a > b + SAME_MM {
-                self.feed(it, (-(a - b), 0.0), z, f)?;
-            } else if b > a + SAME_MM {
-                self.feed(it, (0.0, -(b - a)), z, f)?;
-                self.feed(it, (0.0, b - a), z, f)?;
-            }
-        }
-        self.feed(it, (first.a, 0.0), z, f)
-    }
-
-    /// One closed loop, counter-clockwise from the middle of its +X side.
-    fn ring(&mut self, it: &mut Interpreter<'_>, r: Ring, z: f64) -> Result<(), Diagnostic> {
-        let f = self.p.feed;
-        if r.circle {
-            return self.arc(it, (r.a, 0.0), (0.0, 0.0), z);
-        }
-        let (a, b, c) = (r.a, r.b, r.corner);
-        // Corners in turn: the line to the corner's start, then its arc.
-        let corners = [
-            ((a, b - c), (a - c, b), (a - c, b - c)),
-            ((-a + c, b), (-a, b - c), (-a + c, b - c)),
-            ((-a, -b + c), (-a + c, -b), (-a + c, -b + c)),
-            ((a - c, -b), (a, -b + c), (a - c, -b + c)),
-        ];
-        for (start, end, centre) in corners {
-            self.feed(it, start, z, f)?;
-            if c > SAME_MM {
-                self.arc(it, end, centre, z)?;
-            }
-        }
-        self.feed(it, (a, 0.0), z, f)
     }
 }

@@ -37,6 +37,7 @@ use crate::dialect::{CompOp, ModeOp, MotionOp, PaceOp};
 use crate::dialect::{GOp, MGroup, bit};
 use crate::flow::first_value;
 use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::plane::{P2, RadiusFault, Seg, Xz, ZERO_MM, centre_from_radius};
 use crate::state::CompSide;
 use crate::state::lathe::CornerKind;
@@ -220,7 +221,7 @@ impl Interpreter<'_> {
             point: false,
             span: q_span,
         };
-        let axes = self.lathe_axes(q_span)?;
+        let axes = self.machining().lathe_axes(q_span)?;
         let mut r = Reading {
             profile: Profile {
                 elems: Vec::new(),
@@ -232,7 +233,7 @@ impl Interpreter<'_> {
                 follows,
                 comp_after: None,
             },
-            at: self.here_xz(axes),
+            at: self.machining().here_xz(axes),
             motion: None,
             asides_from: 0,
             carry_comp: None,
@@ -288,7 +289,7 @@ impl Interpreter<'_> {
                 if r.blocks > MAX_BLOCKS {
                     return Err(alarms::profile_too_long(q.span, MAX_BLOCKS));
                 }
-                self.profile_take(&mut r, &block, line, axes)?;
+                self.machining().profile_take(&mut r, &block, line, axes)?;
                 let last = matches!(end, ProfileEnd::Sequence(_))
                     && block.words().iter().any(|w| {
                         w.addr == Addr::letter(b'N') && !w.point && w.value == f64::from(nf)
@@ -311,6 +312,26 @@ impl Interpreter<'_> {
         }
     }
 
+    /// The next line of source `src`, copied (the reader is shared).
+    fn profile_line(&mut self, src: usize) -> Option<(Line, Vec<u8>)> {
+        let source = self.flow.source(src)?;
+        loop {
+            match source.reader.next_line() {
+                Ok(Some(line)) => return Some((line, source.reader.bytes(&line).to_vec())),
+                Ok(None) | Err(vcnc_syntax::ReadError::Io(_)) => return None,
+                Err(vcnc_syntax::ReadError::TooLong { .. }) => {}
+            }
+        }
+    }
+}
+
+/// The number of asides so far, as the ranges of [`Elem::asides`] count
+/// them (at most [`MAX_BLOCKS`]).
+fn aside_count(profile: &Profile) -> u32 {
+    u32::try_from(profile.asides.len()).unwrap_or(u32::MAX)
+}
+
+impl<'a> Machining<'_, 'a> {
     /// One profile block: its element (with the asides since the last
     /// one), a chamfer or round the block before asked for, and the corner
     /// this block asks for.
@@ -325,7 +346,7 @@ impl Interpreter<'_> {
         let first = r.blocks == 1;
         let mv = self
             .profile_block(block, axes, (r.at, r.ignored), &mut r.motion, first)
-            .map_err(|d| self.locate(d, src, &line))?;
+            .map_err(|d| self.at.locate(d, src, &line))?;
         if first {
             r.profile.first_names = mv.named;
         }
@@ -338,7 +359,7 @@ impl Interpreter<'_> {
         r.carry_comp = mv.comp.or(r.carry_comp);
         let elem = self
             .profile_elem(&mv, r.at, line, first)
-            .map_err(|d| self.locate(d, src, &line))?;
+            .map_err(|d| self.at.locate(d, src, &line))?;
         if let Some(elem) = elem {
             let end = aside_count(&r.profile);
             let elem = Elem {
@@ -354,7 +375,7 @@ impl Interpreter<'_> {
                     self.push_corner(&mut r.profile.elems, prev, elem, kind)
                         .map_err(|why| {
                             let d = alarms::corner_fault(word, why);
-                            self.locate(d, src, &held_at)
+                            self.at.locate(d, src, &held_at)
                         })?;
                 }
                 None => r.profile.elems.push(elem),
@@ -365,18 +386,6 @@ impl Interpreter<'_> {
             r.pending = Some((kind, word, line));
         }
         Ok(())
-    }
-
-    /// The next line of source `src`, copied (the reader is shared).
-    fn profile_line(&mut self, src: usize) -> Option<(Line, Vec<u8>)> {
-        let source = self.flow.source(src)?;
-        loop {
-            match source.reader.next_line() {
-                Ok(Some(line)) => return Some((line, source.reader.bytes(&line).to_vec())),
-                Ok(None) | Err(vcnc_syntax::ReadError::Io(_)) => return None,
-                Err(vcnc_syntax::ReadError::TooLong { .. }) => {}
-            }
-        }
     }
 
     /// Validates one profile block and reads its words.
@@ -667,10 +676,4 @@ impl Interpreter<'_> {
         elems.push(second);
         Ok(())
     }
-}
-
-/// The number of asides so far, as the ranges of [`Elem::asides`] count
-/// them (at most [`MAX_BLOCKS`]).
-fn aside_count(profile: &Profile) -> u32 {
-    u32::try_from(profile.asides.len()).unwrap_or(u32::MAX)
 }

@@ -19,11 +19,11 @@ use crate::block::words::Words;
 use crate::dialect::{BareReturn, DwellP, G53Incremental, G53WithoutAxes, GOp};
 use crate::dialect::{CycleOp, FrameOp, MoveOp, PaceOp, SetOp, TurnOp};
 use crate::events::Event;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// Steps 6 and 7: the code that takes the block's axis words. Each
     /// role is matched whole: an operation that takes no axis words (its
     /// table row neither claims nor refuses them) does nothing here.
@@ -75,19 +75,19 @@ impl Interpreter<'_> {
     fn set_code(&mut self, op: SetOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
         match op {
             SetOp::Data => {
-                if self.tables.set_data(&self.cfg, &self.state, w, cmd)? {
-                    self.state.refresh_origin(&self.tables);
+                if self.tables.set_data(self.cfg, self.state, w, cmd)? {
+                    self.state.refresh_origin(self.tables);
                 }
                 Ok(())
             }
             SetOp::PresetOrClamp => {
-                self.tables.preset(&self.cfg, &self.state, w, cmd)?;
-                self.state.refresh_origin(&self.tables);
+                self.tables.preset(self.cfg, self.state, w, cmd)?;
+                self.state.refresh_origin(self.tables);
                 Ok(())
             }
             SetOp::LocalSystem => {
-                self.tables.local_system(&self.cfg, &self.state, w, cmd)?;
-                self.state.refresh_origin(&self.tables);
+                self.tables.local_system(self.cfg, self.state, w, cmd)?;
+                self.state.refresh_origin(self.tables);
                 Ok(())
             }
             SetOp::ProgramZero => self.program_zero(w, cmd),
@@ -132,17 +132,17 @@ impl Interpreter<'_> {
     fn frame_axis_code(&mut self, op: FrameOp, cmd: Span, w: &Words<'_>) -> Result<(), Diagnostic> {
         match op {
             FrameOp::ScaleOn => {
-                let next = (self.tables.transforms).scaled((&self.cfg, &self.state), w, cmd)?;
+                let next = (self.tables.transforms).scaled((self.cfg, self.state), w, cmd)?;
                 self.use_transforms(next, cmd)
             }
             FrameOp::MirrorOn | FrameOp::MirrorOff => {
                 let on = matches!(op, FrameOp::MirrorOn);
-                let read = (&self.cfg, &self.state);
+                let read = (self.cfg, &*self.state);
                 let next = (self.tables.transforms).mirrored(read, w, (cmd, on))?;
                 self.use_transforms(next, cmd)
             }
             FrameOp::RotateOn => {
-                let next = (self.tables.transforms).rotated((&self.cfg, &self.state), w, cmd)?;
+                let next = (self.tables.transforms).rotated((self.cfg, self.state), w, cmd)?;
                 self.use_transforms(next, cmd)
             }
             FrameOp::ToolLengthDynamic => self.dynamic_tool_length(w, cmd),
@@ -335,7 +335,7 @@ impl Interpreter<'_> {
 
     /// G28 (n = 1) and G30 Pn.
     fn reference_return(&mut self, w: &Words<'_>, cmd: Span, n: usize) -> Result<(), Diagnostic> {
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         let (mid, named) = (goal.prog, goal.named);
         let reference = self.tables.reference.get(n - 1).copied().flatten();
         if named == 0 && self.cfg.dialect.bare_return == BareReturn::NeedsAxes {
@@ -356,7 +356,7 @@ impl Interpreter<'_> {
         self.state.intermediate_axes |= (named & 0x3f) as u8;
         // Both legs move like G00 (dog-legs with parameter 411 = 1); the
         // block is all or nothing, so a second leg that alarms drops the first.
-        self.straight(MoveKind::Rapid, self.to_target(&goal), w, cmd)?;
+        self.straight(MoveKind::Rapid, self.state.move_target(&goal), w, cmd)?;
         let mut end = self.settled_tool_pos()?;
         for i in 0..self.cfg.machine.axes.len() {
             if named & (1 << i) != 0 {

@@ -30,7 +30,7 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::codes::turning_cycles::How;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::plane::{P2, Xz, ZERO_MM};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
@@ -164,7 +164,65 @@ pub(crate) fn thread_depths(
     None
 }
 
-impl Interpreter<'_> {
+/// The moves of G74/G75 in (peck axis, step axis) coordinates.
+fn peck_moves(
+    a: P2,
+    end: P2,
+    peck: f64,
+    step: f64,
+    retract: f64,
+    relief: f64,
+    feed: crate::events::Feed,
+) -> Vec<(How, P2)> {
+    let (dp, ds) = (
+        (end.0 - a.0).signum(),
+        if end.1 == a.1 {
+            1.0
+        } else {
+            (end.1 - a.1).signum()
+        },
+    );
+    let mut moves = Vec::new();
+    let mut s = a.1;
+    loop {
+        if moves.is_empty() {
+            // The first position is A's.
+        } else {
+            moves.push((How::Rapid, P2(a.0, s)));
+        }
+        let mut cur = a.0;
+        loop {
+            let next = if (end.0 - cur).abs() <= peck + ZERO_MM {
+                end.0
+            } else {
+                cur + dp * peck
+            };
+            moves.push((How::Cut(feed), P2(next, s)));
+            if next == end.0 {
+                break;
+            }
+            moves.push((How::Rapid, P2(next - dp * retract, s)));
+            cur = next;
+        }
+        let out_s = s - ds * relief;
+        if relief > 0.0 {
+            moves.push((How::Cut(feed), P2(end.0, out_s)));
+        }
+        moves.push((How::Rapid, P2(a.0, out_s)));
+        if (end.1 - s).abs() <= ZERO_MM {
+            break;
+        }
+        s = if (end.1 - s).abs() <= step + ZERO_MM {
+            end.1
+        } else {
+            s + ds * step
+        };
+    }
+    moves.push((How::Rapid, a));
+    moves
+}
+
+impl<'a> Machining<'_, 'a> {
     /// G74 (`face`) or G75.
     pub(crate) fn peck_cycle(
         &mut self,
@@ -187,7 +245,7 @@ impl Interpreter<'_> {
             return Ok(());
         }
         let a = self.here_xz(axes);
-        let end = P2::of(&self.target(w, false).prog, axes);
+        let end = P2::of(&self.state.target(self.cfg, w, false).prog, axes);
         // (peck axis, step axis): G74 pecks along Z, G75 along X.
         let (pa, sa, pe, se) = if face {
             (a.1, a.0, end.1, end.0)
@@ -256,7 +314,7 @@ impl Interpreter<'_> {
             return self.thread_first_block(w);
         }
         let a = self.here_xz(axes);
-        let goal = self.target(w, false);
+        let goal = self.state.target(self.cfg, w, false);
         let (has_x, has_z) = (
             goal.named & (1 << axes.0) != 0,
             goal.named & (1 << axes.1) != 0,
@@ -392,64 +450,6 @@ impl Interpreter<'_> {
         }
         Ok(())
     }
-}
-
-/// The moves of G74/G75 in (peck axis, step axis) coordinates.
-fn peck_moves(
-    a: P2,
-    end: P2,
-    peck: f64,
-    step: f64,
-    retract: f64,
-    relief: f64,
-    feed: crate::events::Feed,
-) -> Vec<(How, P2)> {
-    let (dp, ds) = (
-        (end.0 - a.0).signum(),
-        if end.1 == a.1 {
-            1.0
-        } else {
-            (end.1 - a.1).signum()
-        },
-    );
-    let mut moves = Vec::new();
-    let mut s = a.1;
-    loop {
-        if moves.is_empty() {
-            // The first position is A's.
-        } else {
-            moves.push((How::Rapid, P2(a.0, s)));
-        }
-        let mut cur = a.0;
-        loop {
-            let next = if (end.0 - cur).abs() <= peck + ZERO_MM {
-                end.0
-            } else {
-                cur + dp * peck
-            };
-            moves.push((How::Cut(feed), P2(next, s)));
-            if next == end.0 {
-                break;
-            }
-            moves.push((How::Rapid, P2(next - dp * retract, s)));
-            cur = next;
-        }
-        let out_s = s - ds * relief;
-        if relief > 0.0 {
-            moves.push((How::Cut(feed), P2(end.0, out_s)));
-        }
-        moves.push((How::Rapid, P2(a.0, out_s)));
-        if (end.1 - s).abs() <= ZERO_MM {
-            break;
-        }
-        s = if (end.1 - s).abs() <= step + ZERO_MM {
-            end.1
-        } else {
-            s + ds * step
-        };
-    }
-    moves.push((How::Rapid, a));
-    moves
 }
 
 #[cfg(test)]

@@ -20,13 +20,13 @@ use crate::block::words::Words;
 use crate::dialect::FrameOp;
 use crate::dialect::{GOp, Group, OffsetDefault};
 use crate::events::Pos;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::frame::Transform;
 use crate::motion::{MoveKind, Target};
 use crate::state::{Motion, ToolLength};
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// Step 6 for codes without axis words. Returns whether the tool
     /// offset changed (the block then moves Z if nothing else moves it).
     pub(crate) fn frame_codes(&mut self, w: &Words<'_>) -> Result<bool, Diagnostic> {
@@ -35,7 +35,7 @@ impl Interpreter<'_> {
             if on && !self.state.modal.polar {
                 // Incremental polar moves start from where the tool is.
                 self.state.modal.polar = true;
-                self.state.polar = self.polar_of(self.state.prog);
+                self.state.polar = self.state.polar_of(self.cfg, self.state.prog);
             }
             self.state.modal.polar = on;
         }

@@ -25,7 +25,7 @@ use crate::alarms;
 use crate::block::convert::Units;
 use crate::block::words::Words;
 use crate::config::Config;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::frame::{Transform, Transforms, plane_rows};
 use crate::state::State;
 use vcnc_syntax::{Diagnostic, Span, Word};
@@ -165,7 +165,7 @@ impl Transforms {
     }
 }
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// Puts `next` in force. The programmed point stays what it was and the
     /// machine does not move: the next absolute move goes where the new
     /// frame puts its point (Fanuc; Syntec 1.2.20's figure).

@@ -11,7 +11,7 @@
 use crate::alarms;
 use crate::block::words::Words;
 use crate::events::Event;
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -19,7 +19,7 @@ use vcnc_syntax::{Diagnostic, Span};
 const DWELL_MIN_S: f64 = 0.01;
 const DWELL_MAX_S: f64 = 300.0;
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// G04 F or K: seconds, 0.01 to 300.
     pub(crate) fn dwell_seconds(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let word = match (w.get(b'F'), w.get(b'K')) {

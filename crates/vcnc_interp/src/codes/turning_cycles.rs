@@ -25,7 +25,7 @@ use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::Group;
 use crate::events::{Feed, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Xz, ZERO_MM};
 use crate::state::Motion;
@@ -43,7 +43,28 @@ pub(crate) enum How {
     Thread(f64),
 }
 
-impl Interpreter<'_> {
+/// E314 when the taper moves the cut's start past A: `r` pointing from
+/// the end `e` towards A's `a` by more than the distance between them.
+fn check_taper(
+    r: f64,
+    e: f64,
+    a: f64,
+    w: &Words<'_>,
+    cmd: Span,
+    axis: &str,
+) -> Result<(), Diagnostic> {
+    let towards_a = (a - e).signum() == r.signum();
+    if r != 0.0 && towards_a && r.abs() > (a - e).abs() + ZERO_MM {
+        let span = w.get(b'R').map_or(cmd, |r| r.span);
+        return Err(alarms::cycle_parameters(
+            span,
+            &format!("the taper R puts the cut's start beyond the start point in {axis}"),
+        ));
+    }
+    Ok(())
+}
+
+impl<'a> Machining<'_, 'a> {
     /// The machine (and program) indices of X and Z.
     pub(crate) fn lathe_axes(&self, cmd: Span) -> Result<(usize, usize), Diagnostic> {
         match (
@@ -163,7 +184,7 @@ impl Interpreter<'_> {
         } else {
             self.state.lathe.single
         };
-        let goal = self.target(w, false);
+        let goal = self.state.target(self.cfg, w, false);
         let pick = |i: usize, old: f64| {
             if goal.named & (1 << i) != 0 {
                 goal.prog.get(i)
@@ -209,25 +230,4 @@ impl Interpreter<'_> {
         let lifted = start.0 + dir * lift.min((out_x - start.0).abs());
         vec![(thread, start), (thread, P2(lifted, end.1))]
     }
-}
-
-/// E314 when the taper moves the cut's start past A: `r` pointing from
-/// the end `e` towards A's `a` by more than the distance between them.
-fn check_taper(
-    r: f64,
-    e: f64,
-    a: f64,
-    w: &Words<'_>,
-    cmd: Span,
-    axis: &str,
-) -> Result<(), Diagnostic> {
-    let towards_a = (a - e).signum() == r.signum();
-    if r != 0.0 && towards_a && r.abs() > (a - e).abs() + ZERO_MM {
-        let span = w.get(b'R').map_or(cmd, |r| r.span);
-        return Err(alarms::cycle_parameters(
-            span,
-            &format!("the taper R puts the cut's start beyond the start point in {axis}"),
-        ));
-    }
-    Ok(())
 }

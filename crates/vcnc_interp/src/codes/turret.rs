@@ -26,11 +26,11 @@ use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::dialect::SurfaceSpeedOn;
 use crate::events::{Event, Pos, SpindleDir};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{Move, Target};
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
+impl<'a> Machining<'_, 'a> {
     /// Step 2b under `ToolWords::TurretOffset`: index the turret, apply
     /// the offset.
     pub(crate) fn turret_word(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {

@@ -18,13 +18,18 @@
 //! [`arith`]: the evaluator never tests a language's name.
 //!
 //! Angles are degrees. Reads and writes of variables go through
-//! [`Interpreter::read_var`] and [`Interpreter::write_var`], which know the
+//! [`Evaluator::read_var`] and [`Evaluator::write_var`], which know the
 //! controller's variable table.
 
+use super::Macros;
 use super::vars::Slot;
 use super::{UNSET_LIMIT, UnsetRead};
 use crate::alarms;
-use crate::interpreter::Interpreter;
+use crate::config::Config;
+use crate::flow::Flow;
+use crate::interpreter::{Locator, Machining};
+use crate::motion::stage::Stage;
+use crate::state::{State, Tables};
 use vcnc_syntax::macros::{Arg, BinOp, Expr, Func, Lang, OpCode, Value, VarKind};
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -469,7 +474,66 @@ pub(crate) fn function(
     }
 }
 
-impl Interpreter<'_> {
+/// The macro evaluator's view of the interpreter: the variables it owns
+/// (`Macros`); the modal state, the offset tables and the configuration
+/// that system variables read and write; the stage a message goes to; the
+/// program flow for the call level's locals and the block's location.
+/// Borrowed from the [`Interpreter`] for one expression or assignment; the
+/// run loop's counters and the program-point style stay out of its reach.
+///
+/// [`Interpreter`]: crate::interpreter::Interpreter
+pub(crate) struct Evaluator<'r, 'a> {
+    pub(crate) cfg: &'r Config<'a>,
+    pub(crate) state: &'r mut State,
+    pub(crate) tables: &'r mut Tables,
+    pub(crate) stage: &'r mut Stage,
+    pub(crate) macros: &'r mut Macros,
+    pub(crate) flow: &'r mut Flow,
+}
+
+impl<'a> Evaluator<'_, 'a> {
+    /// The machine's side, for a message the evaluator emits.
+    pub(crate) fn machining(&mut self) -> Machining<'_, 'a> {
+        Machining {
+            cfg: self.cfg,
+            state: self.state,
+            tables: self.tables,
+            stage: self.stage,
+            at: Locator::new(self.flow, &self.macros.span_map),
+        }
+    }
+}
+
+/// A value stored in a Long-only variable (Syntec's PLC registers):
+/// Doubles are truncated toward zero, as a C conversion does.
+fn to_long(v: Value, span: Span) -> Result<Value, Diagnostic> {
+    match v {
+        Value::Double(x) => Ok(Value::Long(integer_part(x, span)?)),
+        v => Ok(v),
+    }
+}
+
+/// The name of `OpCode::Named(i)` in `e`.
+fn text_name(e: &Expr, i: u16) -> &str {
+    match e.texts.get(usize::from(i)).and_then(|t| t.first()) {
+        Some(Arg::Name(name)) => name,
+        _ => "",
+    }
+}
+
+/// The text arguments of a call, joined.
+fn text_arg(texts: &[Arg]) -> String {
+    texts
+        .iter()
+        .filter_map(|a| match a {
+            Arg::Str(s) => Some(s.to_string()),
+            _ => None,
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+impl<'a> Evaluator<'_, 'a> {
     /// Evaluates `e` written in `lang`.
     pub(crate) fn eval(&mut self, e: &Expr, lang: Lang) -> Result<Value, Diagnostic> {
         let mut stack = std::mem::take(&mut self.macros.eval_stack);
@@ -776,33 +840,4 @@ impl Interpreter<'_> {
             Slot::Missing => Err(alarms::no_such_variable(span, kind.sigil(), f64::from(n))),
         }
     }
-}
-
-/// A value stored in a Long-only variable (Syntec's PLC registers):
-/// Doubles are truncated toward zero, as a C conversion does.
-fn to_long(v: Value, span: Span) -> Result<Value, Diagnostic> {
-    match v {
-        Value::Double(x) => Ok(Value::Long(integer_part(x, span)?)),
-        v => Ok(v),
-    }
-}
-
-/// The name of `OpCode::Named(i)` in `e`.
-fn text_name(e: &Expr, i: u16) -> &str {
-    match e.texts.get(usize::from(i)).and_then(|t| t.first()) {
-        Some(Arg::Name(name)) => name,
-        _ => "",
-    }
-}
-
-/// The text arguments of a call, joined.
-fn text_arg(texts: &[Arg]) -> String {
-    texts
-        .iter()
-        .filter_map(|a| match a {
-            Arg::Str(s) => Some(s.to_string()),
-            _ => None,
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
 }

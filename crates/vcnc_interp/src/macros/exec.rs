@@ -21,6 +21,7 @@
 //!             EXIT             after the innermost loop
 //! ```
 
+use super::Evaluator;
 use super::structure::Link;
 use super::{Compiled, key};
 use crate::Sink;
@@ -49,7 +50,7 @@ impl Interpreter<'_> {
         match &result {
             Ok(_) => {
                 self.tables.commit();
-                self.report_frame();
+                self.machining().report_frame();
                 self.hand_over_when_full(sink);
             }
             Err(_) => {
@@ -66,28 +67,30 @@ impl Interpreter<'_> {
         let first = c.st.first;
         match &c.st.kind {
             StmtKind::Assign { target, value } => {
-                self.assign(target, value, lang, c.st.comment.as_deref())?;
+                self.evaluator()
+                    .assign(target, value, lang, c.st.comment.as_deref())?;
                 Ok(Step::Next)
             }
             StmtKind::Goto { word, target } => self.goto(c, src, *word, target),
             StmtKind::IfGoto { cond, word, target } => {
-                if self.holds(cond, lang)? {
+                if self.evaluator().holds(cond, lang)? {
                     self.goto(c, src, *word, target)
                 } else {
                     Ok(Step::Next)
                 }
             }
             StmtKind::IfThen { cond, then } => {
-                if self.holds(cond, lang)?
+                if self.evaluator().holds(cond, lang)?
                     && let StmtKind::Assign { target, value } = then.as_ref()
                 {
-                    self.assign(target, value, lang, c.st.comment.as_deref())?;
+                    self.evaluator()
+                        .assign(target, value, lang, c.st.comment.as_deref())?;
                 }
                 Ok(Step::Next)
             }
             StmtKind::While { cond, .. } => {
                 let go_on = match cond {
-                    Some(e) => self.holds(e, lang)?,
+                    Some(e) => self.evaluator().holds(e, lang)?,
                     None => true,
                 };
                 if go_on {
@@ -96,13 +99,13 @@ impl Interpreter<'_> {
                 self.follow(c, src, first)
             }
             StmtKind::WhileDo(cond) => {
-                if self.holds(cond, lang)? {
+                if self.evaluator().holds(cond, lang)? {
                     return Ok(Step::Next);
                 }
                 self.follow(c, src, first)
             }
             StmtKind::Until(cond) => {
-                if self.holds(cond, lang)? {
+                if self.evaluator().holds(cond, lang)? {
                     return Ok(Step::Next);
                 }
                 self.follow(c, src, first)
@@ -120,7 +123,7 @@ impl Interpreter<'_> {
                 Ok(Step::Jump(to))
             }
             StmtKind::If(cond) => {
-                if self.holds(cond, lang)? {
+                if self.evaluator().holds(cond, lang)? {
                     return Ok(Step::Next);
                 }
                 self.else_branch(c, src, first)
@@ -130,7 +133,7 @@ impl Interpreter<'_> {
                 self.for_loop(c, src, var, from, to, by.as_ref())
             }
             StmtKind::Call(e) => {
-                self.eval(e, lang)?;
+                self.evaluator().eval(e, lang)?;
                 Ok(Step::Next)
             }
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
@@ -138,39 +141,6 @@ impl Interpreter<'_> {
             // never cached as a statement.
             StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
         }
-    }
-
-    /// Whether a condition holds: a number other than 0 (vacant: no).
-    pub(crate) fn holds(&mut self, e: &Expr, lang: Lang) -> Result<bool, Diagnostic> {
-        Ok(self.eval(e, lang)?.number().is_some_and(|x| x != 0.0))
-    }
-
-    /// The variable an assignment writes: (kind, number).
-    fn target_var(&mut self, t: &Target, lang: Lang) -> Result<(VarKind, u32), Diagnostic> {
-        match t {
-            Target::Fixed(kind, n, _) => Ok((*kind, *n)),
-            Target::Indirect(kind, e, span) => {
-                let v = self.eval(e, lang)?;
-                Ok((*kind, self.var_number(*kind, v, *span)?))
-            }
-            // Only LinuxCNC's lines name parameters, and `ngc.rs` writes them.
-            Target::Named(_, span) => Err(vcnc_syntax::macros::ngc_expected(
-                *span,
-                "a numbered variable (named parameters are LinuxCNC's)",
-            )),
-        }
-    }
-
-    fn assign(
-        &mut self,
-        t: &Target,
-        value: &Expr,
-        lang: Lang,
-        comment: Option<&str>,
-    ) -> Result<(), Diagnostic> {
-        let (kind, n) = self.target_var(t, lang)?;
-        let v = self.eval(value, lang)?;
-        self.write_var(kind, n, v, t.span(), comment)
     }
 
     /// GOTO n: the first block `N n` of the current program; in Macro B
@@ -183,7 +153,7 @@ impl Interpreter<'_> {
         target: &Expr,
     ) -> Result<Step, Diagnostic> {
         let span = target.span;
-        let v = self.eval(target, c.lang)?;
+        let v = self.evaluator().eval(target, c.lang)?;
         let Some(x) = v.number() else {
             return Err(alarms::vacant_value(span, "the sequence number of a GOTO"));
         };
@@ -287,6 +257,7 @@ impl Interpreter<'_> {
                         continue;
                     };
                     let holds = self
+                        .evaluator()
                         .holds(e, cond.lang)
                         .map_err(|d| self.locate_compiled(d, src, cond))?;
                     if holds {
@@ -301,7 +272,7 @@ impl Interpreter<'_> {
     }
 
     fn case(&mut self, c: &Compiled, src: usize, selector: &Expr) -> Result<Step, Diagnostic> {
-        let v = self.eval(selector, c.lang)?;
+        let v = self.evaluator().eval(selector, c.lang)?;
         let Some(x) = v.number() else {
             return Err(alarms::vacant_value(
                 selector.span,
@@ -338,10 +309,10 @@ impl Interpreter<'_> {
         let lang = c.lang;
         let here = key(self.source_id(src), c.here);
         let stepping = self.macros.for_resume == Some(here);
-        let (kind, n) = self.target_var(var, lang)?;
+        let (kind, n) = self.evaluator().target_var(var, lang)?;
         let step = match by {
             Some(e) => {
-                let v = self.eval(e, lang)?;
+                let v = self.evaluator().eval(e, lang)?;
                 if v.number().is_none() {
                     return Err(alarms::vacant_value(e.span, "the step of a FOR"));
                 }
@@ -358,20 +329,21 @@ impl Interpreter<'_> {
             ));
         }
         let value = if stepping {
-            let cur = self.read_var(kind, n, var.span())?;
+            let cur = self.evaluator().read_var(kind, n, var.span())?;
             super::eval::binary(lang, BinOp::Add, cur, step, var.span())?
         } else {
-            let v = self.eval(from, lang)?;
+            let v = self.evaluator().eval(from, lang)?;
             if v.number().is_none() {
                 return Err(alarms::vacant_value(from.span, "the start of a FOR"));
             }
             v
         };
-        let end = self.eval(to, lang)?;
+        let end = self.evaluator().eval(to, lang)?;
         let Some(last) = end.number() else {
             return Err(alarms::vacant_value(to.span, "the end of a FOR"));
         };
-        self.write_var(kind, n, value, var.span(), None)?;
+        self.evaluator()
+            .write_var(kind, n, value, var.span(), None)?;
         self.macros.for_resume = None;
         let x = value.number().unwrap_or(0.0);
         let go_on = if s > 0.0 { x <= last } else { x >= last };
@@ -381,10 +353,46 @@ impl Interpreter<'_> {
             self.follow(c, src, c.st.first)
         }
     }
+}
+
+impl<'a> Evaluator<'_, 'a> {
+    /// Whether a condition holds: a number other than 0 (vacant: no).
+    pub(crate) fn holds(&mut self, e: &Expr, lang: Lang) -> Result<bool, Diagnostic> {
+        Ok(self.eval(e, lang)?.number().is_some_and(|x| x != 0.0))
+    }
+
+    /// The variable an assignment writes: (kind, number).
+    fn target_var(&mut self, t: &Target, lang: Lang) -> Result<(VarKind, u32), Diagnostic> {
+        match t {
+            Target::Fixed(kind, n, _) => Ok((*kind, *n)),
+            Target::Indirect(kind, e, span) => {
+                let v = self.eval(e, lang)?;
+                Ok((*kind, self.var_number(*kind, v, *span)?))
+            }
+            // Only LinuxCNC's lines name parameters, and `ngc.rs` writes them.
+            Target::Named(_, span) => Err(vcnc_syntax::macros::ngc_expected(
+                *span,
+                "a numbered variable (named parameters are LinuxCNC's)",
+            )),
+        }
+    }
+
+    fn assign(
+        &mut self,
+        t: &Target,
+        value: &Expr,
+        lang: Lang,
+        comment: Option<&str>,
+    ) -> Result<(), Diagnostic> {
+        let (kind, n) = self.target_var(t, lang)?;
+        let v = self.eval(value, lang)?;
+        self.write_var(kind, n, v, t.span(), comment)
+    }
 
     /// A message for the operator: `stop` when the program waits (#3006).
     pub(crate) fn message(&mut self, text: String, stop: bool) {
         let text: std::sync::Arc<str> = text.into();
-        self.emit(|loc| Event::Message { loc, text, stop });
+        self.machining()
+            .emit(|loc| Event::Message { loc, text, stop });
     }
 }

@@ -245,7 +245,7 @@ impl Interpreter<'_> {
             return Err(lexed);
         };
         let deleted = st.deleted.is_some();
-        let read = self.ngc_line(items)?;
+        let read = self.evaluator().ngc_line(items)?;
         // Block delete skips the settings of a `/` line too.
         if !(deleted && self.cfg.opts.block_delete) {
             let params = self.macros.ngc.get_or_insert_with(Box::default);
@@ -335,7 +335,7 @@ impl Interpreter<'_> {
                 return Err(lexed);
             };
             let deleted = st.deleted.is_some();
-            let read = self.ngc_line(items)?;
+            let read = self.evaluator().ngc_line(items)?;
             if !(deleted && self.cfg.opts.block_delete) {
                 let params = self.macros.ngc.get_or_insert_with(Box::default);
                 params.commit(&read);
@@ -420,21 +420,6 @@ impl Interpreter<'_> {
         d
     }
 
-    /// The `locate` hook: a diagnostic about a statement that spans lines
-    /// has an offset into the joined text; this maps it to its line.
-    pub(crate) fn macro_line_of(&self, mut d: Diagnostic, line: Line) -> (Diagnostic, Line) {
-        let Some(c) = &self.macros.span_map else {
-            return (d, line);
-        };
-        let (l, start) = c.line_of(d.span.start);
-        let len = d.span.end.saturating_sub(d.span.start);
-        d.span = Span {
-            start,
-            end: start + len,
-        };
-        (d, l)
-    }
-
     fn run_statement<S: Sink>(
         &mut self,
         c: &Rc<Compiled>,
@@ -488,7 +473,7 @@ impl Interpreter<'_> {
                     if super::eval::arith(lang).round_in_increments {
                         self.macros.round_per_unit = self.increments_per_unit(w.addr.0);
                     }
-                    let v = self.eval(e, lang);
+                    let v = self.evaluator().eval(e, lang);
                     self.macros.round_per_unit = None;
                     match v? {
                         Value::Null => continue,

@@ -37,6 +37,7 @@ mod system;
 mod vars;
 
 pub(crate) use calls::ModalCall;
+pub(crate) use eval::Evaluator;
 pub(crate) use front::Compiled;
 pub(crate) use vars::Vars;
 

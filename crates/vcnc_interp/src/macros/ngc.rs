@@ -18,8 +18,8 @@
 //! System parameters (#5061–#5428: probe results, offsets, the position)
 //! read what the program wrote, 0 otherwise.
 
+use super::Evaluator;
 use crate::alarms;
-use crate::interpreter::Interpreter;
 use std::collections::HashMap;
 use vcnc_syntax::macros::{Expr, Lang, LineItem, MValue, Target, Value, ngc_expected};
 use vcnc_syntax::{Addr, Diagnostic, Span, Word};
@@ -217,98 +217,6 @@ pub(crate) fn param_number(n: f64, span: Span) -> Result<usize, Diagnostic> {
     Ok(n as usize)
 }
 
-impl Interpreter<'_> {
-    fn ngc_params(&mut self) -> &mut Params {
-        self.macros.ngc.get_or_insert_with(Box::default)
-    }
-
-    /// `#n` read under LinuxCNC's table.
-    pub(crate) fn ngc_numbered(&mut self, n: f64, span: Span) -> Result<f64, Diagnostic> {
-        let n = param_number(n, span)?;
-        Ok(self.ngc_params().numbered(n))
-    }
-
-    /// `#<name>` read: an unset name alarms.
-    pub(crate) fn ngc_named(&mut self, name: &str, span: Span) -> Result<f64, Diagnostic> {
-        self.ngc_params()
-            .named(name)
-            .ok_or_else(|| alarms::vacant_value(span, &format!("#<{name}>")))
-    }
-
-    /// Whether `#<name>` is set (EXISTS).
-    pub(crate) fn ngc_exists(&mut self, name: &str) -> bool {
-        self.ngc_params().named(name).is_some()
-    }
-
-    /// A value of LinuxCNC's expressions (every one is a number).
-    fn ngc_eval(&mut self, e: &Expr) -> Result<f64, Diagnostic> {
-        Ok(self.eval(e, Lang::Ngc)?.number().unwrap_or(0.0))
-    }
-
-    /// Evaluates a parsed line's items in their order with the parameters
-    /// as they were before it: its words, checked as the lexer would
-    /// check them, and its settings (applied later by `Params::commit`).
-    pub(crate) fn ngc_line(&mut self, items: &[LineItem]) -> Result<Line, Diagnostic> {
-        let mut line = Line::default();
-        for item in items {
-            match item {
-                LineItem::Set {
-                    target,
-                    value,
-                    span,
-                } => {
-                    let key = self.ngc_key(target)?;
-                    let v = self.ngc_eval(value)?;
-                    if !v.is_finite() {
-                        return Err(alarms::macro_range(*span, "the parameter's value"));
-                    }
-                    line.sets.push((key, v));
-                }
-                LineItem::Word(w) => {
-                    let v = match &w.value {
-                        MValue::Literal { value, .. } => *value,
-                        MValue::Expr(e) => self.ngc_eval(e)?,
-                    };
-                    line.words.push(ngc_word(&line.words, w.addr, v, w.span)?);
-                }
-            }
-        }
-        Ok(line)
-    }
-
-    /// The parameter a setting writes.
-    fn ngc_key(&mut self, target: &Target) -> Result<Key, Diagnostic> {
-        match target {
-            Target::Named(name, span) => {
-                if READ_ONLY.contains(&&**name) {
-                    return Err(alarms::read_only_named(*span, name));
-                }
-                Ok(Key::Named(name.to_string()))
-            }
-            Target::Fixed(_, n, span) => Ok(Key::Numbered(param_number(f64::from(*n), *span)?)),
-            Target::Indirect(_, e, span) => {
-                let n = self.ngc_eval(e)?;
-                Ok(Key::Numbered(param_number(n, *span)?))
-            }
-        }
-    }
-
-    /// The values in brackets after an O-word keyword (`[c]`, a call's
-    /// arguments `[1] [#2 * 3]`) from byte `at` of `text`; none: empty.
-    pub(crate) fn ngc_operands(&mut self, text: &[u8], at: usize) -> Result<Vec<f64>, Diagnostic> {
-        let exprs = vcnc_syntax::macros::ngc_operands(text, at)?;
-        let mut out = Vec::with_capacity(exprs.len());
-        for e in &exprs {
-            let v = self.ngc_eval(e)?;
-            if !v.is_finite() {
-                return Err(alarms::macro_range(e.span, "the value"));
-            }
-            out.push(v);
-        }
-        Ok(out)
-    }
-}
-
 /// A word of value `v` after `words`: a value the lexer would take (at
 /// most 9 digits before the point), and G and M codes may repeat (`G1 G91
 /// Z-#1`); other letters once, as the lexer wants.
@@ -421,5 +329,97 @@ pub(crate) fn ngc_function(
         Func::Atan => domain(true, "ATAN", x.atan2(y).to_degrees()),
         // The parser gives LinuxCNC no other function.
         _ => Ok(Value::Null),
+    }
+}
+
+impl<'a> Evaluator<'_, 'a> {
+    fn ngc_params(&mut self) -> &mut Params {
+        self.macros.ngc.get_or_insert_with(Box::default)
+    }
+
+    /// `#n` read under LinuxCNC's table.
+    pub(crate) fn ngc_numbered(&mut self, n: f64, span: Span) -> Result<f64, Diagnostic> {
+        let n = param_number(n, span)?;
+        Ok(self.ngc_params().numbered(n))
+    }
+
+    /// `#<name>` read: an unset name alarms.
+    pub(crate) fn ngc_named(&mut self, name: &str, span: Span) -> Result<f64, Diagnostic> {
+        self.ngc_params()
+            .named(name)
+            .ok_or_else(|| alarms::vacant_value(span, &format!("#<{name}>")))
+    }
+
+    /// Whether `#<name>` is set (EXISTS).
+    pub(crate) fn ngc_exists(&mut self, name: &str) -> bool {
+        self.ngc_params().named(name).is_some()
+    }
+
+    /// A value of LinuxCNC's expressions (every one is a number).
+    fn ngc_eval(&mut self, e: &Expr) -> Result<f64, Diagnostic> {
+        Ok(self.eval(e, Lang::Ngc)?.number().unwrap_or(0.0))
+    }
+
+    /// Evaluates a parsed line's items in their order with the parameters
+    /// as they were before it: its words, checked as the lexer would
+    /// check them, and its settings (applied later by `Params::commit`).
+    pub(crate) fn ngc_line(&mut self, items: &[LineItem]) -> Result<Line, Diagnostic> {
+        let mut line = Line::default();
+        for item in items {
+            match item {
+                LineItem::Set {
+                    target,
+                    value,
+                    span,
+                } => {
+                    let key = self.ngc_key(target)?;
+                    let v = self.ngc_eval(value)?;
+                    if !v.is_finite() {
+                        return Err(alarms::macro_range(*span, "the parameter's value"));
+                    }
+                    line.sets.push((key, v));
+                }
+                LineItem::Word(w) => {
+                    let v = match &w.value {
+                        MValue::Literal { value, .. } => *value,
+                        MValue::Expr(e) => self.ngc_eval(e)?,
+                    };
+                    line.words.push(ngc_word(&line.words, w.addr, v, w.span)?);
+                }
+            }
+        }
+        Ok(line)
+    }
+
+    /// The parameter a setting writes.
+    fn ngc_key(&mut self, target: &Target) -> Result<Key, Diagnostic> {
+        match target {
+            Target::Named(name, span) => {
+                if READ_ONLY.contains(&&**name) {
+                    return Err(alarms::read_only_named(*span, name));
+                }
+                Ok(Key::Named(name.to_string()))
+            }
+            Target::Fixed(_, n, span) => Ok(Key::Numbered(param_number(f64::from(*n), *span)?)),
+            Target::Indirect(_, e, span) => {
+                let n = self.ngc_eval(e)?;
+                Ok(Key::Numbered(param_number(n, *span)?))
+            }
+        }
+    }
+
+    /// The values in brackets after an O-word keyword (`[c]`, a call's
+    /// arguments `[1] [#2 * 3]`) from byte `at` of `text`; none: empty.
+    pub(crate) fn ngc_operands(&mut self, text: &[u8], at: usize) -> Result<Vec<f64>, Diagnostic> {
+        let exprs = vcnc_syntax::macros::ngc_operands(text, at)?;
+        let mut out = Vec::with_capacity(exprs.len());
+        for e in &exprs {
+            let v = self.ngc_eval(e)?;
+            if !v.is_finite() {
+                return Err(alarms::macro_range(e.span, "the value"));
+            }
+            out.push(v);
+        }
+        Ok(out)
     }
 }

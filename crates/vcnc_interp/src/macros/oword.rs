@@ -117,7 +117,7 @@ impl Interpreter<'_> {
             .ok_or_else(|| unpaired(span, &st, "place in the program"))?;
         let here = entries[here_at].clone();
         let sc = here.scope;
-        let values = self.ngc_operands(&bytes, st.rest)?;
+        let values = self.evaluator().ngc_operands(&bytes, st.rest)?;
         let value = values.first().copied();
         let cond = || value.ok_or_else(|| unpaired(span, &st, "[condition]"));
         let next = here_at + 1;

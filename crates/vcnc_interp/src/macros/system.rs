@@ -28,11 +28,11 @@
 //! one that needs the real machine: I/O signals, the date), and a write to a
 //! read-only one alarms E606.
 
+use super::Evaluator;
 use crate::alarms;
 use crate::dialect::ModeOp;
 use crate::dialect::{GOp, MachineVars, VarTable};
 use crate::events::Pos;
-use crate::interpreter::Interpreter;
 use crate::state::{CompSide, Motion, ToolLength};
 use vcnc_syntax::macros::Value;
 use vcnc_syntax::{Diagnostic, Span};
@@ -58,7 +58,7 @@ fn tool_var(n: u32) -> Option<(u32, ToolField)> {
     }
 }
 
-impl Interpreter<'_> {
+impl<'a> Evaluator<'_, 'a> {
     /// mm (or degrees) → the program's input unit for axis `i`.
     fn to_input(&self, i: usize, mm: f64) -> f64 {
         let rotary = matches!(
@@ -70,12 +70,12 @@ impl Interpreter<'_> {
         }
         let diameter = self.state.modal.diameter
             && self.cfg.dialect.diameter.axis == self.cfg.machine.axes.get(i).map(|a| a.letter);
-        let v = mm / self.unit_mm();
+        let v = mm / self.state.unit_mm();
         if diameter { 2.0 * v } else { v }
     }
 
     fn length_input(&self, mm: f64) -> f64 {
-        mm / self.unit_mm()
+        mm / self.state.unit_mm()
     }
 
     /// Reads system variable `#n`.
@@ -359,7 +359,8 @@ impl Interpreter<'_> {
         let x = v.number();
         if let Some((k, field)) = tool_var(n) {
             let k = self.offset_register(k, n, span)?;
-            let mm = x.ok_or_else(|| alarms::vacant_value(span, "a tool offset"))? * self.unit_mm();
+            let mm = x.ok_or_else(|| alarms::vacant_value(span, "a tool offset"))?
+                * self.state.unit_mm();
             let mut t = self.tables.tool(k);
             match field {
                 ToolField::HWear => t.h_wear_mm = mm,
@@ -404,12 +405,12 @@ impl Interpreter<'_> {
                     if rotary {
                         value
                     } else {
-                        value * self.unit_mm()
+                        value * self.state.unit_mm()
                     },
                 );
                 self.tables.set_work(k, w);
                 if self.state.modal.wcs == k {
-                    self.state.refresh_origin(&self.tables);
+                    self.state.refresh_origin(self.tables);
                 }
                 Ok(())
             }

@@ -24,7 +24,7 @@ use crate::block::convert::Goal;
 use crate::block::words::Words;
 use crate::dialect::{ArcEnd, LongChord, bit};
 use crate::events::{Plane, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::frame::plane_rows;
 use std::f64::consts::TAU;
 use vcnc_core::geometry::ZERO_MM;
@@ -52,7 +52,26 @@ struct PlaneIdx {
     b: usize,
 }
 
-impl Interpreter<'_> {
+/// rs274's length tolerance of an arc's two radii, mm under G21 and inches
+/// under G20 (LinuxCNC's `center_arc_radius_tolerance`: 2·√2 least steps of
+/// 0.01 mm or 0.001 in). Probed with rs274 2.9: under G21 a 1 mm arc runs
+/// with radii 0.0282 mm apart and stops at 0.0284.
+const RS274_ARC_TOL_MM: f64 = 0.01 * 2.0 * std::f64::consts::SQRT_2;
+const RS274_ARC_TOL_INCH: f64 = 0.001 * 2.0 * std::f64::consts::SQRT_2;
+/// Beyond that length, the part of the larger radius the two may differ by
+/// (0.1 %: a 100 mm arc runs with its end 0.1001 mm outside, not inside).
+const RS274_ARC_RATIO: f64 = 0.001;
+/// And never by more than this many times the length (a 10,000 mm arc
+/// stops at 2.84 mm).
+const RS274_ARC_CAP: f64 = 100.0;
+
+/// The centre-offset letters of a plane's first and second axis.
+fn center_letters(plane: Plane) -> [u8; 2] {
+    let (a, b) = plane_rows(plane);
+    [b"IJK"[a], b"IJK"[b]]
+}
+
+impl<'a> Machining<'_, 'a> {
     /// One G02/G03 block (a block with no arc words only sets the mode).
     #[inline(never)]
     pub(crate) fn arc(&mut self, w: &Words<'_>, cmd: Span, cw: bool) -> Result<(), Diagnostic> {
@@ -60,7 +79,7 @@ impl Interpreter<'_> {
         let [oa, ob] = center_letters(plane);
         let has_center = w.get(oa).is_some() || w.get(ob).is_some();
         let radius = self.radius_word(w);
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         let (to, named) = (goal.prog, goal.named);
         if named == 0 && !has_center && radius.is_none() {
             return Ok(());
@@ -75,7 +94,14 @@ impl Interpreter<'_> {
             Some(r) => match self.center_from_radius(s, e, r, cw, cmd)? {
                 Some(c) => c,
                 // The lathe document: a chord longer than 2R is cut straight.
-                None => return self.straight(MoveKind::Feed(feed), self.to_target(&goal), w, cmd),
+                None => {
+                    return self.straight(
+                        MoveKind::Feed(feed),
+                        self.state.move_target(&goal),
+                        w,
+                        cmd,
+                    );
+                }
             },
             None if has_center && self.state.modal.arc_absolute => {
                 // G90.1: I/J/K are the centre's program coordinates; both
@@ -276,7 +302,7 @@ impl Interpreter<'_> {
                 cw,
                 feed,
             },
-            self.to_target(&goal),
+            self.state.move_target(&goal),
             w,
             cmd,
         )
@@ -286,7 +312,7 @@ impl Interpreter<'_> {
     /// the end point; its direction is the turn the three points make.
     #[inline(never)]
     pub(crate) fn three_point_arc(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        let goal = self.target(w, self.state.modal.incremental);
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
         let (to, named) = (goal.prog, goal.named);
         let mid_words = [(Addr::IX, b'X'), (Addr::IZ, b'Z')];
         if named == 0 && mid_words.iter().all(|(a, _)| w.get_ext(*a).is_none()) {
@@ -396,23 +422,4 @@ impl Interpreter<'_> {
         }
         Ok(())
     }
-}
-
-/// rs274's length tolerance of an arc's two radii, mm under G21 and inches
-/// under G20 (LinuxCNC's `center_arc_radius_tolerance`: 2·√2 least steps of
-/// 0.01 mm or 0.001 in). Probed with rs274 2.9: under G21 a 1 mm arc runs
-/// with radii 0.0282 mm apart and stops at 0.0284.
-const RS274_ARC_TOL_MM: f64 = 0.01 * 2.0 * std::f64::consts::SQRT_2;
-const RS274_ARC_TOL_INCH: f64 = 0.001 * 2.0 * std::f64::consts::SQRT_2;
-/// Beyond that length, the part of the larger radius the two may differ by
-/// (0.1 %: a 100 mm arc runs with its end 0.1001 mm outside, not inside).
-const RS274_ARC_RATIO: f64 = 0.001;
-/// And never by more than this many times the length (a 10,000 mm arc
-/// stops at 2.84 mm).
-const RS274_ARC_CAP: f64 = 100.0;
-
-/// The centre-offset letters of a plane's first and second axis.
-fn center_letters(plane: Plane) -> [u8; 2] {
-    let (a, b) = plane_rows(plane);
-    [b"IJK"[a], b"IJK"[b]]
 }

@@ -8,70 +8,9 @@ use super::MoveKind;
 use crate::alarms;
 use crate::block::words::Words;
 use crate::events::{Feed, MAX_AXES, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::machine::Machine;
 use vcnc_syntax::{Diagnostic, Span};
-
-impl Interpreter<'_> {
-    /// The current feed (clamped to the machine's maximum), or E301 when
-    /// it is zero.
-    #[inline]
-    pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
-        let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
-        if f <= 0.0 {
-            return Err(alarms::zero_feed(cmd));
-        }
-        Ok(if self.state.modal.per_rev {
-            Feed::PerRev(f)
-        } else {
-            // The control clamps a feed above its maximum (warning W102
-            // when F was given).
-            Feed::PerMin(f.min(self.cfg.max_feed))
-        })
-    }
-
-    /// G93 (grbl, LinuxCNC): F is the inverse of the move's time in minutes,
-    /// given in every cutting block; the feed is the path length times F
-    /// (clamped to the machine's maximum).
-    pub(crate) fn inverse_time_feed(
-        &mut self,
-        w: &Words<'_>,
-        cmd: Span,
-        length_mm: f64,
-    ) -> Result<Feed, Diagnostic> {
-        let f = w.get(b'F').ok_or_else(|| {
-            alarms::needs_word(cmd, "a cut under G93", "F (1 / the move's time in minutes)")
-        })?;
-        if f.value <= 0.0 {
-            return Err(alarms::zero_feed(f.span));
-        }
-        let rate = length_mm * f.value;
-        if rate > self.cfg.max_feed {
-            self.warn(alarms::feed_clamped(f.span, rate, self.cfg.max_feed));
-        }
-        // A move of no length takes no time: any feed will do, and a
-        // zero feed would stall a planner.
-        Ok(Feed::PerMin(if rate > 0.0 {
-            rate.min(self.cfg.max_feed)
-        } else {
-            self.cfg.max_feed
-        }))
-    }
-
-    /// G31: moves like G01 until the skip signal of the machine file fires.
-    pub(crate) fn skip(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
-        if self.stage.comp.engaged() {
-            // The compensated corner at its end would be wrong once it stops short.
-            return Err(alarms::skip_under_comp(cmd));
-        }
-        let feed = self.feed(cmd)?;
-        let goal = self.target(w, self.state.modal.incremental);
-        if goal.named == 0 {
-            return Err(alarms::needs_axes(cmd, "G31"));
-        }
-        self.straight(MoveKind::Skip { feed }, self.to_target(&goal), w, cmd)
-    }
-}
 
 /// Corners of a rapid where each axis runs at its own rate: every axis
 /// starts together and stops when its own distance is covered.
@@ -192,4 +131,70 @@ pub(crate) fn lerp(a: Pos, b: Pos, t: f64) -> Pos {
         *v = a.0[i] + (b.0[i] - a.0[i]) * t;
     }
     p
+}
+
+impl<'a> Machining<'_, 'a> {
+    /// The current feed (clamped to the machine's maximum), or E301 when
+    /// it is zero.
+    #[inline]
+    pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
+        let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
+        if f <= 0.0 {
+            return Err(alarms::zero_feed(cmd));
+        }
+        Ok(if self.state.modal.per_rev {
+            Feed::PerRev(f)
+        } else {
+            // The control clamps a feed above its maximum (warning W102
+            // when F was given).
+            Feed::PerMin(f.min(self.cfg.max_feed))
+        })
+    }
+
+    /// G93 (grbl, LinuxCNC): F is the inverse of the move's time in minutes,
+    /// given in every cutting block; the feed is the path length times F
+    /// (clamped to the machine's maximum).
+    pub(crate) fn inverse_time_feed(
+        &mut self,
+        w: &Words<'_>,
+        cmd: Span,
+        length_mm: f64,
+    ) -> Result<Feed, Diagnostic> {
+        let f = w.get(b'F').ok_or_else(|| {
+            alarms::needs_word(cmd, "a cut under G93", "F (1 / the move's time in minutes)")
+        })?;
+        if f.value <= 0.0 {
+            return Err(alarms::zero_feed(f.span));
+        }
+        let rate = length_mm * f.value;
+        if rate > self.cfg.max_feed {
+            self.warn(alarms::feed_clamped(f.span, rate, self.cfg.max_feed));
+        }
+        // A move of no length takes no time: any feed will do, and a
+        // zero feed would stall a planner.
+        Ok(Feed::PerMin(if rate > 0.0 {
+            rate.min(self.cfg.max_feed)
+        } else {
+            self.cfg.max_feed
+        }))
+    }
+
+    /// G31: moves like G01 until the skip signal of the machine file fires.
+    pub(crate) fn skip(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {
+        if self.stage.comp.engaged() {
+            // The compensated corner at its end would be wrong once it stops short.
+            return Err(alarms::skip_under_comp(cmd));
+        }
+        let feed = self.feed(cmd)?;
+        let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
+        if goal.named == 0 {
+            return Err(alarms::needs_axes(cmd, "G31"));
+        }
+        self.straight(
+            MoveKind::Skip { feed },
+            self.state.move_target(&goal),
+            w,
+            cmd,
+        )
+    }
 }

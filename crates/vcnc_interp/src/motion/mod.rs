@@ -34,7 +34,7 @@ use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
 use crate::events::Loc;
 use crate::events::{ArcDir, Event, Feed, Plane, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::state::State;
 use frame::ArcMap;
 use stage::Stage;
@@ -130,180 +130,6 @@ impl MachineMove {
         c.set(axes.a, center.0);
         c.set(axes.b, center.1);
         Some(ArcPath::new(self.from, self.to, c, axes, dir))
-    }
-}
-
-impl Interpreter<'_> {
-    /// Sends one move of the block `w` through the stages. Nothing is
-    /// changed unless every stage accepts it (and the block as a whole).
-    pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
-        if self.state.rpm <= 0.0 {
-            // Once W104 is given only a per-revolution move needs a look.
-            let per_rev = match mv.kind {
-                MoveKind::Thread { .. } => true,
-                MoveKind::Feed(f) | MoveKind::Arc { feed: f, .. } => {
-                    matches!(f, Feed::PerRev(_))
-                }
-                _ => false,
-            };
-            if per_rev || !self.stage.spindle_warned {
-                self.stopped_spindle(&mv, per_rev)?;
-            }
-        } else if let MoveKind::Thread { lead_mm } = mv.kind {
-            // Syntec 1.2.17: 1 <= S <= maximum feed / lead.
-            if self.state.rpm * lead_mm > self.cfg.max_feed {
-                return Err(alarms::thread_too_fast(
-                    mv.cmd,
-                    self.state.rpm,
-                    lead_mm,
-                    self.cfg.max_feed,
-                ));
-            }
-        }
-        // 1 frame
-        let (prog_to, to) = self.state.machine_target(mv.to);
-        let kind = self.state.machine_kind(&self.cfg, &mv)?;
-        // 2 compensation works from the uncompensated point, the rest
-        // from where the tool is.
-        let engaged = self.stage.comp.engaged();
-        let mm = MachineMove {
-            kind,
-            from: if engaged {
-                self.state.nominal
-            } else {
-                self.state.pos
-            },
-            to,
-            exact_stop: mv.exact_stop,
-        };
-        if engaged {
-            return self.commit_compensated(prog_to, mm, &mv, w);
-        }
-        // 3 travel, before anything changes: a move that leaves the
-        // machine's limits leaves the state as the block found it (which a
-        // plain move block relies on, see `Interpreter::block`).
-        if self.cfg.travel_limited {
-            self.cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
-        }
-        self.stage
-            .accept_move(&mut self.state, &self.flow.loc, (prog_to, mm.to), mv.to);
-        // 4 events
-        if self.cfg.markers {
-            self.stage
-                .mark_axes(&self.cfg, &self.flow.loc, (&mv, mm.to), w);
-        }
-        let loc = self.flow.loc.clone();
-        self.stage
-            .emit_released(&self.cfg, &mut self.state, &mm, loc);
-        Ok(())
-    }
-
-    /// Stage 2 and on for a move while compensation is engaged.
-    #[inline(never)]
-    fn commit_compensated(
-        &mut self,
-        prog_to: Pos,
-        mm: MachineMove,
-        mv: &Move,
-        w: &Words<'_>,
-    ) -> Result<(), Diagnostic> {
-        self.stage
-            .accept_move(&mut self.state, &self.flow.loc, (prog_to, mm.to), mv.to);
-        if !matches!(mv.to, Target::Machine(_)) {
-            if self.cfg.markers {
-                self.stage
-                    .mark_axes(&self.cfg, &self.flow.loc, (mv, mm.to), w);
-            }
-            return self.compensate(mm, mv.cmd);
-        }
-        // A move to a machine point (G28's second leg, G53) is not
-        // compensated: the held move ends square to its path, and the
-        // next move in the plane starts compensation again.
-        self.comp_finish()?;
-        if self.state.modal.comp != crate::state::CompSide::Off {
-            self.stage.comp.mode = comp::Mode::Starting;
-        }
-        self.keep_programmed_plane(&mm, mv.cmd)?;
-        let at = comp::Origin {
-            loc: self.flow.loc.clone(),
-            src: 0,
-            line: None,
-            cmd: mv.cmd,
-        };
-        if self.cfg.markers {
-            self.stage
-                .mark_axes(&self.cfg, &self.flow.loc, (mv, mm.to), w);
-        }
-        self.release(mm, &at, Some(w))
-    }
-
-    /// A move with the spindle stopped: a thread or a feed per revolution
-    /// cannot move at all (E342); another cut warns once (W104) until the
-    /// spindle turns again.
-    #[cold]
-    fn stopped_spindle(&mut self, mv: &Move, per_rev: bool) -> Result<(), Diagnostic> {
-        if per_rev {
-            let per_minute = match mv.kind {
-                MoveKind::Thread { .. } => None,
-                _ => self.cfg.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
-            };
-            return Err(alarms::per_rev_spindle_stopped(mv.cmd, per_minute));
-        }
-        let cut = matches!(mv.kind, MoveKind::Feed(_) | MoveKind::Arc { .. });
-        if cut && !self.stage.spindle_warned {
-            self.stage.spindle_warned = true;
-            self.warn(alarms::cut_spindle_stopped(mv.cmd));
-        }
-        Ok(())
-    }
-
-    /// Stage 3: the soft limits on the path the tool really follows (arcs
-    /// included); an alarm points at the axis word of `w` when the move is
-    /// the current block's, else at `at`'s command.
-    fn check_travel(
-        &mut self,
-        mm: &MachineMove,
-        at: &comp::Origin,
-        w: Option<&Words<'_>>,
-    ) -> Result<(), Diagnostic> {
-        self.cfg
-            .travel_alarm(mm, at.cmd, w)
-            .map_err(|d| match at.line {
-                Some(line) => self.locate(d, at.src, &line),
-                None => d,
-            })
-    }
-
-    /// Stages 3 and 4: the travel check and the events of a machine move,
-    /// from where the tool is. A travel alarm points at the axis word of
-    /// `w` when the move is the current block's, else at `at`'s command.
-    /// One copy out of line: the compensation stage calls it from many
-    /// places, and inlined copies would crowd the instruction cache.
-    #[inline(never)]
-    pub(crate) fn release(
-        &mut self,
-        mm: MachineMove,
-        at: &comp::Origin,
-        w: Option<&Words<'_>>,
-    ) -> Result<(), Diagnostic> {
-        let mm = MachineMove {
-            from: self.state.pos,
-            ..mm
-        };
-        // 3 travel: nothing to check on a machine without limits.
-        if self.cfg.travel_limited {
-            self.check_travel(&mm, at, w)?;
-        }
-        self.report_frame();
-        self.stage
-            .emit_released(&self.cfg, &mut self.state, &mm, at.loc.clone());
-        Ok(())
-    }
-
-    /// Emits a `frame` event if the frame changed since the last one.
-    #[inline]
-    pub(crate) fn report_frame(&mut self) {
-        self.stage.report_frame(&mut self.state, &self.flow.loc);
     }
 }
 
@@ -607,4 +433,178 @@ fn push_built(pending: &mut Vec<Event>, make: impl FnOnce() -> Event) {
 #[inline(always)]
 fn same_point(a: Pos, b: Pos) -> bool {
     (0..crate::events::MAX_AXES).all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
+}
+
+impl<'a> Machining<'_, 'a> {
+    /// Sends one move of the block `w` through the stages. Nothing is
+    /// changed unless every stage accepts it (and the block as a whole).
+    pub(crate) fn commit(&mut self, mv: Move, w: &Words<'_>) -> Result<(), Diagnostic> {
+        if self.state.rpm <= 0.0 {
+            // Once W104 is given only a per-revolution move needs a look.
+            let per_rev = match mv.kind {
+                MoveKind::Thread { .. } => true,
+                MoveKind::Feed(f) | MoveKind::Arc { feed: f, .. } => {
+                    matches!(f, Feed::PerRev(_))
+                }
+                _ => false,
+            };
+            if per_rev || !self.stage.spindle_warned {
+                self.stopped_spindle(&mv, per_rev)?;
+            }
+        } else if let MoveKind::Thread { lead_mm } = mv.kind {
+            // Syntec 1.2.17: 1 <= S <= maximum feed / lead.
+            if self.state.rpm * lead_mm > self.cfg.max_feed {
+                return Err(alarms::thread_too_fast(
+                    mv.cmd,
+                    self.state.rpm,
+                    lead_mm,
+                    self.cfg.max_feed,
+                ));
+            }
+        }
+        // 1 frame
+        let (prog_to, to) = self.state.machine_target(mv.to);
+        let kind = self.state.machine_kind(self.cfg, &mv)?;
+        // 2 compensation works from the uncompensated point, the rest
+        // from where the tool is.
+        let engaged = self.stage.comp.engaged();
+        let mm = MachineMove {
+            kind,
+            from: if engaged {
+                self.state.nominal
+            } else {
+                self.state.pos
+            },
+            to,
+            exact_stop: mv.exact_stop,
+        };
+        if engaged {
+            return self.commit_compensated(prog_to, mm, &mv, w);
+        }
+        // 3 travel, before anything changes: a move that leaves the
+        // machine's limits leaves the state as the block found it (which a
+        // plain move block relies on, see `Interpreter::block`).
+        if self.cfg.travel_limited {
+            self.cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
+        }
+        self.stage
+            .accept_move(self.state, self.at.loc(), (prog_to, mm.to), mv.to);
+        // 4 events
+        if self.cfg.markers {
+            self.stage
+                .mark_axes(self.cfg, self.at.loc(), (&mv, mm.to), w);
+        }
+        let loc = self.at.loc().clone();
+        self.stage
+            .emit_released(self.cfg, self.state, &mm, loc);
+        Ok(())
+    }
+
+    /// Stage 2 and on for a move while compensation is engaged.
+    #[inline(never)]
+    fn commit_compensated(
+        &mut self,
+        prog_to: Pos,
+        mm: MachineMove,
+        mv: &Move,
+        w: &Words<'_>,
+    ) -> Result<(), Diagnostic> {
+        self.stage
+            .accept_move(self.state, self.at.loc(), (prog_to, mm.to), mv.to);
+        if !matches!(mv.to, Target::Machine(_)) {
+            if self.cfg.markers {
+                self.stage
+                    .mark_axes(self.cfg, self.at.loc(), (mv, mm.to), w);
+            }
+            return self.compensate(mm, mv.cmd);
+        }
+        // A move to a machine point (G28's second leg, G53) is not
+        // compensated: the held move ends square to its path, and the
+        // next move in the plane starts compensation again.
+        self.comp_finish()?;
+        if self.state.modal.comp != crate::state::CompSide::Off {
+            self.stage.comp.mode = comp::Mode::Starting;
+        }
+        self.keep_programmed_plane(&mm, mv.cmd)?;
+        let at = comp::Origin {
+            loc: self.at.loc().clone(),
+            src: 0,
+            line: None,
+            cmd: mv.cmd,
+        };
+        if self.cfg.markers {
+            self.stage
+                .mark_axes(self.cfg, self.at.loc(), (mv, mm.to), w);
+        }
+        self.release(mm, &at, Some(w))
+    }
+
+    /// A move with the spindle stopped: a thread or a feed per revolution
+    /// cannot move at all (E342); another cut warns once (W104) until the
+    /// spindle turns again.
+    #[cold]
+    fn stopped_spindle(&mut self, mv: &Move, per_rev: bool) -> Result<(), Diagnostic> {
+        if per_rev {
+            let per_minute = match mv.kind {
+                MoveKind::Thread { .. } => None,
+                _ => self.cfg.dialect.g_for(GOp::Mode(ModeOp::PerMinute)),
+            };
+            return Err(alarms::per_rev_spindle_stopped(mv.cmd, per_minute));
+        }
+        let cut = matches!(mv.kind, MoveKind::Feed(_) | MoveKind::Arc { .. });
+        if cut && !self.stage.spindle_warned {
+            self.stage.spindle_warned = true;
+            self.warn(alarms::cut_spindle_stopped(mv.cmd));
+        }
+        Ok(())
+    }
+
+    /// Stage 3: the soft limits on the path the tool really follows (arcs
+    /// included); an alarm points at the axis word of `w` when the move is
+    /// the current block's, else at `at`'s command.
+    fn check_travel(
+        &mut self,
+        mm: &MachineMove,
+        at: &comp::Origin,
+        w: Option<&Words<'_>>,
+    ) -> Result<(), Diagnostic> {
+        self.cfg
+            .travel_alarm(mm, at.cmd, w)
+            .map_err(|d| match at.line {
+                Some(line) => self.at.locate(d, at.src, &line),
+                None => d,
+            })
+    }
+
+    /// Stages 3 and 4: the travel check and the events of a machine move,
+    /// from where the tool is. A travel alarm points at the axis word of
+    /// `w` when the move is the current block's, else at `at`'s command.
+    /// One copy out of line: the compensation stage calls it from many
+    /// places, and inlined copies would crowd the instruction cache.
+    #[inline(never)]
+    pub(crate) fn release(
+        &mut self,
+        mm: MachineMove,
+        at: &comp::Origin,
+        w: Option<&Words<'_>>,
+    ) -> Result<(), Diagnostic> {
+        let mm = MachineMove {
+            from: self.state.pos,
+            ..mm
+        };
+        // 3 travel: nothing to check on a machine without limits.
+        if self.cfg.travel_limited {
+            self.check_travel(&mm, at, w)?;
+        }
+        self.report_frame();
+        self.stage
+            .emit_released(self.cfg, self.state, &mm, at.loc.clone());
+        Ok(())
+    }
+
+    /// Emits a `frame` event if the frame changed since the last one.
+    #[inline]
+    pub(crate) fn report_frame(&mut self) {
+        self.stage.report_frame(self.state, self.at.loc());
+    }
 }

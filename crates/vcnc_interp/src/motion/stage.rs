@@ -11,7 +11,7 @@
 //!                   Stage::rollback_move / rollback_compensated_move
 //! ```
 //!
-//! Every move leaves the interpreter through `Interpreter::commit` into
+//! Every move leaves the interpreter through `Machining::commit` into
 //! this stage: the compensation it holds, the events of the blocks not yet
 //! handed to the sink, the move count and the spindle warning are its
 //! own, and only it knows how to undo them.
@@ -49,6 +49,9 @@ pub(crate) struct Stage {
     /// or since a move to a machine point (`placed` events, under
     /// `Interpreter::with_program_markers`).
     pub unplaced: u8,
+    /// A G06.2 curve whose definition is still being read: one `nurbs`
+    /// event once its last block is in.
+    pub nurbs: Option<crate::state::NurbsBuild>,
 }
 
 /// Where a block started, to take it back.
@@ -61,7 +64,7 @@ pub(crate) struct BlockMark {
     comp_by_move: bool,
 }
 
-/// What a plain G00/G01 block that `Interpreter::moves_in_place` accepts
+/// What a plain G00/G01 block that `Machining::moves_in_place` accepts
 /// may have changed in the state when it alarms: every check of such a
 /// block (a negative or zero feed, a per-revolution feed with the spindle
 /// stopped, G93's F, the travel limits) comes before the move changes the
@@ -107,6 +110,7 @@ impl Stage {
             spindle_warned: false,
             zero_offsets_warned: [0; 2],
             unplaced: u8::try_from((1u32 << axes.min(8)) - 1).unwrap_or(u8::MAX),
+            nurbs: None,
         }
     }
 

@@ -10,13 +10,40 @@ use super::{Held, Mode, Origin, Queued, v2, with_plane};
 use crate::alarms;
 use crate::dialect::CompStart;
 use crate::events::{Event, Plane, Pos};
-use crate::interpreter::Interpreter;
+use crate::interpreter::Machining;
 use crate::motion::{MachineKind, MachineMove};
 use crate::plane::{P2, Seg, ZERO_MM};
 use vcnc_core::geometry::PlaneAxes;
 use vcnc_syntax::{Diagnostic, Span};
 
-impl Interpreter<'_> {
+/// The held move's kind, about the entry arc's own centre if it has one.
+fn entry_kind(held: &Held) -> MachineKind {
+    match (held.mm.kind, held.centre) {
+        (
+            MachineKind::Arc {
+                plane, dir, feed, ..
+            },
+            Some(c),
+        ) => MachineKind::Arc {
+            center: (c.0, c.1),
+            plane,
+            dir,
+            feed,
+        },
+        (k, _) => k,
+    }
+}
+
+/// A straight move of the same kind as `mm` (an arc's extra moves are feeds).
+fn straight_kind(mm: &MachineMove) -> MachineKind {
+    match mm.kind {
+        MachineKind::Arc { feed, .. } => MachineKind::Feed(feed),
+        MachineKind::Skip(feed) => MachineKind::Feed(feed),
+        k => k,
+    }
+}
+
+impl<'a> Machining<'_, 'a> {
     /// The plane geometry of a machine move, or `None` without plane motion.
     fn plane_seg(&self, mm: &MachineMove, axes: PlaneAxes) -> Option<Seg> {
         let (a, b) = (v2(mm.from, axes), v2(mm.to, axes));
@@ -54,7 +81,7 @@ impl Interpreter<'_> {
     /// Where the current block comes from.
     fn origin(&self, cmd: Span) -> Origin {
         Origin {
-            loc: self.flow.loc.clone(),
+            loc: self.at.loc().clone(),
             src: self.stage.cur_line.map_or(0, |(s, _)| s),
             line: self.stage.cur_line.map(|(_, l)| l),
             cmd,
@@ -64,7 +91,7 @@ impl Interpreter<'_> {
     /// An alarm about the block `at` (not necessarily the current one).
     fn alarm_at(&mut self, d: Diagnostic, at: &Origin) -> Diagnostic {
         match at.line {
-            Some(line) => self.locate(d, at.src, &line),
+            Some(line) => self.at.locate(d, at.src, &line),
             None => d,
         }
     }
@@ -451,36 +478,7 @@ impl Interpreter<'_> {
         self.stage.comp.queue = queue;
         Ok(())
     }
-}
 
-/// The held move's kind, about the entry arc's own centre if it has one.
-fn entry_kind(held: &Held) -> MachineKind {
-    match (held.mm.kind, held.centre) {
-        (
-            MachineKind::Arc {
-                plane, dir, feed, ..
-            },
-            Some(c),
-        ) => MachineKind::Arc {
-            center: (c.0, c.1),
-            plane,
-            dir,
-            feed,
-        },
-        (k, _) => k,
-    }
-}
-
-/// A straight move of the same kind as `mm` (an arc's extra moves are feeds).
-fn straight_kind(mm: &MachineMove) -> MachineKind {
-    match mm.kind {
-        MachineKind::Arc { feed, .. } => MachineKind::Feed(feed),
-        MachineKind::Skip(feed) => MachineKind::Feed(feed),
-        k => k,
-    }
-}
-
-impl Interpreter<'_> {
     /// The vector from the nose centre to the controlled point for a nose
     /// of radius `r`, in the compensation plane's (first, second) axes:
     /// the tip direction of the offset in force, in the ZX plane (G18),
