@@ -161,7 +161,7 @@ fn bounded(bytes: &[u8]) -> &[u8] {
 /// A, B or C, docs/machine.md) has G `value`: the machine file chooses the
 /// system, not `--dialect`, so the help names the key to set.
 fn system_hint(current: &Dialect, code: &str, value: f64) -> Option<String> {
-    use crate::machine::GcodeSystem;
+    use vcnc_core::machine::GcodeSystem;
     let base = dialect(current.name)?;
     let systems: Vec<&str> = [GcodeSystem::A, GcodeSystem::B, GcodeSystem::C]
         .into_iter()

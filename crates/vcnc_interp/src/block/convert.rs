@@ -12,11 +12,11 @@ use crate::config::Config;
 use crate::dialect::AxisWord;
 use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
-use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::interpreter::Machining;
 use crate::state::PointStyle;
 use crate::state::{Modal, Motion, State};
+use vcnc_core::events::{Plane, Pos};
 use vcnc_syntax::{Addr, Diagnostic, Word};
 
 /// mm per inch.
@@ -118,7 +118,7 @@ impl Interpreter<'_> {
     /// in least increments the longest it wrote and the span of the linear
     /// axes' program positions at the ends of its blocks (the power-on
     /// position left out) are both under 1 mm — whole units, most likely.
-    pub(crate) fn whole_units_report(&mut self) -> Option<crate::events::Event> {
+    pub(crate) fn whole_units_report(&mut self) -> Option<vcnc_core::events::Event> {
         let p = &self.points;
         if !p.active || p.seen_point {
             return None;
@@ -148,7 +148,7 @@ impl Interpreter<'_> {
             .map(|d| d.name)
             .collect();
         let w = alarms::whole_units_likely(first, longest, &whole);
-        Some(crate::events::Event::Warning(w))
+        Some(vcnc_core::events::Event::Warning(w))
     }
 }
 
@@ -558,7 +558,7 @@ impl Machining<'_, '_> {
                 points.seen_point = true;
                 if let Some(d) = points.first_plain.take() {
                     points.warned += 1;
-                    self.emit(|_| crate::events::Event::Warning(d));
+                    self.emit(|_| vcnc_core::events::Event::Warning(d));
                 }
             }
         } else if !points.seen_point {

@@ -24,12 +24,12 @@ use crate::dialect::{
     ToolLengthChange, ToolWords, bit,
 };
 use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
-use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::Machining;
 use crate::interpreter::{Interpreter, Step};
 use crate::motion::stage::Stage;
 use crate::state::Motion;
+use vcnc_core::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
@@ -504,8 +504,8 @@ impl<'a> Machining<'_, 'a> {
                 // Lathe G53/G500: no work system, no G92 shift, no local
                 // offset — machine coordinates are program coordinates.
                 m.wcs = usize::from(crate::dialect::WORK_NONE);
-                self.tables.set_shift(crate::events::Pos::default());
-                self.tables.set_local(crate::events::Pos::default());
+                self.tables.set_shift(vcnc_core::events::Pos::default());
+                self.tables.set_local(vcnc_core::events::Pos::default());
             }
             ModeOp::PathExact => m.path = PathMode::ExactStop,
             ModeOp::PathSurface => m.path = PathMode::Surface,
@@ -617,7 +617,8 @@ impl<'a> Machining<'_, 'a> {
     fn lead_mm(&self, f: &vcnc_syntax::Word) -> Result<f64, Diagnostic> {
         let plain = !f.point
             && self.cfg.dialect.thread_lead == ThreadLead::FHundredths
-            && self.cfg.machine.params.decimal_input != crate::machine::DecimalInput::Calculator;
+            && self.cfg.machine.params.decimal_input
+                != vcnc_core::machine::DecimalInput::Calculator;
         if !plain {
             return Ok(f.value * self.unit_mm());
         }
@@ -864,7 +865,7 @@ impl<'a> Machining<'_, 'a> {
             match at.def.op {
                 GOp::Set(SetOp::RefStore(n)) => self.store_reference(n),
                 GOp::Set(SetOp::ShiftCancel) => {
-                    self.tables.set_shift(crate::events::Pos::default());
+                    self.tables.set_shift(vcnc_core::events::Pos::default());
                     self.state.refresh_origin(self.tables);
                 }
                 GOp::Set(SetOp::ShiftSuspend(on)) => {
@@ -1009,7 +1010,7 @@ impl<'a> Machining<'_, 'a> {
 
     /// Adds an event of the current block; it reaches the sink when the
     /// block has succeeded.
-    pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
+    pub(crate) fn emit(&mut self, make: impl FnOnce(vcnc_core::events::Loc) -> Event) {
         let e = make(self.at.loc().clone());
         self.stage.emit(e);
     }

@@ -11,7 +11,7 @@ use crate::dialect::FlowOp;
 use crate::dialect::{
     AxisWords, Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit,
 };
-use crate::machine::{Machine, SameGroup};
+use vcnc_core::machine::{Machine, SameGroup};
 use vcnc_syntax::{Addr, Block, Diagnostic, Span, Word};
 
 /// Most one-shot (group 00) codes in one block.

@@ -14,9 +14,9 @@
 use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
-use crate::events::EndCode;
 use crate::flow::{Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
+use vcnc_core::events::EndCode;
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 
 impl Interpreter<'_> {

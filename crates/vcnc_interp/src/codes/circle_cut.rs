@@ -39,9 +39,9 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::dialect::CircleCutForm;
-use crate::events::{ArcDir, Feed, Plane, Pos};
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
+use vcnc_core::events::{ArcDir, Feed, Plane, Pos};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most full circles one G12/G13 block may cut over its repeats (its

@@ -23,10 +23,10 @@ use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::{Approach, GOp, Group, Hole, PeckClearance, TapStyle};
 use crate::dialect::{CycleOp, ModeOp};
-use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::state::{CycleData, ReducedPeck};
+use vcnc_core::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// The chip-breaking cycle's back-off between pecks (EIA G87): the
@@ -579,7 +579,8 @@ impl<'a> Machining<'_, 'a> {
         cmd: Span,
     ) -> Result<(), Diagnostic> {
         let here = self.state.prog;
-        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
+        let same =
+            (0..vcnc_core::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
         if same {
             return Ok(());
         }

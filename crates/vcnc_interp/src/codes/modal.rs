@@ -17,11 +17,11 @@
 use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::{GOp, Group, PaceOp, ThreadLead};
-use crate::events::MAX_AXES;
-use crate::events::SpindleDir;
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use crate::state::Motion;
+use vcnc_core::events::MAX_AXES;
+use vcnc_core::events::SpindleDir;
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {

@@ -20,9 +20,9 @@ use super::cycles::{CycleAxes, SAME_MM};
 use crate::alarms;
 use crate::block::words::Words;
 use crate::dialect::CycleOp;
-use crate::events::{Feed, Plane, Pos};
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
+use vcnc_core::events::{Feed, Plane, Pos};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most rings one pocket block may cut over all its levels (its events

@@ -172,7 +172,7 @@ fn peck_moves(
     step: f64,
     retract: f64,
     relief: f64,
-    feed: crate::events::Feed,
+    feed: vcnc_core::events::Feed,
 ) -> Vec<(How, P2)> {
     let (dp, ds) = (
         (end.0 - a.0).signum(),

@@ -25,9 +25,9 @@ use crate::alarms;
 use crate::block::convert::whole;
 use crate::block::words::Words;
 use crate::dialect::SurfaceSpeedOn;
-use crate::events::{Event, Pos, SpindleDir};
 use crate::interpreter::Machining;
 use crate::motion::{Move, Target};
+use vcnc_core::events::{Event, Pos, SpindleDir};
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {

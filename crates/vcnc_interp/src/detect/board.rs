@@ -95,7 +95,7 @@ fn machine_m_codes() -> &'static [Vec<u32>] {
                 {
                     return codes.clone();
                 }
-                let codes: Vec<u32> = crate::machine::Machine::from_toml(d.default_machine)
+                let codes: Vec<u32> = vcnc_core::machine::Machine::from_toml(d.default_machine)
                     .map(|m| m.m_codes.keys().copied().collect())
                     .unwrap_or_default();
                 read.push((d.default_machine, codes.clone()));

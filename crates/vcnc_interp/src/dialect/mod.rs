@@ -33,7 +33,7 @@ pub use ops::{
     RoughPockets, SetOp, TurnOp,
 };
 
-use crate::events::Plane;
+use vcnc_core::events::Plane;
 use vcnc_syntax::LexRules;
 
 /// The data words of a canned cycle block: R level, Q peck or shift, P
@@ -245,7 +245,7 @@ pub struct MDef {
 
 /// `WorkSystem` index of "no work offset" (lathe G53/G500).
 #[allow(clippy::cast_possible_truncation)] // WORK_SYSTEMS is 15
-pub const WORK_NONE: u8 = crate::machine::WORK_SYSTEMS as u8;
+pub const WORK_NONE: u8 = vcnc_core::machine::WORK_SYSTEMS as u8;
 
 /// Bit of a letter in a letter mask.
 pub const fn bit(l: u8) -> u32 {
@@ -794,9 +794,9 @@ impl Dialect {
     /// (`gcode_system` in the machine file): the Fanuc lathe's systems B
     /// and C are other tables of the same profile, built once. Every other
     /// dialect has one numbering and is returned as it is.
-    pub fn for_system(&'static self, system: crate::machine::GcodeSystem) -> &'static Dialect {
-        use crate::machine::GcodeSystem;
+    pub fn for_system(&'static self, system: vcnc_core::machine::GcodeSystem) -> &'static Dialect {
         use std::sync::OnceLock;
+        use vcnc_core::machine::GcodeSystem;
         static B: OnceLock<Dialect> = OnceLock::new();
         static C: OnceLock<Dialect> = OnceLock::new();
         if !self.gcode_systems {
@@ -813,7 +813,7 @@ impl Dialect {
     /// of the built-in ones: a profile with [`gcode_systems`](Self::gcode_systems)
     /// takes its built-in table of `system`; any other dialect is returned
     /// as it is.
-    pub fn under_system(&self, system: crate::machine::GcodeSystem) -> &Dialect {
+    pub fn under_system(&self, system: vcnc_core::machine::GcodeSystem) -> &Dialect {
         match crate::detect::dialect(self.name) {
             Some(base) if self.gcode_systems => base.for_system(system),
             _ => self,
@@ -821,8 +821,8 @@ impl Dialect {
     }
 
     /// The embedded machine this dialect runs on by default.
-    pub fn machine(&self) -> crate::machine::Machine {
-        match crate::machine::Machine::from_toml(self.default_machine) {
+    pub fn machine(&self) -> vcnc_core::machine::Machine {
+        match vcnc_core::machine::Machine::from_toml(self.default_machine) {
             Ok(m) => m,
             // Each embedded file is checked by a unit test; this cannot happen.
             Err(e) => unreachable!("embedded machine of {} is invalid: {e}", self.name),
@@ -924,7 +924,7 @@ mod tests {
         for name in Dialect::NAMES {
             let d = Dialect::by_name(name).unwrap();
             assert!(
-                crate::machine::Machine::from_toml(d.default_machine).is_ok(),
+                vcnc_core::machine::Machine::from_toml(d.default_machine).is_ok(),
                 "{name}"
             );
         }
@@ -979,7 +979,7 @@ mod tests {
 
     #[test]
     fn the_fanuc_lathes_systems_b_and_c_renumber_its_codes() {
-        use crate::machine::GcodeSystem;
+        use vcnc_core::machine::GcodeSystem;
         let a = crate::detect::dialect("fanuc-lathe").unwrap();
         assert!(std::ptr::eq(a.for_system(GcodeSystem::A), a));
         let op = |d: &Dialect, v: f64| d.g(v).map(|r| r.op);

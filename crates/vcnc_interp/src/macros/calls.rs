@@ -27,8 +27,8 @@ use crate::dialect::FlowOp;
 use crate::dialect::{GDef, GOp, IntegerWords, ModalLocals, VarTable};
 use crate::flow::{CallKind, Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
-use crate::machine::DecimalInput;
 use std::io;
+use vcnc_core::machine::DecimalInput;
 use vcnc_syntax::macros::Value;
 use vcnc_syntax::{Block, Cursor, Diagnostic, LineReader, Span, Word};
 

@@ -32,12 +32,12 @@ use crate::block::words::Words;
 use crate::config::Config;
 use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
-use crate::events::Loc;
-use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Machining;
 use crate::state::State;
 use frame::ArcMap;
 use stage::Stage;
+use vcnc_core::events::Loc;
+use vcnc_core::events::{ArcDir, Event, Feed, Plane, Pos};
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -432,7 +432,8 @@ fn push_built(pending: &mut Vec<Event>, make: impl FnOnce() -> Event) {
 /// [`vcnc_core::geometry::ZERO_MM`].
 #[inline(always)]
 fn same_point(a: Pos, b: Pos) -> bool {
-    (0..crate::events::MAX_AXES).all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
+    (0..vcnc_core::events::MAX_AXES)
+        .all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
 }
 
 impl<'a> Machining<'_, 'a> {
@@ -495,8 +496,7 @@ impl<'a> Machining<'_, 'a> {
                 .mark_axes(self.cfg, self.at.loc(), (&mv, mm.to), w);
         }
         let loc = self.at.loc().clone();
-        self.stage
-            .emit_released(self.cfg, self.state, &mm, loc);
+        self.stage.emit_released(self.cfg, self.state, &mm, loc);
         Ok(())
     }
 
