@@ -141,7 +141,7 @@ impl Interpreter<'_> {
             return None;
         }
         let lathe = self.cfg.dialect.diameter.lathe;
-        let whole: Vec<&str> = crate::detect::dialects()
+        let whole: Vec<&str> = crate::dialect::Dialect::all()
             .iter()
             .filter(|d| d.integers == IntegerWords::WholeUnits)
             .filter(|d| d.diameter.lathe == lathe)

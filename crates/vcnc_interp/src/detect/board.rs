@@ -7,7 +7,7 @@
 //! differently (`differs`), and the evidence what tells the two apart.
 
 use super::scan::{AXIS_LETTERS, NONE, Scan, Shape};
-use super::{Confidence, Detection, dialects};
+use super::{Confidence, Detection};
 use crate::dialect::{
     BareReturn, Dialect, GOp, Group, IntegerWords, IsoMacros, MGroup, MacroFiles, bit,
 };
@@ -86,7 +86,7 @@ fn machine_m_codes() -> &'static [Vec<u32>] {
     static CODES: OnceLock<Vec<Vec<u32>>> = OnceLock::new();
     CODES.get_or_init(|| {
         let mut read: Vec<(&'static str, Vec<u32>)> = Vec::new();
-        dialects()
+        Dialect::all()
             .iter()
             .map(|d| {
                 if let Some((_, codes)) = read

@@ -661,7 +661,27 @@ const M_SLOTS: usize = 1_000;
 use m_codes::MRow;
 
 impl Dialect {
-    /// Looks a dialect up by its `--dialect` name.
+    /// Every dialect, built once, in [`Dialect::NAMES`] order.
+    pub fn all() -> &'static [Dialect] {
+        static ALL: std::sync::OnceLock<Vec<Dialect>> = std::sync::OnceLock::new();
+        ALL.get_or_init(|| {
+            Dialect::NAMES
+                .iter()
+                .filter_map(|n| Dialect::by_name(n))
+                .collect()
+        })
+    }
+
+    /// The dialect named `name`, in any case (`Haas`, `FANUC-LATHE`), built
+    /// once.
+    pub fn named(name: &str) -> Option<&'static Dialect> {
+        Dialect::all()
+            .iter()
+            .find(|d| d.name.eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// Looks a dialect up by its `--dialect` name (a new table each call;
+    /// [`named`](Self::named) shares one).
     pub fn by_name(name: &str) -> Option<Dialect> {
         match name {
             "syntec" => Some(mill::syntec()),
@@ -814,7 +834,7 @@ impl Dialect {
     /// takes its built-in table of `system`; any other dialect is returned
     /// as it is.
     pub fn under_system(&self, system: vcnc_core::machine::GcodeSystem) -> &Dialect {
-        match crate::detect::dialect(self.name) {
+        match Dialect::named(self.name) {
             Some(base) if self.gcode_systems => base.for_system(system),
             _ => self,
         }
@@ -980,7 +1000,7 @@ mod tests {
     #[test]
     fn the_fanuc_lathes_systems_b_and_c_renumber_its_codes() {
         use vcnc_core::machine::GcodeSystem;
-        let a = crate::detect::dialect("fanuc-lathe").unwrap();
+        let a = Dialect::named("fanuc-lathe").unwrap();
         assert!(std::ptr::eq(a.for_system(GcodeSystem::A), a));
         let op = |d: &Dialect, v: f64| d.g(v).map(|r| r.op);
         for sys in [GcodeSystem::B, GcodeSystem::C] {
@@ -1006,18 +1026,8 @@ mod tests {
         assert_eq!(op(c, 71.0), Some(GOp::Mode(ModeOp::Metric)));
         assert_eq!(op(c, 72.0), Some(GOp::Turn(TurnOp::FinishCycle)));
         assert_eq!(op(c, 78.0), Some(GOp::Turn(TurnOp::ThreadMultiCycle)));
-        // E201's help under system A names the key that brings G95 and G91.
-        for v in [95.0, 91.0, 77.0] {
-            let help = crate::detect::g_hint(a, v);
-            assert!(help.contains("gcode_system = \"B\""), "{help}");
-        }
-        // And under B, system A's G50.
-        let help = crate::detect::g_hint(b, 50.0);
-        assert!(help.contains("gcode_system = \"A\""), "{help}");
-        // A code of no system keeps the ordinary help.
-        assert!(!crate::detect::g_hint(a, 17.1).contains("gcode_system"));
         // Haas lathes have system A only.
-        let haas = crate::detect::dialect("haas-lathe").unwrap();
+        let haas = Dialect::named("haas-lathe").unwrap();
         assert!(std::ptr::eq(haas.for_system(GcodeSystem::B), haas));
     }
 }
