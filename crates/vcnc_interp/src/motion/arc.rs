@@ -24,7 +24,7 @@ use crate::block::convert::Goal;
 use crate::block::words::Words;
 use crate::dialect::{ArcEnd, LongChord, bit};
 use crate::interpreter::Machining;
-use crate::motion::frame::plane_rows;
+use crate::state::frame::plane_rows;
 use std::f64::consts::TAU;
 use vcnc_core::events::{Plane, Pos};
 use vcnc_core::geometry::ZERO_MM;

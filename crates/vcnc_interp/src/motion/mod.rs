@@ -22,7 +22,6 @@
 
 pub(crate) mod arc;
 pub(crate) mod comp;
-pub(crate) mod frame;
 pub(crate) mod line;
 pub(crate) mod stage;
 pub(crate) mod travel;
@@ -34,7 +33,7 @@ use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
 use crate::interpreter::Machining;
 use crate::state::State;
-use frame::ArcMap;
+use crate::state::frame::ArcMap;
 use stage::Stage;
 use vcnc_core::events::Loc;
 use vcnc_core::events::{ArcDir, Event, Feed, Plane, Pos};
