@@ -14,12 +14,12 @@
 //! [`TextSource`]s and called programs from a [`ProgramStore`].
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 pub use crate::config::Options;
 use crate::dialect::Dialect;
 use crate::flow::{Flow, ProgramStore, first_value};
 use crate::state::{State, Tables};
+use crate::words::Words;
 use vcnc_core::Sink;
 use vcnc_core::events::{EndCode, Event};
 use vcnc_core::machine::Machine;

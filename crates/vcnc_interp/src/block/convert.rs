@@ -7,15 +7,16 @@
 //! be whole and in range.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 use crate::dialect::AxisWord;
 use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
 use crate::interpreter::Interpreter;
 use crate::interpreter::Machining;
+use crate::motion::Goal;
 use crate::state::PointStyle;
 use crate::state::{Modal, Motion, State};
+use crate::words::Words;
 use vcnc_core::events::{Plane, Pos};
 use vcnc_syntax::{Addr, Diagnostic, Word};
 
@@ -150,56 +151,6 @@ impl Interpreter<'_> {
         let w = alarms::whole_units_likely(first, longest, &whole);
         Some(vcnc_core::events::Event::Warning(w))
     }
-}
-
-/// Where a block's axis words point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Goal {
-    /// The new programmed point, program coordinates.
-    pub prog: Pos,
-    /// Axes named (bit i = machine axis i).
-    pub named: u32,
-    /// The increment of the incremental axes, program coordinates.
-    pub delta: Pos,
-    /// Every named axis is incremental (and no polar input).
-    pub all_incremental: bool,
-}
-
-/// A dwell's word (G04 X or P, a cycle's P): E109 if it is negative.
-pub(crate) fn dwell_not_negative(w: &Word) -> Result<(), Diagnostic> {
-    if w.value < 0.0 {
-        return Err(alarms::value_out_of_range(
-            w.span,
-            w.addr.0,
-            w.value,
-            "a dwell is not negative",
-        ));
-    }
-    Ok(())
-}
-
-/// A whole number word in `min..=max`.
-pub(crate) fn whole(
-    w: &Word,
-    letter: u8,
-    min: f64,
-    max: f64,
-    why: &str,
-) -> Result<u32, Diagnostic> {
-    if w.point {
-        return Err(alarms::no_decimal_point(w.span, letter, why));
-    }
-    if w.value < min || w.value > max {
-        return Err(alarms::value_out_of_range(
-            w.span,
-            letter,
-            w.value,
-            &format!("{letter_c} is {min}..{max}", letter_c = char::from(letter)),
-        ));
-    }
-    // In range and whole (no point), so the cast is exact.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    Ok(w.value as u32)
 }
 
 impl<'a> Machining<'_, 'a> {

@@ -18,7 +18,6 @@
 //! change the state before a later step alarms.
 
 use crate::alarms;
-use crate::block::words::{ALWAYS, Words};
 use crate::dialect::{
     AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
     ToolLengthChange, ToolWords, bit,
@@ -29,6 +28,7 @@ use crate::interpreter::Machining;
 use crate::interpreter::{Interpreter, Step};
 use crate::motion::stage::Stage;
 use crate::state::Motion;
+use crate::words::{ALWAYS, Words};
 use vcnc_core::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
@@ -677,8 +677,7 @@ impl<'a> Machining<'_, 'a> {
             return self.turret_word(w);
         }
         if let Some(t) = w.get(b'T') {
-            let n =
-                crate::block::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
+            let n = crate::words::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
             self.state.tool_selected = Some(n);
         }
         if let Some(m6) = w.m_of(MGroup::Tool) {

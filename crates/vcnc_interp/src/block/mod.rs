@@ -1,6 +1,7 @@
-//! One block, in three phases: validate ([`words`]: which codes and words,
-//! nothing executed), convert ([`convert`]: what each value means in mm,
-//! degrees, seconds, and where the axis words point in program
+//! One block, in three phases: validate ([`crate::words`]: which codes and
+//! words, nothing executed; below this folder, as the motion stage and the
+//! codes read its table too), convert ([`convert`]: what each value means
+//! in mm, degrees, seconds, and where the axis words point in program
 //! coordinates), execute ([`execute`]: the fixed order of a block).
 //!
 //! The interpreter (`interpreter.rs`) wraps each block so that it is all or
@@ -9,4 +10,3 @@
 
 pub(crate) mod convert;
 pub(crate) mod execute;
-pub(crate) mod words;

@@ -12,10 +12,10 @@
 //! nesting against `limits.max_call_depth`, so a runaway loop alarms.
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::flow::{Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_core::events::EndCode;
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 

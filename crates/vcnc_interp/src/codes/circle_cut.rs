@@ -36,11 +36,11 @@
 
 use super::cycles::{CycleAxes, SAME_MM};
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::dialect::CircleCutForm;
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_core::events::{ArcDir, Feed, Plane, Pos};
 use vcnc_syntax::{Diagnostic, Span, Word};
 

@@ -11,12 +11,12 @@
 //! starts compensation on an entry arc (`CompStart::LineOrArc`: rs274).
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::{CompOp, ModeOp, MotionOp};
 use crate::dialect::{GOp, Group, OffsetDefault, bit};
 use crate::interpreter::Machining;
 use crate::motion::comp::Mode;
 use crate::state::{CompSide, Motion};
+use crate::words::Words;
 use vcnc_syntax::Diagnostic;
 
 impl<'a> Machining<'_, 'a> {
@@ -127,7 +127,7 @@ impl<'a> Machining<'_, 'a> {
             if self.state.modal.plane != vcnc_core::events::Plane::Zx {
                 return Err(alarms::word_not_allowed(l.span, b'L'));
             }
-            let tip = crate::block::convert::whole(
+            let tip = crate::words::whole(
                 &l,
                 b'L',
                 0.0,

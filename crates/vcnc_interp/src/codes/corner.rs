@@ -21,12 +21,12 @@
 //! chamfer as a chord on it and rounds tangent to the arc's circle.
 
 use crate::alarms;
-use crate::block::convert::Goal;
-use crate::block::words::Words;
 use crate::interpreter::Machining;
+use crate::motion::Goal;
 use crate::motion::{Move, MoveKind, Target};
 use crate::plane::{Curve, P2, Seg, ZERO_MM, intersect};
 use crate::state::lathe::{CornerKind, PendingCorner};
+use crate::words::Words;
 use vcnc_core::events::{Feed, Pos};
 use vcnc_syntax::{Addr, Diagnostic, Span};
 

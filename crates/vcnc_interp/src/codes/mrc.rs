@@ -34,7 +34,6 @@
 //! G70's profile like over any moves.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::codes::ngc_rough::{Cut, Fault, Path, Roughing};
 use crate::codes::profile::{Elem, Profile};
 use crate::codes::rough::{self, Across, Frame, Rough, Step};
@@ -45,6 +44,7 @@ use crate::interpreter::Interpreter;
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Seg, Xz, ZERO_MM};
+use crate::words::Words;
 use vcnc_core::events::Pos;
 use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
 
@@ -178,7 +178,7 @@ impl Interpreter<'_> {
         let q = w
             .get(b'Q')
             .ok_or_else(|| alarms::needs_word(cmd, code, "Q (the profile's subroutine number)"))?;
-        let label = crate::block::convert::whole(
+        let label = crate::words::whole(
             &q,
             b'Q',
             1.0,

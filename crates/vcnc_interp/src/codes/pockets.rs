@@ -18,10 +18,10 @@
 
 use super::cycles::{CycleAxes, SAME_MM};
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::CycleOp;
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
+use crate::words::Words;
 use vcnc_core::events::{Feed, Plane, Pos};
 use vcnc_syntax::{Diagnostic, Span, Word};
 

@@ -14,12 +14,12 @@
 //! of work system passes through the same program point in the new system.
 
 use crate::alarms;
-use crate::block::convert::{dwell_not_negative, whole};
-use crate::block::words::Words;
 use crate::dialect::{BareReturn, DwellP, G53Incremental, G53WithoutAxes, GOp};
 use crate::dialect::{CycleOp, FrameOp, MoveOp, PaceOp, SetOp, TurnOp};
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
+use crate::words::Words;
+use crate::words::{dwell_not_negative, whole};
 use vcnc_core::events::Event;
 use vcnc_syntax::{Diagnostic, Span};
 

@@ -29,9 +29,9 @@
 
 use crate::alarms;
 use crate::block::convert::Units;
-use crate::block::words::Words;
 use crate::dialect::Group;
 use crate::state::Smoothing;
+use crate::words::Words;
 use vcnc_core::events::{Event, Loc, PathMode};
 use vcnc_syntax::{Diagnostic, Span};
 

@@ -27,11 +27,11 @@
 //! ```
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::codes::turning_cycles::How;
 use crate::interpreter::Machining;
 use crate::plane::{P2, Xz, ZERO_MM};
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most pecks, positions or passes one block may make.

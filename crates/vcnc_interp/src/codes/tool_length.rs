@@ -16,13 +16,13 @@
 //! feed under the other motions.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::FrameOp;
 use crate::dialect::{GOp, Group, OffsetDefault};
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::state::frame::Transform;
 use crate::state::{Motion, ToolLength};
+use crate::words::Words;
 use vcnc_core::events::Pos;
 use vcnc_syntax::{Diagnostic, Span};
 

@@ -23,11 +23,11 @@
 
 use crate::alarms;
 use crate::block::convert::Units;
-use crate::block::words::Words;
 use crate::config::Config;
 use crate::interpreter::Machining;
 use crate::state::State;
 use crate::state::frame::{Transform, Transforms, plane_rows};
+use crate::words::Words;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Largest scale factor (Fanuc 0i: 999.999 with 0.001 units).

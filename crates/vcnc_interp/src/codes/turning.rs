@@ -9,9 +9,9 @@
 //! cancels it, leaving the G08/G09 steps alone.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
+use crate::words::Words;
 use vcnc_core::events::Event;
 use vcnc_syntax::{Diagnostic, Span};
 

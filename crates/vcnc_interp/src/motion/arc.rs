@@ -20,11 +20,11 @@
 
 use super::{MoveKind, Target};
 use crate::alarms;
-use crate::block::convert::Goal;
-use crate::block::words::Words;
 use crate::dialect::{ArcEnd, LongChord, bit};
 use crate::interpreter::Machining;
+use crate::motion::Goal;
 use crate::state::frame::plane_rows;
+use crate::words::Words;
 use std::f64::consts::TAU;
 use vcnc_core::events::{Plane, Pos};
 use vcnc_core::geometry::ZERO_MM;
@@ -131,7 +131,7 @@ impl<'a> Machining<'_, 'a> {
         let Some(p) = w.get(b'P').filter(|_| reads_p) else {
             return Ok(1);
         };
-        crate::block::convert::whole(
+        crate::words::whole(
             &p,
             b'P',
             1.0,

@@ -6,8 +6,8 @@
 
 use super::MoveKind;
 use crate::alarms;
-use crate::block::words::Words;
 use crate::interpreter::Machining;
+use crate::words::Words;
 use vcnc_core::events::{Feed, MAX_AXES, Pos};
 use vcnc_core::machine::Machine;
 use vcnc_syntax::{Diagnostic, Span};

@@ -11,8 +11,8 @@
 
 use super::{MachineKind, MachineMove};
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
+use crate::words::Words;
 use vcnc_core::events::Pos;
 use vcnc_core::geometry::{ArcPath, ZERO_MM};
 use vcnc_core::machine::Machine;
