@@ -614,7 +614,10 @@ impl<'a> Interpreter<'a> {
         let jumps = self.flow.jumps;
         let comp_engaged = self.stage.comp.engaged();
         let plain = words.is_plain_motion(self.cfg.axis_mask);
-        let in_place = plain && self.machining().moves_in_place(&words, comp_engaged);
+        let in_place = plain
+            && self
+                .stage
+                .moves_in_place(&self.cfg, &self.state, &words, comp_engaged);
         // Under compensation such a block undoes the stage by itself.
         let comp_in_place = comp_engaged && in_place;
         let mark = self.stage.begin(comp_in_place);
