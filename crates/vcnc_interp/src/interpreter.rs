@@ -494,16 +494,7 @@ impl<'a> Interpreter<'a> {
     /// The machine's side of the interpreter, for the codes that move it.
     #[inline(always)]
     pub(crate) fn machining(&mut self) -> Machining<'_, 'a> {
-        Machining {
-            cfg: &self.cfg,
-            state: &mut self.state,
-            tables: &mut self.tables,
-            stage: &mut self.stage,
-            at: Locator {
-                flow: &mut self.flow,
-                span_map: &self.macros.span_map,
-            },
-        }
+        self.machining_and_points().0
     }
 
     /// A diagnostic of the block at `start` of `line`, placed, with the
