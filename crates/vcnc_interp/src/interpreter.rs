@@ -13,16 +13,16 @@
 //! change behind. There is no I/O here: program text comes from
 //! [`TextSource`]s and called programs from a [`ProgramStore`].
 
-use crate::Sink;
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 pub use crate::config::Options;
 use crate::dialect::Dialect;
-use crate::events::{EndCode, Event};
 use crate::flow::{Flow, ProgramStore, first_value};
-use crate::machine::Machine;
 use crate::state::{State, Tables};
+use crate::words::Words;
+use vcnc_core::Sink;
+use vcnc_core::events::{EndCode, Event};
+use vcnc_core::machine::Machine;
 use vcnc_syntax::{
     Block, Cursor, Diagnostic, Line, MemSource, ReadError, Span, TextSource, clamp_u32, column_of,
     lex_block,
@@ -859,7 +859,7 @@ pub(crate) struct Locator<'r> {
 impl Locator<'_> {
     /// The location of the block being executed.
     #[inline(always)]
-    pub(crate) fn loc(&self) -> &crate::events::Loc {
+    pub(crate) fn loc(&self) -> &vcnc_core::events::Loc {
         &self.flow.loc
     }
 

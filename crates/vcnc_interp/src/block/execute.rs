@@ -18,19 +18,19 @@
 //! change the state before a later step alarms.
 
 use crate::alarms;
-use crate::block::words::{ALWAYS, Words};
 use crate::config::Config;
 use crate::dialect::{
     AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
     ToolLengthChange, ToolWords, bit,
 };
 use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
-use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::Machining;
 use crate::interpreter::{Interpreter, Step};
 use crate::motion::stage::Stage;
 use crate::state::{Motion, State};
+use crate::words::{ALWAYS, Words};
+use vcnc_core::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
@@ -476,8 +476,8 @@ impl<'a> Machining<'_, 'a> {
                 // Lathe G53/G500: no work system, no G92 shift, no local
                 // offset — machine coordinates are program coordinates.
                 m.wcs = usize::from(crate::dialect::WORK_NONE);
-                self.tables.set_shift(crate::events::Pos::default());
-                self.tables.set_local(crate::events::Pos::default());
+                self.tables.set_shift(vcnc_core::events::Pos::default());
+                self.tables.set_local(vcnc_core::events::Pos::default());
             }
             ModeOp::PathExact => m.path = PathMode::ExactStop,
             ModeOp::PathSurface => m.path = PathMode::Surface,
@@ -589,7 +589,8 @@ impl<'a> Machining<'_, 'a> {
     fn lead_mm(&self, f: &vcnc_syntax::Word) -> Result<f64, Diagnostic> {
         let plain = !f.point
             && self.cfg.dialect.thread_lead == ThreadLead::FHundredths
-            && self.cfg.machine.params.decimal_input != crate::machine::DecimalInput::Calculator;
+            && self.cfg.machine.params.decimal_input
+                != vcnc_core::machine::DecimalInput::Calculator;
         if !plain {
             return Ok(f.value * self.unit_mm());
         }
@@ -648,8 +649,7 @@ impl<'a> Machining<'_, 'a> {
             return self.turret_word(w);
         }
         if let Some(t) = w.get(b'T') {
-            let n =
-                crate::block::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
+            let n = crate::words::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
             self.state.tool_selected = Some(n);
         }
         if let Some(m6) = w.m_of(MGroup::Tool) {
@@ -836,7 +836,7 @@ impl<'a> Machining<'_, 'a> {
             match at.def.op {
                 GOp::Set(SetOp::RefStore(n)) => self.store_reference(n),
                 GOp::Set(SetOp::ShiftCancel) => {
-                    self.tables.set_shift(crate::events::Pos::default());
+                    self.tables.set_shift(vcnc_core::events::Pos::default());
                     self.state.refresh_origin(self.tables);
                 }
                 GOp::Set(SetOp::ShiftSuspend(on)) => {
@@ -981,7 +981,7 @@ impl<'a> Machining<'_, 'a> {
 
     /// Adds an event of the current block; it reaches the sink when the
     /// block has succeeded.
-    pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
+    pub(crate) fn emit(&mut self, make: impl FnOnce(vcnc_core::events::Loc) -> Event) {
         let e = make(self.at.loc().clone());
         self.stage.emit(e);
     }

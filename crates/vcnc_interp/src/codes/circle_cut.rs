@@ -36,12 +36,12 @@
 
 use super::cycles::{CycleAxes, SAME_MM, Steps};
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::dialect::CircleCutForm;
-use crate::events::{ArcDir, Feed, Plane};
 use crate::interpreter::Machining;
 use crate::motion::MoveKind;
+use crate::words::Words;
+use crate::words::whole;
+use vcnc_core::events::{ArcDir, Feed, Plane};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most full circles one G12/G13 block may cut over its repeats (its

@@ -20,13 +20,13 @@
 //! (`MAX_HOLES`), since its events are held until it has succeeded.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::{Approach, GOp, Group, Hole, PeckClearance, TapStyle};
 use crate::dialect::{CycleOp, ModeOp};
-use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use crate::state::{CycleData, ReducedPeck};
+use crate::words::Words;
+use vcnc_core::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// The chip-breaking cycle's back-off between pecks (EIA G87): the
@@ -318,15 +318,14 @@ impl<'a> Machining<'_, 'a> {
                     (b'L', _) => "L is a repeat count 0-9999",
                     _ => "K is a repeat count 0-9999",
                 };
-                crate::block::convert::whole(&k, r.letter, f64::from(r.least), 9999.0, why)?
+                crate::words::whole(&k, r.letter, f64::from(r.least), 9999.0, why)?
             }
             None => 1,
         };
         let drill_letter = letter(axes.z).unwrap_or(b'Z');
         // Where each hole is: the block's plane words (G91: once more per
         // repeat), the drilling axis at the tool's level.
-        let keep =
-            |g: &mut crate::block::convert::Goal, prog: Pos| g.prog.set(axes.z, prog.get(axes.z));
+        let keep = |g: &mut crate::motion::Goal, prog: Pos| g.prog.set(axes.z, prog.get(axes.z));
         if count == 0 {
             // K0 stores the data and moves nothing (1.2.30).
             return self.cycle_ready(cmd, w.get(drill_letter)).map(|_| ());
@@ -458,7 +457,7 @@ impl<'a> Machining<'_, 'a> {
             self.state.cycle.reduced = None;
         }
         if let Some(p) = w.get(b'P') {
-            crate::block::convert::dwell_not_negative(&p)?;
+            crate::words::dwell_not_negative(&p)?;
             self.state.cycle.p_s = Some(self.units().seconds(&p));
         }
         if self.cfg.dialect.cycles.reduced_pecks {
@@ -625,7 +624,8 @@ impl<'a> Machining<'_, 'a> {
         cmd: Span,
     ) -> Result<(), Diagnostic> {
         let here = self.state.prog;
-        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
+        let same =
+            (0..vcnc_core::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
         if same {
             return Ok(());
         }
@@ -1075,7 +1075,7 @@ impl<'a> Machining<'_, 'a> {
                 .ok_or_else(|| alarms::needs_word(cmd, "a hole pattern", what))
         };
         let count = |word: Word, min: f64, why: &str| {
-            crate::block::convert::whole(&word, word.addr.0, min, 9999.0, why)
+            crate::words::whole(&word, word.addr.0, min, 9999.0, why)
         };
         let positive = |word: Word, v: f64, why: &str| {
             if v <= 0.0 {

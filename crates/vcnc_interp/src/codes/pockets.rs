@@ -18,11 +18,11 @@
 
 use super::cycles::{CycleAxes, SAME_MM, Steps};
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::CycleOp;
-use crate::events::Feed;
 use crate::interpreter::Machining;
 use crate::motion::MoveKind;
+use crate::words::Words;
+use vcnc_core::events::Feed;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most rings one pocket block may cut over all its levels (its events

@@ -22,12 +22,12 @@
 //! for every move, so the event stream has one speed per move).
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::dialect::SurfaceSpeedOn;
-use crate::events::{Event, Pos, SpindleDir};
 use crate::interpreter::Machining;
 use crate::motion::{Move, Target};
+use crate::words::Words;
+use crate::words::whole;
+use vcnc_core::events::{Event, Pos, SpindleDir};
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {

@@ -6,10 +6,10 @@
 
 use super::MoveKind;
 use crate::alarms;
-use crate::block::words::Words;
-use crate::events::{Feed, MAX_AXES, Pos};
 use crate::interpreter::Machining;
-use crate::machine::Machine;
+use crate::words::Words;
+use vcnc_core::events::{Feed, MAX_AXES, Pos};
+use vcnc_core::machine::Machine;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// Corners of a rapid where each axis runs at its own rate: every axis

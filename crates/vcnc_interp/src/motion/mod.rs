@@ -22,24 +22,36 @@
 
 pub(crate) mod arc;
 pub(crate) mod comp;
-pub(crate) mod frame;
 pub(crate) mod line;
 pub(crate) mod stage;
 pub(crate) mod travel;
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
-use crate::events::Loc;
-use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Machining;
 use crate::state::State;
-use frame::ArcMap;
+use crate::state::frame::ArcMap;
+use crate::words::Words;
 use stage::Stage;
+use vcnc_core::events::Loc;
+use vcnc_core::events::{ArcDir, Event, Feed, Plane, Pos};
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_syntax::{Diagnostic, Span};
+
+/// Where a block's axis words point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Goal {
+    /// The new programmed point, program coordinates.
+    pub prog: Pos,
+    /// Axes named (bit i = machine axis i).
+    pub named: u32,
+    /// The increment of the incremental axes, program coordinates.
+    pub delta: Pos,
+    /// Every named axis is incremental (and no polar input).
+    pub all_incremental: bool,
+}
 
 /// Where a move ends.
 ///
@@ -432,7 +444,8 @@ fn push_built(pending: &mut Vec<Event>, make: impl FnOnce() -> Event) {
 /// [`vcnc_core::geometry::ZERO_MM`].
 #[inline(always)]
 fn same_point(a: Pos, b: Pos) -> bool {
-    (0..crate::events::MAX_AXES).all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
+    (0..vcnc_core::events::MAX_AXES)
+        .all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
 }
 
 impl<'a> Machining<'_, 'a> {

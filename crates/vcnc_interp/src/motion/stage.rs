@@ -17,8 +17,8 @@
 //! own, and only it knows how to undo them.
 
 use super::comp::{self, Comp};
-use crate::events::{Event, Pos};
 use crate::state::{Motion, State};
+use vcnc_core::events::{Event, Pos};
 use vcnc_syntax::Line;
 
 /// The stage's data.
