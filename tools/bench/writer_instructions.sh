@@ -22,7 +22,7 @@ for bench in $("$bin" --list 2>/dev/null | grep -o 'jsonl_[a-z_]*' | sort -u); d
     "$bin" --bench --sample-count 1 --sample-size 1 "$bench" >/dev/null 2>&1
   total=$(awk '/^summary:/ {print $2}' "$out/$bench.cg")
   # The passes: the calls recorded against format_events's id.
-  id=$(grep -m1 -o 'cfn=([0-9]*) jsonl::format_events' "$out/$bench.cg" | grep -o '([0-9]*)')
+  id=$(grep -m1 -o 'fn=([0-9]*) jsonl::format_events' "$out/$bench.cg" | grep -o '([0-9]*)')
   passes=$(awk -v id="cfn=$id" '$1 == id { getline; sub("calls=", "", $1); s += $1 } END { print s }' "$out/$bench.cg")
   echo "$bench $((total / 100000 / passes)) ($passes passes)"
 done

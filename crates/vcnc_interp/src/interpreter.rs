@@ -494,16 +494,7 @@ impl<'a> Interpreter<'a> {
     /// The machine's side of the interpreter, for the codes that move it.
     #[inline(always)]
     pub(crate) fn machining(&mut self) -> Machining<'_, 'a> {
-        Machining {
-            cfg: &self.cfg,
-            state: &mut self.state,
-            tables: &mut self.tables,
-            stage: &mut self.stage,
-            at: Locator {
-                flow: &mut self.flow,
-                span_map: &self.macros.span_map,
-            },
-        }
+        self.machining_and_points().0
     }
 
     /// A diagnostic of the block at `start` of `line`, placed, with the
@@ -614,7 +605,10 @@ impl<'a> Interpreter<'a> {
         let jumps = self.flow.jumps;
         let comp_engaged = self.stage.comp.engaged();
         let plain = words.is_plain_motion(self.cfg.axis_mask);
-        let in_place = plain && self.machining().moves_in_place(&words, comp_engaged);
+        let in_place = plain
+            && self
+                .stage
+                .moves_in_place(&self.cfg, &self.state, &words, comp_engaged);
         // Under compensation such a block undoes the stage by itself.
         let comp_in_place = comp_engaged && in_place;
         let mark = self.stage.begin(comp_in_place);

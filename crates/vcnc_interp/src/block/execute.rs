@@ -19,6 +19,7 @@
 
 use crate::alarms;
 use crate::block::words::{ALWAYS, Words};
+use crate::config::Config;
 use crate::dialect::{
     AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
     ToolLengthChange, ToolWords, bit,
@@ -29,7 +30,7 @@ use crate::flow::ProgramStore;
 use crate::interpreter::Machining;
 use crate::interpreter::{Interpreter, Step};
 use crate::motion::stage::Stage;
-use crate::state::Motion;
+use crate::state::{Motion, State};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
@@ -47,7 +48,7 @@ impl Words<'_> {
 }
 
 impl Interpreter<'_> {
-    /// A plain move that [`moves_in_place`](Machining::moves_in_place)
+    /// A plain move that [`moves_in_place`](Stage::moves_in_place)
     /// accepted, all or nothing with the stage's mark instead of a copy of
     /// the state.
     #[inline(always)]
@@ -68,7 +69,7 @@ impl Interpreter<'_> {
     }
 
     /// [`move_in_place`](Self::move_in_place) under compensation, for a
-    /// block that [`moves_in_place`](Machining::moves_in_place) accepts.
+    /// block that [`moves_in_place`](Stage::moves_in_place) accepts.
     #[inline(never)]
     pub(crate) fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let mark = self.stage.mark_compensated_move(&self.state);
@@ -331,7 +332,6 @@ impl Machining<'_, '_> {
     }
     /// A plain block's words before its move: D, the motion code, the
     /// letters the motion allows, polar words.
-    #[inline(always)]
     fn motion_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         if w.get(b'D').is_some() {
             // A D word (a new radius, or outside G41/G42 the offset the
@@ -357,7 +357,6 @@ impl Machining<'_, '_> {
     }
 
     /// A plain block's F and its move.
-    #[inline(always)]
     fn motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         self.feed_word(w)?;
         self.modal_motion(w)?;
@@ -416,33 +415,6 @@ fn cancelled_cycle_hint(mut d: Diagnostic, w: &Words<'_>) -> Diagnostic {
 }
 
 impl<'a> Machining<'_, 'a> {
-    /// Whether a plain motion block `w` is a G00/G01 that the stage's
-    /// [`MoveMark`](Stage::mark_move) (or under compensation its
-    /// [`CompensatedMoveMark`](Stage::mark_compensated_move)) can undo: no canned cycle,
-    /// lathe corner or G96 in force (each changes more before it can
-    /// alarm), compensation either off or holding a move with nothing
-    /// queued behind it, and nothing in the block beyond axes, F and N (no
-    /// arc word, D or `,C`/`,R`).
-    #[inline(always)]
-    pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
-        let s = &self.state;
-        if (comp_engaged && !self.stage.comp.can_mark())
-            || s.cycle.code.is_some()
-            || s.lathe.corner.is_some()
-            || s.modal.css
-            || w.has_arc_words(self.cfg.axis_mask)
-        {
-            return false;
-        }
-        match w.group(Group::Motion) {
-            Some(m) => matches!(
-                m.def.op,
-                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
-            ),
-            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
-        }
-    }
-
     /// Step 1: one modal code written in the block. The frame codes,
     /// compensation, the cycles and G66 have steps of their own (6, the
     /// compensation stage, `cycle_modes`, the macro call); the one-shot
@@ -1012,5 +984,39 @@ impl<'a> Machining<'_, 'a> {
     pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
         let e = make(self.at.loc().clone());
         self.stage.emit(e);
+    }
+}
+
+impl Stage {
+    /// Whether a plain motion block `w` is a G00/G01 that the stage's
+    /// [`MoveMark`](Self::mark_move) (or under compensation its
+    /// [`CompensatedMoveMark`](Self::mark_compensated_move)) can undo: no canned cycle,
+    /// lathe corner or G96 in force (each changes more before it can
+    /// alarm), compensation either off or holding a move with nothing
+    /// queued behind it, and nothing in the block beyond axes, F and N (no
+    /// arc word, D or `,C`/`,R`).
+    #[inline(always)]
+    pub(crate) fn moves_in_place(
+        &self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        comp_engaged: bool,
+    ) -> bool {
+        if (comp_engaged && !self.comp.can_mark())
+            || s.cycle.code.is_some()
+            || s.lathe.corner.is_some()
+            || s.modal.css
+            || w.has_arc_words(cfg.axis_mask)
+        {
+            return false;
+        }
+        match w.group(Group::Motion) {
+            Some(m) => matches!(
+                m.def.op,
+                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
+            ),
+            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
+        }
     }
 }

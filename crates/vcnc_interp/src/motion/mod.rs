@@ -463,8 +463,9 @@ impl<'a> Machining<'_, 'a> {
             }
         }
         // 1 frame
+        let cfg = self.cfg;
         let (prog_to, to) = self.state.machine_target(mv.to);
-        let kind = self.state.machine_kind(self.cfg, &mv)?;
+        let kind = self.state.machine_kind(cfg, &mv)?;
         // 2 compensation works from the uncompensated point, the rest
         // from where the tool is.
         let engaged = self.stage.comp.engaged();
@@ -484,19 +485,17 @@ impl<'a> Machining<'_, 'a> {
         // 3 travel, before anything changes: a move that leaves the
         // machine's limits leaves the state as the block found it (which a
         // plain move block relies on, see `Interpreter::block`).
-        if self.cfg.travel_limited {
-            self.cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
+        if cfg.travel_limited {
+            cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
         }
-        self.stage
-            .accept_move(self.state, self.at.loc(), (prog_to, mm.to), mv.to);
+        // The stage's parts, held in locals for the rest of the way.
+        let (state, stage, loc) = (&mut *self.state, &mut *self.stage, self.at.loc());
+        stage.accept_move(state, loc, (prog_to, mm.to), mv.to);
         // 4 events
-        if self.cfg.markers {
-            self.stage
-                .mark_axes(self.cfg, self.at.loc(), (&mv, mm.to), w);
+        if cfg.markers {
+            stage.mark_axes(cfg, loc, (&mv, mm.to), w);
         }
-        let loc = self.at.loc().clone();
-        self.stage
-            .emit_released(self.cfg, self.state, &mm, loc);
+        stage.emit_released(cfg, state, &mm, loc.clone());
         Ok(())
     }
 
