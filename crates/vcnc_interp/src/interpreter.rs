@@ -622,8 +622,13 @@ impl<'a> Interpreter<'a> {
             self.move_in_place(&words).map(|()| Step::Next)
         } else {
             // Only axis words, F and a motion code: nothing but a move.
-            self.keeping_state(|s| s.execute_motion_only(&words))
-                .map(|()| Step::Next)
+            self.keeping_state(|s| {
+                if s.stage.nurbs.is_some() {
+                    s.machining().check_curve_pending(&words)?;
+                }
+                s.execute_motion_only(&words)
+            })
+            .map(|()| Step::Next)
         };
         // By value, and the step rebuilt below: moving the whole `Result`
         // on (a `Diagnostic`'s size) read it back in 16-byte loads that

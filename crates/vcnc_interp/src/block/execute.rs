@@ -240,6 +240,9 @@ impl Machining<'_, '_> {
         for at in w.modal_codes() {
             self.apply_modal(at.def.op);
         }
+        if self.stage.nurbs.is_some() {
+            self.check_curve_pending(w)?;
+        }
         self.cycle_modes(w)?;
         if w.group(Group::Wcs).is_some() {
             self.state.refresh_origin(self.tables);
@@ -991,7 +994,7 @@ impl Stage {
     /// Whether a plain motion block `w` is a G00/G01 that the stage's
     /// [`MoveMark`](Self::mark_move) (or under compensation its
     /// [`CompensatedMoveMark`](Self::mark_compensated_move)) can undo: no canned cycle,
-    /// lathe corner or G96 in force (each changes more before it can
+    /// lathe corner, G96 or an unfinished G06.2 curve in force (each changes more before it can
     /// alarm), compensation either off or holding a move with nothing
     /// queued behind it, and nothing in the block beyond axes, F and N (no
     /// arc word, D or `,C`/`,R`).
@@ -1004,6 +1007,7 @@ impl Stage {
         comp_engaged: bool,
     ) -> bool {
         if (comp_engaged && !self.comp.can_mark())
+            || self.nurbs.is_some()
             || s.cycle.code.is_some()
             || s.lathe.corner.is_some()
             || s.modal.css

@@ -25,7 +25,7 @@ use crate::dialect::MotionOp;
 use crate::dialect::{GOp, Group};
 use crate::interpreter::Machining;
 use crate::motion::{MachineKind, MachineMove, Target, travel};
-use crate::state::NurbsBuild;
+use crate::state::{Motion, NurbsBuild};
 use crate::words::Words;
 use std::sync::Arc;
 use vcnc_core::Nurbs;
@@ -108,6 +108,41 @@ impl<'a> Machining<'_, 'a> {
         self.emit(|loc| Event::Nurbs { loc, curve, feed });
         self.state.pos = end;
         Ok(())
+    }
+
+    /// A curve still being defined takes nothing but its own blocks
+    /// (Fanuc: no other command until the definition is complete): a
+    /// block that leaves G06.2 (G00–G03 …) or gives a code that takes the
+    /// axis words (G05 P0, G04 …) alarms E329 there, before it moves; the
+    /// curve's control points would otherwise be dropped unseen while the
+    /// program point already stands at the last of them.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn check_curve_pending(&self, w: &Words<'_>) -> Result<(), Diagnostic> {
+        let Some(b) = self.stage.nurbs.as_ref() else {
+            return Ok(());
+        };
+        // Whether the block's motion (its own G code, else the modal one)
+        // is G06.2's: asked before or after the block's modal codes.
+        let leaves = match w.group(Group::Motion) {
+            Some(g) => g.def.op != GOp::Motion(MotionOp::Nurbs),
+            None => self.state.modal.motion != Motion::Nurbs,
+        };
+        let other = w
+            .axis_user
+            .map(|u| u.span)
+            .or_else(|| leaves.then(|| w.group(Group::Motion).map_or(w.first, |g| g.span)));
+        match other {
+            Some(at) => Err(alarms::bad_nurbs(
+                at,
+                if b.knots_only {
+                    "the curve needs more K-only blocks (n + P knots) before another command"
+                } else {
+                    "the curve's definition is not complete: every block of it has a knot K"
+                },
+            )),
+            None => Ok(()),
+        }
     }
 }
 

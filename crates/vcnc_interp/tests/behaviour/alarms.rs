@@ -528,6 +528,24 @@ fn e312_code_without_the_axis_words_it_needs() {
     assert!(matches!(r.outcome, Outcome::Ended(_)), "{:?}", r.outcome);
 }
 
+/// E329: a G06.2 curve still being defined takes no other command (Syntec
+/// 1.2.8; Fanuc: nothing but the definition's blocks until it is complete).
+/// A G01 that leaves it, or G05 P0, alarmed nowhere before: the curve was
+/// dropped unseen and the next move started from its last control point
+/// (review of 2026-12-06).
+#[test]
+fn regression_e329_a_curve_left_before_its_definition_is_complete() {
+    let head = "G17 G90\nG00 X0. Y0. Z0.\nG05 P10000\n\
+                G06.2 P3 K0. X0. Y0. Z0. R1. F1000.\nK0. X10. Y10. R1.\n\
+                K0. X20. Y0. R1.\nK1. X40. Y7. R1.\nK1.\n";
+    check(&format!("{head}N9 G01 X5.\n"), Code::E329, 9, 4);
+    check(&format!("{head}N9 G00 X5.\n"), Code::E329, 9, 4);
+    check(&format!("{head}N9 G05 P0\n"), Code::E329, 9, 4);
+    // Completed, the same G01 is an ordinary move.
+    let r = run(&format!("{head}K1.\nK1.\nN11 G01 X5.\nG05 P0\nM30\n"));
+    assert!(matches!(r.outcome, Outcome::Ended(_)), "{:?}", r.outcome);
+}
+
 // ---------------------------------------------------------------------------
 // E343–E348 — the Fanuc lathe's cycles, chamfers and surface speed
 // ---------------------------------------------------------------------------
