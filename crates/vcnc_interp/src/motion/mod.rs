@@ -495,8 +495,7 @@ impl<'a> Machining<'_, 'a> {
                 .mark_axes(self.cfg, self.at.loc(), (&mv, mm.to), w);
         }
         let loc = self.at.loc().clone();
-        self.stage
-            .emit_released(self.cfg, self.state, &mm, loc);
+        self.stage.emit_released(self.cfg, self.state, &mm, loc);
         Ok(())
     }
 
