@@ -241,7 +241,13 @@ impl<'a> Interpreter<'a> {
                     None
                 };
                 let (step, first) = match cached {
-                    Some(ran) => ran,
+                    Some(Ok(ran)) => ran,
+                    Some(Err(d)) => {
+                        // A LinuxCNC line: as when the lexer handed it over.
+                        let d = self.located(d, src, &line, start);
+                        self.go_on_after(d)?;
+                        break;
+                    }
                     None => {
                         // Lex straight from the reader's buffer: no copy of the line.
                         let lexed = match self.flow.source(src) {

@@ -35,6 +35,10 @@ const MAX_STATEMENT_BYTES: usize = 16 * 1024;
 /// them (Fanuc rounds `M#1`, `S[1000.5]`; G codes keep their value).
 const WHOLE_LETTERS: &[u8] = b"DHLMNOPST";
 
+/// What a cached statement did: its step and its first word's span, or
+/// a LinuxCNC line's alarm, not yet located.
+pub(crate) type Ran = Result<(Step, Span), Diagnostic>;
+
 /// A statement parsed once, run many times.
 #[derive(Debug)]
 pub(crate) struct Compiled {
@@ -126,7 +130,9 @@ impl Interpreter<'_> {
     }
 
     /// A cached macro statement where the ISO run loop stands: runs it and
-    /// moves `i` past it.
+    /// moves `i` past it. A LinuxCNC line's alarm comes back inside
+    /// (`Some(Err)`): the run loop treats it as the alarm of a block the
+    /// lexer rejected, as on the line's first pass.
     #[inline]
     pub(crate) fn macro_cached<S: Sink>(
         &mut self,
@@ -136,13 +142,17 @@ impl Interpreter<'_> {
         block: &mut Block,
         store: &mut dyn ProgramStore,
         sink: &mut S,
-    ) -> Result<Option<(Step, Span)>, Diagnostic> {
+    ) -> Result<Option<Ran>, Diagnostic> {
         let k: Key = (self.source_id(src), line.offset, vcnc_syntax::clamp_u32(*i));
         let Some(c) = self.macros.cached(k) else {
             return Ok(None);
         };
         *i = c.next.col as usize;
-        self.run_compiled(&c, src, block, store, sink).map(Some)
+        if matches!(c.st.kind, StmtKind::Line(_)) {
+            return Ok(Some(self.run_ngc_line(&c, block, store, sink)));
+        }
+        self.run_compiled(&c, src, block, store, sink)
+            .map(|ran| Some(Ok(ran)))
     }
 
     /// The lexer rejected the block at `start`: if it is a macro statement,
@@ -215,10 +225,10 @@ impl Interpreter<'_> {
         self.run_compiled(&c, src, block, store, sink)
     }
 
-    /// A LinuxCNC line with parameters or expressions (`macros/ngc.rs`):
-    /// its words evaluated with the parameters as they were, the block
-    /// run, then its settings applied. A line without `#` or `[` keeps the
-    /// lexer's alarm.
+    /// A LinuxCNC line with parameters or expressions (`macros/ngc.rs`),
+    /// first met: parsed, kept in the statement cache like a Macro B
+    /// block (later passes run it from there without lexing), and run. A
+    /// line without `#` or `[` keeps the lexer's alarm.
     #[allow(clippy::too_many_arguments)] // macro_block's own
     fn ngc_block<S: Sink>(
         &mut self,
@@ -241,18 +251,68 @@ impl Interpreter<'_> {
         }
         let end = bytes.len();
         let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
-        let StmtKind::Line(items) = &st.kind else {
+        if !matches!(st.kind, StmtKind::Line(_)) {
             return Err(lexed);
+        }
+        let here = Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: vcnc_syntax::clamp_u32(start),
+        };
+        let c = Rc::new(Compiled {
+            st,
+            lang: Lang::Ngc,
+            here,
+            next: Cursor {
+                col: vcnc_syntax::clamp_u32(end),
+                ..here
+            },
+            lines: Box::new([(0, *line)]),
+            target: std::cell::Cell::new(None),
+        });
+        let id = self.source_id(src);
+        self.macros.remember(key(id, here), &c);
+        self.looping.macro_active = true;
+        let ran = self.run_ngc_line(&c, block, store, sink)?;
+        *i = end;
+        Ok(ran)
+    }
+
+    /// Runs a LinuxCNC line: its words evaluated with the parameters as
+    /// they were, the block run, then its settings applied. Its alarms are
+    /// those of a block the lexer rejected: the run loop locates them in
+    /// the line (and under keep-going goes on with the next line).
+    fn run_ngc_line<S: Sink>(
+        &mut self,
+        c: &Compiled,
+        block: &mut Block,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<(Step, Span), Diagnostic> {
+        self.ngc_words(&c.st, block)?;
+        let span = Span::new(c.here.col as usize, c.next.col as usize);
+        if block.is_empty() {
+            return Ok((Step::Next, span));
+        }
+        let step = self.macro_words_block(block, c.here, c.next, store, sink)?;
+        Ok((step, span))
+    }
+
+    /// The words of a LinuxCNC line `st`, evaluated into `block` with the
+    /// parameters as they were; its settings are applied (block delete
+    /// skips those of a `/` line too).
+    fn ngc_words(&mut self, st: &Statement, block: &mut Block) -> Result<(), Diagnostic> {
+        let StmtKind::Line(items) = &st.kind else {
+            block.clear();
+            return Ok(());
         };
         let deleted = st.deleted.is_some();
         let read = self.evaluator().ngc_line(items)?;
-        // Block delete skips the settings of a `/` line too.
         if !(deleted && self.cfg.opts.block_delete) {
             let params = self.macros.ngc.get_or_insert_with(Box::default);
             params.commit(&read);
         }
         self.macros.used = true;
-        *i = end;
         block.clear();
         for w in &read.words {
             if !block.push(*w) {
@@ -263,21 +323,7 @@ impl Interpreter<'_> {
             }
         }
         block.deleted = deleted.then_some(1);
-        let span = Span::new(start, end);
-        if block.is_empty() {
-            return Ok((Step::Next, span));
-        }
-        let here = Cursor {
-            offset: line.offset,
-            line: line.number,
-            col: vcnc_syntax::clamp_u32(start),
-        };
-        let next = Cursor {
-            col: vcnc_syntax::clamp_u32(end),
-            ..here
-        };
-        let step = self.macro_words_block(block, here, next, store, sink)?;
-        Ok((step, span))
+        Ok(())
     }
 
     /// The lexer's alarm for a block without macro syntax, except that a
@@ -331,26 +377,10 @@ impl Interpreter<'_> {
                 return Err(lexed);
             }
             let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
-            let StmtKind::Line(items) = &st.kind else {
+            if !matches!(st.kind, StmtKind::Line(_)) {
                 return Err(lexed);
-            };
-            let deleted = st.deleted.is_some();
-            let read = self.evaluator().ngc_line(items)?;
-            if !(deleted && self.cfg.opts.block_delete) {
-                let params = self.macros.ngc.get_or_insert_with(Box::default);
-                params.commit(&read);
             }
-            self.macros.used = true;
-            block.clear();
-            for w in &read.words {
-                if !block.push(*w) {
-                    return Err(vcnc_syntax::diagnostics::too_many_words(
-                        w.span,
-                        vcnc_syntax::MAX_WORDS,
-                    ));
-                }
-            }
-            block.deleted = deleted.then_some(1);
+            self.ngc_words(&st, block)?;
             return Ok(bytes.len());
         }
         let syn = self
