@@ -35,10 +35,6 @@ const MAX_STATEMENT_BYTES: usize = 16 * 1024;
 /// them (Fanuc rounds `M#1`, `S[1000.5]`; G codes keep their value).
 const WHOLE_LETTERS: &[u8] = b"DHLMNOPST";
 
-/// What a cached statement did: its step and its first word's span, or
-/// a LinuxCNC line's alarm, not yet located.
-pub(crate) type Ran = Result<(Step, Span), Diagnostic>;
-
 /// A statement parsed once, run many times.
 #[derive(Debug)]
 pub(crate) struct Compiled {
@@ -130,9 +126,7 @@ impl Interpreter<'_> {
     }
 
     /// A cached macro statement where the ISO run loop stands: runs it and
-    /// moves `i` past it. A LinuxCNC line's alarm comes back inside
-    /// (`Some(Err)`): the run loop treats it as the alarm of a block the
-    /// lexer rejected, as on the line's first pass.
+    /// moves `i` past it.
     #[inline]
     pub(crate) fn macro_cached<S: Sink>(
         &mut self,
@@ -142,17 +136,37 @@ impl Interpreter<'_> {
         block: &mut Block,
         store: &mut dyn ProgramStore,
         sink: &mut S,
-    ) -> Result<Option<Ran>, Diagnostic> {
+    ) -> Result<Option<(Step, Span)>, Diagnostic> {
         let k: Key = (self.source_id(src), line.offset, vcnc_syntax::clamp_u32(*i));
         let Some(c) = self.macros.cached(k) else {
             return Ok(None);
         };
         *i = c.next.col as usize;
-        if matches!(c.st.kind, StmtKind::Line(_)) {
-            return Ok(Some(self.run_ngc_line(&c, block, store, sink)));
+        match self.run_compiled(&c, src, block, store, sink) {
+            Ok(ran) => Ok(Some(ran)),
+            Err(d) if matches!(c.st.kind, StmtKind::Line(_)) => {
+                self.ngc_line_alarm(d, src, line, c.here.col as usize)
+            }
+            Err(d) => Err(d),
         }
-        self.run_compiled(&c, src, block, store, sink)
-            .map(|ran| Some(Ok(ran)))
+    }
+
+    /// The alarm of a cached LinuxCNC line is that of a block the lexer
+    /// rejected, as on the line's first pass: placed with the `;` hint,
+    /// and under keep-going the run goes on with the next line — `None`,
+    /// the line's end being where the run loop now stands (a LinuxCNC
+    /// line is read to its end), so that it finds nothing more on it.
+    #[cold]
+    #[inline(never)]
+    fn ngc_line_alarm(
+        &mut self,
+        d: Diagnostic,
+        src: usize,
+        line: &Line,
+        start: usize,
+    ) -> Result<Option<(Step, Span)>, Diagnostic> {
+        let d = self.located(d, src, line, start);
+        self.go_on_after(d).map(|()| None)
     }
 
     /// The lexer rejected the block at `start`: if it is a macro statement,
@@ -250,10 +264,12 @@ impl Interpreter<'_> {
             return Err(lexed);
         }
         let end = bytes.len();
-        let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
+        let mut st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
         if !matches!(st.kind, StmtKind::Line(_)) {
             return Err(lexed);
         }
+        // The block is the whole line (where an alarm at its end points).
+        st.first = Span::new(start, end);
         let here = Cursor {
             offset: line.offset,
             line: line.number,
@@ -273,29 +289,28 @@ impl Interpreter<'_> {
         let id = self.source_id(src);
         self.macros.remember(key(id, here), &c);
         self.looping.macro_active = true;
-        let ran = self.run_ngc_line(&c, block, store, sink)?;
+        let step = self.run_ngc_line(&c, block, store, sink)?;
         *i = end;
-        Ok(ran)
+        Ok((step, c.st.first))
     }
 
     /// Runs a LinuxCNC line: its words evaluated with the parameters as
     /// they were, the block run, then its settings applied. Its alarms are
-    /// those of a block the lexer rejected: the run loop locates them in
-    /// the line (and under keep-going goes on with the next line).
+    /// those of a block the lexer rejected: located in the line (and under
+    /// keep-going the run goes on with the next line).
+    #[inline(never)]
     fn run_ngc_line<S: Sink>(
         &mut self,
         c: &Compiled,
         block: &mut Block,
         store: &mut dyn ProgramStore,
         sink: &mut S,
-    ) -> Result<(Step, Span), Diagnostic> {
+    ) -> Result<Step, Diagnostic> {
         self.ngc_words(&c.st, block)?;
-        let span = Span::new(c.here.col as usize, c.next.col as usize);
         if block.is_empty() {
-            return Ok((Step::Next, span));
+            return Ok(Step::Next);
         }
-        let step = self.macro_words_block(block, c.here, c.next, store, sink)?;
-        Ok((step, span))
+        self.macro_words_block(block, c.here, c.next, store, sink)
     }
 
     /// The words of a LinuxCNC line `st`, evaluated into `block` with the
@@ -458,7 +473,11 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        if c.st.deleted.is_some() && self.cfg.opts.block_delete {
+        // A deleted LinuxCNC line is still evaluated (`ngc_words`).
+        if c.st.deleted.is_some()
+            && self.cfg.opts.block_delete
+            && !matches!(c.st.kind, StmtKind::Line(_))
+        {
             return Ok(Step::Next);
         }
         match &c.st.kind {
@@ -481,6 +500,7 @@ impl Interpreter<'_> {
                 block.percent = true;
                 self.macro_words_block(block, c.here, c.next, store, sink)
             }
+            StmtKind::Line(_) => self.run_ngc_line(c, block, store, sink),
             _ => self.macro_statement(c, src, sink),
         }
     }
