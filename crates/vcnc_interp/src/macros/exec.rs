@@ -138,7 +138,7 @@ impl Interpreter<'_> {
             }
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
             // A LinuxCNC line runs through `run_ngc_line` (front.rs), from
-            // the statement cache too.
+            // the statement cache too (`macro_cached`).
             StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
         }
     }

@@ -142,12 +142,26 @@ impl Interpreter<'_> {
             return Ok(None);
         };
         *i = c.next.col as usize;
-        match self.run_compiled(&c, src, block, store, sink) {
-            Ok(ran) => Ok(Some(ran)),
-            Err(d) if matches!(c.st.kind, StmtKind::Line(_)) => {
-                self.ngc_line_alarm(d, src, line, c.here.col as usize)
-            }
-            Err(d) => Err(d),
+        if matches!(c.st.kind, StmtKind::Line(_)) {
+            return self.cached_ngc_line(&c, src, line, block, store, sink);
+        }
+        self.run_compiled(&c, src, block, store, sink).map(Some)
+    }
+
+    /// A cached LinuxCNC line, run as on its first pass.
+    #[inline(never)]
+    fn cached_ngc_line<S: Sink>(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        line: &Line,
+        block: &mut Block,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Option<(Step, Span)>, Diagnostic> {
+        match self.run_ngc_line(c, block, store, sink) {
+            Ok(step) => Ok(Some((step, c.st.first))),
+            Err(d) => self.ngc_line_alarm(d, src, line, c.here.col as usize),
         }
     }
 
@@ -298,7 +312,6 @@ impl Interpreter<'_> {
     /// they were, the block run, then its settings applied. Its alarms are
     /// those of a block the lexer rejected: located in the line (and under
     /// keep-going the run goes on with the next line).
-    #[inline(never)]
     fn run_ngc_line<S: Sink>(
         &mut self,
         c: &Compiled,
@@ -473,11 +486,7 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Step, Diagnostic> {
-        // A deleted LinuxCNC line is still evaluated (`ngc_words`).
-        if c.st.deleted.is_some()
-            && self.cfg.opts.block_delete
-            && !matches!(c.st.kind, StmtKind::Line(_))
-        {
+        if c.st.deleted.is_some() && self.cfg.opts.block_delete {
             return Ok(Step::Next);
         }
         match &c.st.kind {
@@ -500,7 +509,6 @@ impl Interpreter<'_> {
                 block.percent = true;
                 self.macro_words_block(block, c.here, c.next, store, sink)
             }
-            StmtKind::Line(_) => self.run_ngc_line(c, block, store, sink),
             _ => self.macro_statement(c, src, sink),
         }
     }
