@@ -76,7 +76,7 @@ impl Choice {
         let forced = match c.dialect.as_deref() {
             None => None,
             Some(name) if name.eq_ignore_ascii_case(AUTO) => None,
-            Some(name) => Some(detect::dialect(name).ok_or_else(|| {
+            Some(name) => Some(Dialect::named(name).ok_or_else(|| {
                 format!(
                     "unknown dialect {name:?}: use auto or one of {}",
                     Dialect::NAMES.join(", ")
@@ -128,7 +128,7 @@ impl Choice {
             Some(d) => (d, None),
             None => {
                 let found = detect::detect(&input.head(PREFIX_BYTES)?, input.file_name());
-                let d = detect::dialect(found.dialect)
+                let d = Dialect::named(found.dialect)
                     .ok_or_else(|| format!("detection chose {}, no dialect", found.dialect))?;
                 (d, Some(found))
             }

@@ -31,7 +31,6 @@ mod scan;
 use crate::dialect::{Dialect, IntegerWords};
 use board::{Board, is_lathe};
 use scan::Scan;
-use std::sync::OnceLock;
 
 /// How much of a program detection reads.
 pub const PREFIX_BYTES: usize = 64 * 1024;
@@ -97,43 +96,24 @@ impl Detection {
     }
 }
 
-/// Every dialect, built once, in [`Dialect::NAMES`] order.
-pub fn dialects() -> &'static [Dialect] {
-    static ALL: OnceLock<Vec<Dialect>> = OnceLock::new();
-    ALL.get_or_init(|| {
-        Dialect::NAMES
-            .iter()
-            .filter_map(|n| Dialect::by_name(n))
-            .collect()
-    })
-}
-
-/// The dialect named `name`, in any case (`Haas`, `FANUC-LATHE`), built
-/// once.
-pub fn dialect(name: &str) -> Option<&'static Dialect> {
-    dialects()
-        .iter()
-        .find(|d| d.name.eq_ignore_ascii_case(name.trim()))
-}
-
 /// Chooses the dialect of a program from its text and file name.
 pub fn detect(bytes: &[u8], file_name: Option<&str>) -> Detection {
     let (mut board, scan) = weigh(bytes, file_name);
-    board.decide(dialects(), &scan)
+    board.decide(Dialect::all(), &scan)
 }
 
 /// Detection's scores per dialect and the evidence behind them, as text:
 /// for tuning the rules and for tests that explain a choice.
 pub fn explain(bytes: &[u8], file_name: Option<&str>) -> String {
     let (mut board, scan) = weigh(bytes, file_name);
-    let chosen = board.decide(dialects(), &scan);
-    format!("{}\n{}", chosen.describe(), board.explain(dialects()))
+    let chosen = board.decide(Dialect::all(), &scan);
+    format!("{}\n{}", chosen.describe(), board.explain(Dialect::all()))
 }
 
 /// The scan of the prefix and every rule's evidence on it.
 fn weigh(bytes: &[u8], file_name: Option<&str>) -> (Board, Scan) {
     let scan = Scan::of(bounded(bytes));
-    let all = dialects();
+    let all = Dialect::all();
     let mut board = Board::new(all.len());
     board.codes(all, &scan);
     board.syntax(all, &scan);
@@ -161,8 +141,8 @@ fn bounded(bytes: &[u8]) -> &[u8] {
 /// A, B or C, docs/machine.md) has G `value`: the machine file chooses the
 /// system, not `--dialect`, so the help names the key to set.
 fn system_hint(current: &Dialect, code: &str, value: f64) -> Option<String> {
-    use crate::machine::GcodeSystem;
-    let base = dialect(current.name)?;
+    use vcnc_core::machine::GcodeSystem;
+    let base = Dialect::named(current.name)?;
     let systems: Vec<&str> = [GcodeSystem::A, GcodeSystem::B, GcodeSystem::C]
         .into_iter()
         .filter(|s| {
@@ -192,7 +172,7 @@ pub fn g_hint(current: &Dialect, value: f64) -> String {
     if let Some(hint) = system_hint(current, &code, value) {
         return hint;
     }
-    let knows: Vec<&Dialect> = dialects()
+    let knows: Vec<&Dialect> = Dialect::all()
         .iter()
         .filter(|d| d.name != current.name && d.g(value).is_some())
         .collect();
@@ -246,5 +226,26 @@ pub fn g_hint(current: &Dialect, value: f64) -> String {
             reading(current.integers),
             other.first().map_or("", |d| d.name),
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vcnc_core::machine::GcodeSystem;
+
+    #[test]
+    fn e201s_help_names_the_gcode_system_that_knows_the_code() {
+        let a = Dialect::named("fanuc-lathe").unwrap();
+        // Under system A it names the key that brings G95 and G91.
+        for v in [95.0, 91.0, 77.0] {
+            let help = g_hint(a, v);
+            assert!(help.contains("gcode_system = \"B\""), "{help}");
+        }
+        // And under B, system A's G50.
+        let help = g_hint(a.for_system(GcodeSystem::B), 50.0);
+        assert!(help.contains("gcode_system = \"A\""), "{help}");
+        // A code of no system keeps the ordinary help.
+        assert!(!g_hint(a, 17.1).contains("gcode_system"));
     }
 }

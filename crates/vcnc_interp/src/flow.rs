@@ -17,10 +17,10 @@
 //! bounded cache, so a loop does not rescan and memory stays bounded. Files
 //! are opened only through the [`ProgramStore`] trait the caller provides.
 
-use crate::events::Loc;
 use std::collections::HashMap;
 use std::io;
 use std::sync::Arc;
+use vcnc_core::events::Loc;
 use vcnc_syntax::{
     Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block,
     next_block_start,

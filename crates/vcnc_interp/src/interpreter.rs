@@ -13,16 +13,16 @@
 //! change behind. There is no I/O here: program text comes from
 //! [`TextSource`]s and called programs from a [`ProgramStore`].
 
-use crate::Sink;
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 pub use crate::config::Options;
 use crate::dialect::Dialect;
-use crate::events::{EndCode, Event};
 use crate::flow::{Flow, ProgramStore, first_value};
-use crate::machine::Machine;
 use crate::state::{State, Tables};
+use crate::words::Words;
+use vcnc_core::Sink;
+use vcnc_core::events::{EndCode, Event};
+use vcnc_core::machine::Machine;
 use vcnc_syntax::{
     Block, Cursor, Diagnostic, Line, MemSource, ReadError, Span, TextSource, clamp_u32, column_of,
     lex_block,
@@ -494,16 +494,7 @@ impl<'a> Interpreter<'a> {
     /// The machine's side of the interpreter, for the codes that move it.
     #[inline(always)]
     pub(crate) fn machining(&mut self) -> Machining<'_, 'a> {
-        Machining {
-            cfg: &self.cfg,
-            state: &mut self.state,
-            tables: &mut self.tables,
-            stage: &mut self.stage,
-            at: Locator {
-                flow: &mut self.flow,
-                span_map: &self.macros.span_map,
-            },
-        }
+        self.machining_and_points().0
     }
 
     /// A diagnostic of the block at `start` of `line`, placed, with the
@@ -620,7 +611,10 @@ impl<'a> Interpreter<'a> {
         let jumps = self.flow.jumps;
         let comp_engaged = self.stage.comp.engaged();
         let plain = words.is_plain_motion(self.cfg.axis_mask);
-        let in_place = plain && self.machining().moves_in_place(&words, comp_engaged);
+        let in_place = plain
+            && self
+                .stage
+                .moves_in_place(&self.cfg, &self.state, &words, comp_engaged);
         // Under compensation such a block undoes the stage by itself.
         let comp_in_place = comp_engaged && in_place;
         let mark = self.stage.begin(comp_in_place);
@@ -871,7 +865,7 @@ pub(crate) struct Locator<'r> {
 impl Locator<'_> {
     /// The location of the block being executed.
     #[inline(always)]
-    pub(crate) fn loc(&self) -> &crate::events::Loc {
+    pub(crate) fn loc(&self) -> &vcnc_core::events::Loc {
         &self.flow.loc
     }
 

@@ -32,6 +32,7 @@ mod macros;
 mod motion;
 mod plane;
 pub mod state;
+mod words;
 
 pub use dialect::Dialect;
 pub use flow::{NoPrograms, ProgramStore};

@@ -32,8 +32,8 @@
 //! which the lathe's corners and profile arcs were written with). They
 //! differ at most in the last bit; choosing one for all would move outputs.
 
-use crate::events::Pos;
 use std::ops::{Add, Div, Mul, Sub};
+use vcnc_core::events::Pos;
 
 /// Below this a length is zero, mm: the one length tolerance of the
 /// interpreter (and of the planner and plotter, which read it from

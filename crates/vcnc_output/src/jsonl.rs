@@ -7,8 +7,9 @@
 //! (millions of events per second): one reused buffer, no allocation per
 //! event.
 
-use crate::num::{push_f64, push_json_str, push_u64};
+use crate::num::{Recent, push_f64, push_json_str, push_u64};
 use std::io::{self, Write};
+use vcnc_core::events::MAX_AXES;
 use vcnc_core::{ArcDir, Event, Feed, FrameInfo, Loc, Machine, PathMode, Pos, Sink, SpindleDir};
 
 /// Writes one JSON object per event.
@@ -21,13 +22,19 @@ pub struct JsonlSink<W: Write> {
 
 /// The axes an event lists: the linear axes always, a rotary axis (A, B,
 /// C) from the first position where it is away from 0 on, so that a 3-axis
-/// program reads the same on a machine that also has rotary axes.
+/// program reads the same on a machine that also has rotary axes. It also
+/// keeps the text of each axis's last coordinate and of the last feed,
+/// which the next event often repeats.
 #[derive(Debug, Clone)]
 pub struct EventAxes {
     letters: Vec<u8>,
     /// Bit i: axis i is listed.
     shown: u32,
     all: u32,
+    /// The last coordinate written of axis i.
+    recent: [Recent; MAX_AXES],
+    /// The last feed written (per minute or per revolution).
+    feed: Recent,
 }
 
 impl EventAxes {
@@ -48,6 +55,8 @@ impl EventAxes {
             letters,
             shown,
             all,
+            recent: [Recent::default(); MAX_AXES],
+            feed: Recent::default(),
         }
     }
 
@@ -432,7 +441,8 @@ impl Obj<'_> {
     fn axes_of(&mut self, p: &Pos, mask: u32) {
         self.out.push(b'{');
         let mut first = true;
-        for (i, letter) in self.axes.letters.iter().enumerate() {
+        let axes = &mut *self.axes;
+        for ((i, letter), recent) in axes.letters.iter().enumerate().zip(&mut axes.recent) {
             if mask & (1 << i) == 0 {
                 continue;
             }
@@ -441,7 +451,7 @@ impl Obj<'_> {
             }
             first = false;
             self.out.extend_from_slice(&[b'"', *letter, b'"', b':']);
-            push_f64(self.out, p.get(i));
+            recent.push(self.out, p.get(i));
         }
         self.out.push(b'}');
     }
@@ -493,9 +503,16 @@ impl Obj<'_> {
         }
     }
     fn feed(&mut self, f: Feed) {
-        match f {
-            Feed::PerMin(v) => self.num("feed", v),
-            Feed::PerRev(v) => self.num("feed_per_rev", v),
-        }
+        let v = match f {
+            Feed::PerMin(v) => {
+                self.key("feed");
+                v
+            }
+            Feed::PerRev(v) => {
+                self.key("feed_per_rev");
+                v
+            }
+        };
+        self.axes.feed.push(self.out, v);
     }
 }

@@ -8,137 +8,206 @@ pub fn round6(v: f64) -> f64 {
 
 /// Appends `v` (rounded) in its shortest round-trip form, e.g. `5.5`, `0.0`.
 ///
-/// Below 1e9 the rounded value has at most 15 significant digits, so its
+/// Below 1e8 the rounded value has at most 14 significant digits, so its
 /// shortest round-trip form is its decimal with trailing zeros trimmed; that
 /// is written with integer arithmetic (the hot path of `vcnc run`: four
 /// numbers a move), and never in exponent notation (ryu would print 1e-6).
 /// Larger values go through ryu.
 ///
-/// The digits are written backwards, two at a time, into a small buffer,
-/// then appended at once:
+/// The integer part and the six places of the fraction are each turned
+/// into eight ASCII digits at once in a `u64` ([`digits8`]), the integer's
+/// leading and the fraction's trailing zeros are cut by counting zero
+/// bytes, and the text is put together in a small buffer and appended with
+/// one copy of a known length:
 ///
 /// ```text
-///   -99.5:  scaled = -99_500_000 → int 99, frac 500000
-///   buffer  [ … | - | 9 | 9 | . | 5 | 0 0 0 0 0 ]
-///                 └ at               └ end: the fraction's zeros dropped
+///   -99.5:  n = -99_500_000 → int 99, frac 500000
+///   int     "00000099" → "99"        frac "00500000" → "500000" → "5"
+///   buffer  [ - | 9 | 9 | . | 5 | … ]
 /// ```
 pub fn push_f64(out: &mut Vec<u8>, v: f64) {
-    let scaled = round_half_away(v * 1e6);
-    if scaled.abs() < 1e15 {
-        // |scaled| < 1e15 fits an i64 exactly.
-        #[allow(clippy::cast_possible_truncation)]
-        let n = scaled as i64;
-        out.extend_from_slice(Digits::of(n).text());
-        return;
+    Text::of(v).append_to(out);
+}
+
+/// The text of a number as [`push_f64`] writes it, kept to be written
+/// again: a stream's next event often repeats a coordinate (a raster's
+/// row, a feed), and copying its text costs a tenth of formatting it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Recent {
+    bits: u64,
+    text: Text,
+}
+
+impl Default for Recent {
+    /// Holds 0.
+    fn default() -> Recent {
+        Recent {
+            bits: 0f64.to_bits(),
+            text: Text::of(0.0),
+        }
     }
-    let mut buf = ryu::Buffer::new();
-    out.extend_from_slice(buf.format(round6(v)).as_bytes());
 }
 
-/// The text of a number of millionths, |n| < 1e15: at most a sign, nine
-/// integer digits, the point and six fraction digits.
-struct Digits {
-    buf: [u8; 24],
-    /// Where the text starts.
-    at: usize,
-    /// Where it ends (before the fraction's trailing zeros).
-    end: usize,
+impl Recent {
+    /// Appends `v` as [`push_f64`] does, formatting it only when it is
+    /// not the number appended last (compared bit for bit, so that the
+    /// text is always the one of `v`).
+    #[inline]
+    pub(crate) fn push(&mut self, out: &mut Vec<u8>, v: f64) {
+        let bits = v.to_bits();
+        if bits != self.bits {
+            self.bits = bits;
+            self.text = Text::of(v);
+        }
+        self.text.append_to(out);
+    }
 }
 
-/// "00", "01", … "99": two digits for one division by 100.
-const PAIRS: &[u8; 200] = b"\
-    0001020304050607080910111213141516171819\
-    2021222324252627282930313233343536373839\
-    4041424344454647484950515253545556575859\
-    6061626364656667686970717273747576777879\
-    8081828384858687888990919293949596979899";
+/// A number's text: at most 24 bytes (ryu's longest, e.g.
+/// `-2.2250738585072014e-308`; the integer path's is 16), kept in a fixed
+/// array so that it is appended with one copy of a known length.
+#[derive(Debug, Clone, Copy)]
+struct Text {
+    bytes: [u8; TEXT],
+    len: usize,
+}
 
-impl Digits {
-    fn of(n: i64) -> Digits {
-        let mut d = Digits {
-            buf: [0; 24],
-            at: 24,
-            end: 24,
+/// The room of a [`Text`].
+const TEXT: usize = 24;
+
+impl Text {
+    #[inline]
+    fn of(v: f64) -> Text {
+        match millionths(v) {
+            Some(n) => Text::of_millionths(n),
+            None => Text::of_ryu(v),
+        }
+    }
+
+    #[cold]
+    fn of_ryu(v: f64) -> Text {
+        let mut buf = ryu::Buffer::new();
+        let s = buf.format(round6(v)).as_bytes();
+        let mut text = Text {
+            bytes: [0; TEXT],
+            len: s.len().min(TEXT),
         };
-        let abs = n.unsigned_abs();
-        let frac = abs % 1_000_000;
-        if frac == 0 {
-            d.push(b'0');
-        } else {
-            // All six places, then the trailing zeros dropped.
-            d.push_pair(frac % 100);
-            d.push_pair(frac / 100 % 100);
-            d.push_pair(frac / 10_000);
-            while d.buf.get(d.end - 1) == Some(&b'0') {
-                d.end -= 1;
-            }
+        if let (Some(to), Some(from)) = (text.bytes.get_mut(..text.len), s.get(..text.len)) {
+            to.copy_from_slice(from);
         }
-        d.push(b'.');
-        let mut int = abs / 1_000_000;
-        while int >= 100 {
-            d.push_pair(int % 100);
-            int /= 100;
-        }
-        if int >= 10 {
-            d.push_pair(int);
-        } else {
-            d.push(b'0' + u8::try_from(int).unwrap_or(0));
-        }
-        if n < 0 {
-            d.push(b'-');
-        }
-        d
+        text
     }
 
-    /// Puts `b` before the text so far. The buffer holds the longest text
-    /// (17 bytes), so `at` never reaches zero.
+    /// Appends the text: all `TEXT` bytes, then cut back to its end.
     #[inline]
-    fn push(&mut self, b: u8) {
-        self.at -= 1;
-        if let Some(slot) = self.buf.get_mut(self.at) {
-            *slot = b;
-        }
-    }
-
-    /// Puts the two digits of `v` < 100 before the text so far.
-    #[inline]
-    fn push_pair(&mut self, v: u64) {
-        // `v` < 100: the cast is exact.
-        #[allow(clippy::cast_possible_truncation)]
-        let i = 2 * v as usize;
-        if let Some(&[tens, ones]) = PAIRS.get(i..i + 2) {
-            self.push(ones);
-            self.push(tens);
-        }
-    }
-
-    fn text(&self) -> &[u8] {
-        self.buf.get(self.at..self.end).unwrap_or_default()
+    fn append_to(&self, out: &mut Vec<u8>) {
+        let end = out.len() + self.len;
+        out.extend_from_slice(&self.bytes);
+        out.truncate(end);
     }
 }
 
-/// `x.round()` without a libm call on the hot path: truncate, then step
-/// away from zero when the dropped fraction is at least a half.
+/// `v` in millionths rounded half away from zero, when that is below
+/// 1e14 in magnitude (else `None`: NaN, infinities and values of 1e8 or
+/// more take ryu's path).
 #[inline]
-fn round_half_away(x: f64) -> f64 {
-    if x.is_nan() || x.abs() >= 4.5e15 {
-        return x.round();
+fn millionths(v: f64) -> Option<i64> {
+    rounded(v * 1e6).filter(|n| n.unsigned_abs() < 100_000_000_000_000)
+}
+
+/// `x.round()` as an integer when |x| < 4.5e15 (else `None`, NaN too),
+/// without a libm call: truncate, then step away from zero when the
+/// dropped fraction is at least a half.
+#[inline]
+fn rounded(x: f64) -> Option<i64> {
+    // Fails for NaN too. Below 2^52 the truncating cast is exact and in
+    // range, and so is the fraction's subtraction.
+    let in_range = x.abs() < 4.5e15;
+    if !in_range {
+        return None;
     }
-    // |x| < 2^52: the truncating cast is exact and in range.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_precision_loss)]
-    let t = x as i64 as f64;
-    let frac = x - t;
-    if frac >= 0.5 {
-        t + 1.0
+    #[allow(clippy::cast_possible_truncation)]
+    let t = x as i64;
+    #[allow(clippy::cast_precision_loss)]
+    let frac = x - t as f64;
+    Some(if frac >= 0.5 {
+        t + 1
     } else if frac <= -0.5 {
-        t - 1.0
+        t - 1
     } else {
         t
+    })
+}
+
+/// The eight decimal digits of `v` < 1e8 as byte values 0–9 (not ASCII),
+/// the most significant in the lowest byte, so that `to_le_bytes` reads
+/// them in order: the halves of four digits, their pairs and their digits
+/// are split in all lanes at once, a division by 100 or 10 being a
+/// multiplication and a shift that is exact over a lane's range (a test
+/// checks every value of each half).
+#[inline]
+fn digits8(v: u64) -> u64 {
+    let halves = (v / 10_000) | ((v % 10_000) << 32);
+    let hundreds = ((halves * 10_486) >> 20) & 0x0000_007F_0000_007F;
+    let pairs = hundreds | (halves - hundreds * 100) << 16;
+    let tens = ((pairs * 103) >> 10) & 0x000F_000F_000F_000F;
+    tens | (pairs - tens * 10) << 8
+}
+
+/// ASCII '0' in each byte.
+const ZEROS: u64 = u64::from_le_bytes([b'0'; 8]);
+
+impl Text {
+    /// The number of millionths `n`, |n| < 1e14.
+    #[inline]
+    fn of_millionths(n: i64) -> Text {
+        let abs = n.unsigned_abs();
+        let int = digits8(abs / 1_000_000);
+        // Leading zero digits are the low zero bytes; the last digit stays.
+        let skip = (int.trailing_zeros() / 8).min(7);
+        // The fraction's six places are bytes 2..8 of its eight digits;
+        // trailing zeros are its high zero bytes, and one place stays.
+        let frac = digits8(abs % 1_000_000) >> 16;
+        let places = 6 - (frac.leading_zeros() / 8 - 2).min(5);
+        let int_len = (8 - skip) as usize;
+        // The sign is written always and skipped when positive: the text
+        // starts at `start`, the integer digits at 1, the point at
+        // `point` <= 9, and it ends by 16.
+        let mut buf = [b'-'; 32];
+        let start = usize::from(n >= 0);
+        let point = 1 + int_len;
+        let int_text = ((int >> (8 * skip)) + ZEROS).to_le_bytes();
+        if let Some(slot) = buf.get_mut(1..9) {
+            slot.copy_from_slice(&int_text);
+        }
+        if let Some(slot) = buf.get_mut(point) {
+            *slot = b'.';
+        }
+        if let Some(slot) = buf.get_mut(point + 1..point + 9) {
+            slot.copy_from_slice(&(frac + ZEROS).to_le_bytes());
+        }
+        let mut text = Text {
+            bytes: [0; TEXT],
+            len: point + 1 + places as usize - start,
+        };
+        if let Some(from) = buf.get(start..start + TEXT) {
+            text.bytes.copy_from_slice(from);
+        }
+        text
     }
 }
 
 /// Appends an integer.
 pub fn push_u64(out: &mut Vec<u8>, v: u64) {
+    if v < 100_000_000 {
+        let digits = digits8(v);
+        let skip = (digits.trailing_zeros() / 8).min(7);
+        let text = ((digits >> (8 * skip)) + ZEROS).to_le_bytes();
+        let at_end = out.len() + (8 - skip) as usize;
+        out.extend_from_slice(&text);
+        out.truncate(at_end);
+        return;
+    }
     let mut buf = itoa::Buffer::new();
     out.extend_from_slice(buf.format(v).as_bytes());
 }
@@ -198,6 +267,86 @@ mod tests {
     }
 
     #[test]
+    fn eight_digits_at_once_for_every_value_of_each_half() {
+        for v in 0..10_000u64 {
+            for n in [v, v * 10_000, v * 10_000 + (9_999 - v), 99_999_999 - v] {
+                let digits = digits8(n).to_le_bytes().map(|d| b'0' + d);
+                assert_eq!(digits, *format!("{n:08}").as_bytes(), "{n}");
+            }
+        }
+    }
+
+    #[test]
+    fn integers_match_the_standard_library() {
+        let mut out = Vec::new();
+        let mut want = String::new();
+        for v in (0..2_000u64).chain([9, 10, 99_999_999, 100_000_000, u64::MAX]) {
+            for n in [v, v.wrapping_mul(997), v.wrapping_mul(1_000_003)] {
+                push_u64(&mut out, n);
+                out.push(b' ');
+                want.push_str(&format!("{n} "));
+            }
+        }
+        assert_eq!(String::from_utf8(out).unwrap(), want);
+    }
+
+    /// The text the integer path must give: the value rounded to six
+    /// places by the standard library, trailing zeros dropped down to
+    /// one place; from 1e8 on, ryu's.
+    fn reference(v: f64) -> String {
+        let r = round6(v);
+        if r.is_nan() || r.abs() >= 1e8 {
+            return ryu::Buffer::new().format(r).to_string();
+        }
+        let text = format!("{r:.6}");
+        let trimmed = text.trim_end_matches('0');
+        if trimmed.ends_with('.') {
+            format!("{trimmed}0")
+        } else {
+            trimmed.to_string()
+        }
+    }
+
+    /// Values of 0 to 7 places and so every count of trailing zeros,
+    /// signs, zero, and the edge of the integer path (1e8).
+    #[test]
+    fn short_fractions_and_the_edges_match_the_reference() {
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        for places in 0..=7 {
+            let scale = 10f64.powi(places);
+            for _ in 0..5_000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                for v in [
+                    (x % 2_000_000) as f64 / scale,
+                    -((x % 3_000) as f64) / scale,
+                ] {
+                    let mut fast = Vec::new();
+                    push_f64(&mut fast, v);
+                    assert_eq!(String::from_utf8(fast).unwrap(), reference(v), "value {v}");
+                }
+            }
+        }
+        for v in [
+            0.0,
+            -0.0,
+            99_999_999.999_999,
+            99_999_999.999_999_6,
+            -99_999_999.999_999,
+            100_000_000.0,
+            1e9,
+            -4.5e9,
+            f64::INFINITY,
+            f64::NAN,
+        ] {
+            let mut fast = Vec::new();
+            push_f64(&mut fast, v);
+            assert_eq!(String::from_utf8(fast).unwrap(), reference(v), "value {v}");
+        }
+    }
+
+    #[test]
     fn rounding_matches_the_standard_library() {
         for x in [
             0.5,
@@ -210,7 +359,8 @@ mod tests {
             0.49999999999999994,
             f64::NAN,
         ] {
-            let (a, b) = (round_half_away(x), x.round());
+            #[allow(clippy::cast_precision_loss)]
+            let (a, b) = (rounded(x).map_or(x.round(), |n| n as f64), x.round());
             assert!(a == b || (a.is_nan() && b.is_nan()), "{x}: {a} vs {b}");
         }
     }

@@ -94,7 +94,7 @@ impl Setup {
             None | Some("") => detect(text, s.file_name.as_deref()),
             Some(name) if name.eq_ignore_ascii_case("auto") => detect(text, s.file_name.as_deref()),
             Some(name) => {
-                let d = detect::dialect(name).ok_or_else(|| {
+                let d = Dialect::named(name).ok_or_else(|| {
                     format!(
                         "unknown dialect {name:?}: use auto or one of {}",
                         Dialect::NAMES.join(", ")
@@ -109,7 +109,7 @@ impl Setup {
                 }
             }
         };
-        let dialect = detect::dialect(choice.name)
+        let dialect = Dialect::named(choice.name)
             .ok_or_else(|| format!("detection chose {}, no dialect", choice.name))?;
         let mut machine = match s.machine.as_deref() {
             None => dialect.machine(),

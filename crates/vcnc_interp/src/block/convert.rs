@@ -7,16 +7,17 @@
 //! be whole and in range.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 use crate::dialect::AxisWord;
 use crate::dialect::SetOp;
 use crate::dialect::{IntegerWords, bit};
-use crate::events::{Plane, Pos};
 use crate::interpreter::Interpreter;
 use crate::interpreter::Machining;
+use crate::motion::Goal;
 use crate::state::PointStyle;
 use crate::state::{Modal, Motion, State};
+use crate::words::Words;
+use vcnc_core::events::{Plane, Pos};
 use vcnc_syntax::{Addr, Diagnostic, Word};
 
 /// mm per inch.
@@ -118,7 +119,7 @@ impl Interpreter<'_> {
     /// in least increments the longest it wrote and the span of the linear
     /// axes' program positions at the ends of its blocks (the power-on
     /// position left out) are both under 1 mm — whole units, most likely.
-    pub(crate) fn whole_units_report(&mut self) -> Option<crate::events::Event> {
+    pub(crate) fn whole_units_report(&mut self) -> Option<vcnc_core::events::Event> {
         let p = &self.points;
         if !p.active || p.seen_point {
             return None;
@@ -141,65 +142,15 @@ impl Interpreter<'_> {
             return None;
         }
         let lathe = self.cfg.dialect.diameter.lathe;
-        let whole: Vec<&str> = crate::detect::dialects()
+        let whole: Vec<&str> = crate::dialect::Dialect::all()
             .iter()
             .filter(|d| d.integers == IntegerWords::WholeUnits)
             .filter(|d| d.diameter.lathe == lathe)
             .map(|d| d.name)
             .collect();
         let w = alarms::whole_units_likely(first, longest, &whole);
-        Some(crate::events::Event::Warning(w))
+        Some(vcnc_core::events::Event::Warning(w))
     }
-}
-
-/// Where a block's axis words point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Goal {
-    /// The new programmed point, program coordinates.
-    pub prog: Pos,
-    /// Axes named (bit i = machine axis i).
-    pub named: u32,
-    /// The increment of the incremental axes, program coordinates.
-    pub delta: Pos,
-    /// Every named axis is incremental (and no polar input).
-    pub all_incremental: bool,
-}
-
-/// A dwell's word (G04 X or P, a cycle's P): E109 if it is negative.
-pub(crate) fn dwell_not_negative(w: &Word) -> Result<(), Diagnostic> {
-    if w.value < 0.0 {
-        return Err(alarms::value_out_of_range(
-            w.span,
-            w.addr.0,
-            w.value,
-            "a dwell is not negative",
-        ));
-    }
-    Ok(())
-}
-
-/// A whole number word in `min..=max`.
-pub(crate) fn whole(
-    w: &Word,
-    letter: u8,
-    min: f64,
-    max: f64,
-    why: &str,
-) -> Result<u32, Diagnostic> {
-    if w.point {
-        return Err(alarms::no_decimal_point(w.span, letter, why));
-    }
-    if w.value < min || w.value > max {
-        return Err(alarms::value_out_of_range(
-            w.span,
-            letter,
-            w.value,
-            &format!("{letter_c} is {min}..{max}", letter_c = char::from(letter)),
-        ));
-    }
-    // In range and whole (no point), so the cast is exact.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    Ok(w.value as u32)
 }
 
 impl<'a> Machining<'_, 'a> {
@@ -558,7 +509,7 @@ impl Machining<'_, '_> {
                 points.seen_point = true;
                 if let Some(d) = points.first_plain.take() {
                     points.warned += 1;
-                    self.emit(|_| crate::events::Event::Warning(d));
+                    self.emit(|_| vcnc_core::events::Event::Warning(d));
                 }
             }
         } else if !points.seen_point {

@@ -18,18 +18,19 @@
 //! change the state before a later step alarms.
 
 use crate::alarms;
-use crate::block::words::{ALWAYS, Words};
+use crate::config::Config;
 use crate::dialect::{
     AxisWords, GOp, Group, MGroup, MOp, ProgramStop, SurfaceSpeedOn, ThreadLead, ToolChangeSpindle,
     ToolLengthChange, ToolWords, bit,
 };
 use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
-use crate::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use crate::flow::ProgramStore;
 use crate::interpreter::Machining;
 use crate::interpreter::{Interpreter, Step};
 use crate::motion::stage::Stage;
-use crate::state::Motion;
+use crate::state::{Motion, State};
+use crate::words::{ALWAYS, Words};
+use vcnc_core::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
@@ -47,7 +48,7 @@ impl Words<'_> {
 }
 
 impl Interpreter<'_> {
-    /// A plain move that [`moves_in_place`](Machining::moves_in_place)
+    /// A plain move that [`moves_in_place`](Stage::moves_in_place)
     /// accepted, all or nothing with the stage's mark instead of a copy of
     /// the state.
     #[inline(always)]
@@ -68,7 +69,7 @@ impl Interpreter<'_> {
     }
 
     /// [`move_in_place`](Self::move_in_place) under compensation, for a
-    /// block that [`moves_in_place`](Machining::moves_in_place) accepts.
+    /// block that [`moves_in_place`](Stage::moves_in_place) accepts.
     #[inline(never)]
     pub(crate) fn compensated_move_in_place(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         let mark = self.stage.mark_compensated_move(&self.state);
@@ -332,7 +333,6 @@ impl Machining<'_, '_> {
     }
     /// A plain block's words before its move: D, the motion code, the
     /// letters the motion allows, polar words.
-    #[inline(always)]
     fn motion_words(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         if w.get(b'D').is_some() {
             // A D word (a new radius, or outside G41/G42 the offset the
@@ -358,7 +358,6 @@ impl Machining<'_, '_> {
     }
 
     /// A plain block's F and its move.
-    #[inline(always)]
     fn motion_only(&mut self, w: &Words<'_>) -> Result<(), Diagnostic> {
         self.feed_word(w)?;
         self.modal_motion(w)?;
@@ -417,33 +416,6 @@ fn cancelled_cycle_hint(mut d: Diagnostic, w: &Words<'_>) -> Diagnostic {
 }
 
 impl<'a> Machining<'_, 'a> {
-    /// Whether a plain motion block `w` is a G00/G01 that the stage's
-    /// [`MoveMark`](Stage::mark_move) (or under compensation its
-    /// [`CompensatedMoveMark`](Stage::mark_compensated_move)) can undo: no canned cycle,
-    /// lathe corner or G96 in force (each changes more before it can
-    /// alarm), compensation either off or holding a move with nothing
-    /// queued behind it, and nothing in the block beyond axes, F and N (no
-    /// arc word, D or `,C`/`,R`).
-    #[inline(always)]
-    pub(crate) fn moves_in_place(&self, w: &Words<'_>, comp_engaged: bool) -> bool {
-        let s = &self.state;
-        if (comp_engaged && !self.stage.comp.can_mark())
-            || s.cycle.code.is_some()
-            || s.lathe.corner.is_some()
-            || s.modal.css
-            || w.has_arc_words(self.cfg.axis_mask)
-        {
-            return false;
-        }
-        match w.group(Group::Motion) {
-            Some(m) => matches!(
-                m.def.op,
-                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
-            ),
-            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
-        }
-    }
-
     /// Step 1: one modal code written in the block. The frame codes,
     /// compensation, the cycles and G66 have steps of their own (6, the
     /// compensation stage, `cycle_modes`, the macro call); the one-shot
@@ -505,8 +477,8 @@ impl<'a> Machining<'_, 'a> {
                 // Lathe G53/G500: no work system, no G92 shift, no local
                 // offset — machine coordinates are program coordinates.
                 m.wcs = usize::from(crate::dialect::WORK_NONE);
-                self.tables.set_shift(crate::events::Pos::default());
-                self.tables.set_local(crate::events::Pos::default());
+                self.tables.set_shift(vcnc_core::events::Pos::default());
+                self.tables.set_local(vcnc_core::events::Pos::default());
             }
             ModeOp::PathExact => m.path = PathMode::ExactStop,
             ModeOp::PathSurface => m.path = PathMode::Surface,
@@ -618,7 +590,8 @@ impl<'a> Machining<'_, 'a> {
     fn lead_mm(&self, f: &vcnc_syntax::Word) -> Result<f64, Diagnostic> {
         let plain = !f.point
             && self.cfg.dialect.thread_lead == ThreadLead::FHundredths
-            && self.cfg.machine.params.decimal_input != crate::machine::DecimalInput::Calculator;
+            && self.cfg.machine.params.decimal_input
+                != vcnc_core::machine::DecimalInput::Calculator;
         if !plain {
             return Ok(f.value * self.unit_mm());
         }
@@ -677,8 +650,7 @@ impl<'a> Machining<'_, 'a> {
             return self.turret_word(w);
         }
         if let Some(t) = w.get(b'T') {
-            let n =
-                crate::block::convert::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
+            let n = crate::words::whole(&t, b'T', 0.0, 99_999_999.0, "T is a tool number")?;
             self.state.tool_selected = Some(n);
         }
         if let Some(m6) = w.m_of(MGroup::Tool) {
@@ -865,7 +837,7 @@ impl<'a> Machining<'_, 'a> {
             match at.def.op {
                 GOp::Set(SetOp::RefStore(n)) => self.store_reference(n),
                 GOp::Set(SetOp::ShiftCancel) => {
-                    self.tables.set_shift(crate::events::Pos::default());
+                    self.tables.set_shift(vcnc_core::events::Pos::default());
                     self.state.refresh_origin(self.tables);
                 }
                 GOp::Set(SetOp::ShiftSuspend(on)) => {
@@ -1010,8 +982,42 @@ impl<'a> Machining<'_, 'a> {
 
     /// Adds an event of the current block; it reaches the sink when the
     /// block has succeeded.
-    pub(crate) fn emit(&mut self, make: impl FnOnce(crate::events::Loc) -> Event) {
+    pub(crate) fn emit(&mut self, make: impl FnOnce(vcnc_core::events::Loc) -> Event) {
         let e = make(self.at.loc().clone());
         self.stage.emit(e);
+    }
+}
+
+impl Stage {
+    /// Whether a plain motion block `w` is a G00/G01 that the stage's
+    /// [`MoveMark`](Self::mark_move) (or under compensation its
+    /// [`CompensatedMoveMark`](Self::mark_compensated_move)) can undo: no canned cycle,
+    /// lathe corner or G96 in force (each changes more before it can
+    /// alarm), compensation either off or holding a move with nothing
+    /// queued behind it, and nothing in the block beyond axes, F and N (no
+    /// arc word, D or `,C`/`,R`).
+    #[inline(always)]
+    pub(crate) fn moves_in_place(
+        &self,
+        cfg: &Config<'_>,
+        s: &State,
+        w: &Words<'_>,
+        comp_engaged: bool,
+    ) -> bool {
+        if (comp_engaged && !self.comp.can_mark())
+            || s.cycle.code.is_some()
+            || s.lathe.corner.is_some()
+            || s.modal.css
+            || w.has_arc_words(cfg.axis_mask)
+        {
+            return false;
+        }
+        match w.group(Group::Motion) {
+            Some(m) => matches!(
+                m.def.op,
+                GOp::Motion(MotionOp::Rapid) | GOp::Motion(MotionOp::Linear)
+            ),
+            None => matches!(s.modal.motion, Motion::Rapid | Motion::Linear),
+        }
     }
 }

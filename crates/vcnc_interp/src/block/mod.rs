@@ -1,7 +1,9 @@
-//! One block, in three phases: validate ([`words`]: which codes and words,
-//! nothing executed), convert ([`convert`]: what each value means in mm,
-//! degrees, seconds, and where the axis words point in program
-//! coordinates), execute ([`execute`]: the fixed order of a block).
+//! A block's last two phases: convert ([`convert`]: what each value means
+//! in mm, degrees, seconds, and where the axis words point in program
+//! coordinates) and execute ([`execute`]: the fixed order of a block). The
+//! first, validation ([`crate::words`]: which codes and words, nothing
+//! executed), sits lower, as the motion stage and the codes read its table
+//! too.
 //!
 //! The interpreter (`interpreter.rs`) wraps each block so that it is all or
 //! nothing: a copy of the state is taken before, restored if any phase
@@ -9,4 +11,3 @@
 
 pub(crate) mod convert;
 pub(crate) mod execute;
-pub(crate) mod words;

@@ -12,11 +12,11 @@
 //! nesting against `limits.max_call_depth`, so a runaway loop alarms.
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
-use crate::events::EndCode;
 use crate::flow::{Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
+use crate::words::Words;
+use crate::words::whole;
+use vcnc_core::events::EndCode;
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 
 impl Interpreter<'_> {

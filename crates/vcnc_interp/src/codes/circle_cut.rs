@@ -34,14 +34,14 @@
 //! G92 and transforms apply; cutter compensation in force is suspended as
 //! for a canned cycle.
 
-use super::cycles::{CycleAxes, SAME_MM};
+use super::cycles::{CycleAxes, SAME_MM, Steps};
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::dialect::CircleCutForm;
-use crate::events::{ArcDir, Feed, Plane, Pos};
 use crate::interpreter::Machining;
-use crate::motion::{Move, MoveKind, Target};
+use crate::motion::MoveKind;
+use crate::words::Words;
+use crate::words::whole;
+use vcnc_core::events::{ArcDir, Feed, Plane};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most full circles one G12/G13 block may cut over its repeats (its
@@ -80,9 +80,8 @@ fn positive(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
 
 /// The moves of one circle cut, relative to its centre.
 struct CircleSteps<'w, 'b> {
+    s: Steps<'w, 'b>,
     cut: Cut,
-    w: &'w Words<'b>,
-    cmd: Span,
 }
 
 impl CircleSteps<'_, '_> {
@@ -90,19 +89,9 @@ impl CircleSteps<'_, '_> {
         it.state.prog.get(self.cut.axes.z)
     }
 
-    fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
-        let ax = self.cut.axes;
-        let mut p = it.state.prog;
-        p.set(ax.a, self.cut.centre.0 + da);
-        p.set(ax.b, self.cut.centre.1 + db);
-        p.set(ax.z, z);
-        p
-    }
-
     /// To the centre at rapid, at the level the tool is at.
     fn rapid(&mut self, it: &mut Machining<'_, '_>, z: f64) -> Result<(), Diagnostic> {
-        let p = self.point(it, (0.0, 0.0), z);
-        it.step_to(MoveKind::Rapid, p, self.w, self.cmd)
+        self.s.to(it, MoveKind::Rapid, (0.0, 0.0), z)
     }
 
     fn feed(
@@ -111,8 +100,7 @@ impl CircleSteps<'_, '_> {
         at: (f64, f64),
         z: f64,
     ) -> Result<(), Diagnostic> {
-        let p = self.point(it, at, z);
-        it.step_to(MoveKind::Feed(self.cut.feed), p, self.w, self.cmd)
+        self.s.to(it, MoveKind::Feed(self.cut.feed), at, z)
     }
 
     /// An arc in the cut's sense to `to` about `centre` (relative points).
@@ -123,24 +111,8 @@ impl CircleSteps<'_, '_> {
         centre: (f64, f64),
         z: f64,
     ) -> Result<(), Diagnostic> {
-        let end = self.point(it, to, z);
-        let here = it.state.prog;
-        let ax = self.cut.axes;
-        let mut offset = Pos::default();
-        offset.set(ax.a, self.cut.centre.0 + centre.0 - here.get(ax.a));
-        offset.set(ax.b, self.cut.centre.1 + centre.1 - here.get(ax.b));
-        let mv = Move {
-            kind: MoveKind::Arc {
-                offset,
-                plane: Plane::Xy,
-                cw: self.cut.cw,
-                feed: self.cut.feed,
-            },
-            to: Target::Program(end),
-            exact_stop: false,
-            cmd: self.cmd,
-        };
-        it.send(mv, self.w)
+        self.s
+            .arc(it, (to, centre), z, (self.cut.cw, self.cut.feed))
     }
 
     /// From the centre round every ring and back, at level `z`.
@@ -191,7 +163,15 @@ impl<'a> Machining<'_, 'a> {
             return Err(alarms::too_many_circles(cmd, MAX_CIRCLES));
         }
         let suspended = self.suspend_comp()?;
-        let mut s = CircleSteps { cut, w, cmd };
+        let mut s = CircleSteps {
+            s: Steps {
+                axes: cut.axes,
+                at: cut.centre,
+                w,
+                cmd,
+            },
+            cut,
+        };
         let z_now = s.z(self);
         s.rapid(self, z_now)?;
         for i in 0..s.cut.depths.len() {

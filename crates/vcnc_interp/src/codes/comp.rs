@@ -11,12 +11,12 @@
 //! starts compensation on an entry arc (`CompStart::LineOrArc`: rs274).
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::{CompOp, ModeOp, MotionOp};
 use crate::dialect::{GOp, Group, OffsetDefault, bit};
 use crate::interpreter::Machining;
 use crate::motion::comp::Mode;
 use crate::state::{CompSide, Motion};
+use crate::words::Words;
 use vcnc_syntax::Diagnostic;
 
 impl<'a> Machining<'_, 'a> {
@@ -124,10 +124,10 @@ impl<'a> Machining<'_, 'a> {
             .get(b'D')
             .ok_or_else(|| alarms::needs_word(at, g, "D (the tool's diameter)"))?;
         if let Some(l) = w.get(b'L') {
-            if self.state.modal.plane != crate::events::Plane::Zx {
+            if self.state.modal.plane != vcnc_core::events::Plane::Zx {
                 return Err(alarms::word_not_allowed(l.span, b'L'));
             }
-            let tip = crate::block::convert::whole(
+            let tip = crate::words::whole(
                 &l,
                 b'L',
                 0.0,
@@ -246,9 +246,9 @@ impl<'a> Machining<'_, 'a> {
                 let same_plane = group == Group::Plane
                     && matches!(
                         (g.def.op, self.stage.comp.plane),
-                        (GOp::Mode(ModeOp::PlaneXy), crate::events::Plane::Xy)
-                            | (GOp::Mode(ModeOp::PlaneZx), crate::events::Plane::Zx)
-                            | (GOp::Mode(ModeOp::PlaneYz), crate::events::Plane::Yz)
+                        (GOp::Mode(ModeOp::PlaneXy), vcnc_core::events::Plane::Xy)
+                            | (GOp::Mode(ModeOp::PlaneZx), vcnc_core::events::Plane::Zx)
+                            | (GOp::Mode(ModeOp::PlaneYz), vcnc_core::events::Plane::Yz)
                     );
                 if !same_plane {
                     return Err(alarms::not_while_compensating(g.span, what));

@@ -21,13 +21,13 @@
 //! chamfer as a chord on it and rounds tangent to the arc's circle.
 
 use crate::alarms;
-use crate::block::convert::Goal;
-use crate::block::words::Words;
-use crate::events::{Feed, Pos};
 use crate::interpreter::Machining;
+use crate::motion::Goal;
 use crate::motion::{Move, MoveKind, Target};
 use crate::plane::{Curve, P2, Seg, ZERO_MM, intersect};
 use crate::state::lathe::{CornerKind, PendingCorner};
+use crate::words::Words;
+use vcnc_core::events::{Feed, Pos};
 use vcnc_syntax::{Addr, Diagnostic, Span};
 
 /// Where a corner's chamfer or round starts and ends.
@@ -231,7 +231,7 @@ impl<'a> Machining<'_, 'a> {
                 Some((c, cw)) => {
                     let here = self.state.prog;
                     let mut offset = Pos::default();
-                    for i in 0..crate::events::MAX_AXES {
+                    for i in 0..vcnc_core::events::MAX_AXES {
                         offset.set(i, c.get(i) - here.get(i));
                     }
                     MoveKind::Arc {
@@ -286,7 +286,7 @@ impl<'a> Machining<'_, 'a> {
         let axes = self.cfg.plane_axes(self.state.modal.plane, mv.cmd)?;
         let ab = (axes.a, axes.b);
         let p = |q: Pos| P2::of(&q, ab);
-        let off_plane = (0..crate::events::MAX_AXES)
+        let off_plane = (0..vcnc_core::events::MAX_AXES)
             .filter(|&i| i != axes.a && i != axes.b)
             .any(|i| {
                 (end.get(i) - corner.get(i)).abs() > ZERO_MM

@@ -20,13 +20,13 @@
 //! (`MAX_HOLES`), since its events are held until it has succeeded.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::{Approach, GOp, Group, Hole, PeckClearance, TapStyle};
 use crate::dialect::{CycleOp, ModeOp};
-use crate::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use crate::interpreter::Machining;
-use crate::motion::{MoveKind, Target};
+use crate::motion::{Move, MoveKind, Target};
 use crate::state::{CycleData, ReducedPeck};
+use crate::words::Words;
+use vcnc_core::events::{Cycle, Event, Feed, Plane, Pos, SpindleDir, WaitReason};
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// The chip-breaking cycle's back-off between pecks (EIA G87): the
@@ -93,19 +93,26 @@ pub(crate) struct CycleAxes {
     pub z: usize,
 }
 
-/// The moves of one hole: to a level at the hole's position, or shifted.
-struct Steps<'w, 'b> {
-    axes: CycleAxes,
-    xy: (f64, f64),
-    w: &'w Words<'b>,
-    cmd: Span,
+/// A cycle's moves about one point of the plane (a hole's position, a
+/// pocket's or a circular pocket's centre): straight steps to points given
+/// relative to it at a level of the drilling axis (a step that would not
+/// move is left out), and arcs in the plane. The drilling cycles, EIA's
+/// G78/G79 pockets and G12/G13 walk their paths with it.
+pub(crate) struct Steps<'w, 'b> {
+    pub axes: CycleAxes,
+    /// The point, in program coordinates of the plane's two axes.
+    pub at: (f64, f64),
+    pub w: &'w Words<'b>,
+    pub cmd: Span,
 }
 
 impl Steps<'_, '_> {
-    fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
+    /// The program point `d` from the cycle's point, at level `z`.
+    #[inline(always)]
+    pub fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
         let mut p = it.state.prog;
-        p.set(self.axes.a, self.xy.0 + da);
-        p.set(self.axes.b, self.xy.1 + db);
+        p.set(self.axes.a, self.at.0 + da);
+        p.set(self.axes.b, self.at.1 + db);
         p.set(self.axes.z, z);
         p
     }
@@ -114,14 +121,55 @@ impl Steps<'_, '_> {
         it.step_to(kind, p, self.w, self.cmd)
     }
 
-    fn rapid(&mut self, it: &mut Machining<'_, '_>, z: f64) -> Result<(), Diagnostic> {
-        let p = self.point(it, (0.0, 0.0), z);
-        self.go(it, MoveKind::Rapid, p)
+    /// A straight step to `d` from the cycle's point, at level `z`.
+    #[inline(always)]
+    pub fn to(
+        &self,
+        it: &mut Machining<'_, '_>,
+        kind: MoveKind,
+        d: (f64, f64),
+        z: f64,
+    ) -> Result<(), Diagnostic> {
+        let p = self.point(it, d, z);
+        self.go(it, kind, p)
     }
 
+    /// An arc in the plane to `to` about `centre` (both from the cycle's
+    /// point), at level `z`.
+    pub fn arc(
+        &self,
+        it: &mut Machining<'_, '_>,
+        (to, centre): ((f64, f64), (f64, f64)),
+        z: f64,
+        (cw, feed): (bool, Feed),
+    ) -> Result<(), Diagnostic> {
+        let end = self.point(it, to, z);
+        let here = it.state.prog;
+        let mut offset = Pos::default();
+        offset.set(self.axes.a, self.at.0 + centre.0 - here.get(self.axes.a));
+        offset.set(self.axes.b, self.at.1 + centre.1 - here.get(self.axes.b));
+        let mv = Move {
+            kind: MoveKind::Arc {
+                offset,
+                plane: Plane::Xy,
+                cw,
+                feed,
+            },
+            to: Target::Program(end),
+            exact_stop: false,
+            cmd: self.cmd,
+        };
+        it.send(mv, self.w)
+    }
+
+    /// A hole's rapid along the drilling axis at its position.
+    fn rapid(&mut self, it: &mut Machining<'_, '_>, z: f64) -> Result<(), Diagnostic> {
+        self.to(it, MoveKind::Rapid, (0.0, 0.0), z)
+    }
+
+    /// A hole's feed along the drilling axis at its position.
     fn feed(&mut self, it: &mut Machining<'_, '_>, z: f64, feed: Feed) -> Result<(), Diagnostic> {
-        let p = self.point(it, (0.0, 0.0), z);
-        self.go(it, MoveKind::Feed(feed), p)
+        self.to(it, MoveKind::Feed(feed), (0.0, 0.0), z)
     }
 
     /// A rapid in the plane to the shifted (or, with (0,0), centred) point.
@@ -131,8 +179,7 @@ impl Steps<'_, '_> {
         s: (f64, f64),
         z: f64,
     ) -> Result<(), Diagnostic> {
-        let p = self.point(it, s, z);
-        self.go(it, MoveKind::Rapid, p)
+        self.to(it, MoveKind::Rapid, s, z)
     }
 
     /// A rapid along the drilling axis at the shifted point.
@@ -142,8 +189,7 @@ impl Steps<'_, '_> {
         s: (f64, f64),
         z: f64,
     ) -> Result<(), Diagnostic> {
-        let p = self.point(it, s, z);
-        self.go(it, MoveKind::Rapid, p)
+        self.to(it, MoveKind::Rapid, s, z)
     }
 }
 
@@ -272,15 +318,14 @@ impl<'a> Machining<'_, 'a> {
                     (b'L', _) => "L is a repeat count 0-9999",
                     _ => "K is a repeat count 0-9999",
                 };
-                crate::block::convert::whole(&k, r.letter, f64::from(r.least), 9999.0, why)?
+                crate::words::whole(&k, r.letter, f64::from(r.least), 9999.0, why)?
             }
             None => 1,
         };
         let drill_letter = letter(axes.z).unwrap_or(b'Z');
         // Where each hole is: the block's plane words (G91: once more per
         // repeat), the drilling axis at the tool's level.
-        let keep =
-            |g: &mut crate::block::convert::Goal, prog: Pos| g.prog.set(axes.z, prog.get(axes.z));
+        let keep = |g: &mut crate::motion::Goal, prog: Pos| g.prog.set(axes.z, prog.get(axes.z));
         if count == 0 {
             // K0 stores the data and moves nothing (1.2.30).
             return self.cycle_ready(cmd, w.get(drill_letter)).map(|_| ());
@@ -412,7 +457,7 @@ impl<'a> Machining<'_, 'a> {
             self.state.cycle.reduced = None;
         }
         if let Some(p) = w.get(b'P') {
-            crate::block::convert::dwell_not_negative(&p)?;
+            crate::words::dwell_not_negative(&p)?;
             self.state.cycle.p_s = Some(self.units().seconds(&p));
         }
         if self.cfg.dialect.cycles.reduced_pecks {
@@ -579,7 +624,8 @@ impl<'a> Machining<'_, 'a> {
         cmd: Span,
     ) -> Result<(), Diagnostic> {
         let here = self.state.prog;
-        let same = (0..crate::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
+        let same =
+            (0..vcnc_core::events::MAX_AXES).all(|i| (p.get(i) - here.get(i)).abs() <= SAME_MM);
         if same {
             return Ok(());
         }
@@ -663,7 +709,7 @@ impl<'a> Machining<'_, 'a> {
             };
         let mut s = Steps {
             axes,
-            xy: (a, b),
+            at: (a, b),
             w,
             cmd,
         };
@@ -1029,7 +1075,7 @@ impl<'a> Machining<'_, 'a> {
                 .ok_or_else(|| alarms::needs_word(cmd, "a hole pattern", what))
         };
         let count = |word: Word, min: f64, why: &str| {
-            crate::block::convert::whole(&word, word.addr.0, min, 9999.0, why)
+            crate::words::whole(&word, word.addr.0, min, 9999.0, why)
         };
         let positive = |word: Word, v: f64, why: &str| {
             if v <= 0.0 {

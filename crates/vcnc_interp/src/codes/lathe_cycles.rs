@@ -28,12 +28,12 @@
 //! the outer circle).
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
-use crate::events::{Feed, Pos};
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Xz, ZERO_MM};
+use crate::words::Words;
+use crate::words::whole;
+use vcnc_core::events::{Feed, Pos};
 use vcnc_syntax::{Diagnostic, Span};
 
 /// Most rough passes a G81 may make: a real depth of cut is never that

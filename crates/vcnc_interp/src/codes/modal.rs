@@ -15,13 +15,13 @@
 //! nothing of the codes.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::{GOp, Group, PaceOp, ThreadLead};
-use crate::events::MAX_AXES;
-use crate::events::SpindleDir;
 use crate::interpreter::Machining;
 use crate::motion::{Move, MoveKind, Target};
 use crate::state::Motion;
+use crate::words::Words;
+use vcnc_core::events::MAX_AXES;
+use vcnc_core::events::SpindleDir;
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {

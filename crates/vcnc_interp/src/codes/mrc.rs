@@ -34,18 +34,18 @@
 //! G70's profile like over any moves.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::codes::ngc_rough::{Cut, Fault, Path, Roughing};
 use crate::codes::profile::{Elem, Profile};
 use crate::codes::rough::{self, Across, Frame, Rough, Step};
 use crate::codes::turning_cycles::How;
 use crate::dialect::GOp;
 use crate::dialect::{MotionOp, RoughPockets, TurnOp};
-use crate::events::Pos;
 use crate::interpreter::Interpreter;
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Seg, Xz, ZERO_MM};
+use crate::words::Words;
+use vcnc_core::events::Pos;
 use vcnc_syntax::{Cursor, Diagnostic, Span, Word};
 
 /// Most rough levels, passes or pecks one cycle block may make.
@@ -178,7 +178,7 @@ impl Interpreter<'_> {
         let q = w
             .get(b'Q')
             .ok_or_else(|| alarms::needs_word(cmd, code, "Q (the profile's subroutine number)"))?;
-        let label = crate::block::convert::whole(
+        let label = crate::words::whole(
             &q,
             b'Q',
             1.0,
@@ -614,7 +614,7 @@ impl<'a> Machining<'_, 'a> {
         &mut self,
         seg: &Seg,
         axes: (usize, usize),
-        feed: crate::events::Feed,
+        feed: vcnc_core::events::Feed,
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
@@ -627,7 +627,7 @@ impl<'a> Machining<'_, 'a> {
                 let offset = (c - here).placed(Pos::default(), axes);
                 let kind = MoveKind::Arc {
                     offset,
-                    plane: crate::events::Plane::Zx,
+                    plane: vcnc_core::events::Plane::Zx,
                     cw: ccw_xz,
                     feed,
                 };
@@ -723,7 +723,7 @@ impl<'a> Machining<'_, 'a> {
     /// rs274 runs G70–G72 only in the XZ plane ("G71.0 can only be used
     /// in XZ plane (G18)").
     fn ngc_cycle_plane(&self, cmd: Span, code: &str) -> Result<(), Diagnostic> {
-        if self.state.modal.plane == crate::events::Plane::Zx {
+        if self.state.modal.plane == vcnc_core::events::Plane::Zx {
             return Ok(());
         }
         Err(alarms::ngc_cycle_mode(cmd, code, "G18 (the XZ plane)"))

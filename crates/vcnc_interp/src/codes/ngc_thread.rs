@@ -21,11 +21,11 @@
 //! reference is rs274's output (`tests/fixtures/linuxcnc_lathe_cycles`).
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::codes::turning_cycles::How;
 use crate::interpreter::Machining;
 use crate::plane::{P2, Xz};
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// Most passes one G76 may make.

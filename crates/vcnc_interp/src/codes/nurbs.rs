@@ -21,15 +21,15 @@
 //! does not pass the compensation stage (alarm under G41/G42).
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::MotionOp;
 use crate::dialect::{GOp, Group};
-use crate::events::{Event, Pos};
 use crate::interpreter::Machining;
 use crate::motion::{MachineKind, MachineMove, Target, travel};
 use crate::state::NurbsBuild;
+use crate::words::Words;
 use std::sync::Arc;
 use vcnc_core::Nurbs;
+use vcnc_core::events::{Event, Pos};
 use vcnc_core::nurbs::MAX_NURBS_POINTS;
 use vcnc_syntax::{Diagnostic, Span};
 

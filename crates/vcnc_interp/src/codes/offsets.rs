@@ -15,12 +15,13 @@
 //! (`State::refresh_origin`) when the code says the origin moved.
 
 use crate::alarms;
-use crate::block::convert::{Units, whole};
-use crate::block::words::Words;
+use crate::block::convert::Units;
 use crate::config::Config;
 use crate::dialect::SetOp;
 use crate::dialect::{GOp, OffsetDefault};
 use crate::state::{State, Tables};
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_syntax::{Diagnostic, Span};
 
 impl Tables {

@@ -16,13 +16,13 @@
 //! the level where the block started. All points are program points on
 //! the motion stage, so offsets and G92 apply.
 
-use super::cycles::{CycleAxes, SAME_MM};
+use super::cycles::{CycleAxes, SAME_MM, Steps};
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::CycleOp;
-use crate::events::{Feed, Plane, Pos};
 use crate::interpreter::Machining;
-use crate::motion::{Move, MoveKind, Target};
+use crate::motion::MoveKind;
+use crate::words::Words;
+use vcnc_core::events::Feed;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most rings one pocket block may cut over all its levels (its events
@@ -107,33 +107,18 @@ fn levels(r_level: f64, bottom: f64, q: Option<f64>) -> Vec<f64> {
 
 /// The moves of one pocket, relative to its centre.
 struct PocketSteps<'w, 'b> {
-    axes: CycleAxes,
+    s: Steps<'w, 'b>,
     p: Pocket,
-    w: &'w Words<'b>,
-    cmd: Span,
 }
 
 impl PocketSteps<'_, '_> {
-    fn point(&self, it: &Machining<'_, '_>, (da, db): (f64, f64), z: f64) -> Pos {
-        let mut p = it.state.prog;
-        p.set(self.axes.a, self.p.centre.0 + da);
-        p.set(self.axes.b, self.p.centre.1 + db);
-        p.set(self.axes.z, z);
-        p
-    }
-
-    fn go(&self, it: &mut Machining<'_, '_>, kind: MoveKind, p: Pos) -> Result<(), Diagnostic> {
-        it.step_to(kind, p, self.w, self.cmd)
-    }
-
     fn rapid(
         &mut self,
         it: &mut Machining<'_, '_>,
         at: (f64, f64),
         z: f64,
     ) -> Result<(), Diagnostic> {
-        let p = self.point(it, at, z);
-        self.go(it, MoveKind::Rapid, p)
+        self.s.to(it, MoveKind::Rapid, at, z)
     }
 
     fn feed(
@@ -143,8 +128,7 @@ impl PocketSteps<'_, '_> {
         z: f64,
         feed: Feed,
     ) -> Result<(), Diagnostic> {
-        let p = self.point(it, at, z);
-        self.go(it, MoveKind::Feed(feed), p)
+        self.s.to(it, MoveKind::Feed(feed), at, z)
     }
 
     /// A counter-clockwise arc to `to` about `centre` (relative points).
@@ -155,29 +139,7 @@ impl PocketSteps<'_, '_> {
         centre: (f64, f64),
         z: f64,
     ) -> Result<(), Diagnostic> {
-        let end = self.point(it, to, z);
-        let here = it.state.prog;
-        let mut offset = Pos::default();
-        offset.set(
-            self.axes.a,
-            self.p.centre.0 + centre.0 - here.get(self.axes.a),
-        );
-        offset.set(
-            self.axes.b,
-            self.p.centre.1 + centre.1 - here.get(self.axes.b),
-        );
-        let mv = Move {
-            kind: MoveKind::Arc {
-                offset,
-                plane: Plane::Xy,
-                cw: false,
-                feed: self.p.feed,
-            },
-            to: Target::Program(end),
-            exact_stop: false,
-            cmd: self.cmd,
-        };
-        it.send(mv, self.w)
+        self.s.arc(it, (to, centre), z, (false, self.p.feed))
     }
 
     /// From the plunge at the centre to the first ring's start: along the
@@ -240,7 +202,15 @@ impl<'a> Machining<'_, 'a> {
             return Err(alarms::too_many_passes(cmd, MAX_RINGS));
         }
         let suspended = self.suspend_comp()?;
-        let mut s = PocketSteps { axes, p, w, cmd };
+        let mut s = PocketSteps {
+            s: Steps {
+                axes,
+                at: p.centre,
+                w,
+                cmd,
+            },
+            p,
+        };
         let z_now = self.state.prog.get(axes.z);
         s.rapid(self, (0.0, 0.0), z_now)?;
         s.rapid(self, (0.0, 0.0), p.r_level)?;

@@ -30,8 +30,6 @@
 //! Alarms point at the profile block's line and column.
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::codes::corner::corner_cut;
 use crate::dialect::{CompOp, ModeOp, MotionOp, PaceOp};
 use crate::dialect::{GOp, MGroup, bit};
@@ -41,6 +39,8 @@ use crate::interpreter::Machining;
 use crate::plane::{P2, RadiusFault, Seg, Xz, ZERO_MM, centre_from_radius};
 use crate::state::CompSide;
 use crate::state::lathe::CornerKind;
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_syntax::{Addr, Block, Cursor, Diagnostic, Line, Span, Word, lex_block};
 
 /// Most blocks a profile may have.

@@ -14,13 +14,13 @@
 //! of work system passes through the same program point in the new system.
 
 use crate::alarms;
-use crate::block::convert::{dwell_not_negative, whole};
-use crate::block::words::Words;
 use crate::dialect::{BareReturn, DwellP, G53Incremental, G53WithoutAxes, GOp};
 use crate::dialect::{CycleOp, FrameOp, MoveOp, PaceOp, SetOp, TurnOp};
-use crate::events::Event;
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
+use crate::words::Words;
+use crate::words::{dwell_not_negative, whole};
+use vcnc_core::events::Event;
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {
@@ -301,7 +301,7 @@ impl<'a> Machining<'_, 'a> {
         let Some(p) = w.get(b'P') else {
             self.emit(|loc| Event::Wait {
                 loc,
-                reason: crate::events::WaitReason::CycleStart,
+                reason: vcnc_core::events::WaitReason::CycleStart,
             });
             return Ok(());
         };

@@ -29,10 +29,10 @@
 
 use crate::alarms;
 use crate::block::convert::Units;
-use crate::block::words::Words;
 use crate::dialect::Group;
-use crate::events::{Event, Loc, PathMode};
 use crate::state::Smoothing;
+use crate::words::Words;
+use vcnc_core::events::{Event, Loc, PathMode};
 use vcnc_syntax::{Diagnostic, Span};
 
 // The smoothing state decides; the interpreter only emits what it returns:

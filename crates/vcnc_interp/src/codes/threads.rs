@@ -27,11 +27,11 @@
 //! ```
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::codes::turning_cycles::How;
 use crate::interpreter::Machining;
 use crate::plane::{P2, Xz, ZERO_MM};
+use crate::words::Words;
+use crate::words::whole;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Most pecks, positions or passes one block may make.
@@ -172,7 +172,7 @@ fn peck_moves(
     step: f64,
     retract: f64,
     relief: f64,
-    feed: crate::events::Feed,
+    feed: vcnc_core::events::Feed,
 ) -> Vec<(How, P2)> {
     let (dp, ds) = (
         (end.0 - a.0).signum(),

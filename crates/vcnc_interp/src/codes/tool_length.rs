@@ -16,14 +16,14 @@
 //! feed under the other motions.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::FrameOp;
 use crate::dialect::{GOp, Group, OffsetDefault};
-use crate::events::Pos;
 use crate::interpreter::Machining;
-use crate::motion::frame::Transform;
 use crate::motion::{MoveKind, Target};
+use crate::state::frame::Transform;
 use crate::state::{Motion, ToolLength};
+use crate::words::Words;
+use vcnc_core::events::Pos;
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {
@@ -54,7 +54,7 @@ impl<'a> Machining<'_, 'a> {
             .filter(|g| g.def.op == GOp::Frame(FrameOp::RotateOff))
         {
             let next = self.tables.transforms.without(&Transform::Rotate {
-                plane: crate::events::Plane::Xy,
+                plane: vcnc_core::events::Plane::Xy,
                 degrees: 0.0,
                 centre: [0.0; 3],
             });

@@ -2,7 +2,7 @@
 //! centre: G51 scaling (Syntec 1.2.20), G51.1/G50.1 mirror (1.2.21) and G68
 //! rotation (1.2.28). The cancels without axis words (G50, G69) are in
 //! `tool_length.rs` with the other frame codes; the maths is in
-//! `motion/frame.rs`.
+//! `state/frame.rs`.
 //!
 //! ```text
 //!   G51 X Y Z P      uniform factor P about (X, Y, Z)
@@ -23,11 +23,11 @@
 
 use crate::alarms;
 use crate::block::convert::Units;
-use crate::block::words::Words;
 use crate::config::Config;
 use crate::interpreter::Machining;
-use crate::motion::frame::{Transform, Transforms, plane_rows};
 use crate::state::State;
+use crate::state::frame::{Transform, Transforms, plane_rows};
+use crate::words::Words;
 use vcnc_syntax::{Diagnostic, Span, Word};
 
 /// Largest scale factor (Fanuc 0i: 999.999 with 0.001 units).

@@ -9,10 +9,10 @@
 //! cancels it, leaving the G08/G09 steps alone.
 
 use crate::alarms;
-use crate::block::words::Words;
-use crate::events::Event;
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
+use crate::words::Words;
+use vcnc_core::events::Event;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// G04 limits of the lathe document, seconds.

@@ -22,14 +22,14 @@
 //! Fanuc's four sign cases allow.
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::dialect::Group;
-use crate::events::{Feed, Pos};
 use crate::interpreter::Machining;
 use crate::motion::{MoveKind, Target};
 use crate::plane::{P2, Xz, ZERO_MM};
 use crate::state::Motion;
 use crate::state::lathe::SingleCycle;
+use crate::words::Words;
+use vcnc_core::events::{Feed, Pos};
 use vcnc_syntax::{Diagnostic, Span};
 
 /// How a cycle step moves.

@@ -22,12 +22,12 @@
 //! for every move, so the event stream has one speed per move).
 
 use crate::alarms;
-use crate::block::convert::whole;
-use crate::block::words::Words;
 use crate::dialect::SurfaceSpeedOn;
-use crate::events::{Event, Pos, SpindleDir};
 use crate::interpreter::Machining;
 use crate::motion::{Move, Target};
+use crate::words::Words;
+use crate::words::whole;
+use vcnc_core::events::{Event, Pos, SpindleDir};
 use vcnc_syntax::{Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {
@@ -88,7 +88,7 @@ impl<'a> Machining<'_, 'a> {
     ) -> Result<f64, Diagnostic> {
         let x = self.cfg.machine.axis_of(b'X').map_or(0.0, |i| at.get(i));
         let diameter_mm = 2.0 * x.abs();
-        let mut rpm = if diameter_mm > 1e-9 {
+        let mut rpm = if diameter_mm > vcnc_core::geometry::ZERO_MM {
             1000.0 * surface_m_per_min / (std::f64::consts::PI * diameter_mm)
         } else {
             f64::INFINITY

@@ -7,7 +7,7 @@
 //! differently (`differs`), and the evidence what tells the two apart.
 
 use super::scan::{AXIS_LETTERS, NONE, Scan, Shape};
-use super::{Confidence, Detection, dialects};
+use super::{Confidence, Detection};
 use crate::dialect::{
     BareReturn, Dialect, GOp, Group, IntegerWords, IsoMacros, MGroup, MacroFiles, bit,
 };
@@ -86,7 +86,7 @@ fn machine_m_codes() -> &'static [Vec<u32>] {
     static CODES: OnceLock<Vec<Vec<u32>>> = OnceLock::new();
     CODES.get_or_init(|| {
         let mut read: Vec<(&'static str, Vec<u32>)> = Vec::new();
-        dialects()
+        Dialect::all()
             .iter()
             .map(|d| {
                 if let Some((_, codes)) = read
@@ -95,7 +95,7 @@ fn machine_m_codes() -> &'static [Vec<u32>] {
                 {
                     return codes.clone();
                 }
-                let codes: Vec<u32> = crate::machine::Machine::from_toml(d.default_machine)
+                let codes: Vec<u32> = vcnc_core::machine::Machine::from_toml(d.default_machine)
                     .map(|m| m.m_codes.keys().copied().collect())
                     .unwrap_or_default();
                 read.push((d.default_machine, codes.clone()));

@@ -9,11 +9,9 @@
 //! (letters in any case, spaces inside numbers) but keeps no text beyond a
 //! few evidence strings: memory is bounded by the distinct shapes.
 
-use crate::dialect::bit;
+use crate::dialect::{Dialect, bit};
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::OnceLock;
-
-use super::dialects;
 
 /// Comments kept from the header.
 const HEADER_COMMENTS: usize = 40;
@@ -198,7 +196,7 @@ pub(super) struct Scan {
 fn extended_addresses() -> &'static [&'static str] {
     static ALL: OnceLock<Vec<&'static str>> = OnceLock::new();
     ALL.get_or_init(|| {
-        let mut v: Vec<&'static str> = dialects()
+        let mut v: Vec<&'static str> = Dialect::all()
             .iter()
             .flat_map(|d| d.lex.extended.iter().map(|(t, _)| *t))
             .collect();

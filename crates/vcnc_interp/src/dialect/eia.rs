@@ -10,8 +10,8 @@ use super::{
     ThreadLead, ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
 use super::{CompOp, CycleOp, Hole, ModeOp, MotionOp, PaceOp, SetOp};
-use crate::events::{Cycle, Plane};
-use crate::machine::DEFAULT_MILL_TOML;
+use vcnc_core::events::{Cycle, Plane};
+use vcnc_core::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{LexRules, Semicolon};
 
 /// What a drilling cycle reads (Q and P only where they mean something,

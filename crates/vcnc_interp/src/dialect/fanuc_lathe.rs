@@ -27,8 +27,8 @@ use super::{
     CompOp, CycleOp, FlowOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp,
     m_codes::{self, MRow},
 };
-use crate::events::Plane;
-use crate::machine::{DEFAULT_FANUC_LATHE_TOML, GcodeSystem};
+use vcnc_core::events::Plane;
+use vcnc_core::machine::{DEFAULT_FANUC_LATHE_TOML, GcodeSystem};
 use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 /// Words of the multiple repetitive cycles besides the axis words they

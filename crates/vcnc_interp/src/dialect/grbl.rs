@@ -15,8 +15,8 @@ use super::{
     CompOp, CycleOp, FrameOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp,
     m_codes::{self, MRow},
 };
-use crate::events::Plane;
-use crate::machine::DEFAULT_MILL_TOML;
+use vcnc_core::events::Plane;
+use vcnc_core::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{LexRules, Semicolon};
 
 pub(super) const GRBL_G: &[GRow] = &[

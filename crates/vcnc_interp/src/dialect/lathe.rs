@@ -11,8 +11,8 @@ use super::{
     ToolChangeSpindle, ToolLengthChange, ToolWords, bit, g,
 };
 use super::{FlowOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp};
-use crate::events::Plane;
-use crate::machine::DEFAULT_LATHE_TOML;
+use vcnc_core::events::Plane;
+use vcnc_core::machine::DEFAULT_LATHE_TOML;
 use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 const LATHE_G: &[GRow] = &[

@@ -26,8 +26,8 @@ use super::{
     m_codes::{MRow, m},
 };
 use super::{Diameter, SurfaceSpeedOn};
-use crate::events::{Cycle, Plane};
-use crate::machine::DEFAULT_FANUC_LATHE_TOML;
+use vcnc_core::events::{Cycle, Plane};
+use vcnc_core::machine::DEFAULT_FANUC_LATHE_TOML;
 use vcnc_syntax::{Addr, LexRules};
 
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which

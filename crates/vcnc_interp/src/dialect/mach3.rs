@@ -25,7 +25,7 @@ use super::m_codes::{self, MRow};
 use super::{
     AuxM, CircleCutForm, CycleOp, Dialect, GOp, GRow, Group, MOp, MacroRules, MoveOp, bit, g,
 };
-use crate::events::ArcDir;
+use vcnc_core::events::ArcDir;
 
 /// Mach3's codes beyond LinuxCNC's: G31, its straight probe, moves towards
 /// the point named and stops where the probe touches (Fanuc's skip: without

@@ -12,8 +12,8 @@ use super::{
     CircleCutForm, CompOp, CycleOp, FlowOp, FrameOp, Hole, ModeOp, MotionOp, MoveOp, PaceOp, SetOp,
     m_codes::{self, MRow, m},
 };
-use crate::events::{ArcDir, Cycle, Plane};
-use crate::machine::DEFAULT_MILL_TOML;
+use vcnc_core::events::{ArcDir, Cycle, Plane};
+use vcnc_core::machine::DEFAULT_MILL_TOML;
 use vcnc_syntax::{Addr, LexRules, Semicolon};
 
 /// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
@@ -450,7 +450,7 @@ pub(super) fn haas() -> Dialect {
         name: "haas",
         g,
         m,
-        default_machine: crate::machine::DEFAULT_HAAS_TOML,
+        default_machine: vcnc_core::machine::DEFAULT_HAAS_TOML,
         bare_return: BareReturn::AllAxes,
         cycles: CycleRules::HAAS,
         dwell_p: DwellP::SecondsWithPoint,

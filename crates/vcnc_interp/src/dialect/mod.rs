@@ -33,7 +33,7 @@ pub use ops::{
     RoughPockets, SetOp, TurnOp,
 };
 
-use crate::events::Plane;
+use vcnc_core::events::Plane;
 use vcnc_syntax::LexRules;
 
 /// The data words of a canned cycle block: R level, Q peck or shift, P
@@ -245,7 +245,7 @@ pub struct MDef {
 
 /// `WorkSystem` index of "no work offset" (lathe G53/G500).
 #[allow(clippy::cast_possible_truncation)] // WORK_SYSTEMS is 15
-pub const WORK_NONE: u8 = crate::machine::WORK_SYSTEMS as u8;
+pub const WORK_NONE: u8 = vcnc_core::machine::WORK_SYSTEMS as u8;
 
 /// Bit of a letter in a letter mask.
 pub const fn bit(l: u8) -> u32 {
@@ -661,7 +661,27 @@ const M_SLOTS: usize = 1_000;
 use m_codes::MRow;
 
 impl Dialect {
-    /// Looks a dialect up by its `--dialect` name.
+    /// Every dialect, built once, in [`Dialect::NAMES`] order.
+    pub fn all() -> &'static [Dialect] {
+        static ALL: std::sync::OnceLock<Vec<Dialect>> = std::sync::OnceLock::new();
+        ALL.get_or_init(|| {
+            Dialect::NAMES
+                .iter()
+                .filter_map(|n| Dialect::by_name(n))
+                .collect()
+        })
+    }
+
+    /// The dialect named `name`, in any case (`Haas`, `FANUC-LATHE`), built
+    /// once.
+    pub fn named(name: &str) -> Option<&'static Dialect> {
+        Dialect::all()
+            .iter()
+            .find(|d| d.name.eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// Looks a dialect up by its `--dialect` name (a new table each call;
+    /// [`named`](Self::named) shares one).
     pub fn by_name(name: &str) -> Option<Dialect> {
         match name {
             "syntec" => Some(mill::syntec()),
@@ -794,9 +814,9 @@ impl Dialect {
     /// (`gcode_system` in the machine file): the Fanuc lathe's systems B
     /// and C are other tables of the same profile, built once. Every other
     /// dialect has one numbering and is returned as it is.
-    pub fn for_system(&'static self, system: crate::machine::GcodeSystem) -> &'static Dialect {
-        use crate::machine::GcodeSystem;
+    pub fn for_system(&'static self, system: vcnc_core::machine::GcodeSystem) -> &'static Dialect {
         use std::sync::OnceLock;
+        use vcnc_core::machine::GcodeSystem;
         static B: OnceLock<Dialect> = OnceLock::new();
         static C: OnceLock<Dialect> = OnceLock::new();
         if !self.gcode_systems {
@@ -813,16 +833,16 @@ impl Dialect {
     /// of the built-in ones: a profile with [`gcode_systems`](Self::gcode_systems)
     /// takes its built-in table of `system`; any other dialect is returned
     /// as it is.
-    pub fn under_system(&self, system: crate::machine::GcodeSystem) -> &Dialect {
-        match crate::detect::dialect(self.name) {
+    pub fn under_system(&self, system: vcnc_core::machine::GcodeSystem) -> &Dialect {
+        match Dialect::named(self.name) {
             Some(base) if self.gcode_systems => base.for_system(system),
             _ => self,
         }
     }
 
     /// The embedded machine this dialect runs on by default.
-    pub fn machine(&self) -> crate::machine::Machine {
-        match crate::machine::Machine::from_toml(self.default_machine) {
+    pub fn machine(&self) -> vcnc_core::machine::Machine {
+        match vcnc_core::machine::Machine::from_toml(self.default_machine) {
             Ok(m) => m,
             // Each embedded file is checked by a unit test; this cannot happen.
             Err(e) => unreachable!("embedded machine of {} is invalid: {e}", self.name),
@@ -924,7 +944,7 @@ mod tests {
         for name in Dialect::NAMES {
             let d = Dialect::by_name(name).unwrap();
             assert!(
-                crate::machine::Machine::from_toml(d.default_machine).is_ok(),
+                vcnc_core::machine::Machine::from_toml(d.default_machine).is_ok(),
                 "{name}"
             );
         }
@@ -979,8 +999,8 @@ mod tests {
 
     #[test]
     fn the_fanuc_lathes_systems_b_and_c_renumber_its_codes() {
-        use crate::machine::GcodeSystem;
-        let a = crate::detect::dialect("fanuc-lathe").unwrap();
+        use vcnc_core::machine::GcodeSystem;
+        let a = Dialect::named("fanuc-lathe").unwrap();
         assert!(std::ptr::eq(a.for_system(GcodeSystem::A), a));
         let op = |d: &Dialect, v: f64| d.g(v).map(|r| r.op);
         for sys in [GcodeSystem::B, GcodeSystem::C] {
@@ -1006,18 +1026,8 @@ mod tests {
         assert_eq!(op(c, 71.0), Some(GOp::Mode(ModeOp::Metric)));
         assert_eq!(op(c, 72.0), Some(GOp::Turn(TurnOp::FinishCycle)));
         assert_eq!(op(c, 78.0), Some(GOp::Turn(TurnOp::ThreadMultiCycle)));
-        // E201's help under system A names the key that brings G95 and G91.
-        for v in [95.0, 91.0, 77.0] {
-            let help = crate::detect::g_hint(a, v);
-            assert!(help.contains("gcode_system = \"B\""), "{help}");
-        }
-        // And under B, system A's G50.
-        let help = crate::detect::g_hint(b, 50.0);
-        assert!(help.contains("gcode_system = \"A\""), "{help}");
-        // A code of no system keeps the ordinary help.
-        assert!(!crate::detect::g_hint(a, 17.1).contains("gcode_system"));
         // Haas lathes have system A only.
-        let haas = crate::detect::dialect("haas-lathe").unwrap();
+        let haas = Dialect::named("haas-lathe").unwrap();
         assert!(std::ptr::eq(haas.for_system(GcodeSystem::B), haas));
     }
 }

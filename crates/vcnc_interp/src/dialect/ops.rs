@@ -17,7 +17,7 @@
 //! The same meanings feed `vcnc explain`, E201's help, the dialect matrix
 //! in docs/dialects.md and the editor's hover: there is no second list.
 
-use crate::events::{ArcDir, Cycle};
+use vcnc_core::events::{ArcDir, Cycle};
 
 /// What a G code does: its role, then the operation within the role.
 #[cfg_attr(

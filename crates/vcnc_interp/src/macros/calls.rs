@@ -22,13 +22,13 @@
 //! the number as written, a Long or a Double, for the macro's STD to read.
 
 use crate::alarms;
-use crate::block::words::At;
 use crate::dialect::FlowOp;
 use crate::dialect::{GDef, GOp, IntegerWords, ModalLocals, VarTable};
 use crate::flow::{CallKind, Frame, ProgramStore};
 use crate::interpreter::{Interpreter, Step};
-use crate::machine::DecimalInput;
+use crate::words::At;
 use std::io;
+use vcnc_core::machine::DecimalInput;
 use vcnc_syntax::macros::Value;
 use vcnc_syntax::{Block, Cursor, Diagnostic, LineReader, Span, Word};
 
@@ -165,18 +165,12 @@ impl Interpreter<'_> {
             }
             match l {
                 b'P' if own_pl => {
-                    let n = crate::block::convert::whole(
-                        w,
-                        b'P',
-                        0.0,
-                        99_999_999.0,
-                        "P is a program number",
-                    )?;
+                    let n =
+                        crate::words::whole(w, b'P', 0.0, 99_999_999.0, "P is a program number")?;
                     p.program = Some((n, w.span));
                 }
                 b'L' => {
-                    p.repeats =
-                        crate::block::convert::whole(w, b'L', 0.0, 9999.0, "L is a repeat count")?;
+                    p.repeats = crate::words::whole(w, b'L', 0.0, 9999.0, "L is a repeat count")?;
                     if syntec && !own_pl {
                         p.args[usize::from(b'L' - b'A')] = self.arg_value(w);
                     }

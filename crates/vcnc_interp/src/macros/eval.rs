@@ -470,7 +470,20 @@ pub(crate) fn function(
                 _ => real(if pick_a { num(a) } else { num(b) }, span),
             }
         }
-        _ => Ok(Value::Null),
+        // Not pure: `Evaluator::call_function` answers them before.
+        Func::Std
+        | Func::StdAx
+        | Func::GetArg
+        | Func::Push
+        | Func::Pop
+        | Func::StkTop
+        | Func::Alarm
+        | Func::Msg
+        | Func::Wait
+        | Func::Sleep
+        | Func::Param
+        | Func::Draw
+        | Func::Exists => Ok(Value::Null),
     }
 }
 

@@ -24,11 +24,11 @@
 use super::Evaluator;
 use super::structure::Link;
 use super::{Compiled, key};
-use crate::Sink;
 use crate::alarms;
-use crate::events::Event;
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
+use vcnc_core::Sink;
+use vcnc_core::events::Event;
 use vcnc_syntax::macros::{BinOp, Expr, Lang, StmtKind, Target, Value, VarKind};
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 

@@ -16,12 +16,12 @@
 //! alarm or a warning is located.
 
 use super::{Key, LineMap, key};
-use crate::Sink;
 use crate::alarms;
 use crate::dialect::{IsoMacros, MacroFiles};
 use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
+use vcnc_core::Sink;
 use vcnc_syntax::macros::{Lang, MValue, MWord, Statement, StmtKind, Value};
 use vcnc_syntax::macros::{parse_iso_block, parse_syntec_statement, syntec_extent};
 use vcnc_syntax::{Block, Cursor, Diagnostic, Line, ReadError, Span, Word};
@@ -564,7 +564,7 @@ impl Interpreter<'_> {
         block: &mut Block,
         store: &mut dyn ProgramStore,
         sink: &mut S,
-    ) -> Result<Option<Option<crate::events::EndCode>>, Diagnostic> {
+    ) -> Result<Option<Option<vcnc_core::events::EndCode>>, Diagnostic> {
         loop {
             let Some(s) = self.flow.source(src) else {
                 return Ok(None);

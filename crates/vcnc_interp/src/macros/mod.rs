@@ -189,10 +189,10 @@ impl crate::interpreter::Interpreter<'_> {
     /// The `unset_variables` event, once, when the program read variables
     /// nothing had set (a common or global set later in the run is not
     /// listed).
-    pub(crate) fn unset_report(&mut self) -> Option<crate::events::Event> {
+    pub(crate) fn unset_report(&mut self) -> Option<vcnc_core::events::Event> {
         let unset = std::mem::take(&mut self.macros.unset);
         let vars = &mut self.macros.vars;
-        let variables: Vec<crate::events::UnsetVariable> = unset
+        let variables: Vec<vcnc_core::events::UnsetVariable> = unset
             .into_iter()
             .filter(|u| match vars.slot(u.kind, u.n) {
                 vars::Slot::Common(i) => !vars.common(i).1,
@@ -200,7 +200,7 @@ impl crate::interpreter::Interpreter<'_> {
                 vars::Slot::Global(g) => !vars.global(g).1,
                 _ => true,
             })
-            .map(|u| crate::events::UnsetVariable {
+            .map(|u| vcnc_core::events::UnsetVariable {
                 name: format!("{}{}", u.kind.sigil(), u.n).into(),
                 line: u.line,
                 file: u.file,
@@ -209,7 +209,7 @@ impl crate::interpreter::Interpreter<'_> {
         if variables.is_empty() {
             return None;
         }
-        Some(crate::events::Event::UnsetVariables {
+        Some(vcnc_core::events::Event::UnsetVariables {
             loc: self.flow.loc.clone(),
             variables: variables.into(),
         })
@@ -245,7 +245,7 @@ impl crate::interpreter::Interpreter<'_> {
     /// Sets kept variables from an earlier run (before [`run`]); names a
     /// variable this controller does not keep in `Err`.
     ///
-    /// [`run`]: crate::Interpreter::run
+    /// [`run`]: crate::interpreter::Interpreter::run
     pub fn restore_variables(
         &mut self,
         values: &std::collections::BTreeMap<String, Value>,

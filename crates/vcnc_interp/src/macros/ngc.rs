@@ -327,8 +327,28 @@ pub(crate) fn ngc_function(
         Func::Fup => domain(true, "FUP", x.ceil()),
         Func::Round => domain(true, "ROUND", x.round()),
         Func::Atan => domain(true, "ATAN", x.atan2(y).to_degrees()),
-        // The parser gives LinuxCNC no other function.
-        _ => Ok(Value::Null),
+        // The parser gives LinuxCNC no other function (`NGC_FUNCS`), and
+        // `Evaluator::call_function` answers EXISTS before.
+        Func::Atan2
+        | Func::Pow
+        | Func::Max
+        | Func::Min
+        | Func::Sign
+        | Func::Ceil
+        | Func::Floor
+        | Func::Std
+        | Func::StdAx
+        | Func::GetArg
+        | Func::Push
+        | Func::Pop
+        | Func::StkTop
+        | Func::Alarm
+        | Func::Msg
+        | Func::Wait
+        | Func::Sleep
+        | Func::Param
+        | Func::Draw
+        | Func::Exists => Ok(Value::Null),
     }
 }
 

@@ -32,8 +32,8 @@ use super::Evaluator;
 use crate::alarms;
 use crate::dialect::ModeOp;
 use crate::dialect::{GOp, MachineVars, VarTable};
-use crate::events::Pos;
 use crate::state::{CompSide, Motion, ToolLength};
+use vcnc_core::events::Pos;
 use vcnc_syntax::macros::Value;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -227,9 +227,9 @@ impl<'a> Evaluator<'_, 'a> {
                 Motion::FaceCycle => 94.0,
             },
             2 => match m.plane {
-                crate::events::Plane::Xy => 17.0,
-                crate::events::Plane::Zx => 18.0,
-                crate::events::Plane::Yz => 19.0,
+                vcnc_core::events::Plane::Xy => 17.0,
+                vcnc_core::events::Plane::Zx => 18.0,
+                vcnc_core::events::Plane::Yz => 19.0,
             },
             3 => {
                 if m.incremental {
@@ -304,10 +304,10 @@ impl<'a> Evaluator<'_, 'a> {
                 k => 59.0 + (k as f64 - 5.0) / 10.0,
             },
             15 => match m.path {
-                crate::events::PathMode::ExactStop => 61.0,
-                crate::events::PathMode::Surface => 62.0,
-                crate::events::PathMode::Tapping => 63.0,
-                crate::events::PathMode::Cutting => 64.0,
+                vcnc_core::events::PathMode::ExactStop => 61.0,
+                vcnc_core::events::PathMode::Surface => 62.0,
+                vcnc_core::events::PathMode::Tapping => 63.0,
+                vcnc_core::events::PathMode::Cutting => 64.0,
             },
             17 => {
                 if m.polar {

@@ -20,13 +20,13 @@
 
 use super::{MoveKind, Target};
 use crate::alarms;
-use crate::block::convert::Goal;
-use crate::block::words::Words;
 use crate::dialect::{ArcEnd, LongChord, bit};
-use crate::events::{Plane, Pos};
 use crate::interpreter::Machining;
-use crate::motion::frame::plane_rows;
+use crate::motion::Goal;
+use crate::state::frame::plane_rows;
+use crate::words::Words;
 use std::f64::consts::TAU;
+use vcnc_core::events::{Plane, Pos};
 use vcnc_core::geometry::ZERO_MM;
 use vcnc_syntax::{Addr, Diagnostic, Span};
 
@@ -131,7 +131,7 @@ impl<'a> Machining<'_, 'a> {
         let Some(p) = w.get(b'P').filter(|_| reads_p) else {
             return Ok(1);
         };
-        crate::block::convert::whole(
+        crate::words::whole(
             &p,
             b'P',
             1.0,
@@ -191,7 +191,7 @@ impl<'a> Machining<'_, 'a> {
         for k in 1..turns {
             let f = f64::from(k) * TAU / total;
             let mut p = from;
-            for i in (0..crate::events::MAX_AXES).filter(|&i| i != idx.a && i != idx.b) {
+            for i in (0..vcnc_core::events::MAX_AXES).filter(|&i| i != idx.a && i != idx.b) {
                 p.set(i, from.get(i) + (to.get(i) - from.get(i)) * f);
             }
             self.straight(kind, Target::Program(p), w, cmd)?;
@@ -217,9 +217,9 @@ impl<'a> Machining<'_, 'a> {
         c.set(axes.a, center.0);
         c.set(axes.b, center.1);
         let dir = if cw {
-            crate::events::ArcDir::Cw
+            vcnc_core::events::ArcDir::Cw
         } else {
-            crate::events::ArcDir::Ccw
+            vcnc_core::events::ArcDir::Ccw
         };
         Ok(vcnc_core::geometry::ArcPath::new(from, to, c, axes, dir))
     }

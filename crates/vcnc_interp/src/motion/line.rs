@@ -6,10 +6,10 @@
 
 use super::MoveKind;
 use crate::alarms;
-use crate::block::words::Words;
-use crate::events::{Feed, MAX_AXES, Pos};
 use crate::interpreter::Machining;
-use crate::machine::Machine;
+use crate::words::Words;
+use vcnc_core::events::{Feed, MAX_AXES, Pos};
+use vcnc_core::machine::Machine;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// Corners of a rapid where each axis runs at its own rate: every axis
@@ -96,7 +96,7 @@ pub(crate) fn z_priority(machine: &Machine, from: Pos, to: Pos) -> ([Pos; MAX_AX
     if let (Some(x), Some(y)) = (x, y) {
         let (dx, dy) = (to.get(x) - p.get(x), to.get(y) - p.get(y));
         let m = dx.abs().min(dy.abs());
-        if m > 0.0 && (dx.abs() - dy.abs()).abs() > 1e-9 {
+        if m > 0.0 && (dx.abs() - dy.abs()).abs() > vcnc_core::geometry::ZERO_MM {
             let mut corner = plane_end;
             corner.set(x, p.get(x) + m.copysign(dx));
             corner.set(y, p.get(y) + m.copysign(dy));

@@ -22,24 +22,36 @@
 
 pub(crate) mod arc;
 pub(crate) mod comp;
-pub(crate) mod frame;
 pub(crate) mod line;
 pub(crate) mod stage;
 pub(crate) mod travel;
 
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
 use crate::dialect::ModeOp;
 use crate::dialect::{GOp, RapidPath};
-use crate::events::Loc;
-use crate::events::{ArcDir, Event, Feed, Plane, Pos};
 use crate::interpreter::Machining;
 use crate::state::State;
-use frame::ArcMap;
+use crate::state::frame::ArcMap;
+use crate::words::Words;
 use stage::Stage;
+use vcnc_core::events::Loc;
+use vcnc_core::events::{ArcDir, Event, Feed, Plane, Pos};
 use vcnc_core::geometry::{ArcPath, PlaneAxes};
 use vcnc_syntax::{Diagnostic, Span};
+
+/// Where a block's axis words point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Goal {
+    /// The new programmed point, program coordinates.
+    pub prog: Pos,
+    /// Axes named (bit i = machine axis i).
+    pub named: u32,
+    /// The increment of the incremental axes, program coordinates.
+    pub delta: Pos,
+    /// Every named axis is incremental (and no polar input).
+    pub all_incremental: bool,
+}
 
 /// Where a move ends.
 ///
@@ -432,7 +444,8 @@ fn push_built(pending: &mut Vec<Event>, make: impl FnOnce() -> Event) {
 /// [`vcnc_core::geometry::ZERO_MM`].
 #[inline(always)]
 fn same_point(a: Pos, b: Pos) -> bool {
-    (0..crate::events::MAX_AXES).all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
+    (0..vcnc_core::events::MAX_AXES)
+        .all(|i| (a.get(i) - b.get(i)).abs() < vcnc_core::geometry::ZERO_MM)
 }
 
 impl<'a> Machining<'_, 'a> {
@@ -463,8 +476,9 @@ impl<'a> Machining<'_, 'a> {
             }
         }
         // 1 frame
+        let cfg = self.cfg;
         let (prog_to, to) = self.state.machine_target(mv.to);
-        let kind = self.state.machine_kind(self.cfg, &mv)?;
+        let kind = self.state.machine_kind(cfg, &mv)?;
         // 2 compensation works from the uncompensated point, the rest
         // from where the tool is.
         let engaged = self.stage.comp.engaged();
@@ -484,18 +498,17 @@ impl<'a> Machining<'_, 'a> {
         // 3 travel, before anything changes: a move that leaves the
         // machine's limits leaves the state as the block found it (which a
         // plain move block relies on, see `Interpreter::block`).
-        if self.cfg.travel_limited {
-            self.cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
+        if cfg.travel_limited {
+            cfg.travel_alarm(&mm, mv.cmd, Some(w))?;
         }
-        self.stage
-            .accept_move(self.state, self.at.loc(), (prog_to, mm.to), mv.to);
+        // The stage's parts, held in locals for the rest of the way.
+        let (state, stage, loc) = (&mut *self.state, &mut *self.stage, self.at.loc());
+        stage.accept_move(state, loc, (prog_to, mm.to), mv.to);
         // 4 events
-        if self.cfg.markers {
-            self.stage
-                .mark_axes(self.cfg, self.at.loc(), (&mv, mm.to), w);
+        if cfg.markers {
+            stage.mark_axes(cfg, loc, (&mv, mm.to), w);
         }
-        let loc = self.at.loc().clone();
-        self.stage.emit_released(self.cfg, self.state, &mm, loc);
+        stage.emit_released(cfg, state, &mm, loc.clone());
         Ok(())
     }
 

@@ -17,8 +17,8 @@
 //! own, and only it knows how to undo them.
 
 use super::comp::{self, Comp};
-use crate::events::{Event, Pos};
 use crate::state::{Motion, State};
+use vcnc_core::events::{Event, Pos};
 use vcnc_syntax::Line;
 
 /// The stage's data.
@@ -64,7 +64,7 @@ pub(crate) struct BlockMark {
     comp_by_move: bool,
 }
 
-/// What a plain G00/G01 block that `Machining::moves_in_place` accepts
+/// What a plain G00/G01 block that `Stage::moves_in_place` accepts
 /// may have changed in the state when it alarms: every check of such a
 /// block (a negative or zero feed, a per-revolution feed with the spindle
 /// stopped, G93's F, the travel limits) comes before the move changes the

@@ -11,11 +11,11 @@
 
 use super::{MachineKind, MachineMove};
 use crate::alarms;
-use crate::block::words::Words;
 use crate::config::Config;
-use crate::events::Pos;
-use crate::machine::Machine;
+use crate::words::Words;
+use vcnc_core::events::Pos;
 use vcnc_core::geometry::{ArcPath, ZERO_MM};
+use vcnc_core::machine::Machine;
 use vcnc_syntax::{Diagnostic, Span};
 
 /// A move that leaves the travel limits: which axis, and how far it goes.
@@ -118,8 +118,8 @@ fn span_box(a: Pos, b: Pos, n: usize) -> (Pos, Pos) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::events::{ArcDir, Feed, Plane};
     use crate::motion::MachineKind;
+    use vcnc_core::events::{ArcDir, Feed, Plane};
     use vcnc_core::geometry::PlaneAxes;
 
     fn p(x: f64, y: f64) -> Pos {

@@ -6,7 +6,7 @@
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CycleData {
     /// The active cycle (`None`: G80 or a group-01 code).
-    pub code: Option<crate::events::Cycle>,
+    pub code: Option<vcnc_core::events::Cycle>,
     /// What the active cycle does at each hole (the dialect table's
     /// reading of its code).
     pub hole: crate::dialect::Hole,
@@ -28,7 +28,7 @@ pub struct CycleData {
     pub written_rz: (Option<f64>, Option<f64>),
     /// The cycle code before the last block that wrote one (LinuxCNC wants
     /// R, the depth and the cycle's P or Q again when the code changes).
-    pub before: Option<crate::events::Cycle>,
+    pub before: Option<vcnc_core::events::Cycle>,
 }
 
 /// Pecks that start at `first` and shrink by `less` each time down to

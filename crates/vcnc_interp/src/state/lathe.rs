@@ -7,8 +7,8 @@
 //! It is part of [`State`](crate::state::State), copied before each block
 //! and restored whole when a block alarms, like every other modal datum.
 
-use crate::events::{Feed, Pos};
-use crate::machine::Machine;
+use vcnc_core::events::{Feed, Pos};
+use vcnc_core::machine::Machine;
 use vcnc_syntax::Span;
 
 /// Lathe data of the state.

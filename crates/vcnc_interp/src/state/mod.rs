@@ -18,12 +18,13 @@
 //! is on the machine. The [`Frame`] converts one into the other.
 
 use crate::dialect::Dialect;
-use crate::events::{FrameInfo, PathMode, Plane, Pos, SpindleDir};
-use crate::machine::{Machine, Tool, WORK_SYSTEMS};
-use crate::motion::frame::{Frame, Transforms, Xyz};
+use frame::{Frame, Transforms, Xyz};
 use std::collections::BTreeMap;
+use vcnc_core::events::{FrameInfo, PathMode, Plane, Pos, SpindleDir};
+use vcnc_core::machine::{Machine, Tool, WORK_SYSTEMS};
 
 mod cycle;
+pub(crate) mod frame;
 pub(crate) mod lathe;
 mod nurbs;
 mod points;

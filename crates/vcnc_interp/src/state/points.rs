@@ -3,8 +3,8 @@
 //! check is `block/convert.rs`).
 
 use crate::dialect::IntegerWords;
-use crate::events::Pos;
-use crate::machine::DecimalInput;
+use vcnc_core::events::Pos;
+use vcnc_core::machine::DecimalInput;
 
 /// What the program's axis words look like so far (warning W101).
 #[derive(Debug, Clone, Default)]
@@ -37,14 +37,17 @@ impl PointStyle {
     /// `reach` grown to hold `p`.
     pub(crate) fn grown(reach: Option<(Pos, Pos)>, p: Pos) -> (Pos, Pos) {
         let (mut lo, mut hi) = reach.unwrap_or((p, p));
-        for i in 0..crate::MAX_AXES {
+        for i in 0..vcnc_core::MAX_AXES {
             lo.0[i] = lo.0[i].min(p.0[i]);
             hi.0[i] = hi.0[i].max(p.0[i]);
         }
         (lo, hi)
     }
 
-    pub fn new(machine: &crate::machine::Machine, dialect: &crate::dialect::Dialect) -> PointStyle {
+    pub fn new(
+        machine: &vcnc_core::machine::Machine,
+        dialect: &crate::dialect::Dialect,
+    ) -> PointStyle {
         PointStyle {
             active: dialect.integers == IntegerWords::LeastIncrement
                 && machine.params.decimal_input == DecimalInput::Increment,

@@ -25,8 +25,8 @@ pub(crate) mod nose;
 mod pass;
 
 use super::MachineMove;
-use crate::events::{Event, Loc, Plane, Pos};
 use crate::plane::{P2, Seg};
+use vcnc_core::events::{Event, Loc, Plane, Pos};
 use vcnc_core::geometry::PlaneAxes;
 use vcnc_syntax::{Line, Span};
 

@@ -9,10 +9,10 @@ use super::nose::{self, tip_direction};
 use super::{Held, Mode, Origin, Queued, v2, with_plane};
 use crate::alarms;
 use crate::dialect::CompStart;
-use crate::events::{Event, Plane, Pos};
 use crate::interpreter::Machining;
 use crate::motion::{MachineKind, MachineMove};
 use crate::plane::{P2, Seg, ZERO_MM};
+use vcnc_core::events::{Event, Plane, Pos};
 use vcnc_core::geometry::PlaneAxes;
 use vcnc_syntax::{Diagnostic, Span};
 
@@ -54,7 +54,7 @@ impl<'a> Machining<'_, 'a> {
                 a,
                 b,
                 P2(center.0, center.1),
-                dir == crate::events::ArcDir::Ccw,
+                dir == vcnc_core::events::ArcDir::Ccw,
             )),
             _ if a.dist(b) > ZERO_MM => Some(Seg::line(a, b)),
             _ => None,

@@ -11,7 +11,7 @@ use crate::dialect::FlowOp;
 use crate::dialect::{
     AxisWords, Dialect, GDef, GOp, Group, M_GROUPS, MDef, MGroup, MODAL_GROUPS, bit,
 };
-use crate::machine::{Machine, SameGroup};
+use vcnc_core::machine::{Machine, SameGroup};
 use vcnc_syntax::{Addr, Block, Diagnostic, Span, Word};
 
 /// Most one-shot (group 00) codes in one block.
@@ -479,4 +479,41 @@ const fn ext_bit(a: Addr) -> u8 {
         Some(i) if (i as usize) < Addr::EXTENDED => 1 << i,
         _ => 0,
     }
+}
+
+/// A dwell's word (G04 X or P, a cycle's P): E109 if it is negative.
+pub(crate) fn dwell_not_negative(w: &Word) -> Result<(), Diagnostic> {
+    if w.value < 0.0 {
+        return Err(alarms::value_out_of_range(
+            w.span,
+            w.addr.0,
+            w.value,
+            "a dwell is not negative",
+        ));
+    }
+    Ok(())
+}
+
+/// A whole number word in `min..=max`.
+pub(crate) fn whole(
+    w: &Word,
+    letter: u8,
+    min: f64,
+    max: f64,
+    why: &str,
+) -> Result<u32, Diagnostic> {
+    if w.point {
+        return Err(alarms::no_decimal_point(w.span, letter, why));
+    }
+    if w.value < min || w.value > max {
+        return Err(alarms::value_out_of_range(
+            w.span,
+            letter,
+            w.value,
+            &format!("{letter_c} is {min}..{max}", letter_c = char::from(letter)),
+        ));
+    }
+    // In range and whole (no point), so the cast is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    Ok(w.value as u32)
 }

@@ -18,7 +18,7 @@
 //! active. Everything here is pure: the interpreter owns a `Frame` in its
 //! state and asks it to convert points, vectors and arcs.
 
-use crate::events::{MAX_AXES, Plane, Pos};
+use vcnc_core::events::{MAX_AXES, Plane, Pos};
 
 /// The machine axis indices of X, Y and Z, where the machine has them.
 pub(crate) type Xyz = [Option<usize>; 3];
