@@ -13,7 +13,7 @@ cargo bench -p vcnc_interp --bench macros --no-run 2>/dev/null
 bin=$(ls -t target/release/deps/macros-* | grep -v '\.d$' | head -1)
 out=$(mktemp -d)
 # Statements of each bench (benches/macros.rs: 200,000 passes).
-declare -A statements=([macro_b_while_loop]=600000 [syntec_for_loop]=600000 [macro_b_moving_loop]=800000)
+declare -A statements=([macro_b_while_loop]=600000 [syntec_for_loop]=600000 [macro_b_moving_loop]=800000 [ngc_while_loop]=600000)
 for bench in "${!statements[@]}"; do
   valgrind --tool=callgrind --toggle-collect='vcnc_interp::interpreter::Interpreter::run*' \
     --callgrind-out-file="$out/$bench.cg" \

@@ -1,6 +1,6 @@
 //! Macro throughput (issue 9: a macro loop runs ≥ 5 M statements/s):
-//! Custom Macro B and Syntec MACRO loops of assignments, and a loop of word
-//! blocks whose values are expressions, interpreted from memory into a sink
+//! Custom Macro B, Syntec MACRO and LinuxCNC loops of assignments, and a
+//! loop of word blocks whose values are expressions, interpreted from memory into a sink
 //! that drops every event. Items are statements executed (loop heads,
 //! bodies and ends), counted by hand from each program's shape. The
 //! literal-program benchmarks in `interp.rs` guard that the macro front end
@@ -73,4 +73,13 @@ fn macro_b_moving_loop(bencher: Bencher) {
         "G90 G01 F1000.\n#1 = 0\nWHILE [#1 LT {PASSES}] DO 1\nX[#1 MOD 100] Y-#1\n#1 = #1 + 1\nEND 1\nM30\n"
     );
     bench(bencher, 4 * PASSES, program, &Dialect::fanuc());
+}
+
+/// LinuxCNC: `o100 while`, a parameter setting and `o100 endwhile` per
+/// pass (3 statements).
+#[divan::bench]
+fn ngc_while_loop(bencher: Bencher) {
+    let program =
+        format!("#1 = 0\no100 while [#1 LT {PASSES}]\n#1 = [#1 + 1]\no100 endwhile\nM2\n");
+    bench(bencher, 3 * PASSES, program, &Dialect::linuxcnc());
 }

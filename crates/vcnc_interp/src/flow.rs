@@ -100,7 +100,8 @@ pub(crate) struct Frame {
     /// Where the program (or the called sequence) starts; repeats go here.
     pub start: Cursor,
     /// Where the program itself starts: N searches (M99 P, M98 H, lathe
-    /// G20/G25/G26 L) begin here even when it was entered at a label.
+    /// G20/G25 L, the pairing of G26 L) begin here even when it was
+    /// entered at a label.
     pub program: Cursor,
     /// The last block this level executed (for alarms at its end).
     pub last: Option<(vcnc_syntax::Line, vcnc_syntax::Span)>,
@@ -392,7 +393,7 @@ impl Flow {
     /// `None` when the text — with `within_program`, the program (`%` or
     /// another O header after its first block) — ran out. Unreadable lines
     /// are skipped: a search is not a syntax check.
-    fn walk(
+    pub(crate) fn walk(
         &mut self,
         src: usize,
         from: Cursor,
@@ -455,7 +456,7 @@ impl Flow {
 }
 
 /// A whole, non-negative number that fits a `u32`.
-fn whole_u32(v: f64) -> Option<u32> {
+pub(crate) fn whole_u32(v: f64) -> Option<u32> {
     // In range and whole, so the cast is exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     (v >= 0.0 && v <= f64::from(u32::MAX) && v.fract() == 0.0).then_some(v as u32)

@@ -325,7 +325,7 @@ impl<'a> Interpreter<'a> {
     /// (E404, E405), an unreadable program (E408) and more than
     /// [`MAX_ALARMS`] alarms still end it.
     #[cold]
-    fn go_on_after(&mut self, d: Diagnostic) -> Result<(), Diagnostic> {
+    pub(crate) fn go_on_after(&mut self, d: Diagnostic) -> Result<(), Diagnostic> {
         let fatal = matches!(
             d.code,
             vcnc_syntax::Code::E404 | vcnc_syntax::Code::E405 | vcnc_syntax::Code::E408
@@ -500,7 +500,13 @@ impl<'a> Interpreter<'a> {
     /// A diagnostic of the block at `start` of `line`, placed, with the
     /// `;` hint when it applies.
     #[cold]
-    fn located(&mut self, d: Diagnostic, src: usize, line: &Line, start: usize) -> Diagnostic {
+    pub(crate) fn located(
+        &mut self,
+        d: Diagnostic,
+        src: usize,
+        line: &Line,
+        start: usize,
+    ) -> Diagnostic {
         let d = self.locate(d, src, line);
         self.semicolon_hint(d, src, line, start)
     }

@@ -187,8 +187,9 @@ impl Interpreter<'_> {
                 FlowOp::SubCall => return self.sub_call(w, g.span, next).map(Some),
                 FlowOp::SubReturn => return self.sub_return(g.span).map(Some),
                 FlowOp::Jump => return self.jump(w, g.span).map(Some),
-                // A finished loop continues after its block, but the label
-                // search may have moved the reader: re-read from `next`.
+                // A finished loop continues after its block, but pairing
+                // the program's loops may have moved the reader: re-read
+                // from `next`.
                 FlowOp::Loop => {
                     let step = self.loop_back(w, g.span, here)?;
                     return Ok(Some(if matches!(step, Step::Next) {

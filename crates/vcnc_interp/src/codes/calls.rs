@@ -211,15 +211,12 @@ impl Interpreter<'_> {
 impl Interpreter<'_> {
     /// The `N` number of an L word, found in the current program.
     fn label(&mut self, w: &Words<'_>, cmd: Span) -> Result<Cursor, Diagnostic> {
-        let l = w.get(b'L').ok_or_else(|| {
-            alarms::needs_word(cmd, "this code", "L (the sequence number to go to)")
-        })?;
-        let n = whole(&l, b'L', 1.0, 99_999_999.0, "L is a sequence number")?;
+        let (n, at) = sequence_word(w, cmd)?;
         let lex = self.cfg.dialect.lex;
         let frame = self.flow().frame();
         self.flow()
             .find_sequence(frame.source, frame.program, n, &lex)
-            .ok_or_else(|| alarms::sequence_not_found(l.span, n))
+            .ok_or_else(|| alarms::sequence_not_found(at, n))
     }
 
     /// G20 L: call `N L` of this program until G24.
@@ -271,8 +268,18 @@ impl Interpreter<'_> {
             99_999_999.0,
             "Q is how many times the loop body runs",
         )?;
-        let to = self.label(w, cmd)?;
-        let key = (self.flow().frame().source, here.offset, here.col);
+        // Its head was paired before the first G26 of the program ran
+        // (`macros/structure.rs`); its L is still read here, so a missing
+        // or malformed L alarms as it does after G20 and G25.
+        let (n, at) = sequence_word(w, cmd)?;
+        let frame = self.flow().frame();
+        let program = (self.program_key(), frame.source, frame.program);
+        let head =
+            self.macros
+                .structure
+                .lathe_loop(&mut self.flow, self.cfg.dialect, program, here)?;
+        let to = head.ok_or_else(|| alarms::sequence_not_found(at, n))?;
+        let key = (frame.source, here.offset, here.col);
         let left = self.flow().loops.get(&key).copied().unwrap_or(runs - 1);
         if left == 0 {
             self.flow().loops.remove(&key);
@@ -286,4 +293,14 @@ impl Interpreter<'_> {
         loops.insert(key, left - 1);
         Ok(Step::Jump(to))
     }
+}
+
+/// The sequence number in the L word of a lathe G20, G25 or G26, and
+/// where it stands.
+fn sequence_word(w: &Words<'_>, cmd: Span) -> Result<(u32, Span), Diagnostic> {
+    let l = w
+        .get(b'L')
+        .ok_or_else(|| alarms::needs_word(cmd, "this code", "L (the sequence number to go to)"))?;
+    let n = whole(&l, b'L', 1.0, 99_999_999.0, "L is a sequence number")?;
+    Ok((n, l.span))
 }

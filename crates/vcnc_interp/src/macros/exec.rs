@@ -137,8 +137,8 @@ impl Interpreter<'_> {
                 Ok(Step::Next)
             }
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
-            // A LinuxCNC line runs through `ngc_block` (front.rs) and is
-            // never cached as a statement.
+            // A LinuxCNC line runs through `run_ngc_line` (front.rs), from
+            // the statement cache too (`macro_cached`).
             StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
         }
     }

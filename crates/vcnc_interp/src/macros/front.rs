@@ -142,7 +142,45 @@ impl Interpreter<'_> {
             return Ok(None);
         };
         *i = c.next.col as usize;
+        if matches!(c.st.kind, StmtKind::Line(_)) {
+            return self.cached_ngc_line(&c, src, line, block, store, sink);
+        }
         self.run_compiled(&c, src, block, store, sink).map(Some)
+    }
+
+    /// A cached LinuxCNC line, run as on its first pass.
+    #[inline(never)]
+    fn cached_ngc_line<S: Sink>(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        line: &Line,
+        block: &mut Block,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Option<(Step, Span)>, Diagnostic> {
+        match self.run_ngc_line(c, block, store, sink) {
+            Ok(step) => Ok(Some((step, c.st.first))),
+            Err(d) => self.ngc_line_alarm(d, src, line, c.here.col as usize),
+        }
+    }
+
+    /// The alarm of a cached LinuxCNC line is that of a block the lexer
+    /// rejected, as on the line's first pass: placed with the `;` hint,
+    /// and under keep-going the run goes on with the next line — `None`,
+    /// the line's end being where the run loop now stands (a LinuxCNC
+    /// line is read to its end), so that it finds nothing more on it.
+    #[cold]
+    #[inline(never)]
+    fn ngc_line_alarm(
+        &mut self,
+        d: Diagnostic,
+        src: usize,
+        line: &Line,
+        start: usize,
+    ) -> Result<Option<(Step, Span)>, Diagnostic> {
+        let d = self.located(d, src, line, start);
+        self.go_on_after(d).map(|()| None)
     }
 
     /// The lexer rejected the block at `start`: if it is a macro statement,
@@ -215,10 +253,10 @@ impl Interpreter<'_> {
         self.run_compiled(&c, src, block, store, sink)
     }
 
-    /// A LinuxCNC line with parameters or expressions (`macros/ngc.rs`):
-    /// its words evaluated with the parameters as they were, the block
-    /// run, then its settings applied. A line without `#` or `[` keeps the
-    /// lexer's alarm.
+    /// A LinuxCNC line with parameters or expressions (`macros/ngc.rs`),
+    /// first met: parsed, kept in the statement cache like a Macro B
+    /// block (later passes run it from there without lexing), and run. A
+    /// line without `#` or `[` keeps the lexer's alarm.
     #[allow(clippy::too_many_arguments)] // macro_block's own
     fn ngc_block<S: Sink>(
         &mut self,
@@ -240,19 +278,69 @@ impl Interpreter<'_> {
             return Err(lexed);
         }
         let end = bytes.len();
-        let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
-        let StmtKind::Line(items) = &st.kind else {
+        let mut st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
+        if !matches!(st.kind, StmtKind::Line(_)) {
             return Err(lexed);
+        }
+        // The block is the whole line (where an alarm at its end points).
+        st.first = Span::new(start, end);
+        let here = Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: vcnc_syntax::clamp_u32(start),
+        };
+        let c = Rc::new(Compiled {
+            st,
+            lang: Lang::Ngc,
+            here,
+            next: Cursor {
+                col: vcnc_syntax::clamp_u32(end),
+                ..here
+            },
+            lines: Box::new([(0, *line)]),
+            target: std::cell::Cell::new(None),
+        });
+        let id = self.source_id(src);
+        self.macros.remember(key(id, here), &c);
+        self.looping.macro_active = true;
+        let step = self.run_ngc_line(&c, block, store, sink)?;
+        *i = end;
+        Ok((step, c.st.first))
+    }
+
+    /// Runs a LinuxCNC line: its words evaluated with the parameters as
+    /// they were, the block run, then its settings applied. Its alarms are
+    /// those of a block the lexer rejected: located in the line (and under
+    /// keep-going the run goes on with the next line).
+    fn run_ngc_line<S: Sink>(
+        &mut self,
+        c: &Compiled,
+        block: &mut Block,
+        store: &mut dyn ProgramStore,
+        sink: &mut S,
+    ) -> Result<Step, Diagnostic> {
+        self.ngc_words(&c.st, block)?;
+        if block.is_empty() {
+            return Ok(Step::Next);
+        }
+        self.macro_words_block(block, c.here, c.next, store, sink)
+    }
+
+    /// The words of a LinuxCNC line `st`, evaluated into `block` with the
+    /// parameters as they were; its settings are applied (block delete
+    /// skips those of a `/` line too).
+    fn ngc_words(&mut self, st: &Statement, block: &mut Block) -> Result<(), Diagnostic> {
+        let StmtKind::Line(items) = &st.kind else {
+            block.clear();
+            return Ok(());
         };
         let deleted = st.deleted.is_some();
         let read = self.evaluator().ngc_line(items)?;
-        // Block delete skips the settings of a `/` line too.
         if !(deleted && self.cfg.opts.block_delete) {
             let params = self.macros.ngc.get_or_insert_with(Box::default);
             params.commit(&read);
         }
         self.macros.used = true;
-        *i = end;
         block.clear();
         for w in &read.words {
             if !block.push(*w) {
@@ -263,21 +351,7 @@ impl Interpreter<'_> {
             }
         }
         block.deleted = deleted.then_some(1);
-        let span = Span::new(start, end);
-        if block.is_empty() {
-            return Ok((Step::Next, span));
-        }
-        let here = Cursor {
-            offset: line.offset,
-            line: line.number,
-            col: vcnc_syntax::clamp_u32(start),
-        };
-        let next = Cursor {
-            col: vcnc_syntax::clamp_u32(end),
-            ..here
-        };
-        let step = self.macro_words_block(block, here, next, store, sink)?;
-        Ok((step, span))
+        Ok(())
     }
 
     /// The lexer's alarm for a block without macro syntax, except that a
@@ -331,26 +405,10 @@ impl Interpreter<'_> {
                 return Err(lexed);
             }
             let st = vcnc_syntax::macros::parse_ngc_line(bytes, start)?;
-            let StmtKind::Line(items) = &st.kind else {
+            if !matches!(st.kind, StmtKind::Line(_)) {
                 return Err(lexed);
-            };
-            let deleted = st.deleted.is_some();
-            let read = self.evaluator().ngc_line(items)?;
-            if !(deleted && self.cfg.opts.block_delete) {
-                let params = self.macros.ngc.get_or_insert_with(Box::default);
-                params.commit(&read);
             }
-            self.macros.used = true;
-            block.clear();
-            for w in &read.words {
-                if !block.push(*w) {
-                    return Err(vcnc_syntax::diagnostics::too_many_words(
-                        w.span,
-                        vcnc_syntax::MAX_WORDS,
-                    ));
-                }
-            }
-            block.deleted = deleted.then_some(1);
+            self.ngc_words(&st, block)?;
             return Ok(bytes.len());
         }
         let syn = self

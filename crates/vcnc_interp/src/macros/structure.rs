@@ -23,6 +23,14 @@
 //! outside it alarms (E614, `exec.rs`).
 //! Memory is bounded: at most [`LINK_LIMIT`] links in a run.
 //!
+//! The seed lathe's `G26 L n Q q` (seed 003) closes a loop whose head is
+//! the block labelled `N n` of its program. The first G26 a program runs
+//! pairs every G26 of that program with its head in one pass over the
+//! program's blocks (the first block labelled `N n`, wherever it stands,
+//! as the controller's sequence search finds it), kept as a `Back` link
+//! like a loop's END; `codes/calls.rs` follows the link, and a G26 whose
+//! label the program lacks has none (E404 when it runs).
+//!
 //! LinuxCNC's O-words (`o100 while` … `o100 endwhile`, `sub`, `if`, `do`,
 //! `repeat`) are listed here too, once per source: they pair by label
 //! within a subroutine's scope rather than by nesting, so the list keeps
@@ -31,10 +39,12 @@
 
 use super::{Compiled, FastMap, Key, key};
 use crate::alarms;
+use crate::dialect::{Dialect, FlowOp, GOp};
+use crate::flow::{Flow, whole_u32};
 use crate::interpreter::Interpreter;
 use std::rc::Rc;
 use vcnc_syntax::macros::{Kw, Lang, StmtKind, o_statement, parse_iso_block};
-use vcnc_syntax::{Cursor, Diagnostic, ReadError, lex_block};
+use vcnc_syntax::{Addr, Cursor, Diagnostic, ReadError, lex_block};
 
 /// Most links kept in a run (E611 beyond).
 const LINK_LIMIT: usize = 65_536;
@@ -118,6 +128,8 @@ pub(crate) struct Structure {
     last: Option<Key>,
     /// LinuxCNC's O-word statements of each source read, by source id.
     owords: Vec<(u32, Rc<Statements>)>,
+    /// The programs whose lathe G26 loops are paired.
+    lathe_paired: FastMap<Key, ()>,
 }
 
 impl Structure {
@@ -738,6 +750,82 @@ fn loop_keyword(bytes: &[u8], start: usize) -> bool {
     ["WHILE", "DO", "END", "WH", "EN"]
         .iter()
         .any(|k| rest.len() >= k.len() && rest[..k.len()].eq_ignore_ascii_case(k.as_bytes()))
+}
+
+impl Structure {
+    /// The head of the lathe loop that the G26 at `here` closes: the
+    /// program `pk` (source `src`, starting at `program`) is paired the
+    /// first time one of its G26 blocks runs. `None`: the program has no
+    /// block labelled with the G26's L.
+    pub(crate) fn lathe_loop(
+        &mut self,
+        flow: &mut Flow,
+        dialect: &Dialect,
+        (pk, src, program): (Key, usize, Cursor),
+        here: Cursor,
+    ) -> Result<Option<Cursor>, Diagnostic> {
+        if !self.lathe_paired.contains_key(&pk) {
+            let links = pair_lathe_loops(flow, dialect, pk.0, src, program);
+            if self.links.len() + links.len() > LINK_LIMIT {
+                return Err(alarms::bad_structure(
+                    vcnc_syntax::Span::new(0, 1),
+                    format!("more than {LINK_LIMIT} loop and branch statements in one run"),
+                    "split the program",
+                ));
+            }
+            self.links.extend(links);
+            if self.lathe_paired.len() >= LINK_LIMIT {
+                self.lathe_paired.clear();
+            }
+            self.lathe_paired.insert(pk, ());
+        }
+        Ok(match self.links.get(&key(pk.0, here)) {
+            Some(Link::Back(head)) => Some(*head),
+            _ => None,
+        })
+    }
+}
+
+/// Every G26 of the program at `program` of source `src` (id `id`) with
+/// the first block labelled by its L, in one pass over the program.
+fn pair_lathe_loops(
+    flow: &mut Flow,
+    dialect: &Dialect,
+    id: u32,
+    src: usize,
+    program: Cursor,
+) -> Vec<(Key, Link)> {
+    let is_loop = |w: &vcnc_syntax::Word| {
+        w.addr == Addr::letter(b'G')
+            && dialect
+                .g(w.value)
+                .is_some_and(|d| d.op == GOp::Flow(FlowOp::Loop))
+    };
+    let whole = |w: &vcnc_syntax::Word| (!w.point).then(|| whole_u32(w.value)).flatten();
+    let mut labels: FastMap<u32, Cursor> = FastMap::default();
+    let mut loops: Vec<(Cursor, Option<u32>)> = Vec::new();
+    let lex = dialect.lex;
+    flow.walk(src, program, &lex, true, false, |block, at, _| {
+        for w in block.words() {
+            if w.addr == Addr::letter(b'N')
+                && let Some(n) = whole(w)
+            {
+                labels.entry(n).or_insert(at);
+            }
+        }
+        if block.words().iter().any(is_loop) {
+            let l = block.words().iter().find(|w| w.addr == Addr::letter(b'L'));
+            loops.push((at, l.and_then(whole)));
+        }
+        false
+    });
+    loops
+        .into_iter()
+        .filter_map(|(at, l)| {
+            let head = labels.get(&l?)?;
+            Some((key(id, at), Link::Back(*head)))
+        })
+        .collect()
 }
 
 // LinuxCNC's O-words pair by label, not by nesting: a statement's partner

@@ -10,14 +10,17 @@ use vcnc_interp::{Dialect, Event, Interpreter, MAX_ALARMS, Machine, Options, Out
 use vcnc_syntax::Code;
 
 fn run(program: &str) -> (Vec<Event>, Outcome) {
+    run_in(&Dialect::fanuc(), program)
+}
+
+fn run_in(dialect: &Dialect, program: &str) -> (Vec<Event>, Outcome) {
     let machine = Machine::default_mill();
-    let dialect = Dialect::fanuc();
     let opts = Options {
         keep_going: true,
         ..Options::default()
     };
     let mut sink = VecSink::default();
-    let out = Interpreter::new(&machine, &dialect, opts).run_str(program, &mut sink);
+    let out = Interpreter::new(&machine, dialect, opts).run_str(program, &mut sink);
     (sink.0, out)
 }
 
@@ -142,5 +145,19 @@ fn a_corner_that_cannot_be_made_runs_its_g01_straight_and_the_program_goes_on() 
         })
         .collect();
     assert_eq!(feeds, vec![(3, 10.0, 0.0), (5, 20.0, 0.0)]);
+    assert!(matches!(events.last(), Some(Event::End { .. })));
+}
+
+#[test]
+fn a_linuxcnc_line_that_alarms_on_a_later_pass_skips_that_line_only() {
+    // Line 4 divides by 2 - #1: on the second pass (#1 = 2) by zero
+    // (E608). The line has been run once already, so this pass runs it
+    // from the statement cache; its alarm must still be that of a line
+    // (the run goes on with the next line) and the third pass moves to
+    // 10 / (2 - 3) = -10.
+    let program = "#1 = 0\no100 while [#1 LT 3]\n#1 = [#1 + 1]\nG1 X[10 / [2 - #1]] F100\no100 endwhile\nM2\n";
+    let (events, _) = run_in(&Dialect::linuxcnc(), program);
+    assert_eq!(alarms(&events), vec![(Code::E608, 4)]);
+    assert_eq!(feed_xs(&events), vec![10.0, -10.0]);
     assert!(matches!(events.last(), Some(Event::End { .. })));
 }

@@ -121,6 +121,52 @@ fn lathe_g26_q1_runs_the_body_once() {
 }
 
 #[test]
+fn lathe_g26_without_its_label_alarms_at_l_after_the_body_ran_once() {
+    // No N20 in the program: the G26 has no head, so it alarms when it
+    // runs (E402 at its L word), after the blocks before it moved.
+    let p = "G00 X100 Z100\nN10 G01 W-1 F100\nG26 L20 Q2\nM30\n";
+    let (ev, out) = run(&Dialect::lathe(), p);
+    assert_eq!(alarm(&out), (Code::E402, 3, 5));
+    // G00 from the home position (Z150) moves X, then Z (dog-leg).
+    assert_eq!(
+        ends(&ev, 2),
+        vec![vec![50.0, 150.0], vec![50.0, 100.0], vec![50.0, 99.0]]
+    );
+}
+
+#[test]
+fn lathe_g26_loops_back_to_the_first_block_with_its_label() {
+    // Two N10: the sequence search from the program's start finds the
+    // first, so both W moves repeat (Z 99, 97, then 96, 94).
+    let p = "G00 X100 Z100\nN10 G01 W-1 F100\nN10 W-2\nG26 L10 Q2\nM30\n";
+    let (ev, out) = run(&Dialect::lathe(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let z: Vec<f64> = ends(&ev, 2).iter().map(|e| e[1]).collect();
+    assert_eq!(z, vec![150.0, 100.0, 99.0, 97.0, 96.0, 94.0]);
+}
+
+#[test]
+fn lathe_g26_loops_nest_and_an_inner_loop_counts_again_each_pass() {
+    // The inner G26 runs N20 twice on each of the outer loop's two passes:
+    // six W-1 moves in all.
+    let p = "G00 X100 Z100\nN10 G01 W-1 F100\nN20 W-1\nG26 L20 Q2\nG26 L10 Q2\nM30\n";
+    let (ev, out) = run(&Dialect::lathe(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let z: Vec<f64> = ends(&ev, 2).iter().map(|e| e[1]).collect();
+    assert_eq!(z, vec![150.0, 100.0, 99.0, 98.0, 97.0, 96.0, 95.0, 94.0]);
+}
+
+#[test]
+fn lathe_g26_in_a_g20_subroutine_loops_within_it() {
+    // G20 L50 calls N50 until G24; its G26 L50 Q2 runs the W-1 twice.
+    let p = "G00 X100 Z100\nG20 L50\nM30\nN50 G01 W-1 F100\nG26 L50 Q2\nG24\n";
+    let (ev, out) = run(&Dialect::lathe(), p);
+    assert_eq!(out, Outcome::Ended(vcnc_interp::EndCode::M30));
+    let z: Vec<f64> = ends(&ev, 2).iter().map(|e| e[1]).collect();
+    assert_eq!(z, vec![150.0, 100.0, 99.0, 98.0]);
+}
+
+#[test]
 fn lathe_g81_with_a_tiny_i_alarms_instead_of_exhausting_memory() {
     let (_, out) = run(
         &Dialect::lathe(),
