@@ -22,7 +22,7 @@ use crate::state::Motion;
 use crate::words::Words;
 use vcnc_core::events::MAX_AXES;
 use vcnc_core::events::SpindleDir;
-use vcnc_syntax::{Diagnostic, Span};
+use vcnc_syntax::{Addr, Diagnostic, Span};
 
 impl<'a> Machining<'_, 'a> {
     /// LinuxCNC's G33.1 K: in to the block's point locked to the spindle,
@@ -134,7 +134,16 @@ impl<'a> Machining<'_, 'a> {
             Motion::TurnCycle | Motion::ThreadingCycle | Motion::FaceCycle => {
                 self.single_cycle(w, cmd, motion)
             }
-            _ if !w.moves(self.cfg.axis_mask) => Ok(()),
+            _ if !w.moves(self.cfg.axis_mask) => {
+                // `,C`/`,R` under G01 in a block that does not move: the
+                // chamfer has no corner to cut (Fanuc PS0055).
+                match (w.get_ext(Addr::COMMA_C), w.get_ext(Addr::COMMA_R)) {
+                    (Some(c), _) | (None, Some(c)) if motion == Motion::Linear => {
+                        Err(alarms::corner_fault(c.span, "the G01 has no end point"))
+                    }
+                    _ => Ok(()),
+                }
+            }
             Motion::Rapid => {
                 let goal = self.state.target(self.cfg, w, self.state.modal.incremental);
                 let to = self.state.move_target(&goal);

@@ -690,6 +690,18 @@ fn e347_chamfer_without_a_g01_after_it() {
     }
 }
 
+/// Regression (review of 2026-12-06): `,C`/`,R` under G01 in a block
+/// without an axis word has no corner to cut: E347 at the word (Fanuc
+/// PS0055), as on a block with a G01 and no end point, instead of being
+/// dropped unseen.
+#[test]
+fn regression_e347_a_corner_word_without_a_move() {
+    let head = "G97 S1000 M03\nG00 X40. Z2.\nG01 X20. Z0. F0.1\n";
+    check_lathe(&format!("{head}N4 ,C1.\n"), Code::E347, (4, 4), 4);
+    check_lathe(&format!("{head}N4 G01 ,R1.\n"), Code::E347, (4, 8), 4);
+    check_lathe(&format!("{head}N4 M05 ,C1.\n"), Code::E347, (4, 8), 4);
+}
+
 /// Regression: an alarm about a move G70 makes along its profile (here
 /// over-travel) names the profile block's line and column, not a column
 /// of the G70 line.
