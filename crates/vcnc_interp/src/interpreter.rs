@@ -896,8 +896,11 @@ impl Locator<'_> {
             return d;
         }
         // A macro statement spanning lines maps its offsets to their line.
+        // Only for a line where the statement starts: an alarm about an
+        // earlier block (a move compensation or a corner held) sits on its
+        // own line.
         let (mut d, line) = match self.span_map.as_deref() {
-            Some(c) => {
+            Some(c) if c.here.offset == line.offset => {
                 let (l, start) = c.line_of(d.span.start);
                 let len = d.span.end.saturating_sub(d.span.start);
                 let mut d = d;
@@ -907,7 +910,7 @@ impl Locator<'_> {
                 };
                 (d, l)
             }
-            None => (d, *line),
+            _ => (d, *line),
         };
         let line = &line;
         let text = self.line_text(src, line);

@@ -702,6 +702,20 @@ fn regression_e347_a_corner_word_without_a_move() {
     check_lathe(&format!("{head}N4 M05 ,C1.\n"), Code::E347, (4, 8), 4);
 }
 
+/// Regression (review of 2026-12-06): an alarm about a move compensation
+/// held is placed on the held block's line, also when the statement being
+/// run spans lines (its line map was applied to the held block's offsets:
+/// E318 landed on the current statement, 8:1).
+#[test]
+fn regression_an_alarm_about_a_held_move_is_not_placed_by_the_current_statement() {
+    let r = run(
+        "%@MACRO\nG10 L12 P1 R5.;\nG00 X-20. Y-20. Z5.;\nG01 Z-1. F100.;\n\
+                 G41 D1 X0. Y0.;\nG01 Y50.;\nG01 X50.;\nG01 X40.\n Y50.5;\nY45.;\n\
+                 G40 X-20. Y-20.;\nM30;\n",
+    );
+    assert_last_alarm(&r, Code::E318, 7, 1);
+}
+
 /// Regression: an alarm about a move G70 makes along its profile (here
 /// over-travel) names the profile block's line and column, not a column
 /// of the G70 line.
