@@ -268,7 +268,7 @@ impl<'a> Interpreter<'a> {
                                     }
                                     Err(d) => {
                                         let d = self.located(d, src, &line, start);
-                                        self.go_on_after(d)?;
+                                        let _ = self.go_on_after(d)?;
                                         // The rest of the line is the
                                         // statement's: on with the next.
                                         break;
@@ -315,7 +315,9 @@ impl<'a> Interpreter<'a> {
         start: usize,
     ) -> Result<Step, Diagnostic> {
         let d = self.located(d, src, line, start);
-        self.go_on_after(d).map(|()| Step::Next)
+        // A block that read other lines (G70–G73's profile) goes on after
+        // itself, not where its reading left the reader.
+        Ok(self.go_on_after(d)?.map_or(Step::Next, Step::Jump))
     }
 
     /// An alarm in a block: the end of the run, or under
@@ -325,7 +327,10 @@ impl<'a> Interpreter<'a> {
     /// (E404, E405), an unreadable program (E408) and more than
     /// [`MAX_ALARMS`] alarms still end it.
     #[cold]
-    pub(crate) fn go_on_after(&mut self, d: Diagnostic) -> Result<(), Diagnostic> {
+    ///
+    /// Returns where the program goes on when the alarmed block read other
+    /// lines of it (`Flow::after_alarm`), else `None`: the next block.
+    pub(crate) fn go_on_after(&mut self, d: Diagnostic) -> Result<Option<Cursor>, Diagnostic> {
         let fatal = matches!(
             d.code,
             vcnc_syntax::Code::E404 | vcnc_syntax::Code::E405 | vcnc_syntax::Code::E408
@@ -339,7 +344,7 @@ impl<'a> Interpreter<'a> {
         }
         self.stage.pending.push(Event::Alarm(d));
         self.machining().release_corner();
-        Ok(())
+        Ok(self.flow.after_alarm.take())
     }
 
     /// What follows a block's step: the sink's wish to stop, the level's

@@ -115,7 +115,9 @@ impl Interpreter<'_> {
         match w.axis_user {
             // G70–G73 read their profile from the program text.
             Some(user) if user.def.op.reads_profile() => {
-                resume = self.profile_cycle(user.def.op, user.span, w, next)?;
+                resume = self
+                    .profile_cycle(user.def.op, user.span, w, next)
+                    .inspect_err(|_| self.flow.after_alarm = Some(next))?;
             }
             Some(user) => m.axis_code(user.def.op, user.span, w)?,
             None => m.modal_motion(w)?,

@@ -180,7 +180,7 @@ impl Interpreter<'_> {
         start: usize,
     ) -> Result<Option<(Step, Span)>, Diagnostic> {
         let d = self.located(d, src, line, start);
-        self.go_on_after(d).map(|()| None)
+        self.go_on_after(d).map(|_| None)
     }
 
     /// The lexer rejected the block at `start`: if it is a macro statement,

@@ -161,3 +161,45 @@ fn a_linuxcnc_line_that_alarms_on_a_later_pass_skips_that_line_only() {
     assert_eq!(feed_xs(&events), vec![10.0, -10.0]);
     assert!(matches!(events.last(), Some(Event::End { .. })));
 }
+
+/// An alarm inside G70's finishing pass drops the G70 block, and the run
+/// goes on after it — not where reading the profile left the program
+/// (review of 2026-12-06: the run ended at the G70 with W106, or replayed
+/// the profile until the alarm cap).
+#[test]
+fn an_alarm_in_a_profile_cycle_goes_on_after_the_cycle_block() {
+    let lathe = Dialect::fanuc_lathe();
+    // G70 alone: its profile's G01 has no feed (E301 at line 9).
+    let program = "O0001\nG21 G18 G99\nT0101\nG97 S500 M03\nG00 X80. Z2.\nG70 P10 Q20\nM30\n\
+                   N10 G00 X20.\nG01 Z-20.\nN20 G01 X82.\n";
+    let (events, out) = run_in(&lathe, program);
+    assert_eq!(alarms(&events), vec![(Code::E301, 9)]);
+    assert!(ends_with_m30(&events), "{out:?}");
+    // G71 whose profile starts inside the stock (E343), then the same
+    // profile run as blocks and by G70: each alarm once, then M30.
+    let program = "O0001\nG21 G18 G99\nT0101\nG97 S500 M03\nG00 X80. Z2.\nG71 U2. R0.5\n\
+                   G71 P10 Q20 U0.4 W0.1 F0.25\nN10 G00 X20.\nG01 Z-20.\nN20 G01 X82.\n\
+                   G70 P10 Q20\nM30\n";
+    let (events, out) = run_in(&lathe, program);
+    assert_eq!(
+        alarms(&events),
+        vec![
+            (Code::E343, 8),
+            (Code::E301, 9),
+            (Code::E301, 10),
+            (Code::E301, 9)
+        ]
+    );
+    assert!(ends_with_m30(&events), "{out:?}");
+}
+
+/// Whether the run reached its M30 (the last event).
+fn ends_with_m30(events: &[Event]) -> bool {
+    matches!(
+        events.last(),
+        Some(Event::End {
+            code: vcnc_interp::EndCode::M30,
+            ..
+        })
+    )
+}
