@@ -34,7 +34,7 @@
 //! G92 and transforms apply; cutter compensation in force is suspended as
 //! for a canned cycle.
 
-use super::cycles::{CycleAxes, SAME_MM, Steps};
+use super::cycles::{CycleAxes, SAME_MM, Steps, positive};
 use crate::alarms;
 use crate::dialect::CircleCutForm;
 use crate::interpreter::Machining;
@@ -42,7 +42,7 @@ use crate::motion::MoveKind;
 use crate::words::Words;
 use crate::words::whole;
 use vcnc_core::events::{ArcDir, Feed, Plane};
-use vcnc_syntax::{Diagnostic, Span, Word};
+use vcnc_syntax::{Diagnostic, Span};
 
 /// Most full circles one G12/G13 block may cut over its repeats (its
 /// events are held until the block has succeeded), as a pocket's rings.
@@ -63,19 +63,6 @@ struct Cut {
     cw: bool,
     /// In and out along half circles (Haas), else straight (Mach3).
     arcs_in_out: bool,
-}
-
-fn positive(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
-    if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(alarms::value_out_of_range(
-            word.span,
-            word.addr.0,
-            word.value,
-            why,
-        ))
-    }
 }
 
 /// The moves of one circle cut, relative to its centre.

@@ -193,6 +193,20 @@ impl Steps<'_, '_> {
     }
 }
 
+/// The value `v` of `word` if it is more than 0, else E109 saying `why`.
+pub(crate) fn positive(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(alarms::value_out_of_range(
+            word.span,
+            word.addr.0,
+            word.value,
+            why,
+        ))
+    }
+}
+
 /// Whether a cycle doing `hole` pecks by Q (and so needs Q > 0).
 fn pecks_with_q(hole: Hole) -> bool {
     matches!(hole, Hole::HighSpeedPeck | Hole::DeepPeck | Hole::ChipBreak)

@@ -16,7 +16,7 @@
 //! the level where the block started. All points are program points on
 //! the motion stage, so offsets and G92 apply.
 
-use super::cycles::{CycleAxes, SAME_MM, Steps};
+use super::cycles::{CycleAxes, SAME_MM, Steps, positive};
 use crate::alarms;
 use crate::dialect::CycleOp;
 use crate::interpreter::Machining;
@@ -261,18 +261,6 @@ impl<'a> Machining<'_, 'a> {
                 }
             }
         }
-        let positive = |word: Word, v: f64, why: &str| {
-            if v > 0.0 {
-                Ok(v)
-            } else {
-                Err(alarms::value_out_of_range(
-                    word.span,
-                    word.addr.0,
-                    word.value,
-                    why,
-                ))
-            }
-        };
         let not_negative = |word: Word, v: f64, why: &str| {
             if v >= 0.0 {
                 Ok(v)

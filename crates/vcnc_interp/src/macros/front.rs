@@ -51,6 +51,31 @@ pub(crate) struct Compiled {
 }
 
 impl Compiled {
+    /// A statement written on one line, from byte `start` to `end` of it.
+    fn on_line(
+        st: Statement,
+        lang: Lang,
+        line: &Line,
+        (start, end): (usize, usize),
+    ) -> Rc<Compiled> {
+        let here = Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: vcnc_syntax::clamp_u32(start),
+        };
+        Rc::new(Compiled {
+            st,
+            lang,
+            here,
+            next: Cursor {
+                col: vcnc_syntax::clamp_u32(end),
+                ..here
+            },
+            lines: Box::new([(0, *line)]),
+            target: std::cell::Cell::new(None),
+        })
+    }
+
     /// The line holding virtual offset `at`, and the offset within it.
     pub fn line_of(&self, at: u32) -> (Line, u32) {
         let (start, line) = self
@@ -227,22 +252,8 @@ impl Interpreter<'_> {
         let Some((st, next_col)) = parsed else {
             return Err(self.no_macro_syntax(src, line, lexed));
         };
-        let here = Cursor {
-            offset: line.offset,
-            line: line.number,
-            col: vcnc_syntax::clamp_u32(start),
-        };
-        let c = Rc::new(Compiled {
-            st,
-            lang: Lang::MacroB,
-            here,
-            next: Cursor {
-                col: vcnc_syntax::clamp_u32(next_col),
-                ..here
-            },
-            lines: Box::new([(0, *line)]),
-            target: std::cell::Cell::new(None),
-        });
+        let c = Compiled::on_line(st, Lang::MacroB, line, (start, next_col));
+        let here = c.here;
         let id = self.source_id(src);
         self.macros.remember(key(id, here), &c);
         self.looping.macro_active = true;
@@ -284,22 +295,8 @@ impl Interpreter<'_> {
         }
         // The block is the whole line (where an alarm at its end points).
         st.first = Span::new(start, end);
-        let here = Cursor {
-            offset: line.offset,
-            line: line.number,
-            col: vcnc_syntax::clamp_u32(start),
-        };
-        let c = Rc::new(Compiled {
-            st,
-            lang: Lang::Ngc,
-            here,
-            next: Cursor {
-                col: vcnc_syntax::clamp_u32(end),
-                ..here
-            },
-            lines: Box::new([(0, *line)]),
-            target: std::cell::Cell::new(None),
-        });
+        let c = Compiled::on_line(st, Lang::Ngc, line, (start, end));
+        let here = c.here;
         let id = self.source_id(src);
         self.macros.remember(key(id, here), &c);
         self.looping.macro_active = true;
