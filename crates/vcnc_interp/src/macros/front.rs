@@ -592,7 +592,15 @@ impl Interpreter<'_> {
             self.flow.loc.line = c.here.line;
             let line = c.first_line();
             self.stage.cur_line = Some((src, line));
-            let (step, first) = self.run_compiled(&c, src, block, store, sink)?;
+            let (step, first) = match self.run_compiled(&c, src, block, store, sink) {
+                Ok(ran) => ran,
+                // Under keep-going the run goes on with the next statement
+                // (or where the alarmed one's reading says).
+                Err(d) => (
+                    self.go_on_after(d)?.map_or(Step::Next, Step::Jump),
+                    c.st.first,
+                ),
+            };
             let step = match step {
                 Step::Next => Step::Jump(c.next),
                 s => s,

@@ -203,3 +203,20 @@ fn ends_with_m30(events: &[Event]) -> bool {
         })
     )
 }
+
+/// A Syntec `%@MACRO` program goes on after an alarmed statement like any
+/// other (review of 2026-12-06: the first alarm ended the run, so the
+/// editor showed one mistake of such a program).
+#[test]
+fn a_macro_file_goes_on_after_an_alarmed_statement() {
+    let program = "%@MACRO\nG00 X0. Y0. Z0.;\nG02 X10. Y0. R0.;\nG01 X5. F100.;\n\
+                   G02 X10. Y0. R0.;\nG01 X7.;\nM30;\n";
+    let (events, _) = run_in(&Dialect::syntec(), program);
+    assert_eq!(alarms(&events).len(), 2, "{events:#?}");
+    assert_eq!(
+        alarms(&events).iter().map(|a| a.1).collect::<Vec<_>>(),
+        vec![3, 5]
+    );
+    assert_eq!(feed_xs(&events), vec![5.0, 7.0]);
+    assert!(matches!(events.last(), Some(Event::End { .. })));
+}
