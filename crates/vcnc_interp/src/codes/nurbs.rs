@@ -179,12 +179,41 @@ impl<'a> Machining<'_, 'a> {
                 "a new curve starts with G06.2 (P K X Y Z R)",
             ));
         };
+        // What the block adds, taken back if it alarms: the curve stays as
+        // the blocks before left it (a run that keeps going reads its next
+        // blocks against it).
+        let mark = (b.curve.knots.len(), b.curve.points.len(), b.knots_only);
+        match self.nurbs_knot(&mut b, w, k) {
+            Ok(true) => self.nurbs_emit(b),
+            Ok(false) => {
+                self.stage.nurbs = Some(b);
+                Ok(())
+            }
+            Err(d) => {
+                b.curve.knots.truncate(mark.0);
+                b.curve.points.truncate(mark.1);
+                b.curve.weights.truncate(mark.1);
+                b.knots_only = mark.2;
+                self.stage.nurbs = Some(b);
+                Err(d)
+            }
+        }
+    }
+
+    /// One block's knot `k` (and control point) added to the curve `b`;
+    /// whether the curve is then complete.
+    fn nurbs_knot(
+        &mut self,
+        b: &mut NurbsBuild,
+        w: &Words<'_>,
+        k: vcnc_syntax::Word,
+    ) -> Result<bool, Diagnostic> {
         if !k.value.is_finite() || b.curve.knots.last().is_some_and(|last| k.value < *last) {
             return Err(alarms::bad_nurbs(k.span, "the knots must not decrease"));
         }
         b.curve.knots.push(k.value);
         if w.any(self.cfg.axis_mask) {
-            self.nurbs_point(&mut b, w)?;
+            self.nurbs_point(b, w)?;
         } else {
             b.knots_only = true;
             if let Some(r) = w.get(b'R') {
@@ -196,13 +225,12 @@ impl<'a> Machining<'_, 'a> {
         }
         let need = b.curve.points.len() + usize::from(b.curve.order);
         if b.knots_only && b.curve.knots.len() == need {
-            return self.nurbs_emit(b);
+            return Ok(true);
         }
         if b.curve.knots.len() > need.max(MAX_NURBS_POINTS + 4) {
             return Err(alarms::bad_nurbs(k.span, "more knots than n + P"));
         }
-        self.stage.nurbs = Some(b);
-        Ok(())
+        Ok(false)
     }
 
     fn nurbs_start(&mut self, w: &Words<'_>, cmd: Span) -> Result<(), Diagnostic> {

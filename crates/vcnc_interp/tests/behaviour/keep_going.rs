@@ -220,3 +220,24 @@ fn a_macro_file_goes_on_after_an_alarmed_statement() {
     assert_eq!(feed_xs(&events), vec![5.0, 7.0]);
     assert!(matches!(events.last(), Some(Event::End { .. })));
 }
+
+/// A G06.2 curve keeps what its blocks before an alarmed one gave: the
+/// next blocks go on defining it (review of 2026-12-06: the curve was
+/// dropped at the first alarm and each later block alarmed again).
+#[test]
+fn a_curve_being_defined_survives_an_alarmed_block() {
+    let program = "G90 G17\nG00 X0. Y0. Z0.\nG05 P10000\nG06.2 P4 K0. X0. Y0. Z0. R1. F1000.\n\
+                   K0. X10. Y10. R1.\nK0. X20. Y0. R1.\nK0. X30. Y10. R1.\nK1.\nK0.5\nK1.\nK1.\n\
+                   K1.\nG05 P0\nM30\n";
+    let (events, _) = run(program);
+    assert_eq!(alarms(&events), vec![(Code::E329, 9)]);
+    assert_eq!(
+        events
+            .iter()
+            .filter(|e| matches!(e, Event::Nurbs { .. }))
+            .count(),
+        1,
+        "{events:#?}"
+    );
+    assert!(ends_with_m30(&events));
+}
