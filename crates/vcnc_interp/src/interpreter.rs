@@ -343,7 +343,14 @@ impl<'a> Interpreter<'a> {
             self.looping.first_alarm = Some(d.clone());
         }
         self.stage.pending.push(Event::Alarm(d));
-        self.machining().release_corner();
+        // The held corner's straight move, if it cannot be made either, is
+        // reported like any alarm.
+        if let Some(dropped) = self.machining().release_corner()
+            && self.looping.alarms < MAX_ALARMS
+        {
+            self.looping.alarms += 1;
+            self.stage.pending.push(Event::Alarm(dropped));
+        }
         Ok(self.flow.after_alarm.take())
     }
 

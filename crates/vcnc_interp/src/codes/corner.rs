@@ -381,11 +381,10 @@ impl<'a> Machining<'_, 'a> {
     /// the alarmed block): a G01 still held for its corner runs straight
     /// to the corner, unrounded, so that the blocks after it are read as
     /// written instead of each alarming against the same stale corner, and
-    /// the path keeps the move. A move that cannot be made is dropped.
-    pub(crate) fn release_corner(&mut self) {
-        let Some(held) = self.state.lathe.corner.take() else {
-            return;
-        };
+    /// the path keeps the move. A move that cannot be made is dropped and
+    /// its alarm returned, placed at the held block.
+    pub(crate) fn release_corner(&mut self) -> Option<Diagnostic> {
+        let held = self.state.lathe.corner.take()?;
         let corner = self.state.prog;
         let block = vcnc_syntax::Block::default();
         let w = Words::new(&block);
@@ -398,11 +397,19 @@ impl<'a> Machining<'_, 'a> {
             exact_stop: false,
             cmd: held.cmd,
         };
-        if self.commit(straight, &w).is_err() {
-            self.state.prog = corner;
-        }
+        let dropped = match self.commit(straight, &w) {
+            Ok(()) => None,
+            Err(d) => {
+                self.state.prog = corner;
+                Some(match held.source_line {
+                    Some((src, at)) => self.at.locate(d, src, &at),
+                    None => d,
+                })
+            }
+        };
         self.at.set_line(line);
         self.stage.cur_line = cur_line;
+        dropped
     }
 
     /// At the end of the program (its last block being the G01 with the

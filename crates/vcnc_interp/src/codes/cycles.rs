@@ -134,8 +134,9 @@ impl Steps<'_, '_> {
         self.go(it, kind, p)
     }
 
-    /// An arc in the plane to `to` about `centre` (both from the cycle's
-    /// point), at level `z`.
+    /// An arc in the XY plane to `to` about `centre` (both from the
+    /// cycle's point), at level `z`: its callers, G78/G79 and G12/G13, run
+    /// in G17 only (they refuse the other planes).
     pub fn arc(
         &self,
         it: &mut Machining<'_, '_>,

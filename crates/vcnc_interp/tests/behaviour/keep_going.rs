@@ -241,3 +241,18 @@ fn a_curve_being_defined_survives_an_alarmed_block() {
     );
     assert!(ends_with_m30(&events));
 }
+
+/// After an alarm a G01 held for its `,R` runs straight to its corner;
+/// when that move cannot be made either (here an over-cut under G41), its
+/// alarm is reported too instead of the move vanishing (review of
+/// 2026-12-06).
+#[test]
+fn a_released_corner_that_cannot_move_is_reported() {
+    let program = "G21 G17 G90 G54\nS1000 M03\nG10 L12 P1 R3.\nG00 X-20. Y-20. Z1.\n\
+                   G01 Z-1. F100.\nG41 D1 X0. Y0.\nG01 Y50.\nX50.\nG01 X0. ,R1.\nG00 Z5.\n\
+                   G40 X-20. Y-20.\nM30\n";
+    let (events, _) = run(program);
+    let found = alarms(&events);
+    assert_eq!(found.first(), Some(&(Code::E347, 10)), "{found:?}");
+    assert_eq!(found.get(1).map(|a| a.1), Some(9), "{found:?}");
+}
