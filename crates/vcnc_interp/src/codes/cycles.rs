@@ -173,18 +173,9 @@ impl Steps<'_, '_> {
         self.to(it, MoveKind::Feed(feed), (0.0, 0.0), z)
     }
 
-    /// A rapid in the plane to the shifted (or, with (0,0), centred) point.
+    /// A rapid to the shifted (or, with (0,0), centred) point at level
+    /// `z`: in the plane, or along the drilling axis at the shifted point.
     fn shift(
-        &mut self,
-        it: &mut Machining<'_, '_>,
-        s: (f64, f64),
-        z: f64,
-    ) -> Result<(), Diagnostic> {
-        self.to(it, MoveKind::Rapid, s, z)
-    }
-
-    /// A rapid along the drilling axis at the shifted point.
-    fn shifted(
         &mut self,
         it: &mut Machining<'_, '_>,
         s: (f64, f64),
@@ -855,7 +846,7 @@ impl<'a> Machining<'_, 'a> {
                 self.cycle_spindle(SpindleDir::Orient);
                 let shift = self.shift_vector(axes, data);
                 s.shift(self, shift, zz)?;
-                s.shifted(self, shift, ret)?;
+                s.shift(self, shift, ret)?;
                 s.shift(self, (0.0, 0.0), ret)?;
                 self.cycle_spindle(turning);
                 return Ok(());
@@ -994,14 +985,14 @@ impl<'a> Machining<'_, 'a> {
         let turning = self.state.spindle;
         self.cycle_spindle(SpindleDir::Orient);
         s.shift(self, shift, z_now)?;
-        s.shifted(self, shift, zr)?;
+        s.shift(self, shift, zr)?;
         s.shift(self, (0.0, 0.0), zr)?;
         self.cycle_spindle(turning);
         s.feed(self, zz, feed)?;
         self.cycle_dwell(data.p_s.filter(|p| *p > 0.0));
         self.cycle_spindle(SpindleDir::Orient);
         s.shift(self, shift, zz)?;
-        s.shifted(self, shift, data.initial)?;
+        s.shift(self, shift, data.initial)?;
         s.shift(self, (0.0, 0.0), data.initial)?;
         self.cycle_spindle(turning);
         Ok(())

@@ -21,6 +21,7 @@
 //! reference is rs274's output (`tests/fixtures/linuxcnc_lathe_cycles`).
 
 use crate::alarms;
+use crate::codes::cycles::positive;
 use crate::codes::turning_cycles::How;
 use crate::interpreter::Machining;
 use crate::plane::{P2, Xz};
@@ -126,18 +127,6 @@ impl<'a> Machining<'_, 'a> {
         let i = need(b'I', "I (the thread peak's offset from the drive line)")?;
         let j = need(b'J', "J (the first cut's depth)")?;
         let k = need(b'K', "K (the full thread depth)")?;
-        let positive = |word: vcnc_syntax::Word, v: f64, rule: &str| {
-            if v > 0.0 {
-                Ok(v)
-            } else {
-                Err(alarms::value_out_of_range(
-                    word.span,
-                    word.addr.0,
-                    word.value,
-                    rule,
-                ))
-            }
-        };
         let pitch_mm = positive(
             pitch,
             self.units().length_mm(&pitch),

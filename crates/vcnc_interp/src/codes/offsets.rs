@@ -86,7 +86,7 @@ impl Tables {
             0 => s.modal.wcs,
             k => k as usize - 1,
         };
-        let values = cfg.named_values(Units::new(&s.modal, cfg.whole_words), w);
+        let values = cfg.named_values(s.units(cfg), w);
         if values.is_empty() {
             return Err(alarms::needs_axes(
                 cmd,
@@ -131,7 +131,7 @@ impl Tables {
         let r = w
             .get(b'R')
             .ok_or_else(|| alarms::needs_word(cmd, "G10 L10-L13", "R (the offset value)"))?;
-        let value = Units::new(&s.modal, cfg.whole_words).length_mm(&r);
+        let value = s.units(cfg).length_mm(&r);
         let incremental = s.modal.incremental;
         let mut tool = self.tool(n);
         let slot = match l {
@@ -182,10 +182,10 @@ impl Tables {
         }
         let mut tool = self.tool(n);
         if let Some(r) = r {
-            tool.d_mm = Units::new(&s.modal, cfg.whole_words).length_mm(&r);
+            tool.d_mm = s.units(cfg).length_mm(&r);
         }
         if let Some(z) = z {
-            tool.h_mm = Units::new(&s.modal, cfg.whole_words).length_mm(&z);
+            tool.h_mm = s.units(cfg).length_mm(&z);
         }
         self.set_tool(n, tool);
         Ok(())
@@ -199,7 +199,7 @@ impl Tables {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let values = cfg.named_values(Units::new(&s.modal, cfg.whole_words), w);
+        let values = cfg.named_values(s.units(cfg), w);
         // The code's own name for the messages: G92, a Fanuc lathe's G50.
         let name = || {
             let g = cfg
@@ -244,7 +244,7 @@ impl Tables {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<(), Diagnostic> {
-        let values = cfg.named_values(Units::new(&s.modal, cfg.whole_words), w);
+        let values = cfg.named_values(s.units(cfg), w);
         if values.is_empty() {
             return Err(alarms::needs_axes(cmd, "G52"));
         }

@@ -43,9 +43,7 @@ impl Transforms {
                 continue;
             };
             c[k] = match w.get(*letter) {
-                Some(word) => {
-                    Units::new(&s.modal, cfg.whole_words).axis_value(&cfg.axis_words, i, &word)
-                }
+                Some(word) => s.units(cfg).axis_value(&cfg.axis_words, i, &word),
                 None => s.prog.get(i),
             };
         }
@@ -68,7 +66,7 @@ impl Transforms {
         w: &Words<'_>,
         cmd: Span,
     ) -> Result<Transforms, Diagnostic> {
-        let units = Units::new(&s.modal, cfg.whole_words);
+        let units = s.units(cfg);
         let per_axis = [b'I', b'J', b'K'].map(|l| w.get(l));
         let factor = match (w.get(b'P'), per_axis.iter().flatten().next()) {
             (Some(_), Some(ijk)) => return Err(alarms::scale_p_and_ijk(ijk.span)),
@@ -158,7 +156,7 @@ impl Transforms {
             .ok_or_else(|| alarms::needs_word(cmd, "G68", "R (the angle of rotation)"))?;
         let t = Transform::Rotate {
             plane,
-            degrees: Units::new(&s.modal, cfg.whole_words).angle_deg(&r),
+            degrees: s.units(cfg).angle_deg(&r),
             centre: Transforms::centre(cfg, s, w),
         };
         Ok(self.with(t))
