@@ -160,11 +160,6 @@ pub(crate) struct Flow {
     pub loops: HashMap<(usize, u64, u32), u32>,
     /// Location of the block being executed.
     pub loc: Loc,
-    /// Where the program goes on if the block being executed alarms and
-    /// the run keeps going: set by a block that reads other lines of the
-    /// program (G70–G73 read their profile), whose reading leaves the
-    /// reader elsewhere.
-    pub after_alarm: Option<Cursor>,
     /// The id the next installed source gets (it changes whenever a
     /// source is installed, so it also tells that the set changed).
     pub next_id: u32,
@@ -189,7 +184,6 @@ impl Flow {
             jumps: 0,
             loops: HashMap::new(),
             loc: Loc::default(),
-            after_alarm: None,
             next_id: 1,
         }
     }

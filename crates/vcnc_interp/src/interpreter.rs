@@ -91,6 +91,11 @@ pub(crate) struct Looping {
     /// Alarms the run went on after (`Options::keep_going`), and the first.
     pub alarms: u32,
     pub first_alarm: Option<Diagnostic>,
+    /// Where the program goes on if the block being executed alarms and
+    /// the run keeps going: set by a block that reads other lines of the
+    /// program (G70–G73 read their profile), whose reading leaves the
+    /// reader elsewhere.
+    pub after_alarm: Option<Cursor>,
 }
 
 /// The interpreter. Create one per run.
@@ -129,6 +134,7 @@ impl<'a> Interpreter<'a> {
                 macro_active: false,
                 alarms: 0,
                 first_alarm: None,
+                after_alarm: None,
             },
             stage: crate::motion::stage::Stage::new(machine.axes.len()),
             points: crate::state::PointStyle::new(machine, dialect),
@@ -329,7 +335,7 @@ impl<'a> Interpreter<'a> {
     #[cold]
     ///
     /// Returns where the program goes on when the alarmed block read other
-    /// lines of it (`Flow::after_alarm`), else `None`: the next block.
+    /// lines of it (`Looping::after_alarm`), else `None`: the next block.
     pub(crate) fn go_on_after(&mut self, d: Diagnostic) -> Result<Option<Cursor>, Diagnostic> {
         let fatal = matches!(
             d.code,
@@ -351,7 +357,7 @@ impl<'a> Interpreter<'a> {
             self.looping.alarms += 1;
             self.stage.pending.push(Event::Alarm(dropped));
         }
-        Ok(self.flow.after_alarm.take())
+        Ok(self.looping.after_alarm.take())
     }
 
     /// What follows a block's step: the sink's wish to stop, the level's

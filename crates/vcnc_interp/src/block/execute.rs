@@ -117,7 +117,7 @@ impl Interpreter<'_> {
             Some(user) if user.def.op.reads_profile() => {
                 resume = self
                     .profile_cycle(user.def.op, user.span, w, next)
-                    .inspect_err(|_| self.flow.after_alarm = Some(next))?;
+                    .inspect_err(|_| self.looping.after_alarm = Some(next))?;
             }
             Some(user) => m.axis_code(user.def.op, user.span, w)?,
             None => m.modal_motion(w)?,
