@@ -10,7 +10,7 @@ use crate::alarms;
 use crate::config::Config;
 use crate::dialect::AxisWord;
 use crate::dialect::SetOp;
-use crate::dialect::{IntegerWords, bit};
+use crate::dialect::{IntegerWords, PolarIncremental, bit};
 use crate::interpreter::Interpreter;
 use crate::interpreter::Machining;
 use crate::motion::Goal;
@@ -284,10 +284,22 @@ impl State {
     }
 
     /// G16: the plane's first axis word is a radius, the second an angle in
-    /// degrees (counter-clockwise), both about the program origin; under
-    /// G91 they add to the last radius and angle. Writes the cartesian
-    /// point into `to`, remembers the radius and angle, and returns the
-    /// axes it set.
+    /// degrees (counter-clockwise), both about the program origin; an
+    /// omitted one keeps the last. Under G91 the angle adds to the last
+    /// angle, and the radius as the dialect's [`PolarIncremental`] says:
+    /// it adds to the last radius (Syntec), or it is measured from the
+    /// current position, the block's polar centre (Fanuc):
+    ///
+    /// ```text
+    ///   G90 X10. Y90.   then   G91 X5. Y90.
+    ///
+    ///   Syntec: about the origin,        Fanuc: about the current point,
+    ///   radius 10+5, angle 90+90         radius 5, angle 90+90
+    ///     -> X-15 Y0                       -> X-5 Y10
+    /// ```
+    ///
+    /// Writes the cartesian point into `to`, remembers the radius and
+    /// angle (about the origin), and returns the axes it set.
     fn polar_target(
         &mut self,
         cfg: &Config<'_>,
@@ -307,6 +319,11 @@ impl State {
         let units = self.units(cfg);
         let r = r_word.map(|word| units.length_mm(&word));
         let deg = a_word.map(|word| units.angle_deg(&word));
+        if let (true, Some(r), PolarIncremental::CentreAtCurrentPosition) =
+            (incremental, r, cfg.dialect.polar_incremental)
+        {
+            return self.polar_about_here(r, last_deg + deg.unwrap_or(0.0), [ia, ib], to);
+        }
         let (r, deg) = if incremental {
             (last_r + r.unwrap_or(0.0), last_deg + deg.unwrap_or(0.0))
         } else {
@@ -316,6 +333,21 @@ impl State {
         let (s, c) = deg.to_radians().sin_cos();
         to.set(ia, r * c);
         to.set(ib, r * s);
+        (1 << ia) | (1 << ib)
+    }
+
+    /// Fanuc's G91 polar block with a radius: the point `r` from the
+    /// current point at `deg`. The last radius and angle become the new
+    /// point's own about the origin, which a later block that omits them
+    /// keeps (FANUC Series 16/18-MC §9.2; Mitsubishi M700V §6.12: an
+    /// omitted radius is "the distance between the polar coordinate center
+    /// [the work zero] and current position").
+    fn polar_about_here(&mut self, r: f64, deg: f64, [ia, ib]: [usize; 2], to: &mut Pos) -> u32 {
+        let (s, c) = deg.to_radians().sin_cos();
+        let (a, b) = (self.prog.get(ia) + r * c, self.prog.get(ib) + r * s);
+        to.set(ia, a);
+        to.set(ib, b);
+        self.polar = (a.hypot(b), b.atan2(a).to_degrees());
         (1 << ia) | (1 << ib)
     }
 

@@ -154,5 +154,6 @@ pub(super) fn eia() -> Dialect {
         comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
+        polar_incremental: super::PolarIncremental::CentreAtCurrentPosition,
     }
 }

@@ -292,6 +292,7 @@ pub(super) fn fanuc_lathe_in(system: GcodeSystem) -> Dialect {
         comp_start: super::CompStart::Line,
         gcode_systems: true,
         polar_words: false,
+        polar_incremental: super::PolarIncremental::CentreAtCurrentPosition,
         macros: super::MacroRules::FANUC,
     }
 }

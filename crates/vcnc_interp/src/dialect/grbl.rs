@@ -167,5 +167,6 @@ pub(super) fn grbl() -> Dialect {
         comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
+        polar_incremental: super::PolarIncremental::CentreAtCurrentPosition,
     }
 }

@@ -150,5 +150,6 @@ pub(super) fn lathe() -> Dialect {
         comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
+        polar_incremental: super::PolarIncremental::CentreAtCurrentPosition,
     }
 }

@@ -144,6 +144,7 @@ pub(super) fn mach3() -> Dialect {
         comp_when_on: super::CompWhenOn::Changes,
         comp_start: super::CompStart::Line,
         polar_words: false,
+        polar_incremental: super::PolarIncremental::CentreAtCurrentPosition,
         // Mach3Mill has no G7/G8 (diameter mode is Mach3 Turn's).
         diameter: super::Diameter {
             axis: None,

@@ -382,6 +382,8 @@ fn mill(name: &'static str, units: &'static [GRow]) -> Dialect {
         comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
+        // Fanuc 16/18-MC §9.2; Haas follows Fanuc.
+        polar_incremental: super::PolarIncremental::CentreAtCurrentPosition,
     }
 }
 
@@ -404,6 +406,9 @@ pub(super) fn syntec() -> Dialect {
         comp_start: super::CompStart::Line,
         gcode_systems: false,
         polar_words: false,
+        // 1.2.11: "in increment mode, angle or radius total from the last
+        // radius or angle".
+        polar_incremental: super::PolarIncremental::AddsToLast,
         ..mill("syntec", SYNTEC_UNITS)
     }
 }

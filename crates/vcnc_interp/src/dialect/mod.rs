@@ -452,6 +452,27 @@ pub enum G53Incremental {
     Ignored,
 }
 
+/// G16 (polar coordinate input) under G91: where the radius is measured
+/// from and what the angle adds to. Under G90 every dialect reads the
+/// radius and angle about the program origin, an omitted one kept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PolarIncremental {
+    /// The radius and the angle each add to the last radius and angle,
+    /// about the program origin (Syntec 900M 1.2.11: "in increment mode,
+    /// angle or radius total from the last radius or angle").
+    AddsToLast,
+    /// A radius under G91 is measured from the current position, which
+    /// becomes the polar centre for that block; the angle adds to the
+    /// current point's angle about the origin. A G91 block without a
+    /// radius keeps the origin as the centre and the current point's
+    /// distance from it as the radius (FANUC Series 16/18-MC §9.2
+    /// "Polar coordinate command (G15, G16)": "G91 specifies the current
+    /// position as the origin of the polar coordinate system, from which a
+    /// radius is measured"; Mitsubishi M700V §6.12 says the same of an
+    /// omitted radius or angle). Haas follows Fanuc.
+    CentreAtCurrentPosition,
+}
+
 /// G53 without axis words (`G53 G49 M05`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum G53WithoutAxes {
@@ -593,6 +614,8 @@ pub struct Dialect {
     /// give X and Y, about the origin under G90 and adding to the current
     /// point's distance and angle under G91 (`block/convert.rs`).
     pub polar_words: bool,
+    /// What G91 means to G16's radius and angle.
+    pub polar_incremental: PolarIncremental,
     /// How the tip directions of the offset registers (and of a `.tbl`'s
     /// Q) are numbered: Fanuc's, or LinuxCNC's lathe orientation.
     pub tip_numbering: vcnc_core::tooling::TipNumbering,
