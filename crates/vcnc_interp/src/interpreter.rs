@@ -296,7 +296,7 @@ impl<'a> Interpreter<'a> {
                         };
                         let step = self
                             .block(&block, here, next, store, sink)
-                            .or_else(|d| self.skip_block(d, src, &line, start))?;
+                            .or_else(|d| self.skip_block(d, src, &line, start, &block, here))?;
                         (step, block.first_span())
                     }
                 };
@@ -319,11 +319,18 @@ impl<'a> Interpreter<'a> {
         src: usize,
         line: &Line,
         start: usize,
+        block: &Block,
+        here: Cursor,
     ) -> Result<Step, Diagnostic> {
         let d = self.located(d, src, line, start);
         // A block that read other lines (G70–G73's profile) goes on after
         // itself, not where its reading left the reader.
-        Ok(self.go_on_after(d)?.map_or(Step::Next, Step::Jump))
+        let after = self.go_on_after(d)?;
+        // An alarmed M02/M30/M99 still ends or returns.
+        if let Some(step) = self.flow_after_alarm(block, here) {
+            return Ok(step);
+        }
+        Ok(after.map_or(Step::Next, Step::Jump))
     }
 
     /// An alarm in a block: the end of the run, or under

@@ -31,7 +31,7 @@ use crate::motion::stage::Stage;
 use crate::state::{Motion, State};
 use crate::words::{ALWAYS, Words};
 use vcnc_core::events::{EndCode, Event, PathMode, Plane, SpindleDir, StopCode};
-use vcnc_syntax::{Addr, Cursor, Diagnostic, Span};
+use vcnc_syntax::{Addr, Block, Cursor, Diagnostic, Span};
 
 impl Words<'_> {
     /// Axis and arc words, F, N and at most a motion code: the common block
@@ -157,6 +157,65 @@ impl Interpreter<'_> {
             | MOp::CoolantOff => {}
         }
         Ok(flow.unwrap_or(Step::Next))
+    }
+
+    /// Under [`Options::keep_going`](crate::Options::keep_going), after the
+    /// alarm of a block that ends the program or returns from a subprogram
+    /// (M02, M30, M99): that end or return, on its own, from the state as
+    /// it was before the block. The rest of the block is dropped as any
+    /// alarmed block is, but its flow still decides where the run goes on —
+    /// else an alarmed M99 (after a held `,C`, say) leaves the subprogram
+    /// without a return, the run ends with E406 and the caller's remaining
+    /// blocks go unchecked. `None` when the block has no such code or its
+    /// flow part alarms too (`M99 P` of a missing sequence): the run then
+    /// goes on with the next block, as after any alarm.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn flow_after_alarm(&mut self, block: &Block, here: Cursor) -> Option<Step> {
+        let mut words = Words::new(block);
+        words
+            .fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)
+            .ok()?;
+        let m = words.m_of(MGroup::Flow)?;
+        // A block that calls a macro is that call, not a flow block.
+        let m_macro = (words.other_m.iter().flatten())
+            .any(|o| self.cfg.machine.m_macros.contains_key(&o.def));
+        if words.macro_call.is_some() || m_macro {
+            return None;
+        }
+        let jumps = self.flow.jumps;
+        let saved = self.state;
+        let mark = self.stage.begin(false);
+        let result = match m.def.op {
+            MOp::Return => self.ret(&words, m.span, here),
+            MOp::End => self.end_program(EndCode::M02),
+            MOp::EndRewind => self.end_program(EndCode::M30),
+            MOp::Stop
+            | MOp::OptionalStop
+            | MOp::Call
+            | MOp::LocalCall
+            | MOp::SpindleCw
+            | MOp::SpindleCcw
+            | MOp::SpindleStop
+            | MOp::SpindleOrient
+            | MOp::RigidTap
+            | MOp::ToolChange
+            | MOp::CoolantOn
+            | MOp::CoolantOff => return None,
+        };
+        match result {
+            Ok(step) => {
+                self.tables.commit();
+                Some(step)
+            }
+            Err(_) => {
+                self.stage.abandon(mark);
+                self.flow.jumps = jumps;
+                self.state = saved;
+                self.tables.rollback();
+                None
+            }
+        }
     }
 
     /// The end of the run: compensation's last move leaves first, then the

@@ -6,6 +6,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)] // a panic in a test is a failure report
 
+use crate::common::Store;
 use vcnc_interp::{Dialect, Event, Interpreter, MAX_ALARMS, Machine, Options, Outcome, VecSink};
 use vcnc_syntax::Code;
 
@@ -255,4 +256,92 @@ fn a_released_corner_that_cannot_move_is_reported() {
     let found = alarms(&events);
     assert_eq!(found.first(), Some(&(Code::E347, 10)), "{found:?}");
     assert_eq!(found.get(1).map(|a| a.1), Some(9), "{found:?}");
+}
+
+/// Runs `program` under `dialect`, its subprograms from `store`, with or
+/// without keep-going.
+fn run_with(
+    dialect: &Dialect,
+    program: &str,
+    store: Store,
+    keep_going: bool,
+) -> (Vec<Event>, Outcome) {
+    let machine = dialect.machine();
+    let opts = Options {
+        keep_going,
+        ..Options::default()
+    };
+    let mut sink = VecSink::default();
+    let mut store = store;
+    let out = Interpreter::new(&machine, dialect, opts).run(
+        Box::new(vcnc_syntax::MemSource(program.as_bytes().to_vec())),
+        &mut store,
+        &mut sink,
+    );
+    (sink.0, out)
+}
+
+/// The line of every feed, in order.
+fn feed_lines(events: &[Event]) -> Vec<u64> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Feed { loc, .. } => Some(loc.line),
+            _ => None,
+        })
+        .collect()
+}
+
+/// An M99 that alarms (here E347: the block after a held `,C` must be a
+/// G01) still returns to the caller once its alarm is reported, so the
+/// caller's remaining blocks are checked too (review of 2026-12-06: the
+/// subprogram was left without a return, E406 ended the run). Without
+/// keep-going the first alarm still ends the run there.
+#[test]
+fn an_alarmed_m99_still_returns_to_the_caller() {
+    let lathe = Dialect::fanuc_lathe();
+    let main = "O0001\nG21 G18 G99\nT0101\nG97 S500 M03\nG00 X80. Z2.\nG01 X20. Z0. F0.2\n\
+                M98 P2000\nG01 X60.\nG01 Z-30.\nM98 P3000\nG01 X70. Z-50.\nG00 X100. Z100.\nM30\n";
+    let store = || {
+        Store::default()
+            .with(2000, "O2000\nG01 Z-10.\nG01 Z-20. ,C50.\nM99\n")
+            .with(3000, "O3000\nG01 X64. ,R1.\nM99\n")
+    };
+    let (events, _) = run_with(&lathe, main, store(), true);
+    // One alarm per mistake, each at its subprogram's M99 (O2000 line 4,
+    // O3000 line 3), and no E406.
+    assert_eq!(alarms(&events), vec![(Code::E347, 4), (Code::E347, 3)]);
+    // The held G01s run straight (O2000 line 3, O3000 line 2), and each
+    // return goes on with the caller's next block: lines 8, 9 and 11.
+    assert_eq!(feed_lines(&events), vec![6, 2, 3, 8, 9, 2, 11]);
+    assert!(ends_with_m30(&events));
+
+    let (events, out) = run_with(&lathe, main, store(), false);
+    assert_eq!(alarms(&events), vec![(Code::E347, 4)]);
+    assert_eq!(feed_lines(&events), vec![6, 2]);
+    assert!(matches!(out, Outcome::Alarm(d) if d.code == Code::E347));
+}
+
+/// An M30 in a block that alarms still ends the program after its alarm
+/// (the text after it is not run, as on the machine).
+#[test]
+fn an_alarmed_m30_still_ends_the_program() {
+    let program = "G21 G90 S1000 M03\nG01 X10. F100.\nG01 X20. Q1. M30\nG01 X30.\n";
+    let (events, _) = run(program);
+    assert_eq!(alarms(&events), vec![(Code::E203, 3)]);
+    assert_eq!(feed_xs(&events), vec![10.0]);
+    assert!(ends_with_m30(&events));
+}
+
+/// When the alarmed block's own return cannot be made either (M99 P of a
+/// sequence the caller lacks), the run goes on with the next block as
+/// after any alarm, and that return's alarm is not reported twice.
+#[test]
+fn an_alarmed_m99_whose_return_fails_goes_on_with_the_next_block() {
+    let main = "G21 G90 S1000 M03\nG01 X1. F100.\nM98 P2000\nG01 X9.\nM30\n";
+    let store = Store::default().with(2000, "O2000\nG01 X5. Q1. M99 P999\nG01 X7.\nM99\n");
+    let (events, _) = run_with(&Dialect::fanuc(), main, store, true);
+    assert_eq!(alarms(&events), vec![(Code::E203, 2)]);
+    assert_eq!(feed_xs(&events), vec![1.0, 7.0, 9.0]);
+    assert!(ends_with_m30(&events));
 }
