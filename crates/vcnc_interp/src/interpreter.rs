@@ -296,7 +296,7 @@ impl<'a> Interpreter<'a> {
                         };
                         let step = self
                             .block(&block, here, next, store, sink)
-                            .or_else(|d| self.skip_block(d, src, &line, start, &block, here))?;
+                            .or_else(|d| self.skip_block(d, src, &line, start, &block))?;
                         (step, block.first_span())
                     }
                 };
@@ -320,13 +320,17 @@ impl<'a> Interpreter<'a> {
         line: &Line,
         start: usize,
         block: &Block,
-        here: Cursor,
     ) -> Result<Step, Diagnostic> {
         let d = self.located(d, src, line, start);
         // A block that read other lines (G70–G73's profile) goes on after
         // itself, not where its reading left the reader.
         let after = self.go_on_after(d)?;
         // An alarmed M02/M30/M99 still ends or returns.
+        let here = Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: clamp_u32(start),
+        };
         if let Some(step) = self.flow_after_alarm(block, here) {
             return Ok(step);
         }
