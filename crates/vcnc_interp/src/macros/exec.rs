@@ -22,14 +22,15 @@
 //! ```
 
 use super::Evaluator;
-use super::structure::Link;
+use super::structure::{Branch, Callee, Link, OLink};
 use super::{Compiled, key};
 use crate::alarms;
+use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
 use vcnc_core::Sink;
 use vcnc_core::events::Event;
-use vcnc_syntax::macros::{BinOp, Expr, Lang, StmtKind, Target, Value, VarKind};
+use vcnc_syntax::macros::{BinOp, Expr, Kw, Lang, StmtKind, Target, Value, VarKind};
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 
 impl Interpreter<'_> {
@@ -139,7 +140,11 @@ impl Interpreter<'_> {
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
             // A LinuxCNC line runs through `run_ngc_line` (front.rs), from
             // the statement cache too (`macro_cached`).
-            StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
+            // and an O-word statement through `o_word` (below): neither is
+            // counted as a block.
+            StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) | StmtKind::OWord { .. } => {
+                Ok(Step::Next)
+            }
         }
     }
 
@@ -394,5 +399,233 @@ impl<'a> Evaluator<'_, 'a> {
         let text: std::sync::Arc<str> = text.into();
         self.machining()
             .emit(|loc| Event::Message { loc, text, stop });
+    }
+}
+
+/// LinuxCNC's O-word flow as it runs (the statements' links are found
+/// once, `structure.rs`).
+#[derive(Debug, Default)]
+pub(crate) struct OFlow {
+    /// Repeat loops running: (label, remaining passes).
+    repeats: Vec<(String, f64)>,
+    /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
+    /// skipped as the end of a branch that ran): its line's offset.
+    pending: Option<u64>,
+    /// The locals of each subroutine call running, and how many repeat
+    /// loops ran when it was called (a return leaves the sub's own).
+    saved: Vec<(super::ngc::Saved, usize)>,
+}
+
+impl OFlow {
+    /// Where a false IF or ELSEIF goes: past the ENDIF, or to the next
+    /// clause, to be tested there.
+    fn branch(&mut self, b: Branch) -> Cursor {
+        match b {
+            Branch::End(to) => to,
+            Branch::Test(to) => {
+                self.pending = Some(to.offset);
+                to
+            }
+        }
+    }
+
+    /// ENDREPEAT of `label`: whether another pass runs (`None`: no repeat
+    /// of that label is running).
+    fn again(&mut self, label: &str) -> Option<bool> {
+        match self.repeats.last_mut() {
+            Some((l, left)) if l == label && *left > 1.0 => {
+                *left -= 1.0;
+                Some(true)
+            }
+            Some((l, _)) if l == label => {
+                self.repeats.pop();
+                Some(false)
+            }
+            _ => None,
+        }
+    }
+
+    /// BREAK or CONTINUE: the repeat loops running that end with it.
+    fn leave(&mut self, ending: &[String]) {
+        while self.repeats.last().is_some_and(|(l, _)| ending.contains(l)) {
+            self.repeats.pop();
+        }
+    }
+}
+
+impl Interpreter<'_> {
+    /// Runs the LinuxCNC O-word statement `c` of source `src`: its
+    /// operands evaluated, then its link followed (`structure.rs` found
+    /// it). Forward jumps are free; a loop's jump back, a CONTINUE and a
+    /// call count against `limits.max_jumps`, a call against
+    /// `limits.max_call_depth`. It is not counted as a block: rs274 runs
+    /// no motion for it.
+    pub(crate) fn o_word(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let StmtKind::OWord {
+            kw,
+            label,
+            operands,
+        } = &c.st.kind
+        else {
+            return Ok(Step::Next);
+        };
+        let (kw, span) = (*kw, c.st.first);
+        let unpaired = |wanted: &str| super::structure::unpaired(span, label, kw, wanted);
+        let statements = self.oword_statements(src)?;
+        let (lacks, link) = statements
+            .index(c.here.offset)
+            .and_then(|i| statements.links.get(i))
+            .ok_or_else(|| unpaired("place in the program"))?;
+        let values = self.evaluator().ngc_values(operands)?;
+        if let Some(wanted) = lacks {
+            return Err(unpaired(wanted));
+        }
+        let value = values.first().copied();
+        let cond = || value.ok_or_else(|| unpaired("[condition]"));
+        let flow = self.macros.oword.get_or_insert_with(Box::default);
+        let step = match (kw, link) {
+            (_, OLink::Sub(end)) => Step::Jump(end.map_err(unpaired)?),
+            (_, OLink::Call(callee)) => {
+                self.o_call(*callee, label, span, c.next, &values, store)?
+            }
+            (Kw::EndSub | Kw::Return, _) => self.o_return(span, value)?,
+            (_, OLink::Plain) => Step::Next,
+            (_, OLink::If(next)) => {
+                if cond()? != 0.0 {
+                    Step::Next
+                } else {
+                    Step::Jump(flow.branch(next.map_err(unpaired)?))
+                }
+            }
+            (_, OLink::Clause { next, end }) => {
+                if flow.pending.take() != Some(c.here.offset) {
+                    // The branch before ran into it.
+                    Step::Jump(end.map_err(unpaired)?)
+                } else if kw == Kw::Else || cond()? != 0.0 {
+                    Step::Next
+                } else {
+                    Step::Jump(flow.branch(next.map_err(unpaired)?))
+                }
+            }
+            (_, OLink::DoWhile(body)) => {
+                if cond()? != 0.0 {
+                    self.count_jump(span)?;
+                    Step::Jump(*body)
+                } else {
+                    Step::Next
+                }
+            }
+            (Kw::Repeat, OLink::Loop(end)) => {
+                // rs274 rounds the count half to even: [2.5] is 2 passes.
+                let n = cond()?.round_ties_even();
+                if n >= 1.0 {
+                    flow.repeats.push((label.clone(), n));
+                    Step::Next
+                } else {
+                    Step::Jump(end.map_err(unpaired)?)
+                }
+            }
+            (_, OLink::Loop(end)) => {
+                if cond()? != 0.0 {
+                    Step::Next
+                } else {
+                    Step::Jump(end.map_err(unpaired)?)
+                }
+            }
+            (Kw::EndRepeat, OLink::Back(body)) => {
+                let body = body.map_err(unpaired)?;
+                match flow.again(label) {
+                    Some(true) => {
+                        self.count_jump(span)?;
+                        Step::Jump(body)
+                    }
+                    Some(false) => Step::Next,
+                    None => return Err(unpaired("repeat running")),
+                }
+            }
+            (_, OLink::Back(head)) => {
+                let head = head.map_err(unpaired)?;
+                self.count_jump(span)?;
+                Step::Jump(head)
+            }
+            (_, OLink::Leave(lp)) => {
+                let lp = lp.as_ref().map_err(|w| unpaired(w))?;
+                flow.leave(&lp.ending);
+                if kw == Kw::Continue {
+                    self.count_jump(span)?;
+                }
+                Step::Jump(lp.to)
+            }
+        };
+        // The statements' scan may have moved the reader: go on from here.
+        self.macros.moved_reader = false;
+        Ok(match step {
+            Step::Next => Step::Jump(c.next),
+            s => s,
+        })
+    }
+
+    /// O CALL: a level of the flow like a subprogram's, the locals saved,
+    /// #1… the arguments; the body is this source's sub, or the file
+    /// `NAME.ngc`'s.
+    fn o_call(
+        &mut self,
+        callee: Callee,
+        label: &str,
+        span: Span,
+        ret: Cursor,
+        args: &[f64],
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let (source, start) = match callee {
+            Callee::Here(start) => (None, start),
+            Callee::File => {
+                let (src, start) = self.sub_file(label, span, store)?;
+                (Some(src), start)
+            }
+            Callee::Twice(n) => {
+                return Err(super::structure::defined_twice(
+                    span,
+                    label,
+                    n,
+                    "this program",
+                ));
+            }
+        };
+        self.check_call_depth(span)?;
+        self.count_jump(span)?;
+        let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(args);
+        let flow = self.macros.oword.get_or_insert_with(Box::default);
+        let repeats = flow.repeats.len();
+        flow.saved.push((saved, repeats));
+        match source {
+            None => self.enter_local_sub(start, ret, "endsub"),
+            Some(src) => self.enter_sub_in(src, start, ret, "endsub"),
+        }
+        Ok(Step::Jump(start))
+    }
+
+    /// ENDSUB or RETURN: the caller's locals back, `#<_value>` set.
+    fn o_return(&mut self, span: Span, value: Option<f64>) -> Result<Step, Diagnostic> {
+        let flow = self.macros.oword.get_or_insert_with(Box::default);
+        let Some((saved, repeats)) = flow.saved.pop() else {
+            return Err(alarms::bad_structure(
+                span,
+                "endsub or return with no o-word call to return to".into(),
+                "reach a subroutine's body only through o… call",
+            ));
+        };
+        flow.repeats.truncate(repeats);
+        flow.pending = None;
+        self.macros
+            .ngc
+            .get_or_insert_with(Box::default)
+            .leave(saved, value);
+        self.sub_return(span)
     }
 }
