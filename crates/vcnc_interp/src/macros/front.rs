@@ -169,7 +169,9 @@ impl Interpreter<'_> {
             return Ok(None);
         };
         *i = c.next.col as usize;
-        if matches!(c.st.kind, StmtKind::Line(_) | StmtKind::OWord { .. }) {
+        // LinuxCNC's lines and O-word statements, the only statements
+        // compiled under its language (one test of a byte).
+        if c.lang == Lang::Ngc {
             return self.cached_ngc_line(&c, src, line, block, store, sink);
         }
         self.run_compiled(&c, src, block, store, sink).map(Some)
