@@ -416,7 +416,80 @@ pub(crate) struct OFlow {
     saved: Vec<(super::ngc::Saved, usize)>,
 }
 
+/// Where an O-word statement goes on.
+enum OStep {
+    Next,
+    /// Forward, free.
+    Jump(Cursor),
+    /// Back (a loop's pass, a CONTINUE): counted against `max_jumps`.
+    Back(Cursor),
+}
+
 impl OFlow {
+    /// Follows the link of the branch or loop statement `kw` of `label` on
+    /// the line at `here`: `cond` is its operand, `unpaired` the alarm for
+    /// a partner its link lacks.
+    fn follow(
+        &mut self,
+        (kw, label, here): (Kw, &str, u64),
+        link: &OLink,
+        cond: impl Fn() -> Result<f64, Diagnostic>,
+        unpaired: impl Fn(&str) -> Diagnostic,
+    ) -> Result<OStep, Diagnostic> {
+        let ahead = |d: &Result<Cursor, &str>| d.map(OStep::Jump).map_err(&unpaired);
+        Ok(match link {
+            OLink::Sub(end) => ahead(end)?,
+            OLink::Plain | OLink::Call(_) => OStep::Next,
+            OLink::If(next) => {
+                if cond()? != 0.0 {
+                    OStep::Next
+                } else {
+                    OStep::Jump(self.branch(next.map_err(&unpaired)?))
+                }
+            }
+            // Run into from the branch before (not tested): past the ENDIF.
+            OLink::Clause { end, .. } if self.pending.take() != Some(here) => ahead(end)?,
+            OLink::Clause { next, .. } => {
+                if kw == Kw::Else || cond()? != 0.0 {
+                    OStep::Next
+                } else {
+                    OStep::Jump(self.branch(next.map_err(&unpaired)?))
+                }
+            }
+            OLink::DoWhile(body) if cond()? != 0.0 => OStep::Back(*body),
+            OLink::DoWhile(_) => OStep::Next,
+            OLink::Loop(end) if kw == Kw::Repeat => {
+                // rs274 rounds the count half to even: [2.5] is 2 passes.
+                let n = cond()?.round_ties_even();
+                if n >= 1.0 {
+                    self.repeats.push((label.to_string(), n));
+                    OStep::Next
+                } else {
+                    ahead(end)?
+                }
+            }
+            OLink::Loop(end) if cond()? == 0.0 => ahead(end)?,
+            OLink::Loop(_) => OStep::Next,
+            OLink::Back(body) if kw == Kw::EndRepeat => {
+                let body = body.map_err(&unpaired)?;
+                match self.again(label) {
+                    Some(true) => OStep::Back(body),
+                    Some(false) => OStep::Next,
+                    None => return Err(unpaired("repeat running")),
+                }
+            }
+            OLink::Back(head) => OStep::Back(head.map_err(&unpaired)?),
+            OLink::Leave(lp) => {
+                let lp = lp.as_ref().map_err(|w| unpaired(w))?;
+                self.leave(&lp.ending);
+                match kw {
+                    Kw::Continue => OStep::Back(lp.to),
+                    _ => OStep::Jump(lp.to),
+                }
+            }
+        })
+    }
+
     /// Where a false IF or ELSEIF goes: past the ENDIF, or to the next
     /// clause, to be tested there.
     fn branch(&mut self, b: Branch) -> Cursor {
@@ -486,80 +559,22 @@ impl Interpreter<'_> {
             return Err(unpaired(wanted));
         }
         let value = values.first().copied();
-        let cond = || value.ok_or_else(|| unpaired("[condition]"));
-        let flow = self.macros.oword.get_or_insert_with(Box::default);
         let step = match (kw, link) {
-            (_, OLink::Sub(end)) => Step::Jump(end.map_err(unpaired)?),
             (_, OLink::Call(callee)) => {
                 self.o_call(*callee, label, span, c.next, &values, store)?
             }
             (Kw::EndSub | Kw::Return, _) => self.o_return(span, value)?,
-            (_, OLink::Plain) => Step::Next,
-            (_, OLink::If(next)) => {
-                if cond()? != 0.0 {
-                    Step::Next
-                } else {
-                    Step::Jump(flow.branch(next.map_err(unpaired)?))
-                }
-            }
-            (_, OLink::Clause { next, end }) => {
-                if flow.pending.take() != Some(c.here.offset) {
-                    // The branch before ran into it.
-                    Step::Jump(end.map_err(unpaired)?)
-                } else if kw == Kw::Else || cond()? != 0.0 {
-                    Step::Next
-                } else {
-                    Step::Jump(flow.branch(next.map_err(unpaired)?))
-                }
-            }
-            (_, OLink::DoWhile(body)) => {
-                if cond()? != 0.0 {
-                    self.count_jump(span)?;
-                    Step::Jump(*body)
-                } else {
-                    Step::Next
-                }
-            }
-            (Kw::Repeat, OLink::Loop(end)) => {
-                // rs274 rounds the count half to even: [2.5] is 2 passes.
-                let n = cond()?.round_ties_even();
-                if n >= 1.0 {
-                    flow.repeats.push((label.clone(), n));
-                    Step::Next
-                } else {
-                    Step::Jump(end.map_err(unpaired)?)
-                }
-            }
-            (_, OLink::Loop(end)) => {
-                if cond()? != 0.0 {
-                    Step::Next
-                } else {
-                    Step::Jump(end.map_err(unpaired)?)
-                }
-            }
-            (Kw::EndRepeat, OLink::Back(body)) => {
-                let body = body.map_err(unpaired)?;
-                match flow.again(label) {
-                    Some(true) => {
+            _ => {
+                let cond = || value.ok_or_else(|| unpaired("[condition]"));
+                let flow = self.macros.oword.get_or_insert_with(Box::default);
+                match flow.follow((kw, label, c.here.offset), link, cond, unpaired)? {
+                    OStep::Next => Step::Jump(c.next),
+                    OStep::Jump(to) => Step::Jump(to),
+                    OStep::Back(to) => {
                         self.count_jump(span)?;
-                        Step::Jump(body)
+                        Step::Jump(to)
                     }
-                    Some(false) => Step::Next,
-                    None => return Err(unpaired("repeat running")),
                 }
-            }
-            (_, OLink::Back(head)) => {
-                let head = head.map_err(unpaired)?;
-                self.count_jump(span)?;
-                Step::Jump(head)
-            }
-            (_, OLink::Leave(lp)) => {
-                let lp = lp.as_ref().map_err(|w| unpaired(w))?;
-                flow.leave(&lp.ending);
-                if kw == Kw::Continue {
-                    self.count_jump(span)?;
-                }
-                Step::Jump(lp.to)
             }
         };
         // The statements' scan may have moved the reader: go on from here.
