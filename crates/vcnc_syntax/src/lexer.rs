@@ -31,7 +31,7 @@ pub struct LexRules {
     pub fullwidth_semicolon: bool,
     /// Multi-character addresses, tried before single letters, longest
     /// first, matched case-insensitively: (`"CR="`, its [`Addr`]).
-    pub extended: &'static [(&'static str, Addr)],
+    pub extended: Extended,
     /// Addresses of other dialects, with the dialect that has them, so that
     /// `CR=10` under the mill dialects says where `CR=` belongs.
     pub foreign: &'static [(&'static str, &'static str)],
@@ -43,6 +43,48 @@ pub struct LexRules {
     /// found"); otherwise only the `(A (B) C)` form, where a second `)`
     /// shows the programmer meant the comment to nest.
     pub paren_in_comment_alarms: bool,
+}
+
+/// A dialect's multi-character addresses (`CR=`, `,C`, `@`), and the
+/// letters that start one: a word that starts with another letter is not
+/// looked up among them, so that the Fanuc `,C`/`,R` cost the plain words
+/// nothing and the lathe's `CR=` only the words of C.
+#[derive(Debug, Clone, Copy)]
+pub struct Extended {
+    all: &'static [(&'static str, Addr)],
+    /// Bit `k` for the letter `b'A' + k`.
+    letters: u32,
+}
+
+impl Extended {
+    /// No multi-character address.
+    pub const NONE: Extended = Extended::new(&[]);
+
+    /// The addresses, longest first where one starts another.
+    pub const fn new(all: &'static [(&'static str, Addr)]) -> Self {
+        let mut letters = 0;
+        let mut k = 0;
+        while k < all.len() {
+            if let Some(&b) = all[k].0.as_bytes().first()
+                && is_letter(b)
+            {
+                letters |= 1 << ((b & !0x20) - b'A');
+            }
+            k += 1;
+        }
+        Extended { all, letters }
+    }
+
+    /// Every address with its [`Addr`].
+    pub fn all(&self) -> &'static [(&'static str, Addr)] {
+        self.all
+    }
+
+    /// Whether an address may start with `letter` (an uppercase letter).
+    #[inline(always)]
+    fn may_start(&self, letter: u8) -> bool {
+        self.letters & (1 << (letter.wrapping_sub(b'A') & 31)) != 0
+    }
 }
 
 /// What `;` means in a dialect.
@@ -117,7 +159,7 @@ pub fn lex_block(
 /// Whether `b` is an ASCII letter: `b | 0x20` lowercases a letter, so one
 /// compare finds both cases (and `b & !0x20` is then its uppercase).
 #[inline(always)]
-fn is_letter(b: u8) -> bool {
+const fn is_letter(b: u8) -> bool {
     (b | 0x20).wrapping_sub(b'a') < 26
 }
 
@@ -413,7 +455,10 @@ fn number_error(line: &[u8], at: usize, value_at: usize, e: NumberError) -> Diag
 /// starts.
 #[inline]
 fn address(line: &[u8], at: usize, letter: u8, rules: &LexRules) -> (Addr, usize) {
-    for (text, addr) in rules.extended {
+    if is_letter(letter) && !rules.extended.may_start(letter) {
+        return (Addr::letter(letter), at + 1);
+    }
+    for (text, addr) in rules.extended.all {
         let t = text.as_bytes();
         if line.len() >= at + t.len() && line[at..at + t.len()].eq_ignore_ascii_case(t) {
             return (*addr, at + t.len());
@@ -424,7 +469,7 @@ fn address(line: &[u8], at: usize, letter: u8, rules: &LexRules) -> (Addr, usize
 
 /// Whether one of the dialect's extended addresses starts at `at`.
 fn is_extended(line: &[u8], at: usize, rules: &LexRules) -> bool {
-    rules.extended.iter().any(|(text, _)| {
+    rules.extended.all.iter().any(|(text, _)| {
         line.get(at..at + text.len())
             .is_some_and(|here| here.eq_ignore_ascii_case(text.as_bytes()))
     })
@@ -489,7 +534,7 @@ mod tests {
         semicolon: Semicolon::EndOfBlock,
         slash_comments: true,
         fullwidth_semicolon: true,
-        extended: &[],
+        extended: Extended::NONE,
         foreign: &[("CR=", "lathe")],
         colon_is_o: false,
         paren_in_comment_alarms: false,
@@ -580,5 +625,34 @@ mod tests {
         assert_eq!(blocks("X12345678901234567890"), Err(Code::E103));
         assert_eq!(blocks("G01 X1 % "), Err(Code::E101));
         assert_eq!(blocks("G02 X1 CR=5"), Err(Code::E203));
+    }
+
+    #[test]
+    fn reads_extended_addresses_only_where_they_start() {
+        let rules = LexRules {
+            extended: Extended::new(&[
+                ("CR=", Addr::CR),
+                ("IX", Addr::IX),
+                (",C", Addr::COMMA_C),
+            ]),
+            ..SYNTEC
+        };
+        let mut out = Block::default();
+        lex_block(b"cr=5 C6 ix2 I3 X1 ,c2", 0, &rules, &mut out).unwrap();
+        let addrs: Vec<Addr> = out.words().iter().map(|w| w.addr).collect();
+        assert_eq!(
+            addrs,
+            [
+                Addr::CR,
+                Addr::letter(b'C'),
+                Addr::IX,
+                Addr::letter(b'I'),
+                Addr::letter(b'X'),
+                Addr::COMMA_C
+            ]
+        );
+        // Only C and I start one of these.
+        assert!(rules.extended.may_start(b'C') && rules.extended.may_start(b'I'));
+        assert!(!rules.extended.may_start(b'X') && !Extended::NONE.may_start(b'C'));
     }
 }

@@ -18,7 +18,7 @@ mod reader;
 
 pub use block::{Addr, Block, MAX_WORDS, Word};
 pub use diagnostics::{Code, Diagnostic};
-pub use lexer::{LexRules, MAX_BLOCK_BYTES, Semicolon, lex_block, next_block_start};
+pub use lexer::{Extended, LexRules, MAX_BLOCK_BYTES, Semicolon, lex_block, next_block_start};
 pub use number::parse_number;
 pub use reader::{Cursor, Line, LineReader, MemSource, ReadError, TextSource};
 pub use vcnc_core::{Span, clamp_u32, column_of};

@@ -270,7 +270,7 @@ impl Board {
             self.note(text, if scan.percent_start { 12 } else { 8 }, fits);
         }
         for ext in &scan.extended {
-            let fits = mask_of(all, |d| d.lex.extended.iter().any(|(t, _)| t == ext));
+            let fits = mask_of(all, |d| d.lex.extended.all().iter().any(|(t, _)| t == ext));
             self.note(format!("\"{ext}\""), 30, fits);
             self.misfit_outside(ext, fits);
         }

@@ -198,7 +198,7 @@ fn extended_addresses() -> &'static [&'static str] {
     ALL.get_or_init(|| {
         let mut v: Vec<&'static str> = Dialect::all()
             .iter()
-            .flat_map(|d| d.lex.extended.iter().map(|(t, _)| *t))
+            .flat_map(|d| d.lex.extended.all().iter().map(|(t, _)| *t))
             .collect();
         v.sort_by(|a, b| b.len().cmp(&a.len()).then(a.cmp(b)));
         v.dedup();

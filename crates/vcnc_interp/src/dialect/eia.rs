@@ -12,7 +12,7 @@ use super::{
 use super::{CompOp, CycleOp, Hole, ModeOp, MotionOp, PaceOp, SetOp};
 use vcnc_core::events::{Cycle, Plane};
 use vcnc_core::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{LexRules, Semicolon};
+use vcnc_syntax::{Extended, LexRules, Semicolon};
 
 /// What a drilling cycle reads (Q and P only where they mean something,
 /// but the data words are shared: `CycleRules::words`).
@@ -102,7 +102,7 @@ const EIA_LEX: LexRules = LexRules {
     semicolon: Semicolon::EndOfBlock,
     slash_comments: false,
     fullwidth_semicolon: false,
-    extended: &[],
+    extended: Extended::NONE,
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
     paren_in_comment_alarms: false,

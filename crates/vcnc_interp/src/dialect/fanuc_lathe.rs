@@ -29,7 +29,7 @@ use super::{
 };
 use vcnc_core::events::Plane;
 use vcnc_core::machine::{DEFAULT_FANUC_LATHE_TOML, GcodeSystem};
-use vcnc_syntax::{Addr, LexRules, Semicolon};
+use vcnc_syntax::{Addr, Extended, LexRules, Semicolon};
 
 /// Words of the multiple repetitive cycles besides the axis words they
 /// claim (U and W are their parameters too): P, Q, R and Haas's D (the
@@ -205,7 +205,7 @@ const FANUC_LATHE_LEX: LexRules = LexRules {
     semicolon: Semicolon::EndOfBlock,
     slash_comments: false,
     fullwidth_semicolon: false,
-    extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
+    extended: Extended::new(&[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)]),
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: true,
     paren_in_comment_alarms: false,

@@ -17,7 +17,7 @@ use super::{
 };
 use vcnc_core::events::Plane;
 use vcnc_core::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{LexRules, Semicolon};
+use vcnc_syntax::{Extended, LexRules, Semicolon};
 
 pub(super) const GRBL_G: &[GRow] = &[
     g(0, GOp::Motion(MotionOp::Rapid), Group::Motion),
@@ -116,7 +116,7 @@ pub(super) const GRBL_LEX: LexRules = LexRules {
     semicolon: Semicolon::Comment,
     slash_comments: false,
     fullwidth_semicolon: false,
-    extended: &[],
+    extended: Extended::NONE,
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
     paren_in_comment_alarms: false,

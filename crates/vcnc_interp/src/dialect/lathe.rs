@@ -13,7 +13,7 @@ use super::{
 use super::{FlowOp, ModeOp, MotionOp, MoveOp, PaceOp, SetOp, TurnOp};
 use vcnc_core::events::Plane;
 use vcnc_core::machine::DEFAULT_LATHE_TOML;
-use vcnc_syntax::{Addr, LexRules, Semicolon};
+use vcnc_syntax::{Addr, Extended, LexRules, Semicolon};
 
 const LATHE_G: &[GRow] = &[
     g(0, GOp::Motion(MotionOp::Rapid), Group::Motion),
@@ -89,12 +89,12 @@ const LATHE_LEX: LexRules = LexRules {
     semicolon: Semicolon::EndOfBlock,
     slash_comments: true,
     fullwidth_semicolon: true,
-    extended: &[
+    extended: Extended::new(&[
         ("CR=", Addr::CR),
         ("IX", Addr::IX),
         ("IZ", Addr::IZ),
         ("D=", Addr(b'D')),
-    ],
+    ]),
     foreign: &[],
     colon_is_o: false,
     paren_in_comment_alarms: false,

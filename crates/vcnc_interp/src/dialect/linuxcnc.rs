@@ -28,7 +28,7 @@ use super::{
 use super::{Diameter, SurfaceSpeedOn};
 use vcnc_core::events::{Cycle, Plane};
 use vcnc_core::machine::DEFAULT_FANUC_LATHE_TOML;
-use vcnc_syntax::{Addr, LexRules};
+use vcnc_syntax::{Addr, Extended, LexRules};
 
 /// LinuxCNC's codes beyond grbl's (its rows replace grbl's G10, which
 /// reads R here for L1).
@@ -248,7 +248,7 @@ const NOT_RUN: &[(u16, &str)] = &[
 /// grbl's reading with the polar words `@` and `^`; rs274 refuses any `(`
 /// inside a comment ("Nested comment found").
 const LINUXCNC_LEX: LexRules = LexRules {
-    extended: &[("@", Addr::AT), ("^", Addr::CARET)],
+    extended: Extended::new(&[("@", Addr::AT), ("^", Addr::CARET)]),
     paren_in_comment_alarms: true,
     ..super::grbl::GRBL_LEX
 };

@@ -155,7 +155,7 @@ impl MacroRules {
                 lang,
                 max_nesting: self.macro_b_nesting,
                 slash_comments: lex.slash_comments,
-                extended: lex.extended,
+                extended: lex.extended.all(),
             },
             // The Syntec manual names no bracket limit, only "too complex"
             // (COM-005): 32 keeps recursion small.

@@ -14,7 +14,7 @@ use super::{
 };
 use vcnc_core::events::{ArcDir, Cycle, Plane};
 use vcnc_core::machine::DEFAULT_MILL_TOML;
-use vcnc_syntax::{Addr, LexRules, Semicolon};
+use vcnc_syntax::{Addr, Extended, LexRules, Semicolon};
 
 /// Rows shared by the Syntec 900M and Fanuc 0i mill dialects.
 const MILL_G: &[GRow] = &[
@@ -221,7 +221,7 @@ const MILL_LEX: LexRules = LexRules {
     semicolon: Semicolon::EndOfBlock,
     slash_comments: true,
     fullwidth_semicolon: true,
-    extended: &[],
+    extended: Extended::NONE,
     foreign: &[("CR=", "lathe"), ("IX", "lathe"), ("IZ", "lathe")],
     colon_is_o: false,
     paren_in_comment_alarms: false,
@@ -417,7 +417,7 @@ pub(super) fn syntec() -> Dialect {
 const FANUC_LEX: LexRules = LexRules {
     colon_is_o: true,
     paren_in_comment_alarms: false,
-    extended: &[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)],
+    extended: Extended::new(&[(",C", Addr::COMMA_C), (",R", Addr::COMMA_R)]),
     ..MILL_LEX
 };
 
