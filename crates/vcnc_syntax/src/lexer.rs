@@ -630,11 +630,7 @@ mod tests {
     #[test]
     fn reads_extended_addresses_only_where_they_start() {
         let rules = LexRules {
-            extended: Extended::new(&[
-                ("CR=", Addr::CR),
-                ("IX", Addr::IX),
-                (",C", Addr::COMMA_C),
-            ]),
+            extended: Extended::new(&[("CR=", Addr::CR), ("IX", Addr::IX), (",C", Addr::COMMA_C)]),
             ..SYNTEC
         };
         let mut out = Block::default();

@@ -32,19 +32,26 @@ pub const MM_PER_INCH: f64 = 25.4;
 /// needs them, as a plain pointed length does not ask whether X is a
 /// diameter.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Units<'a> {
-    /// G20/G21, lathe G22/G23.
-    modal: &'a Modal,
+pub(crate) struct Units {
+    /// G20: inches (else mm).
+    inch: bool,
+    /// Lathe G23: the diameter axis is programmed in diameters.
+    diameter: bool,
     /// A word without a point is in whole units all the same.
     whole_words: bool,
 }
 
-impl<'a> Units<'a> {
+impl Units {
     /// The units of the modal codes `modal`; `whole_words` as the run's
-    /// configuration says (`Config::whole_words`).
+    /// configuration says (`Config::whole_words`). The flags are copied
+    /// out, so that a loop over words keeps them in registers.
     #[inline]
-    pub fn new(modal: &'a Modal, whole_words: bool) -> Units<'a> {
-        Units { modal, whole_words }
+    pub fn new(modal: &Modal, whole_words: bool) -> Units {
+        Units {
+            inch: modal.inch,
+            diameter: modal.diameter,
+            whole_words,
+        }
     }
 
     /// Whether the word is in whole units (else least increments).
@@ -59,9 +66,9 @@ impl<'a> Units<'a> {
         let v = if self.whole(w) {
             w.value
         } else {
-            w.value * if self.modal.inch { 0.0001 } else { 0.001 }
+            w.value * if self.inch { 0.0001 } else { 0.001 }
         };
-        if self.modal.inch { v * MM_PER_INCH } else { v }
+        if self.inch { v * MM_PER_INCH } else { v }
     }
 
     /// An X-direction length that follows diameter programming (lathe G23
@@ -69,7 +76,7 @@ impl<'a> Units<'a> {
     #[inline]
     pub fn x_length_mm(self, w: &Word) -> f64 {
         let v = self.length_mm(w);
-        if self.modal.diameter { v / 2.0 } else { v }
+        if self.diameter { v / 2.0 } else { v }
     }
 
     /// The value of an axis word: mm (a radius for a diameter axis), or
@@ -162,7 +169,7 @@ impl<'a> Machining<'_, 'a> {
     /// How this block's words read (the units in force now: a G20/G21 of
     /// the block has already been executed).
     #[inline]
-    pub(crate) fn units(&self) -> Units<'_> {
+    pub(crate) fn units(&self) -> Units {
         self.state.units(self.cfg)
     }
 
@@ -204,7 +211,7 @@ impl State {
     /// How this block's words read (the units in force now: a G20/G21 of
     /// the block has already been executed).
     #[inline]
-    pub(crate) fn units<'s>(&'s self, cfg: &Config<'_>) -> Units<'s> {
+    pub(crate) fn units(&self, cfg: &Config<'_>) -> Units {
         Units::new(&self.modal, cfg.whole_words)
     }
 }

@@ -65,7 +65,9 @@ impl<'a> Machining<'_, 'a> {
         Ok(())
     }
 
-    /// Commits a straight move of this block.
+    /// Commits a straight move of this block. Inlined: a plain block's
+    /// move is built in its caller's frame, not copied into another.
+    #[inline(always)]
     pub(crate) fn straight(
         &mut self,
         kind: MoveKind,
@@ -115,7 +117,8 @@ impl<'a> Machining<'_, 'a> {
 
     /// Whether G09 is in the block.
     pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
-        w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()
+        // A block of axis words alone has no one-shot code.
+        w.has_codes && w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()
     }
 }
 

@@ -261,7 +261,7 @@ impl Tables {
 // and numbers.
 impl Config<'_> {
     /// `(axis index, value in mm)` of each named axis.
-    fn named_values(&self, units: Units<'_>, w: &Words<'_>) -> Vec<(usize, f64)> {
+    fn named_values(&self, units: Units, w: &Words<'_>) -> Vec<(usize, f64)> {
         self.machine
             .axes
             .iter()

@@ -179,7 +179,7 @@ impl Smoothing {
     /// (else the level's: 0.05, 0.02, 0.005 mm); G187 alone returns to the
     /// machine's own setting (smoothing off). Its `smoothing` event: whether
     /// it is on, and the tolerance. It leaves G05.1's state alone.
-    pub fn haas_level(w: &Words<'_>, units: Units<'_>) -> (bool, f64) {
+    pub fn haas_level(w: &Words<'_>, units: Units) -> (bool, f64) {
         let level = w.get(b'P').map(|p| p.value);
         let tolerance_mm = match (w.get(b'E'), level) {
             (Some(e), _) => units.length_mm(&e),

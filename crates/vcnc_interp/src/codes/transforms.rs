@@ -51,7 +51,7 @@ impl Transforms {
     }
 
     /// A factor word: as written with a point, in 0.001 units without.
-    fn factor(units: Units<'_>, word: &Word) -> Result<f64, Diagnostic> {
+    fn factor(units: Units, word: &Word) -> Result<f64, Diagnostic> {
         let k = units.angle_deg(word);
         if k == 0.0 || k.abs() > MAX_SCALE {
             return Err(alarms::bad_scale_factor(word.span, word.addr.0, k));
