@@ -12,7 +12,7 @@
 //! M100–M199) — as `docs/dialects.md` lists them.
 //!
 //! Parameters and expressions are LinuxCNC's own (`macros/ngc.rs`), and
-//! so are the O-word subroutines and loops (`macros/oword.rs`). Lathe
+//! so are the O-word subroutines and loops (`macros/exec.rs`). Lathe
 //! mode adds G7/G8, the finishing cycle G70, the roughing cycles G71/G72
 //! (and .1, .2) and the threading cycle G76. Not read: splines (G5, G5.1, G5.2) and the UVW planes (E201 says why).
 

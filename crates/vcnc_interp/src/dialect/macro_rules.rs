@@ -14,7 +14,7 @@ pub enum IsoMacros {
     /// Fanuc Custom Macro B.
     CustomMacroB,
     /// LinuxCNC's numbered and named parameters and `[ ]` expressions
-    /// (`macros/ngc.rs`), and its O-word flow (`macros/oword.rs`).
+    /// (`macros/ngc.rs`), and its O-word flow (`macros/structure/owords.rs`, `macros/exec.rs`).
     Ngc,
     /// The same parameters and expressions without O-word flow: Mach3,
     /// whose subprograms are O numbers called by M98.

@@ -22,14 +22,15 @@
 //! ```
 
 use super::Evaluator;
-use super::structure::Link;
+use super::structure::{Branch, Callee, Link, OLink};
 use super::{Compiled, key};
 use crate::alarms;
+use crate::flow::ProgramStore;
 use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
 use vcnc_core::Sink;
 use vcnc_core::events::Event;
-use vcnc_syntax::macros::{BinOp, Expr, Lang, StmtKind, Target, Value, VarKind};
+use vcnc_syntax::macros::{BinOp, Expr, Kw, Lang, StmtKind, Target, Value, VarKind};
 use vcnc_syntax::{Cursor, Diagnostic, Span};
 
 impl Interpreter<'_> {
@@ -139,7 +140,11 @@ impl Interpreter<'_> {
             StmtKind::EndIf | StmtKind::EndCase | StmtKind::Repeat => Ok(Step::Next),
             // A LinuxCNC line runs through `run_ngc_line` (front.rs), from
             // the statement cache too (`macro_cached`).
-            StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) => Ok(Step::Next),
+            // and an O-word statement through `o_word` (below): neither is
+            // counted as a block.
+            StmtKind::Words(_) | StmtKind::Percent | StmtKind::Line(_) | StmtKind::OWord { .. } => {
+                Ok(Step::Next)
+            }
         }
     }
 
@@ -394,5 +399,248 @@ impl<'a> Evaluator<'_, 'a> {
         let text: std::sync::Arc<str> = text.into();
         self.machining()
             .emit(|loc| Event::Message { loc, text, stop });
+    }
+}
+
+/// LinuxCNC's O-word flow as it runs (the statements' links are found
+/// once, `structure.rs`).
+#[derive(Debug, Default)]
+pub(crate) struct OFlow {
+    /// Repeat loops running: (label, remaining passes).
+    repeats: Vec<(String, f64)>,
+    /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
+    /// skipped as the end of a branch that ran): its line's offset.
+    pending: Option<u64>,
+    /// The locals of each subroutine call running, and how many repeat
+    /// loops ran when it was called (a return leaves the sub's own).
+    saved: Vec<(super::ngc::Saved, usize)>,
+}
+
+/// Where an O-word statement goes on.
+enum OStep {
+    Next,
+    /// Forward, free.
+    Jump(Cursor),
+    /// Back (a loop's pass, a CONTINUE): counted against `max_jumps`.
+    Back(Cursor),
+}
+
+impl OFlow {
+    /// Follows the link of the branch or loop statement `kw` of `label` on
+    /// the line at `here`: `cond` is its operand, `unpaired` the alarm for
+    /// a partner its link lacks.
+    fn follow(
+        &mut self,
+        (kw, label, here): (Kw, &str, u64),
+        link: &OLink,
+        cond: impl Fn() -> Result<f64, Diagnostic>,
+        unpaired: impl Fn(&str) -> Diagnostic,
+    ) -> Result<OStep, Diagnostic> {
+        let ahead = |d: &Result<Cursor, &str>| d.map(OStep::Jump).map_err(&unpaired);
+        Ok(match link {
+            OLink::Sub(end) => ahead(end)?,
+            OLink::Plain | OLink::Call(_) => OStep::Next,
+            OLink::If(next) => {
+                if cond()? != 0.0 {
+                    OStep::Next
+                } else {
+                    OStep::Jump(self.branch(next.map_err(&unpaired)?))
+                }
+            }
+            // Run into from the branch before (not tested): past the ENDIF.
+            OLink::Clause { end, .. } if self.pending.take() != Some(here) => ahead(end)?,
+            OLink::Clause { next, .. } => {
+                if kw == Kw::Else || cond()? != 0.0 {
+                    OStep::Next
+                } else {
+                    OStep::Jump(self.branch(next.map_err(&unpaired)?))
+                }
+            }
+            OLink::DoWhile(body) if cond()? != 0.0 => OStep::Back(*body),
+            OLink::DoWhile(_) => OStep::Next,
+            OLink::Loop(end) if kw == Kw::Repeat => {
+                // rs274 rounds the count half to even: [2.5] is 2 passes.
+                let n = cond()?.round_ties_even();
+                if n >= 1.0 {
+                    self.repeats.push((label.to_string(), n));
+                    OStep::Next
+                } else {
+                    ahead(end)?
+                }
+            }
+            OLink::Loop(end) if cond()? == 0.0 => ahead(end)?,
+            OLink::Loop(_) => OStep::Next,
+            OLink::Back(body) if kw == Kw::EndRepeat => {
+                let body = body.map_err(&unpaired)?;
+                match self.again(label) {
+                    Some(true) => OStep::Back(body),
+                    Some(false) => OStep::Next,
+                    None => return Err(unpaired("repeat running")),
+                }
+            }
+            OLink::Back(head) => OStep::Back(head.map_err(&unpaired)?),
+            OLink::Leave(lp) => {
+                let lp = lp.as_ref().map_err(|w| unpaired(w))?;
+                self.leave(&lp.ending);
+                match kw {
+                    Kw::Continue => OStep::Back(lp.to),
+                    _ => OStep::Jump(lp.to),
+                }
+            }
+        })
+    }
+
+    /// Where a false IF or ELSEIF goes: past the ENDIF, or to the next
+    /// clause, to be tested there.
+    fn branch(&mut self, b: Branch) -> Cursor {
+        match b {
+            Branch::End(to) => to,
+            Branch::Test(to) => {
+                self.pending = Some(to.offset);
+                to
+            }
+        }
+    }
+
+    /// ENDREPEAT of `label`: whether another pass runs (`None`: no repeat
+    /// of that label is running).
+    fn again(&mut self, label: &str) -> Option<bool> {
+        match self.repeats.last_mut() {
+            Some((l, left)) if l == label && *left > 1.0 => {
+                *left -= 1.0;
+                Some(true)
+            }
+            Some((l, _)) if l == label => {
+                self.repeats.pop();
+                Some(false)
+            }
+            _ => None,
+        }
+    }
+
+    /// BREAK or CONTINUE: the repeat loops running that end with it.
+    fn leave(&mut self, ending: &[String]) {
+        while self.repeats.last().is_some_and(|(l, _)| ending.contains(l)) {
+            self.repeats.pop();
+        }
+    }
+}
+
+impl Interpreter<'_> {
+    /// Runs the LinuxCNC O-word statement `c` of source `src`: its
+    /// operands evaluated, then its link followed (`structure.rs` found
+    /// it). Forward jumps are free; a loop's jump back, a CONTINUE and a
+    /// call count against `limits.max_jumps`, a call against
+    /// `limits.max_call_depth`. It is not counted as a block: rs274 runs
+    /// no motion for it.
+    pub(crate) fn o_word(
+        &mut self,
+        c: &Compiled,
+        src: usize,
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let StmtKind::OWord {
+            kw,
+            label,
+            operands,
+        } = &c.st.kind
+        else {
+            return Ok(Step::Next);
+        };
+        let (kw, span) = (*kw, c.st.first);
+        let unpaired = |wanted: &str| super::structure::unpaired(span, label, kw, wanted);
+        let statements = self.oword_statements(src)?;
+        let (lacks, link) = statements
+            .index(c.here.offset)
+            .and_then(|i| statements.links.get(i))
+            .ok_or_else(|| unpaired("place in the program"))?;
+        let values = self.evaluator().ngc_values(operands)?;
+        if let Some(wanted) = lacks {
+            return Err(unpaired(wanted));
+        }
+        let value = values.first().copied();
+        let step = match (kw, link) {
+            (_, OLink::Call(callee)) => {
+                self.o_call(*callee, label, span, c.next, &values, store)?
+            }
+            (Kw::EndSub | Kw::Return, _) => self.o_return(span, value)?,
+            _ => {
+                let cond = || value.ok_or_else(|| unpaired("[condition]"));
+                let flow = self.macros.oword.get_or_insert_with(Box::default);
+                match flow.follow((kw, label, c.here.offset), link, cond, unpaired)? {
+                    OStep::Next => Step::Jump(c.next),
+                    OStep::Jump(to) => Step::Jump(to),
+                    OStep::Back(to) => {
+                        self.count_jump(span)?;
+                        Step::Jump(to)
+                    }
+                }
+            }
+        };
+        // The statements' scan may have moved the reader: go on from here.
+        self.macros.moved_reader = false;
+        Ok(match step {
+            Step::Next => Step::Jump(c.next),
+            s => s,
+        })
+    }
+
+    /// O CALL: a level of the flow like a subprogram's, the locals saved,
+    /// #1… the arguments; the body is this source's sub, or the file
+    /// `NAME.ngc`'s.
+    fn o_call(
+        &mut self,
+        callee: Callee,
+        label: &str,
+        span: Span,
+        ret: Cursor,
+        args: &[f64],
+        store: &mut dyn ProgramStore,
+    ) -> Result<Step, Diagnostic> {
+        let (source, start) = match callee {
+            Callee::Here(start) => (None, start),
+            Callee::File => {
+                let (src, start) = self.sub_file(label, span, store)?;
+                (Some(src), start)
+            }
+            Callee::Twice(n) => {
+                return Err(super::structure::defined_twice(
+                    span,
+                    label,
+                    n,
+                    "this program",
+                ));
+            }
+        };
+        self.check_call_depth(span)?;
+        self.count_jump(span)?;
+        let saved = self.macros.ngc.get_or_insert_with(Box::default).enter(args);
+        let flow = self.macros.oword.get_or_insert_with(Box::default);
+        let repeats = flow.repeats.len();
+        flow.saved.push((saved, repeats));
+        match source {
+            None => self.enter_local_sub(start, ret, "endsub"),
+            Some(src) => self.enter_sub_in(src, start, ret, "endsub"),
+        }
+        Ok(Step::Jump(start))
+    }
+
+    /// ENDSUB or RETURN: the caller's locals back, `#<_value>` set.
+    fn o_return(&mut self, span: Span, value: Option<f64>) -> Result<Step, Diagnostic> {
+        let flow = self.macros.oword.get_or_insert_with(Box::default);
+        let Some((saved, repeats)) = flow.saved.pop() else {
+            return Err(alarms::bad_structure(
+                span,
+                "endsub or return with no o-word call to return to".into(),
+                "reach a subroutine's body only through o… call",
+            ));
+        };
+        flow.repeats.truncate(repeats);
+        flow.pending = None;
+        self.macros
+            .ngc
+            .get_or_insert_with(Box::default)
+            .leave(saved, value);
+        self.sub_return(span)
     }
 }

@@ -15,6 +15,7 @@
 //! lines, mapped back to a line and a column through its line map when an
 //! alarm or a warning is located.
 
+use super::structure::unpaired;
 use super::{Key, LineMap, key};
 use crate::alarms;
 use crate::dialect::{IsoMacros, MacroFiles};
@@ -23,6 +24,7 @@ use crate::interpreter::{Interpreter, Step};
 use std::rc::Rc;
 use vcnc_core::Sink;
 use vcnc_syntax::macros::{Lang, MValue, MWord, Statement, StmtKind, Value};
+use vcnc_syntax::macros::{o_statement, o_word_statement};
 use vcnc_syntax::macros::{parse_iso_block, parse_syntec_statement, syntec_extent};
 use vcnc_syntax::{Block, Cursor, Diagnostic, Line, ReadError, Span, Word};
 
@@ -167,13 +169,16 @@ impl Interpreter<'_> {
             return Ok(None);
         };
         *i = c.next.col as usize;
-        if matches!(c.st.kind, StmtKind::Line(_)) {
+        // LinuxCNC's lines and O-word statements, the only statements
+        // compiled under its language (one test of a byte).
+        if c.lang == Lang::Ngc {
             return self.cached_ngc_line(&c, src, line, block, store, sink);
         }
         self.run_compiled(&c, src, block, store, sink).map(Some)
     }
 
-    /// A cached LinuxCNC line, run as on its first pass.
+    /// A cached LinuxCNC line or O-word statement, run as on its first
+    /// pass.
     #[inline(never)]
     fn cached_ngc_line<S: Sink>(
         &mut self,
@@ -184,7 +189,11 @@ impl Interpreter<'_> {
         store: &mut dyn ProgramStore,
         sink: &mut S,
     ) -> Result<Option<(Step, Span)>, Diagnostic> {
-        match self.run_ngc_line(c, block, store, sink) {
+        let ran = match c.st.kind {
+            StmtKind::OWord { .. } => self.o_word(c, src, store),
+            _ => self.run_ngc_line(c, block, store, sink),
+        };
+        match ran {
             Ok(step) => Ok(Some((step, c.st.first))),
             Err(d) => self.ngc_line_alarm(d, src, line, c.here.col as usize),
         }
@@ -229,7 +238,7 @@ impl Interpreter<'_> {
         // which Macro B would misread as its own WHILE.
         match self.macros.rules.iso {
             IsoMacros::Ngc if lexed.code == vcnc_syntax::Code::E604 => {
-                return self.ngc_oword(src, line, start, lexed, i, store);
+                return self.oword_block(src, line, start, lexed, i, store);
             }
             // Mach3: parameters, but O-word flow stays E604.
             IsoMacros::NgcParams if lexed.code == vcnc_syntax::Code::E604 => return Err(lexed),
@@ -262,6 +271,41 @@ impl Interpreter<'_> {
         self.ensure_structure(src)?;
         *i = next_col;
         self.run_compiled(&c, src, block, store, sink)
+    }
+
+    /// A LinuxCNC O-word statement (`o100 while [#1 LT 3]`), first met:
+    /// its source's statements listed and linked (once,
+    /// `structure.rs`), it is compiled, kept in the statement cache and
+    /// run (`exec.rs`). `lexed` is the lexer's alarm, kept for a line that
+    /// is no O-word statement.
+    fn oword_block(
+        &mut self,
+        src: usize,
+        line: &Line,
+        start: usize,
+        lexed: Diagnostic,
+        i: &mut usize,
+        store: &mut dyn ProgramStore,
+    ) -> Result<(Step, Span), Diagnostic> {
+        let Some(s) = self.flow.source(src) else {
+            return Err(lexed);
+        };
+        let bytes = s.reader.bytes(line).to_vec();
+        let Some(o) = o_statement(&bytes, start) else {
+            return Err(lexed);
+        };
+        *i = bytes.len();
+        let statements = self.oword_statements(src)?;
+        if statements.index(line.offset).is_none() {
+            let span = Span::new(start, bytes.len());
+            return Err(unpaired(span, &o.label, o.kw, "place in the program"));
+        }
+        let st = o_word_statement(&bytes, start, o)?;
+        let c = Compiled::on_line(st, Lang::Ngc, line, (start, bytes.len()));
+        self.macros.remember(key(self.source_id(src), c.here), &c);
+        self.looping.macro_active = true;
+        let step = self.o_word(&c, src, store)?;
+        Ok((step, c.st.first))
     }
 
     /// A LinuxCNC line with parameters or expressions (`macros/ngc.rs`),

@@ -31,7 +31,6 @@ mod eval;
 mod exec;
 mod front;
 mod ngc;
-mod oword;
 mod structure;
 mod system;
 mod vars;
@@ -139,8 +138,8 @@ pub(crate) struct Macros {
     pub round_per_unit: Option<f64>,
     /// LinuxCNC's parameters, once a line used one.
     pub ngc: Option<Box<ngc::Params>>,
-    /// LinuxCNC's O-word statements and flow, once one ran.
-    pub oword: Option<Box<oword::Flow>>,
+    /// LinuxCNC's O-word flow (repeat counts, calls), once one ran.
+    pub oword: Option<Box<exec::OFlow>>,
 }
 
 impl Macros {

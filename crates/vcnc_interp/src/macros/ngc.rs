@@ -13,7 +13,7 @@
 //!
 //! Every parameter holds a number (an unset numbered one reads 0, an
 //! unset named one alarms). Named parameters without a leading `_` are
-//! local to an O-word subroutine (`oword.rs` saves them at its call,
+//! local to an O-word subroutine (`exec.rs` saves them at its call,
 //! restores them at its return); the others live for the whole program.
 //! System parameters (#5061–#5428: probe results, offsets, the position)
 //! read what the program wrote, 0 otherwise.
@@ -428,12 +428,11 @@ impl<'a> Evaluator<'_, 'a> {
         }
     }
 
-    /// The values in brackets after an O-word keyword (`[c]`, a call's
-    /// arguments `[1] [#2 * 3]`) from byte `at` of `text`; none: empty.
-    pub(crate) fn ngc_operands(&mut self, text: &[u8], at: usize) -> Result<Vec<f64>, Diagnostic> {
-        let exprs = vcnc_syntax::macros::ngc_operands(text, at)?;
-        let mut out = Vec::with_capacity(exprs.len());
-        for e in &exprs {
+    /// The values of an O-word statement's operands (`[c]`, a call's
+    /// arguments `[1] [#2 * 3]`), in order; each must be finite.
+    pub(crate) fn ngc_values(&mut self, operands: &[Expr]) -> Result<Vec<f64>, Diagnostic> {
+        let mut out = Vec::with_capacity(operands.len());
+        for e in operands {
             let v = self.ngc_eval(e)?;
             if !v.is_finite() {
                 return Err(alarms::macro_range(e.span, "the value"));

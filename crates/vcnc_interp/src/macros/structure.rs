@@ -32,10 +32,12 @@
 //! label the program lacks has none (E404 when it runs).
 //!
 //! LinuxCNC's O-words (`o100 while` … `o100 endwhile`, `sub`, `if`, `do`,
-//! `repeat`) are listed here too, once per source: they pair by label
-//! within a subroutine's scope rather than by nesting, so the list keeps
-//! each statement's label, scope and line, each DO's closing WHILE and each
-//! label's SUBs, and `oword.rs` looks a partner up in it when it jumps.
+//! `repeat`, `break`, `call`) are linked here too (`structure/owords.rs`),
+//! once per source: they pair by label within a subroutine's scope rather
+//! than by nesting, so each source's statements are listed with their
+//! label, scope and line, and each is linked to where it jumps (its end,
+//! its head, the next branch to test, its loop, the sub it calls), which
+//! `exec.rs` follows.
 
 use super::{Compiled, FastMap, Key, key};
 use crate::alarms;
@@ -43,8 +45,12 @@ use crate::dialect::{Dialect, FlowOp, GOp};
 use crate::flow::{Flow, whole_u32};
 use crate::interpreter::Interpreter;
 use std::rc::Rc;
-use vcnc_syntax::macros::{Kw, Lang, StmtKind, o_statement, parse_iso_block};
+use vcnc_syntax::macros::{Lang, StmtKind, parse_iso_block};
 use vcnc_syntax::{Addr, Cursor, Diagnostic, ReadError, lex_block};
+
+mod owords;
+
+pub(crate) use owords::{Branch, Callee, OLink, Statements, defined_twice, unpaired};
 
 /// Most links kept in a run (E611 beyond).
 const LINK_LIMIT: usize = 65_536;
@@ -826,144 +832,4 @@ fn pair_lathe_loops(
             Some((key(id, at), Link::Back(*head)))
         })
         .collect()
-}
-
-// LinuxCNC's O-words pair by label, not by nesting: a statement's partner
-// is the next one with the same label in its scope (the previous one for
-// a loop's end), so the pass below only lists them, with each DO's
-// closing WHILE and each label's SUBs; `oword.rs` follows the links.
-
-/// One O-word statement of a source.
-#[derive(Debug, Clone)]
-pub(crate) struct Entry {
-    pub label: String,
-    pub kw: Kw,
-    /// Where its label lives: 0 the main program, i + 1 the body of the
-    /// subroutine whose `sub` is statement i (labels are local to a sub).
-    pub scope: usize,
-    /// A WHILE that closes a DO: the DO's index (found once, at the scan).
-    pub closes_do: Option<usize>,
-    /// Its line, from its start.
-    pub here: Cursor,
-    /// Just past its line.
-    pub after: Cursor,
-}
-
-/// A source's O-word statements, in file order, and each one's index by
-/// its line's offset.
-#[derive(Debug, Default)]
-pub(crate) struct Statements {
-    pub entries: Vec<Entry>,
-    pub at: std::collections::HashMap<u64, usize>,
-    /// Each label's SUB statements (more than one: defined twice).
-    pub subs: std::collections::HashMap<String, Vec<usize>>,
-}
-
-/// The first statement from index `from` in `scope` with `label`, one of
-/// `kws`.
-pub(crate) fn find<'e>(
-    entries: &'e [Entry],
-    from: usize,
-    scope: usize,
-    label: &str,
-    kws: &[Kw],
-) -> Option<(usize, &'e Entry)> {
-    entries
-        .iter()
-        .enumerate()
-        .skip(from)
-        .find(|(_, e)| e.scope == scope && e.label == label && kws.contains(&e.kw))
-}
-
-/// The last statement before index `before` in `scope` with `label`.
-pub(crate) fn find_back<'e>(
-    entries: &'e [Entry],
-    before: usize,
-    scope: usize,
-    label: &str,
-    kws: &[Kw],
-) -> Option<&'e Entry> {
-    entries[..before]
-        .iter()
-        .rev()
-        .find(|e| e.scope == scope && e.label == label && kws.contains(&e.kw))
-}
-
-impl Interpreter<'_> {
-    /// The O-word statements of source `src`, read once from its start.
-    pub(crate) fn oword_statements(&mut self, src: usize) -> Result<Rc<Statements>, Diagnostic> {
-        let id = self.source_id(src);
-        if let Some((_, e)) = self.macros.structure.owords.iter().find(|(i, _)| *i == id) {
-            return Ok(Rc::clone(e));
-        }
-        let mut entries: Vec<Entry> = Vec::new();
-        // The DO each label of each scope has open.
-        let mut open_do: std::collections::HashMap<(usize, String), usize> =
-            std::collections::HashMap::new();
-        // The scope of the statements being read: 0, or i + 1 inside the
-        // sub of statement i.
-        let mut scope = 0;
-        if let Some(s) = self.flow.source(src) {
-            s.reader.seek(Cursor::default());
-            loop {
-                let line = match s.reader.next_line() {
-                    Ok(Some(l)) => l,
-                    Ok(None) | Err(ReadError::Io(_)) => break,
-                    Err(ReadError::TooLong { .. }) => continue,
-                };
-                let bytes = s.reader.bytes(&line);
-                if let Some(st) = o_statement(bytes, 0) {
-                    let (own, after_it) = match st.kw {
-                        Kw::Sub => (scope, entries.len() + 1),
-                        Kw::EndSub => (scope, 0),
-                        _ => (scope, scope),
-                    };
-                    scope = after_it;
-                    let here = Cursor {
-                        offset: line.offset,
-                        line: line.number,
-                        col: 0,
-                    };
-                    let key = (own, st.label.clone());
-                    let closes_do = match st.kw {
-                        Kw::Do => {
-                            open_do.insert(key, entries.len());
-                            None
-                        }
-                        Kw::While => open_do.remove(&key),
-                        _ => None,
-                    };
-                    entries.push(Entry {
-                        label: st.label,
-                        kw: st.kw,
-                        scope: own,
-                        closes_do,
-                        here,
-                        after: Cursor {
-                            col: vcnc_syntax::clamp_u32(bytes.len()),
-                            ..here
-                        },
-                    });
-                }
-            }
-        }
-        // The scan moved the reader: the statement's step seeks again.
-        self.macros.moved_reader = true;
-        let at = entries
-            .iter()
-            .enumerate()
-            .map(|(i, e)| (e.here.offset, i))
-            .collect();
-        let mut subs: std::collections::HashMap<String, Vec<usize>> =
-            std::collections::HashMap::new();
-        for (i, e) in entries.iter().enumerate().filter(|(_, e)| e.kw == Kw::Sub) {
-            subs.entry(e.label.clone()).or_default().push(i);
-        }
-        let statements = Rc::new(Statements { entries, at, subs });
-        self.macros
-            .structure
-            .owords
-            .push((id, Rc::clone(&statements)));
-        Ok(statements)
-    }
 }

@@ -163,6 +163,37 @@ fn g10_l1_writes_the_tool_table_and_fanucs_forms_alarm() {
     assert_eq!(alarm("G21 G90\nG10 L1 P3\nM2\n"), (Code::E312, 2, 1));
 }
 
+/// O-word statements run along links found once per source (issue #25:
+/// the shared compiled statements): a CONTINUE and a BREAK name their
+/// loop by label, a false IF jumps to the next ELSEIF to be tested there
+/// (an ELSEIF after a branch that ran is skipped), a RETURN inside a
+/// REPEAT ends the sub's own passes only (the caller's REPEAT of the same
+/// label counts on), and a statement's missing partner alarms when it
+/// runs, after its operands. Moves worked out by hand from LinuxCNC's
+/// "O Codes".
+#[test]
+fn o_words_follow_their_links() {
+    // #1 = 1: three passes of X+1; 2: CONTINUE; 3: BREAK at once; 4: X+4 ×3.
+    let nested = "G21 G91\n#1 = 0\no1 while [#1 LT 4]\n  #1 = [#1 + 1]\n  o2 if [#1 EQ 2]\n    \
+                  o1 continue\n  o2 endif\n  o3 repeat [3]\n    o4 if [#1 EQ 3]\n      o3 break\n    \
+                  o4 endif\n    G0 X#1\n  o3 endrepeat\no1 endwhile\nM2\n";
+    assert_eq!(
+        common::xs(&ended(nested)),
+        vec![1.0, 2.0, 3.0, 7.0, 11.0, 15.0]
+    );
+    let branches = "G21 G90\n#2 = 2\no5 if [#2 EQ 1]\n  G0 X10\no5 elseif [#2 EQ 2]\n  G0 X20\n\
+                    o5 elseif [#2 EQ 2]\n  G0 X30\no5 else\n  G0 X40\no5 endif\nM2\n";
+    assert_eq!(common::xs(&ended(branches)), vec![20.0]);
+    let returns = "G21 G91\no<f> sub\n  o1 repeat [5]\n    o2 if [#1 GT 0]\n      \
+                   o<f> return [#1 * 10]\n    o2 endif\n  o1 endrepeat\no<f> endsub [0]\n\
+                   o1 repeat [2]\n  o<f> call [1]\n  G0 X#<_value>\no1 endrepeat\nM2\n";
+    assert_eq!(common::xs(&ended(returns)), vec![10.0, 20.0]);
+    // The IF lacks its ENDIF: its vacant operand alarms first (E607 at
+    // the operand), a defined one E611 at the statement.
+    assert_eq!(alarm("G21\no6 if [#<nope>]\nM2\n"), (Code::E607, 2, 8));
+    assert_eq!(alarm("G21\n#2 = 1\no6 if [#2]\nM2\n"), (Code::E611, 3, 1));
+}
+
 /// O-word statements that do not pair, or call what the file does not
 /// define, alarm at the statement (E611); the other dialects name the
 /// dialect that reads them (E604); what the dialect does not read alarms

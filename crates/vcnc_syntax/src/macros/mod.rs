@@ -33,7 +33,9 @@ mod ngc;
 mod scan;
 mod stmt;
 
-pub use ngc::{Kw, OStmt, ngc_expected, ngc_operands, o_statement, parse_ngc_line};
+pub use ngc::{
+    Kw, OStmt, ngc_expected, ngc_operands, o_statement, o_word_statement, parse_ngc_line,
+};
 pub use stmt::{Extent, parse_iso_block, parse_syntec_statement, syntec_extent};
 
 use crate::block::Addr;
@@ -411,6 +413,17 @@ pub enum StmtKind {
     /// A LinuxCNC line: its words, evaluated with the parameters as they
     /// were before it, and its settings, applied after it.
     Line(Vec<LineItem>),
+    /// A LinuxCNC O-word statement (`o100 while [#1 LT 3]`, `o<probe>
+    /// call [1] [2]`): it pairs by label, not by nesting.
+    OWord {
+        /// The keyword.
+        kw: Kw,
+        /// `100` for `o100`, a name in lower case.
+        label: String,
+        /// The values in brackets after the keyword (a condition, a
+        /// count, a call's arguments, a return value).
+        operands: Vec<Expr>,
+    },
 }
 
 impl StmtKind {

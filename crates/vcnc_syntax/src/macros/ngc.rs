@@ -15,7 +15,9 @@
 //! items in order with the parameters as they were before the line, then
 //! applies the settings. An O-word statement's label and keyword are read
 //! by [`o_statement`] and its operands (`[c]`, a call's `[1] [#2 * 3]`)
-//! by [`ngc_operands`]; the interpreter's `oword.rs` runs them.
+//! by [`ngc_operands`], and compiled into one [`StmtKind::OWord`] by
+//! [`o_word_statement`]; the interpreter pairs them by label
+//! (`macros/structure.rs`) and runs them (`macros/exec.rs`).
 
 use super::expr::ExprParser;
 use super::scan::Scan;
@@ -200,6 +202,24 @@ pub fn ngc_operands(text: &[u8], at: usize) -> Result<Vec<Expr>, Diagnostic> {
             _ => return Err(ngc_expected(Span::new(s.pos, s.pos + 1), "a value in [ ]")),
         }
     }
+}
+
+/// The O-word statement `o` read from `text[start..]` (by
+/// [`o_statement`]) compiled: its operands parsed, the statement spanning
+/// the rest of the line.
+pub fn o_word_statement(text: &[u8], start: usize, o: OStmt) -> Result<Statement, Diagnostic> {
+    let operands = ngc_operands(text, o.rest)?;
+    Ok(Statement {
+        kind: StmtKind::OWord {
+            kw: o.kw,
+            label: o.label,
+            operands,
+        },
+        first: Span::new(start, text.len()),
+        seq: None,
+        deleted: None,
+        comment: None,
+    })
 }
 
 /// An O-word statement's keyword.
@@ -450,5 +470,31 @@ mod tests {
         assert_eq!(ops.len(), 2);
         assert_eq!(codes(&ops[0]), vec![num(1.0)]);
         assert!(ngc_operands(b"o1 if 1", 5).is_err());
+    }
+
+    #[test]
+    fn o_word_statements_compile_with_their_operands() {
+        let text = b"N10 o<Probe> call [1] [#2 * 3] (c)";
+        let o = o_statement(text, 0).unwrap();
+        let st = o_word_statement(text, 0, o).unwrap();
+        let StmtKind::OWord {
+            kw,
+            label,
+            operands,
+        } = &st.kind
+        else {
+            panic!("{st:?}");
+        };
+        assert_eq!(
+            (*kw, label.as_str(), operands.len()),
+            (Kw::Call, "probe", 2)
+        );
+        assert_eq!(codes(&operands[1])[0], OpCode::Var(VarKind::Hash, 2));
+        // The statement spans the rest of its line (where E611 points).
+        assert_eq!(st.first, Span::new(0, text.len()));
+        // An operand that does not parse is the statement's error.
+        let text = b"o1 if [1 +";
+        let o = o_statement(text, 0).unwrap();
+        assert!(o_word_statement(text, 0, o).is_err());
     }
 }
