@@ -73,6 +73,17 @@ pub(crate) enum Step {
     ProgramEnd,
 }
 
+/// Where the run goes on after a block's alarm under keep-going
+/// ([`Interpreter::flow_after_alarm`]).
+pub(crate) enum AfterAlarm {
+    /// The block's end or return, obeyed after its alarm.
+    Flow(Step),
+    /// The next block, where the reader is.
+    Next,
+    /// The next block, but a failed search moved the reader.
+    NextMoved,
+}
+
 /// What the run loop keeps between blocks: the runaway budget, and whether
 /// a macro statement has run.
 pub(crate) struct Looping {
@@ -331,10 +342,33 @@ impl<'a> Interpreter<'a> {
             line: line.number,
             col: clamp_u32(start),
         };
-        if let Some(step) = self.flow_after_alarm(block, here) {
-            return Ok(step);
+        match self.flow_after_alarm(block, here) {
+            AfterAlarm::Flow(step) => Ok(step),
+            AfterAlarm::Next => Ok(after.map_or(Step::Next, Step::Jump)),
+            // The failed return's search (`M99 P` of a missing sequence)
+            // moved the reader: the run goes on right after this block.
+            AfterAlarm::NextMoved => Ok(Step::Jump(self.cursor_after(src, line, start))),
         }
-        Ok(after.map_or(Step::Next, Step::Jump))
+    }
+
+    /// Where the block that starts at `start` of `line` ends: the next
+    /// block's cursor, as the run loop's lexer found it (cold: the line is
+    /// read again).
+    #[cold]
+    fn cursor_after(&mut self, src: usize, line: &Line, start: usize) -> Cursor {
+        let lex = self.cfg.dialect.lex;
+        let text = self
+            .flow
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default();
+        let next = lex_block(&text, start, &lex, &mut Block::default())
+            .unwrap_or_else(|_| vcnc_syntax::next_block_start(&text, start, &lex));
+        Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: clamp_u32(next),
+        }
     }
 
     /// An alarm in a block: the end of the run, or under

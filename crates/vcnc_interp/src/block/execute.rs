@@ -26,7 +26,7 @@ use crate::dialect::{
 use crate::dialect::{FlowOp, ModeOp, MotionOp, PaceOp, SetOp};
 use crate::flow::ProgramStore;
 use crate::interpreter::Machining;
-use crate::interpreter::{Interpreter, Step};
+use crate::interpreter::{AfterAlarm, Interpreter, Step};
 use crate::motion::stage::Stage;
 use crate::state::{Motion, State};
 use crate::words::{ALWAYS, Words};
@@ -166,22 +166,29 @@ impl Interpreter<'_> {
     /// alarmed block is, but its flow still decides where the run goes on —
     /// else an alarmed M99 (after a held `,C`, say) leaves the subprogram
     /// without a return, the run ends with E406 and the caller's remaining
-    /// blocks go unchecked. `None` when the block has no such code or its
-    /// flow part alarms too (`M99 P` of a missing sequence): the run then
-    /// goes on with the next block, as after any alarm.
+    /// blocks go unchecked. [`AfterAlarm::Next`] when the block has no
+    /// such code or its flow part alarms too: the run then goes on with the
+    /// next block, as after any alarm — [`AfterAlarm::NextMoved`] when that
+    /// was a return whose `P` sequence was searched for (the search moved
+    /// the reader).
     #[cold]
     #[inline(never)]
-    pub(crate) fn flow_after_alarm(&mut self, block: &Block, here: Cursor) -> Option<Step> {
+    pub(crate) fn flow_after_alarm(&mut self, block: &Block, here: Cursor) -> AfterAlarm {
         let mut words = Words::new(block);
-        words
+        if words
             .fill(self.cfg.dialect, self.cfg.machine, self.cfg.axis_mask)
-            .ok()?;
-        let m = words.m_of(MGroup::Flow)?;
+            .is_err()
+        {
+            return AfterAlarm::Next;
+        }
+        let Some(m) = words.m_of(MGroup::Flow) else {
+            return AfterAlarm::Next;
+        };
         // A block that calls a macro is that call, not a flow block.
         let m_macro = (words.other_m.iter().flatten())
             .any(|o| self.cfg.machine.m_macros.contains_key(&o.def));
         if words.macro_call.is_some() || m_macro {
-            return None;
+            return AfterAlarm::Next;
         }
         let jumps = self.flow.jumps;
         let saved = self.state;
@@ -201,19 +208,24 @@ impl Interpreter<'_> {
             | MOp::RigidTap
             | MOp::ToolChange
             | MOp::CoolantOn
-            | MOp::CoolantOff => return None,
+            | MOp::CoolantOff => return AfterAlarm::Next,
         };
         match result {
             Ok(step) => {
                 self.tables.commit();
-                Some(step)
+                AfterAlarm::Flow(step)
             }
             Err(_) => {
                 self.stage.abandon(mark);
                 self.flow.jumps = jumps;
                 self.state = saved;
                 self.tables.rollback();
-                None
+                // Only a return searches the program (for its P).
+                if m.def.op == MOp::Return {
+                    AfterAlarm::NextMoved
+                } else {
+                    AfterAlarm::Next
+                }
             }
         }
     }

@@ -345,3 +345,18 @@ fn an_alarmed_m99_whose_return_fails_goes_on_with_the_next_block() {
     assert_eq!(feed_xs(&events), vec![1.0, 7.0, 9.0]);
     assert!(ends_with_m30(&events));
 }
+
+/// The same when the failed return searched the block's own program (an
+/// M99 P of the main program): the search walked the reader to the end of
+/// the text, and the run still goes on right after the alarmed block —
+/// with the next block of its own line when one follows (review 4,
+/// finding 1: it ended at the end of the text, with a false W106).
+#[test]
+fn an_alarmed_m99_whose_search_fails_goes_on_right_after_the_block() {
+    let program =
+        "G21 G90 S1000 M03\nG01 X10. F100.\nG01 X20. Q5. M99 P3; G01 X30.\nG01 X99.\nM30\n";
+    let (events, _) = run(program);
+    assert_eq!(alarms(&events), vec![(Code::E203, 3)]);
+    assert_eq!(feed_xs(&events), vec![10.0, 30.0, 99.0]);
+    assert!(ends_with_m30(&events));
+}
