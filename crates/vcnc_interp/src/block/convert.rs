@@ -322,13 +322,31 @@ impl State {
         if r_word.is_none() && a_word.is_none() {
             return 0;
         }
-        let (last_r, last_deg) = self.polar;
+        let here_centred =
+            cfg.dialect.polar_incremental == PolarIncremental::CentreAtCurrentPosition;
+        let (last_r, last_deg) = if incremental && here_centred {
+            // Fanuc's G91 reads the current point's own radius and angle
+            // (Mitsubishi M700V §6.12), also after a move that was not polar
+            // (G53, G28, G92) or a plane change.
+            let (a, b) = (self.prog.get(ia), self.prog.get(ib));
+            let r = a.hypot(b);
+            // At the origin the angle is none: 0, not the direction of a
+            // rounding residue (10 at 90° leaves X at 6e-16).
+            (
+                r,
+                if r <= crate::plane::ZERO_MM {
+                    0.0
+                } else {
+                    b.atan2(a).to_degrees()
+                },
+            )
+        } else {
+            self.polar
+        };
         let units = self.units(cfg);
         let r = r_word.map(|word| units.length_mm(&word));
         let deg = a_word.map(|word| units.angle_deg(&word));
-        if let (true, Some(r), PolarIncremental::CentreAtCurrentPosition) =
-            (incremental, r, cfg.dialect.polar_incremental)
-        {
+        if let (true, Some(r), true) = (incremental, r, here_centred) {
             return self.polar_about_here(r, last_deg + deg.unwrap_or(0.0), [ia, ib], to);
         }
         let (r, deg) = if incremental {

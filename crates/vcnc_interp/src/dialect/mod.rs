@@ -463,9 +463,9 @@ pub enum PolarIncremental {
     AddsToLast,
     /// A radius under G91 is measured from the current position, which
     /// becomes the polar centre for that block; the angle adds to the
-    /// last angle, which after a polar block is the current point's angle
-    /// about the origin (the block about the current position stores its
-    /// end point's radius and angle about the origin). A G91 block without a
+    /// last angle, which is the current point's angle about the origin —
+    /// after any move, polar or not (G53, G28, G92), and in the plane
+    /// chosen now. A G91 block without a
     /// radius keeps the origin as the centre and the current point's
     /// distance from it as the radius (FANUC Series 16/18-MC §9.2
     /// "Polar coordinate command (G15, G16)": "G91 specifies the current

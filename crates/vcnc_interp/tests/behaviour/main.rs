@@ -27,6 +27,7 @@ mod macros_parts;
 mod macros_property;
 mod macros_robustness;
 mod offsets_and_profile_words;
+mod polar;
 mod real_programs;
 mod robustness;
 mod stop_after_line;
