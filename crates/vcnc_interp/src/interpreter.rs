@@ -285,9 +285,13 @@ impl<'a> Interpreter<'a> {
                                     }
                                     Err(d) => {
                                         let d = self.located(d, src, &line, start);
-                                        let _ = self.go_on_after(d)?;
                                         // The rest of the line is the
-                                        // statement's: on with the next.
+                                        // statement's: on with the next,
+                                        // or where the statement said.
+                                        if let Some(to) = self.go_on_after(d)? {
+                                            self.flow.seek_current(to);
+                                            col = to.col as usize;
+                                        }
                                         break;
                                     }
                                 }

@@ -554,7 +554,13 @@ impl Interpreter<'_> {
             .index(c.here.offset)
             .and_then(|i| statements.links.get(i))
             .ok_or_else(|| unpaired("place in the program"))?;
-        let values = self.evaluator().ngc_values(operands)?;
+        let values = match self.evaluator().ngc_values(operands) {
+            Ok(values) => values,
+            Err(d) if lacks.is_none() && self.cfg.opts.keep_going => {
+                return Err(self.condition_alarm(c, kw, label, link, d));
+            }
+            Err(d) => return Err(d),
+        };
         if let Some(wanted) = lacks {
             return Err(unpaired(wanted));
         }
@@ -583,6 +589,37 @@ impl Interpreter<'_> {
             Step::Next => Step::Jump(c.next),
             s => s,
         })
+    }
+
+    /// Under keep-going, the alarm of an O-word statement whose operand
+    /// cannot be evaluated: an `if`, `elseif`, `while` or `repeat` goes on
+    /// as if its condition were false (past the loop, to the next branch),
+    /// where the run resumes after the alarm (`Looping::after_alarm`) —
+    /// falling into the body instead, a `while` met its alarm again at
+    /// each pass until the alarm limit, and the rest of the program went
+    /// unchecked. Other statements go on with the next line.
+    #[cold]
+    fn condition_alarm(
+        &mut self,
+        c: &Compiled,
+        kw: Kw,
+        label: &str,
+        link: &OLink,
+        d: Diagnostic,
+    ) -> Diagnostic {
+        if !matches!(kw, Kw::If | Kw::ElseIf | Kw::While | Kw::Repeat) {
+            return d;
+        }
+        let span = c.st.first;
+        let unpaired = |wanted: &str| super::structure::unpaired(span, label, kw, wanted);
+        let flow = self.macros.oword.get_or_insert_with(Box::default);
+        let to = match flow.follow((kw, label, c.here.offset), link, || Ok(0.0), unpaired) {
+            Ok(OStep::Next) | Err(_) => c.next,
+            Ok(OStep::Jump(to) | OStep::Back(to)) => to,
+        };
+        self.macros.moved_reader = false;
+        self.looping.after_alarm = Some(to);
+        d
     }
 
     /// O CALL: a level of the flow like a subprogram's, the locals saved,

@@ -195,7 +195,7 @@ impl Interpreter<'_> {
         };
         match ran {
             Ok(step) => Ok(Some((step, c.st.first))),
-            Err(d) => self.ngc_line_alarm(d, src, line, c.here.col as usize),
+            Err(d) => self.ngc_line_alarm(d, src, line, c.here.col as usize, c.st.first),
         }
     }
 
@@ -203,7 +203,9 @@ impl Interpreter<'_> {
     /// rejected, as on the line's first pass: placed with the `;` hint,
     /// and under keep-going the run goes on with the next line — `None`,
     /// the line's end being where the run loop now stands (a LinuxCNC
-    /// line is read to its end), so that it finds nothing more on it.
+    /// line is read to its end), so that it finds nothing more on it —
+    /// or where the statement said (an O-word condition that alarmed
+    /// reads as false: [`Self::condition_alarm`]).
     #[cold]
     #[inline(never)]
     fn ngc_line_alarm(
@@ -212,9 +214,11 @@ impl Interpreter<'_> {
         src: usize,
         line: &Line,
         start: usize,
+        first: Span,
     ) -> Result<Option<(Step, Span)>, Diagnostic> {
         let d = self.located(d, src, line, start);
-        self.go_on_after(d).map(|_| None)
+        let after = self.go_on_after(d)?;
+        Ok(after.map(|to| (Step::Jump(to), first)))
     }
 
     /// The lexer rejected the block at `start`: if it is a macro statement,

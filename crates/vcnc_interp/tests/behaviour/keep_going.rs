@@ -360,3 +360,25 @@ fn an_alarmed_m99_whose_search_fails_goes_on_right_after_the_block() {
     assert_eq!(feed_xs(&events), vec![10.0, 30.0, 99.0]);
     assert!(ends_with_m30(&events));
 }
+
+/// A LinuxCNC O-word whose condition cannot be evaluated reads as false
+/// after its alarm: an `if` goes to its next branch, a `while` or `repeat`
+/// past its end, a `do`'s closing `while` out of the loop — once, on both
+/// the statement's first pass and its cached ones (review 4, finding 4: a
+/// `while [1/0]` fell into its body and met its alarm again at each pass,
+/// up to the alarm limit, and the rest of the program went unchecked).
+#[test]
+fn an_o_word_condition_that_alarms_reads_as_false() {
+    let program = "G21 G90 S1000 M03\nG1 X1 F100\n\
+                   o12 if [1/0]\n  G1 X3\no12 elseif [1]\n  G1 X5\no12 else\n  G1 X6\no12 endif\n\
+                   o13 repeat [1/0]\n  G1 X7\no13 endrepeat\n\
+                   o14 do\n  G1 X8\no14 while [1/0]\n\
+                   o15 repeat [2]\n  o16 while [#<_vacant>]\n    G1 X9\n  o16 endwhile\no15 endrepeat\n\
+                   G1 X4\nM2\n";
+    let (events, _) = run_in(&Dialect::linuxcnc(), program);
+    // The second pass of o15 runs o16 from the statement cache.
+    let codes: Vec<u64> = alarms(&events).iter().map(|a| a.1).collect();
+    assert_eq!(codes, vec![3, 10, 15, 17, 17]);
+    assert_eq!(feed_xs(&events), vec![1.0, 5.0, 8.0, 4.0]);
+    assert!(matches!(events.last(), Some(Event::End { .. })));
+}
