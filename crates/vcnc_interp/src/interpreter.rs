@@ -284,14 +284,7 @@ impl<'a> Interpreter<'a> {
                                         }
                                     }
                                     Err(d) => {
-                                        let d = self.located(d, src, &line, start);
-                                        // The rest of the line is the
-                                        // statement's: on with the next,
-                                        // or where the statement said.
-                                        if let Some(to) = self.go_on_after(d)? {
-                                            self.flow.seek_current(to);
-                                            col = to.col as usize;
-                                        }
+                                        self.statement_alarm(d, src, &line, start, &mut col)?;
                                         break;
                                     }
                                 }
@@ -353,6 +346,29 @@ impl<'a> Interpreter<'a> {
             // moved the reader: the run goes on right after this block.
             AfterAlarm::NextMoved => Ok(Step::Jump(self.cursor_after(src, line, start))),
         }
+    }
+
+    /// The alarm of a macro statement the run loop met: under keep-going
+    /// the rest of the line is the statement's, so the run goes on with
+    /// the next line, or where the statement said (`Looping::after_alarm`:
+    /// an O-word condition that alarmed reads as false), `col` then the
+    /// column the next line is read from.
+    #[cold]
+    #[inline(never)]
+    fn statement_alarm(
+        &mut self,
+        d: Diagnostic,
+        src: usize,
+        line: &Line,
+        start: usize,
+        col: &mut usize,
+    ) -> Result<(), Diagnostic> {
+        let d = self.located(d, src, line, start);
+        if let Some(to) = self.go_on_after(d)? {
+            self.flow.seek_current(to);
+            *col = to.col as usize;
+        }
+        Ok(())
     }
 
     /// Where the block that starts at `start` of `line` ends: the next
