@@ -143,8 +143,8 @@ impl Smoothing {
     }
 
     /// Before a G01 under the path mode `path`: what smoothing it gets,
-    /// reported when it changes.
-    #[inline]
+    /// reported when it changes. Inlined: every G01 asks.
+    #[inline(always)]
     pub fn before_linear(&mut self, path: PathMode) -> Option<f64> {
         let suspended = matches!(path, PathMode::ExactStop | PathMode::Tapping);
         let now = if self.tolerance_mm > 0.0 && !suspended && !self.skip_next {

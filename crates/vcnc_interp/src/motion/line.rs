@@ -135,8 +135,8 @@ pub(crate) fn lerp(a: Pos, b: Pos, t: f64) -> Pos {
 
 impl<'a> Machining<'_, 'a> {
     /// The current feed (clamped to the machine's maximum), or E301 when
-    /// it is zero.
-    #[inline]
+    /// it is zero. Inlined: every cut asks.
+    #[inline(always)]
     pub(crate) fn feed(&self, cmd: Span) -> Result<Feed, Diagnostic> {
         let f = self.state.feed * self.unit_mm() * self.state.feed_factor;
         if f <= 0.0 {

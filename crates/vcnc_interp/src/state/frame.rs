@@ -325,19 +325,29 @@ impl Frame {
     }
 
     /// The machine position of program point `p` (the controlled point:
-    /// the tool length offset included).
-    #[inline]
+    /// the tool length offset included). Inlined into every move's commit;
+    /// the transforms, when there are any, out of line.
+    #[inline(always)]
     pub fn machine_of(&self, p: Pos) -> Pos {
-        let mut q = p;
-        if !self.identity {
-            let v = self.affine.apply(self.xyz_of(&p));
-            self.put_xyz(&mut q, v);
-        }
+        let q = if self.identity {
+            p
+        } else {
+            self.transformed(p)
+        };
         let mut out = q;
         for i in 0..MAX_AXES {
             out.0[i] = q.0[i] + self.origin.0[i] + self.tool.0[i];
         }
         out
+    }
+
+    /// `p` through the scaling, mirror and rotation (G51, G51.1, G68).
+    #[inline(never)]
+    fn transformed(&self, p: Pos) -> Pos {
+        let mut q = p;
+        let v = self.affine.apply(self.xyz_of(&p));
+        self.put_xyz(&mut q, v);
+        q
     }
 
     /// The program point whose machine position is `m`.
