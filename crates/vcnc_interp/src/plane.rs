@@ -291,6 +291,8 @@ pub(crate) enum Curve {
 ///   circle–circle  along c1→c2 by a = (r1² − r2² + d²) / 2d, then ± h square
 ///                  to it, h² = r1² − a²
 /// ```
+// Inlined into its one caller, the compensation's corner (−11 a G41 block).
+#[inline(always)]
 pub(crate) fn intersect(o1: Curve, o2: Curve, near: P2, touch_mm: f64) -> Option<P2> {
     let pick = |p: P2, q: P2| if p.dist(near) <= q.dist(near) { p } else { q };
     match (o1, o2) {

@@ -116,6 +116,7 @@ impl<'a> Machining<'_, 'a> {
     }
 
     /// Whether G09 is in the block.
+    #[inline]
     pub(crate) fn exact_stop(&self, w: &Words<'_>) -> bool {
         // A block of axis words alone has no one-shot code.
         w.has_codes && w.once(GOp::Pace(PaceOp::ExactStopOnce)).is_some()

@@ -168,6 +168,7 @@ impl Seg {
     /// Whether the compensated arc from `s2` to `e2` shrinks to a point
     /// (its corners take all of its sweep): it must not leave as an arc
     /// from a point to itself, which reads as a full circle.
+    #[inline]
     pub fn collapses(&self, s2: P2, e2: P2) -> bool {
         self.is_arc()
             && s2.dist(e2) < SAME_END
