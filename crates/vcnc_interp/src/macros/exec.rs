@@ -74,7 +74,8 @@ impl Interpreter<'_> {
             }
             StmtKind::Goto { word, target } => self.goto(c, src, *word, target),
             StmtKind::IfGoto { cond, word, target } => {
-                if self.evaluator().holds(cond, lang)? {
+                let held = self.evaluator().holds(cond, lang);
+                if self.or_false(held, c, src, |_, _, _, _| Ok(Step::Next))? {
                     self.goto(c, src, *word, target)
                 } else {
                     Ok(Step::Next)
@@ -91,7 +92,10 @@ impl Interpreter<'_> {
             }
             StmtKind::While { cond, .. } => {
                 let go_on = match cond {
-                    Some(e) => self.evaluator().holds(e, lang)?,
+                    Some(e) => {
+                        let held = self.evaluator().holds(e, lang);
+                        self.or_false(held, c, src, Self::follow)?
+                    }
                     None => true,
                 };
                 if go_on {
@@ -100,13 +104,15 @@ impl Interpreter<'_> {
                 self.follow(c, src, first)
             }
             StmtKind::WhileDo(cond) => {
-                if self.evaluator().holds(cond, lang)? {
+                let held = self.evaluator().holds(cond, lang);
+                if self.or_false(held, c, src, Self::follow)? {
                     return Ok(Step::Next);
                 }
                 self.follow(c, src, first)
             }
             StmtKind::Until(cond) => {
-                if self.evaluator().holds(cond, lang)? {
+                let held = self.evaluator().holds(cond, lang);
+                if self.or_false(held, c, src, Self::follow)? {
                     return Ok(Step::Next);
                 }
                 self.follow(c, src, first)
@@ -124,7 +130,8 @@ impl Interpreter<'_> {
                 Ok(Step::Jump(to))
             }
             StmtKind::If(cond) => {
-                if self.evaluator().holds(cond, lang)? {
+                let held = self.evaluator().holds(cond, lang);
+                if self.or_false(held, c, src, Self::else_branch)? {
                     return Ok(Step::Next);
                 }
                 self.else_branch(c, src, first)
@@ -150,6 +157,30 @@ impl Interpreter<'_> {
 
     /// GOTO n: the first block `N n` of the current program; in Macro B
     /// not into a DO loop that does not hold the GOTO.
+    /// A condition's value, or under keep-going, when it cannot be
+    /// evaluated, its alarm with the run to resume where the condition's
+    /// false branch goes (`on_false`: past the loop, to the ELSE):
+    /// falling into a loop's body instead, the loop met the same alarm at
+    /// each pass up to the alarm limit, or the run ended.
+    fn or_false(
+        &mut self,
+        held: Result<bool, Diagnostic>,
+        c: &Compiled,
+        src: usize,
+        on_false: fn(&mut Self, &Compiled, usize, Span) -> Result<Step, Diagnostic>,
+    ) -> Result<bool, Diagnostic> {
+        let d = match held {
+            Ok(held) => return Ok(held),
+            Err(d) => d,
+        };
+        if self.cfg.opts.keep_going
+            && let Ok(Step::Jump(to)) = on_false(self, c, src, c.st.first)
+        {
+            self.looping.after_alarm = Some(to);
+        }
+        Err(d)
+    }
+
     fn goto(
         &mut self,
         c: &Compiled,

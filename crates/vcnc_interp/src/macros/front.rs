@@ -174,7 +174,28 @@ impl Interpreter<'_> {
         if c.lang == Lang::Ngc {
             return self.cached_ngc_line(&c, src, line, block, store, sink);
         }
-        self.run_compiled(&c, src, block, store, sink).map(Some)
+        match self.run_compiled(&c, src, block, store, sink) {
+            Ok(ran) => Ok(Some(ran)),
+            Err(d) => self.compiled_alarm(d, src, line, &c),
+        }
+    }
+
+    /// The alarm of a cached Macro B or Syntec statement: as on its first
+    /// pass, the end of the run, or under keep-going an alarm after which
+    /// the run goes on after the statement — or where it said (a loop's
+    /// condition that alarmed reads as false: [`Self::or_false`]).
+    #[cold]
+    #[inline(never)]
+    fn compiled_alarm(
+        &mut self,
+        d: Diagnostic,
+        src: usize,
+        line: &Line,
+        c: &Compiled,
+    ) -> Result<Option<(Step, Span)>, Diagnostic> {
+        let d = self.located(d, src, line, c.here.col as usize);
+        let to = self.go_on_after(d)?.unwrap_or(c.next);
+        Ok(Some((Step::Jump(to), c.st.first)))
     }
 
     /// A cached LinuxCNC line or O-word statement, run as on its first

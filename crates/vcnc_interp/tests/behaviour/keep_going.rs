@@ -382,3 +382,25 @@ fn an_o_word_condition_that_alarms_reads_as_false() {
     assert_eq!(feed_xs(&events), vec![1.0, 5.0, 8.0, 4.0]);
     assert!(matches!(events.last(), Some(Event::End { .. })));
 }
+
+/// Macro B the same: a WHILE or IF whose condition cannot be evaluated
+/// reads as false after its alarm (past END, or no jump), and a statement
+/// that alarms on a later pass of a loop — run from the statement cache —
+/// is reported and skipped like on its first (review 4: the cached
+/// statement's alarm ended the run under keep-going, with no `end` and the
+/// rest of the program unchecked).
+#[test]
+fn a_macro_b_condition_or_a_cached_statement_that_alarms_goes_on() {
+    let program = "G21 G90 S1000 M03\nG01 X1. F100\n\
+                   WHILE [[1/0] GT 0] DO1\nG01 X3.\nEND1\n\
+                   #1=0\nWHILE [#1 LT 3] DO2\n#2=1/[#1-1]\n#1=#1+1\nEND2\n\
+                   IF [[1/0] GT 0] GOTO 99\nG01 X4.\nN99 G01 X5.\nM30\n";
+    let (events, _) = run(program);
+    // Line 8 alarms on the loop's second pass (#1 = 1), from the cache.
+    assert_eq!(
+        alarms(&events),
+        vec![(Code::E608, 3), (Code::E608, 8), (Code::E608, 11)]
+    );
+    assert_eq!(feed_xs(&events), vec![1.0, 4.0, 5.0]);
+    assert!(ends_with_m30(&events));
+}
