@@ -162,6 +162,7 @@ impl Interpreter<'_> {
     /// false branch goes (`on_false`: past the loop, to the ELSE):
     /// falling into a loop's body instead, the loop met the same alarm at
     /// each pass up to the alarm limit, or the run ended.
+    #[inline(always)]
     fn or_false(
         &mut self,
         held: Result<bool, Diagnostic>,
@@ -169,16 +170,28 @@ impl Interpreter<'_> {
         src: usize,
         on_false: fn(&mut Self, &Compiled, usize, Span) -> Result<Step, Diagnostic>,
     ) -> Result<bool, Diagnostic> {
-        let d = match held {
-            Ok(held) => return Ok(held),
-            Err(d) => d,
-        };
+        match held {
+            Ok(held) => Ok(held),
+            Err(d) => Err(self.false_after_alarm(d, c, src, on_false)),
+        }
+    }
+
+    /// [`Self::or_false`]'s alarm, out of line.
+    #[cold]
+    #[inline(never)]
+    fn false_after_alarm(
+        &mut self,
+        d: Diagnostic,
+        c: &Compiled,
+        src: usize,
+        on_false: fn(&mut Self, &Compiled, usize, Span) -> Result<Step, Diagnostic>,
+    ) -> Diagnostic {
         if self.cfg.opts.keep_going
             && let Ok(Step::Jump(to)) = on_false(self, c, src, c.st.first)
         {
             self.looping.after_alarm = Some(to);
         }
-        Err(d)
+        d
     }
 
     fn goto(
