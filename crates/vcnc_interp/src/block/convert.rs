@@ -324,10 +324,11 @@ impl State {
         }
         let here_centred =
             cfg.dialect.polar_incremental == PolarIncremental::CentreAtCurrentPosition;
-        let (last_r, last_deg) = if incremental && here_centred {
-            // Fanuc's G91 reads the current point's own radius and angle
-            // (Mitsubishi M700V §6.12), also after a move that was not polar
-            // (G53, G28, G92) or a plane change.
+        let (last_r, last_deg) = if here_centred {
+            // Fanuc reads an omitted radius or angle, and the angle a G91
+            // angle adds to, as the current point's own (Mitsubishi M700V
+            // §6.12), also after a move that was not polar (G53, G28, G92)
+            // or a plane change.
             let (a, b) = (self.prog.get(ia), self.prog.get(ib));
             let r = a.hypot(b);
             // At the origin the angle is none: 0, not the direction of a

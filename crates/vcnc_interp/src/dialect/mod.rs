@@ -452,22 +452,23 @@ pub enum G53Incremental {
     Ignored,
 }
 
-/// G16 (polar coordinate input) under G91: where the radius is measured
-/// from and what the angle adds to. Under G90 every dialect reads the
-/// radius and angle about the program origin, an omitted one kept.
+/// G16 (polar coordinate input): where a G91 radius is measured from, what
+/// a G91 angle adds to, and what an omitted radius or angle is. Under G90
+/// every dialect reads the radius and angle about the program origin.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PolarIncremental {
     /// The radius and the angle each add to the last radius and angle,
     /// about the program origin (Syntec 900M 1.2.11: "in increment mode,
-    /// angle or radius total from the last radius or angle").
+    /// angle or radius total from the last radius or angle"); an omitted
+    /// one is the last polar block's.
     AddsToLast,
     /// A radius under G91 is measured from the current position, which
     /// becomes the polar centre for that block; the angle adds to the
     /// last angle, which is the current point's angle about the origin —
     /// after any move, polar or not (G53, G28, G92), and in the plane
-    /// chosen now. A G91 block without a
-    /// radius keeps the origin as the centre and the current point's
-    /// distance from it as the radius (FANUC Series 16/18-MC §9.2
+    /// chosen now. A G91 block without a radius keeps the origin as the
+    /// centre and the current point's distance from it as the radius; under
+    /// G90 too an omitted radius or angle is the current point's (FANUC Series 16/18-MC §9.2
     /// "Polar coordinate command (G15, G16)": "G91 specifies the current
     /// position as the origin of the polar coordinate system, from which a
     /// radius is measured"; Mitsubishi M700V §6.12 says the same of an

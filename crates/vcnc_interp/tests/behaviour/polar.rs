@@ -51,3 +51,17 @@ fn a_plane_change_takes_the_angle_in_the_new_plane() {
     let p = ends(&events, 4);
     assert!(p.len() == 1 && near(p[0], 0.0, 10.0, 5.0), "{p:?}");
 }
+
+/// Under G90 too an omitted radius or angle is the current point's: after
+/// G53 X20 Y20 (45°, 28.284), `G90 Y90.` keeps that radius (review 4,
+/// finding 2b: the last polar block's radius 10 was kept).
+#[test]
+fn an_omitted_word_under_g90_is_the_current_points() {
+    let events = run(
+        &Dialect::fanuc(),
+        "G90 G17 G16\nG01 X10. Y0 F100\nG53 X20. Y20.\nG90 Y90.\nM30\n",
+    );
+    let p = ends(&events, 4);
+    let r = 20.0_f64.hypot(20.0);
+    assert!(p.len() == 1 && near(p[0], 0.0, r, 0.0), "{p:?}");
+}
