@@ -325,22 +325,7 @@ impl State {
         let here_centred =
             cfg.dialect.polar_incremental == PolarIncremental::CentreAtCurrentPosition;
         let (last_r, last_deg) = if here_centred {
-            // Fanuc reads an omitted radius or angle, and the angle a G91
-            // angle adds to, as the current point's own (Mitsubishi M700V
-            // §6.12), also after a move that was not polar (G53, G28, G92)
-            // or a plane change.
-            let (a, b) = (self.prog.get(ia), self.prog.get(ib));
-            let r = a.hypot(b);
-            // At the origin the angle is none: 0, not the direction of a
-            // rounding residue (10 at 90° leaves X at 6e-16).
-            (
-                r,
-                if r <= crate::plane::ZERO_MM {
-                    0.0
-                } else {
-                    b.atan2(a).to_degrees()
-                },
-            )
+            self.polar_here(ia, ib)
         } else {
             self.polar
         };
@@ -360,6 +345,30 @@ impl State {
         to.set(ia, r * c);
         to.set(ib, r * s);
         (1 << ia) | (1 << ib)
+    }
+
+    /// Fanuc's "last" radius and angle: the current point's own (Mitsubishi
+    /// M700V §6.12 for an omitted radius or angle), also after a move that
+    /// was not polar (G53, G28, G92) or a plane change. While the tool is
+    /// where the last polar block put it, that block's radius and angle
+    /// as they were accumulated, so that a bolt circle's angles add up
+    /// exactly rather than through `atan2`.
+    fn polar_here(&self, ia: usize, ib: usize) -> (f64, f64) {
+        let (a, b) = (self.prog.get(ia), self.prog.get(ib));
+        let (last_r, last_deg) = self.polar;
+        let (s, c) = last_deg.to_radians().sin_cos();
+        if (a - last_r * c).hypot(b - last_r * s) <= crate::plane::ZERO_MM {
+            return self.polar;
+        }
+        let r = a.hypot(b);
+        // At the origin the angle is none: 0, not the direction of a
+        // rounding residue (10 at 90° leaves X at 6e-16).
+        let deg = if r <= crate::plane::ZERO_MM {
+            0.0
+        } else {
+            b.atan2(a).to_degrees()
+        };
+        (r, deg)
     }
 
     /// Fanuc's G91 polar block with a radius: the point `r` from the
