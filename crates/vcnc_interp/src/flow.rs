@@ -22,7 +22,7 @@ use std::io;
 use std::sync::Arc;
 use vcnc_core::events::Loc;
 use vcnc_syntax::{
-    Addr, Block, Cursor, LexRules, LineReader, ReadError, TextSource, clamp_u32, lex_block,
+    Addr, Block, Cursor, LexRules, Line, LineReader, ReadError, TextSource, clamp_u32, lex_block,
     next_block_start,
 };
 
@@ -330,6 +330,30 @@ impl Flow {
                 .iter()
                 .any(|w| w.addr == Addr::letter(b'M') && !w.point && whole_u32(w.value) == Some(99))
         })
+    }
+
+    /// Where the block that starts at `start` of `line` of source `src`
+    /// ends: the next block's cursor, as the run loop's lexer found it
+    /// (cold: the line is read again).
+    #[cold]
+    pub(crate) fn cursor_after(
+        &mut self,
+        src: usize,
+        line: &Line,
+        start: usize,
+        lex: &LexRules,
+    ) -> Cursor {
+        let text = self
+            .source(src)
+            .map(|s| s.reader.reread(line))
+            .unwrap_or_default();
+        let next = lex_block(&text, start, lex, &mut Block::default())
+            .unwrap_or_else(|_| next_block_start(&text, start, lex));
+        Cursor {
+            offset: line.offset,
+            line: line.number,
+            col: clamp_u32(next),
+        }
     }
 
     /// Finds `N seq` in the program of `src` that starts at `start`: the

@@ -344,7 +344,12 @@ impl<'a> Interpreter<'a> {
             AfterAlarm::Next => Ok(after.map_or(Step::Next, Step::Jump)),
             // The failed return's search (`M99 P` of a missing sequence)
             // moved the reader: the run goes on right after this block.
-            AfterAlarm::NextMoved => Ok(Step::Jump(self.cursor_after(src, line, start))),
+            AfterAlarm::NextMoved => Ok(Step::Jump(self.flow.cursor_after(
+                src,
+                line,
+                start,
+                &self.cfg.dialect.lex,
+            ))),
         }
     }
 
@@ -369,26 +374,6 @@ impl<'a> Interpreter<'a> {
             *col = to.col as usize;
         }
         Ok(())
-    }
-
-    /// Where the block that starts at `start` of `line` ends: the next
-    /// block's cursor, as the run loop's lexer found it (cold: the line is
-    /// read again).
-    #[cold]
-    fn cursor_after(&mut self, src: usize, line: &Line, start: usize) -> Cursor {
-        let lex = self.cfg.dialect.lex;
-        let text = self
-            .flow
-            .source(src)
-            .map(|s| s.reader.reread(line))
-            .unwrap_or_default();
-        let next = lex_block(&text, start, &lex, &mut Block::default())
-            .unwrap_or_else(|_| vcnc_syntax::next_block_start(&text, start, &lex));
-        Cursor {
-            offset: line.offset,
-            line: line.number,
-            col: clamp_u32(next),
-        }
     }
 
     /// An alarm in a block: the end of the run, or under

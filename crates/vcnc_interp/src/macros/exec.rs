@@ -22,7 +22,7 @@
 //! ```
 
 use super::Evaluator;
-use super::structure::{Branch, Callee, Link, OLink};
+use super::structure::{Callee, Link, OLink, OStep};
 use super::{Compiled, key};
 use crate::alarms;
 use crate::flow::ProgramStore;
@@ -443,130 +443,6 @@ impl<'a> Evaluator<'_, 'a> {
         let text: std::sync::Arc<str> = text.into();
         self.machining()
             .emit(|loc| Event::Message { loc, text, stop });
-    }
-}
-
-/// LinuxCNC's O-word flow as it runs (the statements' links are found
-/// once, `structure.rs`).
-#[derive(Debug, Default)]
-pub(crate) struct OFlow {
-    /// Repeat loops running: (label, remaining passes).
-    repeats: Vec<(String, f64)>,
-    /// The ELSEIF or ELSE a false branch jumped to, to be tested (not
-    /// skipped as the end of a branch that ran): its line's offset.
-    pending: Option<u64>,
-    /// The locals of each subroutine call running, and how many repeat
-    /// loops ran when it was called (a return leaves the sub's own).
-    saved: Vec<(super::ngc::Saved, usize)>,
-}
-
-/// Where an O-word statement goes on.
-enum OStep {
-    Next,
-    /// Forward, free.
-    Jump(Cursor),
-    /// Back (a loop's pass, a CONTINUE): counted against `max_jumps`.
-    Back(Cursor),
-}
-
-impl OFlow {
-    /// Follows the link of the branch or loop statement `kw` of `label` on
-    /// the line at `here`: `cond` is its operand, `unpaired` the alarm for
-    /// a partner its link lacks.
-    fn follow(
-        &mut self,
-        (kw, label, here): (Kw, &str, u64),
-        link: &OLink,
-        cond: impl Fn() -> Result<f64, Diagnostic>,
-        unpaired: impl Fn(&str) -> Diagnostic,
-    ) -> Result<OStep, Diagnostic> {
-        let ahead = |d: &Result<Cursor, &str>| d.map(OStep::Jump).map_err(&unpaired);
-        Ok(match link {
-            OLink::Sub(end) => ahead(end)?,
-            OLink::Plain | OLink::Call(_) => OStep::Next,
-            OLink::If(next) => {
-                if cond()? != 0.0 {
-                    OStep::Next
-                } else {
-                    OStep::Jump(self.branch(next.map_err(&unpaired)?))
-                }
-            }
-            // Run into from the branch before (not tested): past the ENDIF.
-            OLink::Clause { end, .. } if self.pending.take() != Some(here) => ahead(end)?,
-            OLink::Clause { next, .. } => {
-                if kw == Kw::Else || cond()? != 0.0 {
-                    OStep::Next
-                } else {
-                    OStep::Jump(self.branch(next.map_err(&unpaired)?))
-                }
-            }
-            OLink::DoWhile(body) if cond()? != 0.0 => OStep::Back(*body),
-            OLink::DoWhile(_) => OStep::Next,
-            OLink::Loop(end) if kw == Kw::Repeat => {
-                // rs274 rounds the count half to even: [2.5] is 2 passes.
-                let n = cond()?.round_ties_even();
-                if n >= 1.0 {
-                    self.repeats.push((label.to_string(), n));
-                    OStep::Next
-                } else {
-                    ahead(end)?
-                }
-            }
-            OLink::Loop(end) if cond()? == 0.0 => ahead(end)?,
-            OLink::Loop(_) => OStep::Next,
-            OLink::Back(body) if kw == Kw::EndRepeat => {
-                let body = body.map_err(&unpaired)?;
-                match self.again(label) {
-                    Some(true) => OStep::Back(body),
-                    Some(false) => OStep::Next,
-                    None => return Err(unpaired("repeat running")),
-                }
-            }
-            OLink::Back(head) => OStep::Back(head.map_err(&unpaired)?),
-            OLink::Leave(lp) => {
-                let lp = lp.as_ref().map_err(|w| unpaired(w))?;
-                self.leave(&lp.ending);
-                match kw {
-                    Kw::Continue => OStep::Back(lp.to),
-                    _ => OStep::Jump(lp.to),
-                }
-            }
-        })
-    }
-
-    /// Where a false IF or ELSEIF goes: past the ENDIF, or to the next
-    /// clause, to be tested there.
-    fn branch(&mut self, b: Branch) -> Cursor {
-        match b {
-            Branch::End(to) => to,
-            Branch::Test(to) => {
-                self.pending = Some(to.offset);
-                to
-            }
-        }
-    }
-
-    /// ENDREPEAT of `label`: whether another pass runs (`None`: no repeat
-    /// of that label is running).
-    fn again(&mut self, label: &str) -> Option<bool> {
-        match self.repeats.last_mut() {
-            Some((l, left)) if l == label && *left > 1.0 => {
-                *left -= 1.0;
-                Some(true)
-            }
-            Some((l, _)) if l == label => {
-                self.repeats.pop();
-                Some(false)
-            }
-            _ => None,
-        }
-    }
-
-    /// BREAK or CONTINUE: the repeat loops running that end with it.
-    fn leave(&mut self, ending: &[String]) {
-        while self.repeats.last().is_some_and(|(l, _)| ending.contains(l)) {
-            self.repeats.pop();
-        }
     }
 }
 

@@ -139,7 +139,7 @@ pub(crate) struct Macros {
     /// LinuxCNC's parameters, once a line used one.
     pub ngc: Option<Box<ngc::Params>>,
     /// LinuxCNC's O-word flow (repeat counts, calls), once one ran.
-    pub oword: Option<Box<exec::OFlow>>,
+    pub oword: Option<Box<structure::OFlow>>,
 }
 
 impl Macros {

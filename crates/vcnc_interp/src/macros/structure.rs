@@ -50,7 +50,7 @@ use vcnc_syntax::{Addr, Cursor, Diagnostic, ReadError, lex_block};
 
 mod owords;
 
-pub(crate) use owords::{Branch, Callee, OLink, Statements, defined_twice, unpaired};
+pub(crate) use owords::{Callee, OFlow, OLink, OStep, Statements, defined_twice, unpaired};
 
 /// Most links kept in a run (E611 beyond).
 const LINK_LIMIT: usize = 65_536;
