@@ -187,7 +187,16 @@ impl Steps<'_, '_> {
 
 /// The value `v` of `word` if it is more than 0, else E109 saying `why`.
 pub(crate) fn positive(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
-    if v > 0.0 {
+    in_range(word, v, v > 0.0, why)
+}
+
+/// The value `v` of `word` if it is 0 or more, else E109 saying `why`.
+pub(crate) fn not_negative(word: Word, v: f64, why: &str) -> Result<f64, Diagnostic> {
+    in_range(word, v, v >= 0.0, why)
+}
+
+fn in_range(word: Word, v: f64, ok: bool, why: &str) -> Result<f64, Diagnostic> {
+    if ok {
         Ok(v)
     } else {
         Err(alarms::value_out_of_range(

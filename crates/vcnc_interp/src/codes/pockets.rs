@@ -16,14 +16,14 @@
 //! the level where the block started. All points are program points on
 //! the motion stage, so offsets and G92 apply.
 
-use super::cycles::{CycleAxes, SAME_MM, Steps, positive};
+use super::cycles::{CycleAxes, SAME_MM, Steps, not_negative, positive};
 use crate::alarms;
 use crate::dialect::CycleOp;
 use crate::interpreter::Machining;
 use crate::motion::MoveKind;
 use crate::words::Words;
 use vcnc_core::events::Feed;
-use vcnc_syntax::{Diagnostic, Span, Word};
+use vcnc_syntax::{Diagnostic, Span};
 
 /// Most rings one pocket block may cut over all its levels (its events
 /// are held until the block has succeeded).
@@ -261,18 +261,6 @@ impl<'a> Machining<'_, 'a> {
                 }
             }
         }
-        let not_negative = |word: Word, v: f64, why: &str| {
-            if v >= 0.0 {
-                Ok(v)
-            } else {
-                Err(alarms::value_out_of_range(
-                    word.span,
-                    word.addr.0,
-                    word.value,
-                    why,
-                ))
-            }
-        };
         let need = |l: u8, what: &str| w.get(l).ok_or_else(|| alarms::needs_word(cmd, code, what));
         let iw = need(
             b'I',
