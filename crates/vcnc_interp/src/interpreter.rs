@@ -356,8 +356,8 @@ impl<'a> Interpreter<'a> {
     /// The alarm of a macro statement the run loop met: under keep-going
     /// the rest of the line is the statement's, so the run goes on with
     /// the next line, or where the statement said (`Looping::after_alarm`:
-    /// an O-word condition that alarmed reads as false), `col` then the
-    /// column the next line is read from.
+    /// an O-word, Macro B or Syntec condition that alarmed reads as
+    /// false), `col` then the column the next line is read from.
     #[cold]
     #[inline(never)]
     fn statement_alarm(
