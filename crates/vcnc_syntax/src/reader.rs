@@ -95,6 +95,16 @@ pub enum ReadError {
 /// Buffer size: the longest line that can be read (64 KiB) and its newline.
 pub const BUFFER_BYTES: usize = 64 * 1024 + 1;
 
+/// What [`LineReader::refill_for_line`] found.
+enum Refilled {
+    /// More text in the buffer: look for a line again.
+    More,
+    /// The text ends in a line of this many bytes without a `\n`.
+    Last(usize),
+    /// The text is over.
+    End,
+}
+
 /// Reads lines from a [`TextSource`] through one fixed buffer.
 pub struct LineReader<S> {
     src: S,
@@ -126,34 +136,48 @@ impl<S: TextSource> LineReader<S> {
     }
 
     /// The next physical line without its `\n`, or `None` at the end.
+    ///
+    /// Every line is taken here, in the caller's code, so that it comes
+    /// back in registers: when the refilling path returned the line, the
+    /// two paths met in memory, and the caller read the line back in
+    /// 16-byte loads that waited for the 8-byte stores which wrote it, on
+    /// every line. The refilling path only says what it found.
+    #[inline(always)]
     pub fn next_line(&mut self) -> Result<Option<Line>, ReadError> {
-        // Nearly every line is whole in the buffer: found here, without the
-        // refill loop's state in this frame.
-        let window = self.buf.get(self.pos..self.filled).unwrap_or(&[]);
-        if let Some(k) = memchr::memchr(b'\n', window) {
-            return Ok(Some(self.take(k, k + 1)));
+        loop {
+            let window = self.buf.get(self.pos..self.filled).unwrap_or(&[]);
+            // One `take` for both ends of a line, so that the caller does
+            // not merge two lines (in memory) either.
+            let (len, consumed) = match memchr::memchr(b'\n', window) {
+                Some(k) => (k, k + 1),
+                None => match self.refill_for_line()? {
+                    Refilled::More => continue,
+                    Refilled::Last(rest) => (rest, rest),
+                    Refilled::End => return Ok(None),
+                },
+            };
+            return Ok(Some(self.take(len, consumed)));
         }
-        self.next_line_refilling()
     }
 
-    /// [`next_line`](Self::next_line) when the buffer holds no whole line:
-    /// refills it, or hands out the last line, or skips one too long.
+    /// What [`next_line`](Self::next_line) does when the buffer holds no
+    /// whole line: refills it, or hands out the last line (without a
+    /// `\n`), or skips one too long.
     #[inline(never)]
-    fn next_line_refilling(&mut self) -> Result<Option<Line>, ReadError> {
-        loop {
-            let window = &self.buf[self.pos..self.filled];
-            if let Some(k) = memchr::memchr(b'\n', window) {
-                return Ok(Some(self.take(k, k + 1)));
-            }
-            if self.eof {
-                let rest = window.len();
-                return Ok((rest > 0).then(|| self.take(rest, rest)));
-            }
-            if self.pos == 0 && self.filled == self.buf.len() {
-                return Err(self.skip_long_line());
-            }
-            self.refill().map_err(ReadError::Io)?;
+    fn refill_for_line(&mut self) -> Result<Refilled, ReadError> {
+        if self.eof {
+            let rest = self.filled.saturating_sub(self.pos);
+            return Ok(if rest > 0 {
+                Refilled::Last(rest)
+            } else {
+                Refilled::End
+            });
         }
+        if self.pos == 0 && self.filled == self.buf.len() {
+            return Err(self.skip_long_line());
+        }
+        self.refill().map_err(ReadError::Io)?;
+        Ok(Refilled::More)
     }
 
     /// Where the next line starts.
