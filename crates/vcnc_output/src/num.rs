@@ -64,11 +64,18 @@ impl Recent {
 }
 
 /// A number's text: at most 24 bytes (ryu's longest, e.g.
-/// `-2.2250738585072014e-308`; the integer path's is 16), kept in a fixed
-/// array so that it is appended with one copy of a known length.
+/// `-2.2250738585072014e-308`; the integer path's is 16), kept in three
+/// words so that it is appended with three stores of a known length.
+///
+/// Words, not a byte array: a text is written and soon read back (the
+/// next number that repeats it), and a 16-byte load of an array written
+/// in 8-byte stores waits until they have reached the cache, some 15
+/// cycles a number; a word is read back as it was written.
 #[derive(Debug, Clone, Copy)]
 struct Text {
-    bytes: [u8; TEXT],
+    /// The bytes in order, the first in the low byte of the first word;
+    /// those past `len` are anything.
+    words: [u64; 3],
     len: usize,
 }
 
@@ -88,21 +95,28 @@ impl Text {
     fn of_ryu(v: f64) -> Text {
         let mut buf = ryu::Buffer::new();
         let s = buf.format(round6(v)).as_bytes();
-        let mut text = Text {
-            bytes: [0; TEXT],
-            len: s.len().min(TEXT),
-        };
-        if let (Some(to), Some(from)) = (text.bytes.get_mut(..text.len), s.get(..text.len)) {
+        let len = s.len().min(TEXT);
+        let mut bytes = [0; TEXT];
+        if let (Some(to), Some(from)) = (bytes.get_mut(..len), s.get(..len)) {
             to.copy_from_slice(from);
         }
-        text
+        let mut words = [0; 3];
+        for (w, b) in words.iter_mut().zip(bytes.chunks_exact(8)) {
+            let mut le = [0; 8];
+            le.copy_from_slice(b);
+            *w = u64::from_le_bytes(le);
+        }
+        Text { words, len }
     }
 
     /// Appends the text: all `TEXT` bytes, then cut back to its end.
     #[inline]
     fn append_to(&self, out: &mut Vec<u8>) {
         let end = out.len() + self.len;
-        out.extend_from_slice(&self.bytes);
+        out.reserve(TEXT);
+        for w in self.words {
+            out.extend_from_slice(&w.to_le_bytes());
+        }
         out.truncate(end);
     }
 }
@@ -159,6 +173,10 @@ const ZEROS: u64 = u64::from_le_bytes([b'0'; 8]);
 
 impl Text {
     /// The number of millionths `n`, |n| < 1e14.
+    ///
+    /// The text is put together in one 128-bit value: built byte by byte
+    /// in a buffer, it was read back in a 16-byte load that waited for the
+    /// narrower stores which wrote it, on every number.
     #[inline]
     fn of_millionths(n: i64) -> Text {
         let abs = n.unsigned_abs();
@@ -169,31 +187,24 @@ impl Text {
         // trailing zeros are its high zero bytes, and one place stays.
         let frac = digits8(abs % 1_000_000) >> 16;
         let places = 6 - (frac.leading_zeros() / 8 - 2).min(5);
-        let int_len = (8 - skip) as usize;
-        // The sign is written always and skipped when positive: the text
-        // starts at `start`, the integer digits at 1, the point at
-        // `point` <= 9, and it ends by 16.
-        let mut buf = [b'-'; 32];
-        let start = usize::from(n >= 0);
-        let point = 1 + int_len;
-        let int_text = ((int >> (8 * skip)) + ZEROS).to_le_bytes();
-        if let Some(slot) = buf.get_mut(1..9) {
-            slot.copy_from_slice(&int_text);
+        let int_len = 8 - skip;
+        let int_bits = 8 * int_len;
+        // The integer's digits, the point, then the six places (and two
+        // '0's past them that the length leaves out; the last falls off
+        // the top when there are eight integer digits and a sign).
+        let int_text = u128::from((int >> (8 * skip)) + ZEROS) & ((1u128 << int_bits) - 1);
+        let mut text = int_text
+            | (u128::from(b'.') << int_bits)
+            | (u128::from(frac + ZEROS) << (int_bits + 8));
+        let negative = n < 0;
+        if negative {
+            text = (text << 8) | u128::from(b'-');
         }
-        if let Some(slot) = buf.get_mut(point) {
-            *slot = b'.';
+        #[allow(clippy::cast_possible_truncation)]
+        Text {
+            words: [text as u64, (text >> 64) as u64, 0],
+            len: (int_len + 1 + places + u32::from(negative)) as usize,
         }
-        if let Some(slot) = buf.get_mut(point + 1..point + 9) {
-            slot.copy_from_slice(&(frac + ZEROS).to_le_bytes());
-        }
-        let mut text = Text {
-            bytes: [0; TEXT],
-            len: point + 1 + places as usize - start,
-        };
-        if let Some(from) = buf.get(start..start + TEXT) {
-            text.bytes.copy_from_slice(from);
-        }
-        text
     }
 }
 
