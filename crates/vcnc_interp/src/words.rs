@@ -34,6 +34,31 @@ pub struct At<T> {
     pub span: Span,
 }
 
+/// A block's G codes, set up by its first: a block of axis words alone
+/// (most blocks of a CAM program) leaves them unwritten instead of
+/// clearing sixteen slots (a tenth of the run loop's instructions).
+#[derive(Debug, Clone, Copy)]
+struct GCodes {
+    /// Modal-group codes in the order written (one per group).
+    modal: [Option<At<GDef>>; MAX_MODAL],
+    /// Index + 1 into `modal` of each group's code, by [`Group::slot`].
+    modal_slot: [u8; MODAL_GROUPS],
+    once: [Option<At<GDef>>; MAX_ONCE],
+}
+
+impl GCodes {
+    /// None yet. Built field by field in place (a constant is copied in
+    /// with a call to `memcpy`, 60 instructions a lathe block).
+    #[inline(always)]
+    fn new() -> GCodes {
+        GCodes {
+            modal: [None; MAX_MODAL],
+            modal_slot: [0; MODAL_GROUPS],
+            once: [None; MAX_ONCE],
+        }
+    }
+}
+
 /// The validated words of one block; letters are indices into the block,
 /// so building the table copies nothing.
 #[derive(Debug)]
@@ -44,11 +69,8 @@ pub struct Words<'b> {
     ext: [u8; Addr::EXTENDED],
     /// Extended addresses present (bit = [`Addr::extended_index`]).
     pub ext_present: u8,
-    /// Modal-group codes in the order written (one per group).
-    modal: [Option<At<GDef>>; MAX_MODAL],
-    /// Index + 1 into `modal` of each group's code, by [`Group::slot`].
-    modal_slot: [u8; MODAL_GROUPS],
-    once: [Option<At<GDef>>; MAX_ONCE],
+    /// The G codes, from the block's first one on (`None`: none written).
+    g: Option<GCodes>,
     /// The group 00 code that takes the axis words, if any.
     pub axis_user: Option<At<GDef>>,
     /// M codes by group.
@@ -78,9 +100,7 @@ impl<'b> Words<'b> {
             block,
             ext: [0; Addr::EXTENDED],
             ext_present: 0,
-            modal: [None; MAX_MODAL],
-            modal_slot: [0; MODAL_GROUPS],
-            once: [None; MAX_ONCE],
+            g: None,
             axis_user: None,
             m: [None; M_GROUPS],
             other_m: [None; MAX_OTHER_M],
@@ -162,10 +182,8 @@ impl<'b> Words<'b> {
     /// E209 when a code that must stand alone shares its block.
     fn check_alone(&self, axis_mask: u32) -> Result<(), Diagnostic> {
         let Some(code) = self
-            .once
-            .iter()
-            .chain(self.modal.iter())
-            .flatten()
+            .once_codes()
+            .chain(self.modal_codes())
             .find(|a| a.def.alone)
         else {
             return Ok(());
@@ -221,10 +239,11 @@ impl<'b> Words<'b> {
             }
             self.axis_user = Some(at);
         }
+        let codes = self.g.get_or_insert_with(GCodes::new);
         match def.group.slot() {
             Some(slot) => {
-                let k = self.modal_slot.get(slot).copied().unwrap_or(0);
-                if let Some(prev) = usize::from(k).checked_sub(1).and_then(|i| self.modal[i]) {
+                let k = codes.modal_slot.get(slot).copied().unwrap_or(0);
+                if let Some(prev) = usize::from(k).checked_sub(1).and_then(|i| codes.modal[i]) {
                     if same_group == SameGroup::Alarm {
                         return Err(alarms::same_group(word.span));
                     }
@@ -233,21 +252,21 @@ impl<'b> Words<'b> {
                     {
                         self.axis_user = def.takes_axes().then_some(at);
                     }
-                    self.modal[usize::from(k) - 1] = Some(at);
+                    codes.modal[usize::from(k) - 1] = Some(at);
                 } else {
-                    let free = self.modal.iter().position(Option::is_none);
-                    let (Some(i), Some(slot_ref)) = (free, self.modal_slot.get_mut(slot)) else {
+                    let free = codes.modal.iter().position(Option::is_none);
+                    let (Some(i), Some(slot_ref)) = (free, codes.modal_slot.get_mut(slot)) else {
                         return Err(alarms::same_group(word.span));
                     };
-                    self.modal[i] = Some(at);
+                    codes.modal[i] = Some(at);
                     *slot_ref = u8::try_from(i + 1).unwrap_or(0);
                 }
             }
             None => {
-                if self.has_once(def.op) {
+                if codes.once.iter().flatten().any(|a| a.def.op == def.op) {
                     return Err(alarms::same_group(word.span));
                 }
-                match self.once.iter_mut().find(|s| s.is_none()) {
+                match codes.once.iter_mut().find(|s| s.is_none()) {
                     Some(slot) => *slot = Some(at),
                     None => return Err(alarms::same_group(word.span)),
                 }
@@ -389,23 +408,20 @@ impl<'b> Words<'b> {
 
     /// The one-shot code `op`, if written.
     pub fn once(&self, op: GOp) -> Option<At<GDef>> {
-        self.once.iter().flatten().find(|a| a.def.op == op).copied()
+        self.once_codes().find(|a| a.def.op == op).copied()
     }
 
     /// The block's one-shot (group 00) codes.
     pub fn once_codes(&self) -> impl Iterator<Item = &At<GDef>> {
-        self.once.iter().flatten()
-    }
-
-    fn has_once(&self, op: GOp) -> bool {
-        self.once(op).is_some()
+        self.g.iter().flat_map(|g| g.once.iter().flatten())
     }
 
     /// The code written for modal `group`, if any.
     #[inline]
     pub fn group(&self, group: Group) -> Option<At<GDef>> {
-        let k = *self.modal_slot.get(group.slot()?)?;
-        self.modal
+        let g = self.g.as_ref()?;
+        let k = *g.modal_slot.get(group.slot()?)?;
+        g.modal
             .get(usize::from(k).checked_sub(1)?)
             .copied()
             .flatten()
@@ -413,7 +429,7 @@ impl<'b> Words<'b> {
 
     /// The modal codes of the block, in the order written.
     pub fn modal_codes(&self) -> impl Iterator<Item = &At<GDef>> {
-        self.modal.iter().flatten()
+        self.g.iter().flat_map(|g| g.modal.iter().flatten())
     }
 
     /// The M code written for `group`, if any.
@@ -427,10 +443,8 @@ impl<'b> Words<'b> {
         // 1.2.31): its words are read by nothing.
         let cancelled = self.group(Group::Motion).is_some();
         let g = self
-            .once
-            .iter()
-            .chain(self.modal.iter())
-            .flatten()
+            .once_codes()
+            .chain(self.modal_codes())
             .filter(|a| !(cancelled && a.def.group == Group::Cycle))
             .fold(0, |m, a| m | a.def.letters);
         self.m
