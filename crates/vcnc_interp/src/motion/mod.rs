@@ -293,7 +293,7 @@ impl Stage {
     /// Stage 4 of a checked move: its events, and the tool at its end
     /// (or where the skip signal stopped it).
     #[inline(always)]
-    fn emit_released(&mut self, cfg: &Config<'_>, s: &mut State, mm: &MachineMove, loc: Loc) {
+    fn emit_released(&mut self, cfg: &Config<'_>, s: &mut State, mm: &MachineMove, loc: &Loc) {
         match self.emit_motion(cfg, &mut s.skip_pos, mm, loc) {
             None => s.pos = mm.to,
             Some(stop) => {
@@ -338,7 +338,7 @@ impl Stage {
         cfg: &Config<'_>,
         skip_pos: &mut Option<Pos>,
         m: &MachineMove,
-        loc: Loc,
+        loc: &Loc,
     ) -> Option<Pos> {
         if matches!(m.kind, MachineKind::Rapid(_) | MachineKind::Feed(_))
             && same_point(m.from, m.to)
@@ -371,7 +371,7 @@ impl Stage {
                     }
                 } else {
                     push_built(pending, || Event::Rapid {
-                        loc,
+                        loc: loc.clone(),
                         to,
                         exact_stop,
                     });
@@ -380,7 +380,7 @@ impl Stage {
             }
             MachineKind::Feed(feed) => {
                 push_built(pending, || Event::Feed {
-                    loc,
+                    loc: loc.clone(),
                     to,
                     feed,
                     exact_stop,
@@ -400,7 +400,7 @@ impl Stage {
                     center.set(b, cb);
                 }
                 push_built(pending, || Event::Arc {
-                    loc,
+                    loc: loc.clone(),
                     to,
                     center,
                     plane,
@@ -411,7 +411,11 @@ impl Stage {
                 None
             }
             MachineKind::Thread(lead_mm) => {
-                push_built(pending, || Event::Thread { loc, to, lead_mm });
+                push_built(pending, || Event::Thread {
+                    loc: loc.clone(),
+                    to,
+                    lead_mm,
+                });
                 None
             }
             MachineKind::Skip(feed) => {
@@ -419,7 +423,7 @@ impl Stage {
                 let to = hit.map_or(m.to, |t| line::lerp(m.from, m.to, t));
                 let triggered = hit.is_some();
                 push_built(pending, || Event::Skip {
-                    loc,
+                    loc: loc.clone(),
                     to,
                     feed,
                     triggered,
@@ -508,7 +512,7 @@ impl<'a> Machining<'_, 'a> {
         if cfg.markers {
             stage.mark_axes(cfg, loc, (&mv, mm.to), w);
         }
-        stage.emit_released(cfg, state, &mm, loc.clone());
+        stage.emit_released(cfg, state, &mm, loc);
         Ok(())
     }
 
@@ -609,8 +613,7 @@ impl<'a> Machining<'_, 'a> {
             self.check_travel(&mm, at, w)?;
         }
         self.report_frame();
-        self.stage
-            .emit_released(self.cfg, self.state, &mm, at.loc.clone());
+        self.stage.emit_released(self.cfg, self.state, &mm, &at.loc);
         Ok(())
     }
 
