@@ -35,32 +35,87 @@ const CHUNK: usize = vcnc_interp::HAND_OVER;
 /// Chunks the interpreter may run ahead of the worker.
 const IN_FLIGHT: usize = 4;
 
-/// How long the worker waits for the next chunk awake before it sleeps.
-/// A sleeping worker must be woken by the interpreter's send, a system
-/// call and an interrupt to the other core that cost the interpreter some
-/// 8 µs a chunk on this VM (6 % of a surfacing run at 7 M blocks/s, where
-/// a chunk comes every ~140 µs and the worker is done with it in ~75).
-/// Awake, it takes the chunk from the channel without one. A program
-/// slower than this (macros, a long dwell in a trace) lets it sleep, and
-/// the wake is then a few percent of a chunk's time at most.
+/// How long one side of the channel waits for the other awake before it
+/// sleeps. A sleeping worker must be woken by the interpreter's send, a
+/// system call and an interrupt to the other core that cost the
+/// interpreter some 8 µs a chunk on this VM (6 % of a surfacing run at
+/// 7 M blocks/s, where a chunk comes every ~100–140 µs and the worker is
+/// done with it in ~70). Awake, it takes the chunk without one.
 const AWAKE: Duration = Duration::from_micros(250);
 
+/// A wait longer than this does not pay for the core it keeps busy.
+const PAYS: Duration = Duration::from_micros(150);
+
+/// Whether a side waits awake: only while that pays. Awake, a thread is
+/// runnable: with the two cores to themselves the threads hand over
+/// without system calls, but beside other work (a build, a second vcnc,
+/// `cargo test`) a spinning thread takes the core the other needs, and a
+/// run took twice as long. Such a wait comes late or not at all, so a
+/// wait that took longer than [`PAYS`] makes the next ones sleep at once:
+/// 4 of them, then 16, then 64 while they keep coming late; one on time
+/// starts the count again. (Measured 2026-12-06: at most 64 lets a quiet
+/// run recover from a slow moment of the host within a few chunks, and
+/// beside a busy core or a second vcnc a run takes within 10 % of the
+/// time it took before any spinning, against 1.4–1.5× with a fixed spin.)
+#[derive(Debug, Default)]
+struct Patience {
+    /// Waits left that sleep at once.
+    asleep: u32,
+    /// Late waits in a row (at most 3).
+    late: u32,
+}
+
+impl Patience {
+    /// What `attempt` gives, tried awake for up to [`AWAKE`] when waiting
+    /// awake pays, else once; `None` when the caller must sleep.
+    fn awake<T>(&mut self, mut attempt: impl FnMut() -> Option<T>) -> Option<T> {
+        if self.asleep > 0 {
+            self.asleep -= 1;
+            return attempt();
+        }
+        let since = Instant::now();
+        loop {
+            if let Some(got) = attempt() {
+                self.judge(since.elapsed() <= PAYS);
+                return Some(got);
+            }
+            if since.elapsed() > AWAKE {
+                self.judge(false);
+                return None;
+            }
+            for _ in 0..64 {
+                std::hint::spin_loop();
+            }
+        }
+    }
+
+    fn judge(&mut self, on_time: bool) {
+        if on_time {
+            self.late = 0;
+        } else {
+            self.late = (self.late + 1).min(3);
+            self.asleep = 1 << (2 * self.late);
+        }
+    }
+}
+
 /// The next chunk, or `None` when the interpreter is done: looked for
-/// awake for [`AWAKE`], then waited for asleep.
-fn next(rx: &Receiver<Vec<Event>>) -> Option<Vec<Event>> {
-    let since = Instant::now();
-    loop {
-        match rx.try_recv() {
-            Ok(chunk) => return Some(chunk),
-            Err(TryRecvError::Disconnected) => return None,
-            Err(TryRecvError::Empty) => {}
+/// awake while that pays ([`Patience`]), then waited for asleep.
+fn next(rx: &Receiver<Vec<Event>>, patience: &mut Patience) -> Option<Vec<Event>> {
+    let mut done = false;
+    let got = patience.awake(|| match rx.try_recv() {
+        Ok(chunk) => Some(chunk),
+        Err(TryRecvError::Disconnected) => {
+            done = true;
+            // Ends the wait: nothing more will come.
+            Some(Vec::new())
         }
-        if since.elapsed() > AWAKE {
-            return rx.recv().ok();
-        }
-        for _ in 0..64 {
-            std::hint::spin_loop();
-        }
+        Err(TryRecvError::Empty) => None,
+    });
+    match got {
+        _ if done => None,
+        Some(chunk) => Some(chunk),
+        None => rx.recv().ok(),
     }
 }
 
@@ -79,6 +134,8 @@ pub struct Worker<S> {
     emptied: Receiver<Vec<Event>>,
     done: Arc<AtomicBool>,
     handle: JoinHandle<S>,
+    /// How the interpreter waits for room in the channel.
+    patience: Patience,
 }
 
 impl<S: Sink + Send + 'static> Offload<S> {
@@ -99,7 +156,8 @@ impl<S: Sink + Send + 'static> Offload<S> {
         let spawned = std::thread::Builder::new()
             .name("sink".into())
             .spawn(move || {
-                while let Some(mut chunk) = next(&rx) {
+                let mut patience = Patience::default();
+                while let Some(mut chunk) = next(&rx, &mut patience) {
                     if !flag.load(Ordering::Relaxed) {
                         for e in &chunk {
                             sink.event(e);
@@ -122,6 +180,7 @@ impl<S: Sink + Send + 'static> Offload<S> {
                 emptied,
                 done,
                 handle,
+                patience: Patience::default(),
             }),
             Err(_) => Offload::Inline(make()),
         }
@@ -208,31 +267,33 @@ impl<S: Sink> Sink for Offload<S> {
 impl<S> Worker<S> {
     /// Sends the full chunk and starts the next in an emptied one. When
     /// the worker is [`IN_FLIGHT`] chunks behind, waits for room awake
-    /// for [`AWAKE`] before it sleeps, as the worker waits for chunks: with
-    /// the two threads at nearly one pace, sleeping on every full channel
-    /// made them wake each other chunk by chunk (hundreds of switches in
-    /// a run, 30 % slower).
+    /// while that pays ([`Patience`]), as the worker waits for chunks:
+    /// with the two threads at nearly one pace, sleeping on every full
+    /// channel made them wake each other chunk by chunk (hundreds of
+    /// switches in a run, 30 % slower).
     #[cold]
     fn hand_over(&mut self) {
         let next = self
             .emptied
             .try_recv()
             .unwrap_or_else(|_| Vec::with_capacity(CHUNK));
-        let mut full = std::mem::replace(&mut self.chunk, next);
-        let since = Instant::now();
-        loop {
-            match self.tx.try_send(full) {
+        let mut full = Some(std::mem::replace(&mut self.chunk, next));
+        let tx = &self.tx;
+        let sent = self.patience.awake(|| {
+            let chunk = full.take()?;
+            match tx.try_send(chunk) {
                 // A worker gone means it panicked: `join` reports it.
-                Ok(()) | Err(TrySendError::Disconnected(_)) => return,
-                Err(TrySendError::Full(back)) => full = back,
+                Ok(()) | Err(TrySendError::Disconnected(_)) => Some(()),
+                Err(TrySendError::Full(back)) => {
+                    full = Some(back);
+                    None
+                }
             }
-            if since.elapsed() > AWAKE {
-                let _ = self.tx.send(full);
-                return;
-            }
-            for _ in 0..64 {
-                std::hint::spin_loop();
-            }
+        });
+        if sent.is_none()
+            && let Some(chunk) = full
+        {
+            let _ = self.tx.send(chunk);
         }
     }
 }
@@ -387,10 +448,50 @@ mod tests {
             tx.send(vec![feed(), feed()]).unwrap();
             std::thread::sleep(AWAKE * 20);
         });
-        assert_eq!(next(&rx).map(|c| c.len()), Some(1));
-        assert_eq!(next(&rx).map(|c| c.len()), Some(2));
-        assert!(next(&rx).is_none(), "the sender is gone");
+        let mut patience = Patience::default();
+        assert_eq!(next(&rx, &mut patience).map(|c| c.len()), Some(1));
+        assert_eq!(next(&rx, &mut patience).map(|c| c.len()), Some(2));
+        assert!(next(&rx, &mut patience).is_none(), "the sender is gone");
         sender.join().unwrap();
+    }
+
+    /// A wait that comes late (or not at all) makes the next 4 sleep at
+    /// once, then 16, then 64 (and no more); a wait on time starts the
+    /// count again. Sleeping at once is one attempt, not a spin. (The
+    /// timing of a wait is judged by `judge`, called here directly where
+    /// a measured time would make the test depend on the host.)
+    #[test]
+    fn late_waits_make_the_next_ones_sleep_at_once_more_and_more() {
+        let mut p = Patience::default();
+        assert_eq!(p.awake(|| Some(1)), Some(1), "what comes at once is taken");
+        let mut tries = 0;
+        let never = p.awake(|| {
+            tries += 1;
+            None::<()>
+        });
+        assert!(never.is_none(), "nothing came within AWAKE");
+        assert!(tries > 1, "it waited awake");
+        assert_eq!((p.asleep, p.late), (4, 1));
+        for _ in 0..4 {
+            let mut once = 0;
+            let got = p.awake(|| {
+                once += 1;
+                None::<()>
+            });
+            assert!(got.is_none());
+            assert_eq!(once, 1, "asleep at once: one attempt");
+        }
+        assert_eq!(p.asleep, 0);
+        p.judge(false);
+        assert_eq!((p.asleep, p.late), (16, 2));
+        p.judge(false);
+        assert_eq!((p.asleep, p.late), (64, 3));
+        p.judge(false);
+        assert_eq!((p.asleep, p.late), (64, 3), "64 at most");
+        p.judge(true);
+        assert_eq!(p.late, 0, "on time starts the count again");
+        p.judge(false);
+        assert_eq!((p.asleep, p.late), (4, 1));
     }
 
     #[test]
