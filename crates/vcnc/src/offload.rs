@@ -102,21 +102,13 @@ impl Patience {
 /// The next chunk, or `None` when the interpreter is done: looked for
 /// awake while that pays ([`Patience`]), then waited for asleep.
 fn next(rx: &Receiver<Vec<Event>>, patience: &mut Patience) -> Option<Vec<Event>> {
-    let mut done = false;
+    // `Some(None)`: the interpreter is gone, which ends the wait too.
     let got = patience.awake(|| match rx.try_recv() {
-        Ok(chunk) => Some(chunk),
-        Err(TryRecvError::Disconnected) => {
-            done = true;
-            // Ends the wait: nothing more will come.
-            Some(Vec::new())
-        }
+        Ok(chunk) => Some(Some(chunk)),
+        Err(TryRecvError::Disconnected) => Some(None),
         Err(TryRecvError::Empty) => None,
     });
-    match got {
-        _ if done => None,
-        Some(chunk) => Some(chunk),
-        None => rx.recv().ok(),
-    }
+    got.unwrap_or_else(|| rx.recv().ok())
 }
 
 /// A sink `S`, on its own thread when there is a second core.

@@ -258,9 +258,9 @@ impl<'a> Interpreter<'a> {
             loop {
                 let start = i;
                 let depth = self.flow.frames.len();
-                // Set again for a later block of the line: one before it
-                // may have alarmed while it pointed elsewhere (a profile's
-                // line of G70–G73, a held corner's).
+                // Set again for a later block of the line: a macro
+                // statement before it on the line pointed it at the line
+                // the statement was compiled from (`macro_cached`).
                 if !std::mem::take(&mut first_block) {
                     self.stage.cur_line = Some((src, line));
                 }
